@@ -1,0 +1,68 @@
+"""Physical constants of the lunar capture problem, each with its source.
+
+All values are in km, s and kg unless the name says otherwise. The paper is
+Song, Park, Kim, Lee & Sim (2011), J. Astron. Space Sci. 28(3) 203-216,
+hereafter "Song 2011"; its constants are printed in its Section 3.1.
+"""
+
+from __future__ import annotations
+
+#: Gravitational parameter of the Moon, km^3/s^2 (Song 2011, Sec. 3.1).
+MU_MOON = 4902.800
+
+#: Gravitational parameter of the Earth, km^3/s^2 (Song 2011, Sec. 3.1).
+MU_EARTH = 398600.441
+
+#: Gravitational parameter of the Sun, km^3/s^2.
+#: Song 2011 (Sec. 3.1) prints 13,271,244,207.6 km^3/s^2, which is ten times too
+#: small. The correct value 1.32712440018e11 km^3/s^2 is the IAU 2009 / JPL value
+#: (Luzum et al. 2011, Celest. Mech. Dyn. Astr. 110, 293; DE405 gives
+#: GMS = 2.959122082855911e-4 AU^3/day^2, i.e. 1.32712440018e11 km^3/s^2).
+MU_SUN = 1.32712440018e11
+
+#: The Sun's gravitational parameter as printed in Song 2011 (erroneous, kept only
+#: so the book can show the discrepancy), km^3/s^2.
+MU_SUN_AS_PRINTED = 13_271_244_207.6
+
+#: Mean radius of the Moon, km (Song 2011, Sec. 3.1).
+R_MOON = 1738.2
+
+#: Unnormalised second zonal harmonic of the Moon (Song 2011, Sec. 3.1).
+J2_MOON = 0.2027e-3
+
+#: Standard gravity, m/s^2 (exact, CGPM 1901); used in the rocket equation, Eq. (3).
+G0_MPS2 = 9.80665
+
+#: Standard gravity in km/s^2.
+G0_KMPS2 = G0_MPS2 * 1e-3
+
+#: Lunar unit, km: the length unit of the paper's Figs. 2-3 (Song 2011, Sec. 3.3).
+LU_KM = R_MOON
+
+#: Seconds per day (TDB days).
+DAY_S = 86400.0
+
+#: Julian date of the J2000.0 epoch, TDB.
+JD_J2000 = 2451545.0
+
+#: IAU orientation of the Moon's pole at J2000, constant terms, degrees
+#: (Archinal et al. 2011, Celest. Mech. Dyn. Astr. 109, 101, Table 2, Moon:
+#: alpha0 = 269.9949 deg, delta0 = 66.5392 deg). Defines the M-MME2000 z axis.
+MOON_POLE_RA_DEG = 269.9949
+MOON_POLE_DEC_DEG = 66.5392
+
+#: Target altitude of every capture orbit's perilune, km (Song 2011, Sec. 1 and 3.2).
+PERILUNE_ALTITUDE_KM = 100.0
+
+#: Periods of the capture orbits used to fix the coast durations (Song 2011, Sec. 3.1):
+#: LOI 1 -> 12.235 h, LOI 2 -> 3.525 h, LOI 3 -> 117.848 min.
+CAPTURE_PERIODS_S = (12.235 * 3600.0, 3.525 * 3600.0, 117.848 * 60.0)
+
+#: Spacecraft mass at the first perilune, kg (Song 2011, Sec. 3.2.1).
+ARRIVAL_MASS_KG = 524.895
+
+#: Epoch of the first perilune, TDB (Song 2011, Sec. 3.2.1).
+ARRIVAL_EPOCH_TDB = "2017-02-20 03:41:26 TDB"
+
+#: The paper's three engines, (thrust N, Isp s) (Song 2011, abstract and Sec. 3.2).
+PAPER_ENGINES = ((150.0, 200.0), (300.0, 250.0), (450.0, 300.0))

@@ -1,0 +1,244 @@
+"""Equations of motion in modified equinoctial elements, Song 2011 Eqs. (2)-(8), (A2)-(A5).
+
+The state is ``x = (p km, f, g, h, k, L rad, m kg)``; the control is the unit thrust
+direction ``u = (u_r, u_t, u_n)`` in the radial-tangential-normal (RTN) frame; time
+is TDB seconds past J2000. The perturbing acceleration (Eq. 4) is
+
+    Delta = Delta_J2 (Eq. 7) + Q (a_Earth + a_Sun) (Eq. 6, rotated by Eq. A5) + T/m u (Eq. 8)
+
+and the rates are ``dy/dt = A(y) Delta + b(y)`` (Eq. 2, A2-A4), ``dm/dt = -T/(g0 Isp)``
+(Eq. 3). :func:`mee_rates` is written once over generic operations: it evaluates on
+numpy arrays and builds the CasADi expression that the transcription and the
+propagators share through :func:`rhs_function`.
+
+An independent Cartesian formulation (:func:`cartesian_rates`, numpy only, J2 from the
+gradient of the potential) exists to check the MEE equations.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import casadi as ca
+import numpy as np
+
+from . import constants as C
+from ._ops import ops
+from .elements import rv_from_mee
+from .ephemeris import ChebyshevFit, earth_sun_from_params
+from .errors import InputError
+
+#: Layout of the numeric parameter vector of the dynamics Function.
+P_MU, P_R, P_J2, P_MUE, P_MUS, P_THRUST, P_VEX, P_KJ2, P_KE, P_KS = range(10)
+N_BASE = 10
+N_PARAM = N_BASE + 2 + 6 * ChebyshevFit.NCOEF
+
+MODES = {"two-body": (0.0, 0.0, 0.0), "j2": (1.0, 0.0, 0.0), "full": (1.0, 1.0, 1.0)}
+
+
+@dataclass
+class Model:
+    """Physical model: central body, perturbations, engine and ephemeris fit.
+
+    Parameters
+    ----------
+    mode : {"full", "j2", "two-body"}
+        Which perturbations act: lunar J2 and Earth and Sun point masses ("full"),
+        lunar J2 only, or none.
+    thrust_N : float
+        Engine thrust, N (0 for a coast).
+    isp_s : float
+        Specific impulse, s.
+    fit : ChebyshevFit or None
+        Earth/Sun ephemeris fit; required when mode is "full".
+    """
+
+    mode: str = "full"
+    thrust_N: float = 0.0
+    isp_s: float = 300.0
+    fit: ChebyshevFit | None = None
+    mu: float = C.MU_MOON
+    radius: float = C.R_MOON
+    j2: float = C.J2_MOON
+    mu_earth: float = C.MU_EARTH
+    mu_sun: float = C.MU_SUN
+    _flags: tuple = field(init=False, repr=False)
+
+    def __post_init__(self):
+        if self.mode not in MODES:
+            raise InputError(f"dynamics must be one of {sorted(MODES)}, got {self.mode!r}")
+        if not np.isfinite(self.thrust_N) or self.thrust_N < 0:
+            raise InputError(f"thrust must be a non-negative number of newtons, got {self.thrust_N}")
+        if not np.isfinite(self.isp_s) or self.isp_s <= 0:
+            raise InputError(f"specific impulse must be positive (s), got {self.isp_s}")
+        if self.mode == "full" and self.fit is None:
+            raise InputError("full dynamics need an ephemeris fit (Model(fit=...))")
+        self._flags = MODES[self.mode]
+
+    @property
+    def exhaust_speed_kmps(self) -> float:
+        """Effective exhaust speed g0 Isp, km/s."""
+        return C.G0_KMPS2 * self.isp_s
+
+    def with_thrust(self, thrust_N: float) -> "Model":
+        """A copy with another thrust (0 for a coast)."""
+        return Model(self.mode, thrust_N, self.isp_s, self.fit, self.mu, self.radius, self.j2,
+                     self.mu_earth, self.mu_sun)
+
+    def params(self, thrust_N: float | None = None) -> np.ndarray:
+        """The numeric parameter vector (length N_PARAM) of :func:`rhs_function`."""
+        T = self.thrust_N if thrust_N is None else thrust_N
+        base = [self.mu, self.radius, self.j2, self.mu_earth, self.mu_sun, T * 1e-3,
+                self.exhaust_speed_kmps * 1e3, *self._flags]
+        if self.fit is not None:
+            eph = self.fit.param_vector()
+        else:  # a dummy window; its values are multiplied by zero flags
+            eph = np.concatenate([[0.0, 1.0], np.zeros(6 * ChebyshevFit.NCOEF)])
+            eph[2] = 1e9  # keep the (unused) third-body distances away from zero
+            eph[2 + 3 * ChebyshevFit.NCOEF] = 1e9
+        return np.concatenate([base, eph])
+
+
+def rtn_from_mee(h, k, L):
+    """RTN unit vectors (i_r, i_t, i_n), each a 3-tuple, from MEE (equivalent to Eq. A5)."""
+    xp = ops(h, k, L)
+    s2 = 1 + h * h + k * k
+    fh = ((1 + h * h - k * k) / s2, 2 * h * k / s2, -2 * k / s2)
+    gh = (2 * h * k / s2, (1 - h * h + k * k) / s2, 2 * h / s2)
+    cL, sL = xp.cos(L), xp.sin(L)
+    ir = tuple(cL * a + sL * b for a, b in zip(fh, gh))
+    it = tuple(-sL * a + cL * b for a, b in zip(fh, gh))
+    i_n = (2 * k / s2, -2 * h / s2, (1 - h * h - k * k) / s2)
+    return ir, it, i_n
+
+
+def j2_rtn(p, f, g, h, k, L, mu, radius, j2):
+    """Lunar J2 acceleration in RTN, km/s^2, Eq. (7) (Kechichian 2000)."""
+    xp = ops(p, f, g, h, k, L)
+    cL, sL = xp.cos(L), xp.sin(L)
+    q = 1 + f * cL + g * sL
+    r = p / q
+    s2 = 1 + h * h + k * k
+    c = mu * j2 * radius ** 2 / r ** 4
+    w = h * sL - k * cL
+    dr = -1.5 * c * (1 - 12 * w * w / (s2 * s2))
+    dt = -12 * c * w * (h * cL + k * sL) / (s2 * s2)
+    dn = -6 * c * (1 - h * h - k * k) * w / (s2 * s2)
+    return dr, dt, dn
+
+
+def third_body_accel(r, rj, muj):
+    """Point-mass third-body acceleration on the spacecraft, km/s^2, Eq. (6).
+
+    a = mu_j [ (r_j - r)/|r_j - r|^3 - r_j/|r_j|^3 ], with r the spacecraft and r_j
+    the body relative to the Moon (component tuples or arrays).
+    """
+    xp = ops(*r, *rj)
+    d = [rj[i] - r[i] for i in range(3)]
+    dn = xp.sqrt(d[0] ** 2 + d[1] ** 2 + d[2] ** 2)
+    rn = xp.sqrt(rj[0] ** 2 + rj[1] ** 2 + rj[2] ** 2)
+    return tuple(muj * (d[i] / dn ** 3 - rj[i] / rn ** 3) for i in range(3))
+
+
+def mee_rates(x, u, t, prm):
+    """Time derivatives of (p, f, g, h, k, L, m): Eqs. (2)-(8), (A2)-(A4).
+
+    Parameters
+    ----------
+    x : sequence of 7 (p km, f, g, h, k, L rad, m kg), numpy arrays or CasADi symbols
+    u : sequence of 3, unit thrust direction (u_r, u_t, u_n)
+    t : epoch, TDB seconds past J2000
+    prm : parameter vector of :meth:`Model.params`
+
+    Returns
+    -------
+    list of 7 derivatives (km/s, 1/s, ..., rad/s, kg/s)
+    """
+    p, f, g, h, k, L, m = (x[i] for i in range(7))
+    xp = ops(p, f, g, h, k, L, m, t)
+    mu = prm[P_MU]
+    cL, sL = xp.cos(L), xp.sin(L)
+    q = 1 + f * cL + g * sL
+    s2 = 1 + h * h + k * k
+    w = h * sL - k * cL
+    sq = xp.sqrt(p / mu)
+
+    # lunar J2, Eq. (7)
+    jr, jt, jn = j2_rtn(p, f, g, h, k, L, mu, prm[P_R], prm[P_J2])
+    # Earth and Sun point masses, Eq. (6), rotated to RTN with Eq. (A5)
+    r_sc, _ = rv_from_mee(p, f, g, h, k, L, mu)
+    r_earth, r_sun = earth_sun_from_params([prm[N_BASE + i] for i in range(N_PARAM - N_BASE)], t)
+    ae = third_body_accel(r_sc, r_earth, prm[P_MUE])
+    asun = third_body_accel(r_sc, r_sun, prm[P_MUS])
+    a3 = [prm[P_KE] * ae[i] + prm[P_KS] * asun[i] for i in range(3)]
+    ir, it, i_n = rtn_from_mee(h, k, L)
+    dot = lambda a, b: a[0] * b[0] + a[1] * b[1] + a[2] * b[2]  # noqa: E731
+    # thrust, Eq. (8): T [kN] / m [kg] = km/s^2
+    acc = prm[P_THRUST] / m
+    dr = prm[P_KJ2] * jr + dot(ir, a3) + acc * u[0]
+    dt = prm[P_KJ2] * jt + dot(it, a3) + acc * u[1]
+    dn = prm[P_KJ2] * jn + dot(i_n, a3) + acc * u[2]
+
+    # Eq. (2) with A (A2), b (A3), q, s^2 (A4)
+    pdot = 2 * p / q * sq * dt
+    fdot = sq * (sL * dr + ((q + 1) * cL + f) * dt / q - w * g * dn / q)
+    gdot = sq * (-cL * dr + ((q + 1) * sL + g) * dt / q + w * f * dn / q)
+    hdot = sq * s2 * cL / (2 * q) * dn
+    kdot = sq * s2 * sL / (2 * q) * dn
+    Ldot = xp.sqrt(mu * p) * (q / p) ** 2 + sq * w * dn / q
+    # mass flow, Eq. (3): T [N] / (g0 Isp) [m/s] = kg/s
+    mdot = -prm[P_THRUST] * 1e3 / prm[P_VEX]
+    return [pdot, fdot, gdot, hdot, kdot, Ldot, mdot]
+
+
+@lru_cache(maxsize=None)
+def rhs_function() -> ca.Function:
+    """CasADi Function ``f(x[7], u[3], t, prm[N_PARAM]) -> xdot[7]`` built once from :func:`mee_rates`."""
+    x = ca.SX.sym("x", 7)
+    u = ca.SX.sym("u", 3)
+    t = ca.SX.sym("t")
+    prm = ca.SX.sym("prm", N_PARAM)
+    rates = mee_rates([x[i] for i in range(7)], [u[i] for i in range(3)], t,
+                      [prm[i] for i in range(N_PARAM)])
+    return ca.Function("mee_rhs", [x, u, t, prm], [ca.vertcat(*rates)],
+                       ["x", "u", "t", "prm"], ["xdot"])
+
+
+# ------------------------------------------------------------------ independent check
+def cartesian_rates(t, state, model: Model, u_rtn=(0.0, 0.0, 0.0)):
+    """Cartesian equations of motion, written independently of the MEE form (numpy).
+
+    ``state = (r km [3], v km/s [3], m kg)``;
+    r'' = -mu r/r^3 + grad(U_J2) + a_Earth + a_Sun + T/m Q^T u.
+    The J2 term is the gradient of U = -mu J2 R^2 / (2 r^3) (3 z^2/r^2 - 1) with z
+    along the M-MME2000 pole.
+    """
+    r = np.asarray(state[:3], float)
+    v = np.asarray(state[3:6], float)
+    m = state[6]
+    mu = model.mu
+    rn = np.linalg.norm(r)
+    a = -mu * r / rn ** 3
+    kj2, ke, ks = model._flags
+    if kj2:
+        x, y, z = r
+        c = 1.5 * model.j2 * mu * model.radius ** 2 / rn ** 5
+        zz = 5 * z * z / rn ** 2
+        a = a + kj2 * c * np.array([x * (zz - 1), y * (zz - 1), z * (zz - 3)])
+    if ke or ks:
+        re, rs = model.fit(t)
+        re, rs = re.ravel(), rs.ravel()
+        for kflag, rj, muj in ((ke, re, model.mu_earth), (ks, rs, model.mu_sun)):
+            d = rj - r
+            a = a + kflag * muj * (d / np.linalg.norm(d) ** 3 - rj / np.linalg.norm(rj) ** 3)
+    mdot = 0.0
+    if model.thrust_N > 0:
+        ir = r / rn
+        hv = np.cross(r, v)
+        i_n = hv / np.linalg.norm(hv)
+        it = np.cross(i_n, ir)
+        dirn = u_rtn[0] * ir + u_rtn[1] * it + u_rtn[2] * i_n
+        a = a + model.thrust_N * 1e-3 / m * dirn
+        mdot = -model.thrust_N / (model.exhaust_speed_kmps * 1e3)
+    return np.concatenate([v, a, [mdot]])

@@ -1,0 +1,183 @@
+"""The paper's scenario: arrival state, capture chain epochs, engines and cases.
+
+Arrival (Song 2011, Sec. 3.2.1): first perilune on 2017-02-20 03:41:26 TDB at 100 km
+altitude, 90 deg inclination in M-MME2000, mass 524.895 kg. The paper does not print
+the hyperbola's speed or orientation. We reconstruct them:
+
+* **Speed.** v_inf is chosen so that a tangential impulse at perilune into the 12.235 h
+  ellipse costs the paper's impulsive 353.272 m/s (:func:`lunarcap.impulsive.v_inf_from_loi1`),
+  giving v_inf = 0.918 km/s.
+* **Direction.** The paper's transfer (Song et al. 2009c, 2010a) is a direct,
+  Hohmann-like trans-lunar trajectory. Such a trajectory arrives near its geocentric
+  apogee with a geocentric speed (about 0.2 km/s) far below the Moon's (about 1.0 km/s)
+  and nearly parallel to it, so the Moon-relative velocity on the approach asymptote is
+  nearly anti-parallel to the Moon's geocentric velocity. We take the incoming asymptote
+  exactly anti-parallel to the Moon's geocentric velocity at the perilune epoch (from
+  DE405): the approach direction parameter ``approach="anti-lunar-velocity"``; an
+  explicit unit vector (M-MME2000) may be given instead.
+* **Plane.** The orbit plane contains the asymptote and has the requested inclination
+  (90 deg); of the two such planes, ``hemisphere`` picks the one whose perilune lies over
+  the northern or southern lunar hemisphere.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import constants as C
+from .elements import mee_from_rv
+from .ephemeris import ChebyshevFit, Ephemeris, default_ephemeris
+from .epochs import seconds_from_calendar
+from .errors import InputError
+from .impulsive import check_engine, check_perilune_radius, v_inf_from_loi1
+
+#: The paper's ignition offsets, min before perilune (Tables 1-5), by (thrust N, LOI).
+PAPER_STARTS_MIN = {
+    (150.0, 1): (0.0, -6.0, -8.0, -10.0, -12.0, -14.0),
+    (150.0, 2): (0.0, -3.0, -6.0, -9.0),
+    (150.0, 3): (0.0, -3.0, -5.0, -7.0),
+    (300.0, 1): (0.0, -2.0, -4.0, -6.0),
+    (300.0, 2): (0.0, -1.0, -3.0, -5.0),
+    (300.0, 3): (0.0, -1.0, -2.0, -3.0),
+    (450.0, 1): (0.0, -2.0, -3.0, -4.0),
+    (450.0, 2): (0.0, -2.0, -4.0),
+    (450.0, 3): (0.0, -1.0, -2.0, -3.0),
+}
+
+#: The paper's best offsets (Table B1), min, by thrust N -> (LOI1, LOI2, LOI3).
+PAPER_BEST_STARTS_MIN = {150.0: (-10.0, -6.0, -5.0), 300.0: (-4.0, -3.0, -2.0),
+                         450.0: (-3.0, -2.0, -2.0)}
+
+
+@dataclass
+class Arrival:
+    """The reconstructed arrival hyperbola at its perilune (km, km/s, kg, M-MME2000)."""
+
+    epoch_s: float
+    r_km: np.ndarray
+    v_kmps: np.ndarray
+    mass_kg: float
+    v_inf_kmps: float
+    approach_dir: np.ndarray
+    hemisphere: str
+
+    @property
+    def mee(self) -> np.ndarray:
+        """(p, f, g, h, k, L) of the arrival state."""
+        return mee_from_rv(self.r_km, self.v_kmps, C.MU_MOON)
+
+    @property
+    def state(self) -> np.ndarray:
+        """(p, f, g, h, k, L, m)."""
+        return np.concatenate([self.mee, [self.mass_kg]])
+
+
+def arrival_state(epoch: str = C.ARRIVAL_EPOCH_TDB, altitude_km: float = C.PERILUNE_ALTITUDE_KM,
+                  inclination_deg: float = 90.0, mass_kg: float = C.ARRIVAL_MASS_KG,
+                  v_inf_kmps: float | None = None, approach="anti-lunar-velocity",
+                  hemisphere: str = "north", eph: Ephemeris | None = None,
+                  mu: float = C.MU_MOON) -> Arrival:
+    """Reconstruct the arrival hyperbola's perilune state (see the module docstring).
+
+    Parameters
+    ----------
+    epoch : str, TDB calendar epoch of the first perilune
+    altitude_km : perilune altitude, km
+    inclination_deg : inclination in M-MME2000, deg
+    mass_kg : mass at perilune, kg
+    v_inf_kmps : hyperbolic excess speed, km/s (default: from the paper's impulsive LOI 1)
+    approach : "anti-lunar-velocity" or a unit vector (3,), the incoming asymptote's
+        velocity direction in M-MME2000
+    hemisphere : "north" or "south", the lunar hemisphere of the perilune
+    """
+    eph = eph or default_ephemeris()
+    t = seconds_from_calendar(epoch)
+    eph.check_epochs(t)
+    rp = C.R_MOON + altitude_km
+    check_perilune_radius(rp)
+    check_engine(1.0, 1.0, mass_kg)
+    if not 0.0 <= inclination_deg <= 180.0:
+        raise InputError(f"inclination must lie in [0, 180] deg, got {inclination_deg}")
+    if hemisphere not in ("north", "south"):
+        raise InputError(f"hemisphere must be 'north' or 'south', got {hemisphere!r}")
+    vinf = v_inf_from_loi1(rp_km=rp) if v_inf_kmps is None else float(v_inf_kmps)
+    if not vinf > 0:
+        raise InputError(f"v_inf must be positive (km/s), got {vinf}")
+    if isinstance(approach, str):
+        if approach != "anti-lunar-velocity":
+            raise InputError(f"unknown approach {approach!r}")
+        _, vm = eph.moon_geocentric_state(t)
+        s = -vm[:, 0] / np.linalg.norm(vm[:, 0])
+    else:
+        s = np.asarray(approach, float)
+        if s.shape != (3,) or not np.isfinite(s).all() or np.linalg.norm(s) == 0:
+            raise InputError("approach must be a non-zero 3-vector")
+        s = s / np.linalg.norm(s)
+    z = np.array([0.0, 0.0, 1.0])
+    # orbit normals h perpendicular to s with h.z = cos(i)
+    zp = z - (z @ s) * s
+    if np.linalg.norm(zp) < 1e-12:
+        raise InputError("approach along the lunar pole: the inclination cannot be chosen")
+    e1 = zp / np.linalg.norm(zp)
+    e2 = np.cross(s, e1)
+    cphi = np.cos(np.radians(inclination_deg)) / (e1 @ z)
+    if abs(cphi) > 1:
+        raise InputError(f"inclination {inclination_deg} deg unreachable with this approach "
+                         f"direction (asymptote latitude {np.degrees(np.arcsin(s @ z)):.2f} deg)")
+    ecc = 1 + rp * vinf ** 2 / mu
+    th_inf = np.arccos(-1 / ecc)
+    vp = np.sqrt(vinf ** 2 + 2 * mu / rp)
+    cands = []
+    for sphi in (np.sqrt(1 - cphi ** 2), -np.sqrt(1 - cphi ** 2)):
+        hh = cphi * e1 + sphi * e2
+        rhat = np.cos(th_inf) * (-s) + np.sin(th_inf) * np.cross(hh, -s)
+        cands.append((rhat, np.cross(hh, rhat)))
+    north = max(cands, key=lambda c: c[0] @ z)
+    south = min(cands, key=lambda c: c[0] @ z)
+    rhat, vhat = north if hemisphere == "north" else south
+    return Arrival(t, rp * rhat, vp * vhat, float(mass_kg), vinf, s, hemisphere)
+
+
+@dataclass
+class Mission:
+    """The capture chain's fixed epochs and ephemeris fit.
+
+    Attributes
+    ----------
+    arrival : Arrival
+    perilune_epochs_s : tuple of 4 floats
+        Nominal perilune epochs (TDB s past J2000): arrival, +12.235 h, +3.525 h, and the
+        end of the final coast (+117.848 min). LOI n ignites ``start`` minutes from
+        ``perilune_epochs_s[n-1]`` and its coast ends at ``perilune_epochs_s[n]``.
+    fit : ChebyshevFit over the whole chain with margins
+    """
+
+    arrival: Arrival
+    eph: Ephemeris = field(default_factory=default_ephemeris)
+    periods_s: tuple = C.CAPTURE_PERIODS_S
+
+    def __post_init__(self):
+        t0 = self.arrival.epoch_s
+        ep = [t0]
+        for T in self.periods_s:
+            ep.append(ep[-1] + T)
+        self.perilune_epochs_s = tuple(ep)
+        self.fit = ChebyshevFit.fit(self.eph, t0 - 6 * 3600.0, ep[-1] + 6 * 3600.0)
+
+
+def check_start(start_min: float, limit_min: float = 120.0) -> float:
+    """Validate an ignition offset (min from perilune)."""
+    if not isinstance(start_min, (int, float, np.floating, np.integer)) or not np.isfinite(start_min):
+        raise InputError(f"start offset must be a number of minutes, got {start_min!r}")
+    if abs(start_min) > limit_min:
+        raise InputError(f"start offset {start_min} min is more than {limit_min} min from perilune")
+    return float(start_min)
+
+
+def check_loi(loi) -> int:
+    """Validate an LOI number (1, 2 or 3)."""
+    if loi not in (1, 2, 3):
+        raise InputError(f"LOI number must be 1, 2 or 3, got {loi!r}")
+    return int(loi)
