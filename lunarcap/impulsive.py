@@ -60,7 +60,7 @@ def burn_duration_estimate_s(m0_kg: float, dv_mps: float, thrust_N: float, isp_s
 def v_inf_from_loi1(dv_loi1_mps: float = PAPER_DV_LOI1_MPS, rp_km: float | None = None,
                     period_s: float = C.CAPTURE_PERIODS_S[0], mu: float = C.MU_MOON) -> float:
     """Hyperbolic excess speed (km/s) whose tangential perilune impulse dv gives the period."""
-    rp = rp_km or C.R_MOON + C.PERILUNE_ALTITUDE_KM
+    rp = C.R_MOON + C.PERILUNE_ALTITUDE_KM if rp_km is None else rp_km
     check_perilune_radius(rp)
     a1 = semi_major_axis_from_period(period_s, mu)
     vp_hyp = vis_viva_speed(rp, a1, mu) + dv_loi1_mps * 1e-3

@@ -1,0 +1,104 @@
+"""Tests of lunarcap.epochs: TDB calendar strings, Julian dates, seconds past J2000.
+
+The independent reference is Python's :mod:`datetime`, which implements the same
+proleptic Gregorian calendar with its own (C) arithmetic.
+"""
+
+from datetime import datetime, timedelta
+
+import numpy as np
+import pytest
+
+from lunarcap import epochs
+from lunarcap.constants import ARRIVAL_EPOCH_TDB
+from lunarcap.errors import InputError
+
+J2000 = datetime(2000, 1, 1, 12, 0, 0)
+
+
+def test_j2000_is_zero_seconds():
+    # J2000.0 is 2000-01-01 12:00:00 TDB = JD 2451545.0 by definition: exact.
+    assert epochs.seconds_from_calendar("2000-01-01 12:00:00 TDB") == 0.0
+    assert epochs.calendar_from_seconds(0.0) == "2000-01-01 12:00:00.000 TDB"
+    assert epochs.jd_from_seconds(0.0) == 2451545.0
+    assert epochs.seconds_from_jd(2451545.0) == 0.0
+
+
+def test_paper_epoch_form_parses():
+    # Song 2011 prints epochs as '20-Feb-2017 03:41:26 (TDB)'; both spellings must give the
+    # same number, and it must equal datetime's count of seconds (integers: exact).
+    t_paper = epochs.seconds_from_calendar("20-Feb-2017 03:41:26 (TDB)")
+    t_iso = epochs.seconds_from_calendar(ARRIVAL_EPOCH_TDB)
+    expected = (datetime(2017, 2, 20, 3, 41, 26) - J2000).total_seconds()
+    assert t_paper == t_iso == expected
+    # the variants the parser advertises: 'T' separator, no suffix, lower-case month
+    assert epochs.seconds_from_calendar("2017-02-20T03:41:26") == expected
+    assert epochs.seconds_from_calendar("20-feb-2017 03:41:26") == expected
+
+
+def test_paper_epoch_julian_date():
+    # JD of 2017-02-20 00:00 is 2457804.5 (JD 2451545.0 at 2000-01-01 12:00 plus 6259.5 days,
+    # counted by datetime); the fraction is 3 h 41 min 26 s of a day. One float JD resolves
+    # ~4e-5 s, i.e. 5e-10 day: tolerance 1e-9 day.
+    days = (datetime(2017, 2, 20) - J2000).days + 0.5  # J2000 is noon
+    jd_expected = 2451545.0 + days + (3 * 3600 + 41 * 60 + 26) / 86400.0
+    t = epochs.seconds_from_calendar(ARRIVAL_EPOCH_TDB)
+    assert epochs.jd_from_seconds(t) == pytest.approx(jd_expected, abs=1e-9)
+    whole, frac = epochs.jd_split_from_seconds(t)
+    assert whole == 2451545.0 + 6259.0  # whole days past J2000 noon: exact
+    assert frac == pytest.approx((15.0 * 3600 + 41 * 60 + 26) / 86400.0, abs=1e-15)
+    # the two-part JD converts back exactly to the millisecond
+    assert epochs.seconds_from_jd(whole, frac) == pytest.approx(t, abs=1e-6)
+
+
+def test_calendar_round_trip_random_epochs_1900_2100():
+    # Random epochs in whole milliseconds between 1900 and 2100: calendar -> seconds ->
+    # calendar must be exact at the millisecond, and both must agree with datetime.
+    rng = np.random.default_rng(20170220)
+    lo = (datetime(1900, 1, 1) - J2000).total_seconds()
+    hi = (datetime(2100, 12, 31, 23, 59, 59) - J2000).total_seconds()
+    ms = rng.integers(int(lo * 1000), int(hi * 1000), size=400)
+    for n in ms:
+        t = int(n) / 1000.0
+        text = epochs.calendar_from_seconds(t)
+        dt = J2000 + timedelta(milliseconds=int(n))
+        assert text == dt.strftime("%Y-%m-%d %H:%M:%S.") + f"{dt.microsecond // 1000:03d} TDB"
+        back = epochs.seconds_from_calendar(text)
+        # |t| <= 3.2e9 s, so a double resolves ~5e-7 s: the round trip is exact to 1e-6 s
+        assert abs(back - t) < 1e-6
+        assert round(back * 1000) == n
+
+
+def test_calendar_from_seconds_rounds_fraction():
+    # 0.9996 s past midnight rounds up to the next second at 3 decimals (carry into minutes,
+    # hours and the date): 1999-12-31 23:59:59.9996 -> 2000-01-01 00:00:00.000.
+    t = (datetime(1999, 12, 31, 23, 59, 59) - J2000).total_seconds() + 0.9996
+    assert epochs.calendar_from_seconds(t) == "2000-01-01 00:00:00.000 TDB"
+    assert epochs.calendar_from_seconds(t, 0) == "2000-01-01 00:00:00 TDB"
+
+
+def test_leap_day_and_century_rules():
+    # 2000 is a leap year (divisible by 400), 1900 and 2100 are not: datetime agrees.
+    assert epochs.seconds_from_calendar("2000-02-29 12:00:00") == 59 * 86400.0
+    for bad in ("1900-02-29 00:00:00", "2100-02-29 00:00:00", "2017-02-30 00:00:00"):
+        with pytest.raises(InputError):
+            epochs.seconds_from_calendar(bad)
+
+
+@pytest.mark.parametrize("text", [
+    "not an epoch",
+    "2017-13-01 00:00:00 TDB",        # month 13
+    "2017-02-20 24:00:00 TDB",        # hour 24
+    "2017-02-20 03:61:26 TDB",        # minute 61
+    "20-Foo-2017 03:41:26 (TDB)",     # unknown month
+    "2017-02-20",                     # no time of day
+    "",
+])
+def test_malformed_epoch_raises_input_error(text):
+    with pytest.raises(InputError):
+        epochs.seconds_from_calendar(text)
+
+
+def test_non_string_epoch_raises_input_error():
+    with pytest.raises(InputError):
+        epochs.seconds_from_calendar(540834086.0)
