@@ -25,7 +25,7 @@ derivatives from CasADi solves it.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import lru_cache
 
 import casadi as ca
@@ -89,8 +89,9 @@ class LOIProblem:
     circular: bool = False
     dv_impulsive_mps: float | None = None
     t1_max_s: float | None = None
-    label: str = ""
-    meta: dict = field(default_factory=dict)
+    loi: int = 0
+    start_min: float = float("nan")
+    t_perilune_s: float = float("nan")
 
     def __post_init__(self):
         self.x0 = np.asarray(self.x0, float)

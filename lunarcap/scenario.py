@@ -51,6 +51,23 @@ PAPER_BEST_STARTS_MIN = {150.0: (-10.0, -6.0, -5.0), 300.0: (-4.0, -3.0, -2.0),
                          450.0: (-3.0, -2.0, -2.0)}
 
 
+@dataclass(frozen=True)
+class ArrivalSpec:
+    """Hashable parameters of the arrival reconstruction (see :func:`arrival_state`)."""
+
+    epoch: str = C.ARRIVAL_EPOCH_TDB
+    altitude_km: float = C.PERILUNE_ALTITUDE_KM
+    inclination_deg: float = 90.0
+    mass_kg: float = C.ARRIVAL_MASS_KG
+    v_inf_kmps: float | None = None
+    hemisphere: str = "north"
+
+    def build(self, eph: Ephemeris | None = None) -> "Arrival":
+        """The Arrival state of these parameters."""
+        return arrival_state(self.epoch, self.altitude_km, self.inclination_deg, self.mass_kg,
+                             self.v_inf_kmps, hemisphere=self.hemisphere, eph=eph)
+
+
 @dataclass
 class Arrival:
     """The reconstructed arrival hyperbola at its perilune (km, km/s, kg, M-MME2000)."""

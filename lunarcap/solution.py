@@ -1,0 +1,164 @@
+"""The result of one verified LOI optimisation: histories, summary, diagnostics."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from . import constants as C
+from .elements import rv_from_mee
+from .epochs import calendar_from_seconds
+from .ocp import RawSolution, control_function, terminal_values
+from .verify import Verification
+
+
+def thrust_angles_deg(u):
+    """In-plane angle alpha (from the tangential axis, in [0, 360)) and out-of-plane angle
+    beta, degrees, of RTN unit vectors u (3, N): Eq. (14), alpha = atan2(u_r, u_t),
+    beta = asin(u_n)."""
+    u = np.asarray(u, float)
+    alpha = np.degrees(np.arctan2(u[0], u[1])) % 360.0
+    beta = np.degrees(np.arcsin(np.clip(u[2], -1, 1)))
+    return alpha, beta
+
+
+@dataclass
+class Solution:
+    """A verified finite-burn LOI solution.
+
+    Attributes
+    ----------
+    raw : RawSolution
+        Collocation solution and IPOPT diagnostics (accepted mesh).
+    verification : Verification
+        Residuals of the independent re-propagation.
+    flight : tuple
+        (burn arcs, coast Trajectory) of the verified re-propagation.
+    attempts : list of dict
+        Every mesh tried: mesh, IPOPT status, iterations, verification verdict.
+    wall_s : float
+        Wall time of the whole solve (guess, NLP build if new, solve, verification), s.
+    """
+
+    raw: RawSolution
+    verification: Verification
+    flight: tuple
+    attempts: list = field(default_factory=list)
+    wall_s: float = 0.0
+    guess_t1_s: float = 0.0
+
+    # ------------------------------------------------------------------ summary
+    @property
+    def problem(self):
+        """The LOIProblem solved."""
+        return self.raw.prob
+
+    @property
+    def delta_v_mps(self) -> float:
+        """Burn delta-V (collocation), m/s."""
+        return self.raw.delta_v_mps
+
+    @property
+    def end_state(self) -> np.ndarray:
+        """Verified state (p, f, g, h, k, L, m) at the end of the coast."""
+        return self.flight[1].final
+
+    def summary(self) -> dict:
+        """Flat summary with units in the keys (the CLI's JSON)."""
+        prob, raw, ver = self.problem, self.raw, self.verification
+        imp = prob.dv_impulsive_mps
+        tv = terminal_values(self.end_state)
+        eq19 = prob.eq19_duration_s
+        return {
+            "loi": prob.loi, "thrust_N": prob.model.thrust_N, "isp_s": prob.model.isp_s,
+            "dynamics": prob.model.mode, "start_min": prob.start_min,
+            "ignition_epoch": calendar_from_seconds(prob.t_ign_s),
+            "end_epoch": calendar_from_seconds(prob.t_end_s),
+            "burn_duration_min": raw.t1_s / 60.0, "delta_v_mps": raw.delta_v_mps,
+            "impulsive_delta_v_mps": imp,
+            "loss_mps": None if imp is None else raw.delta_v_mps - imp,
+            "loss_percent": None if imp is None else 100.0 * (raw.delta_v_mps - imp) / imp,
+            "m_start_kg": prob.x0[6], "m_end_kg": float(raw.x_burn[6, -1]),
+            "fuel_kg": prob.x0[6] - float(raw.x_burn[6, -1]),
+            "v_end_kmps": tv["v_kmps"], "rp_end_km": tv["rp_km"], "inc_end_deg": tv["inc_deg"],
+            "eq19_duration_min": None if eq19 is None else eq19 / 60.0,
+            "objective_mps": raw.objective_kmps * 1e3,
+            "ipopt_status": raw.status, "ipopt_iterations": raw.iterations,
+            "mesh": f"{raw.mesh.n_burn}x{raw.mesh.n_coast} LGR-{raw.mesh.degree}",
+            "nlp_solve_s": raw.solve_s, "solve_wall_s": self.wall_s,
+            "verification": {k: v for k, v in self.verification.to_dict().items()},
+        }
+
+    def to_dict(self) -> dict:
+        """Summary plus the mesh attempts, JSON-ready."""
+        d = self.summary()
+        d["attempts"] = self.attempts
+        return _plain(d)
+
+    def to_json(self, **kw) -> str:
+        """JSON text of :meth:`to_dict`."""
+        return json.dumps(self.to_dict(), **kw)
+
+    # ------------------------------------------------------------------ histories
+    def history(self, n_burn: int = 121, n_coast: int = 400) -> pd.DataFrame:
+        """Time histories of the verified flight.
+
+        Columns: t_s (TDB s past J2000), minutes from ignition, phase, MEE (p_km, f, g, h,
+        k, L_rad), m_kg, Cartesian state (x_km..., vx_kmps...; M-MME2000), u_r, u_t, u_n,
+        alpha_deg, beta_deg (NaN while coasting), thrust acceleration (km/s^2, M-MME2000).
+        """
+        arcs, coast = self.flight
+        prob = self.problem
+        u_of_t, bounds = control_function(self.raw)
+        tb = np.linspace(bounds[0], bounds[-1], n_burn)
+        xb = np.column_stack([_arc_eval(arcs, bounds, t) for t in tb])[:7]
+        ub = np.column_stack([u_of_t(t) for t in tb])
+        tc = np.linspace(coast.t[0], coast.t[-1], n_coast)[1:]
+        xc = coast.sol(tc)
+        t = np.concatenate([tb, tc])
+        x = np.column_stack([xb, xc])
+        u = np.column_stack([ub, np.full((3, tc.size), np.nan)])
+        r, v = rv_from_mee(*x[:6], C.MU_MOON)
+        r, v = np.array(r), np.array(v)
+        alpha, beta = thrust_angles_deg(u)
+        df = pd.DataFrame({
+            "t_s": t, "min_from_ignition": (t - prob.t_ign_s) / 60.0,
+            "phase": ["burn"] * tb.size + ["coast"] * tc.size,
+            "p_km": x[0], "f": x[1], "g": x[2], "h": x[3], "k": x[4], "L_rad": x[5], "m_kg": x[6],
+            "x_km": r[0], "y_km": r[1], "z_km": r[2], "vx_kmps": v[0], "vy_kmps": v[1],
+            "vz_kmps": v[2], "u_r": u[0], "u_t": u[1], "u_n": u[2],
+            "alpha_deg": alpha, "beta_deg": beta})
+        # thrust acceleration in M-MME2000 (km/s^2): T/m (u_r i_r + u_t i_t + u_n i_n)
+        from .dynamics import rtn_from_mee
+        ir, it, i_n = (np.array(a) for a in rtn_from_mee(x[3], x[4], x[5]))
+        acc = prob.model.thrust_N * 1e-3 / x[6]
+        for j, ax in enumerate("xyz"):
+            df[f"a{ax}_thrust_kmps2"] = acc * (u[0] * ir[j] + u[1] * it[j] + u[2] * i_n[j])
+        return df
+
+    def dataframe(self) -> pd.DataFrame:
+        """One-row summary DataFrame (verification flattened)."""
+        d = self.summary()
+        ver = d.pop("verification")
+        d.update({f"verification_{k}": v for k, v in ver.items()})
+        return pd.DataFrame([d])
+
+
+def _arc_eval(arcs, bounds, t):
+    j = int(np.clip(np.searchsorted(bounds, t, side="right") - 1, 0, len(arcs) - 1))
+    return arcs[j].sol(t)
+
+
+def _plain(obj):
+    if isinstance(obj, dict):
+        return {k: _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_plain(v) for v in obj]
+    if isinstance(obj, (np.floating, np.integer, np.bool_)):
+        obj = obj.item()
+    if isinstance(obj, float) and not np.isfinite(obj):
+        return None
+    return obj

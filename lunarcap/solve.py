@@ -1,0 +1,73 @@
+"""Solve one LOI with automatic mesh refinement behind the verification gate.
+
+:func:`solve_loi` tries the meshes of :data:`lunarcap.ocp.DEFAULT_MESHES` in turn:
+build (cached per mesh shape), guess, IPOPT, independent re-propagation. The first
+solution that converges *and* passes verification is returned; otherwise a
+:class:`~lunarcap.errors.SolveError` carries IPOPT's status and the residuals of every
+attempt. A converged IPOPT status alone is never accepted.
+"""
+
+from __future__ import annotations
+
+import time
+
+from .errors import SolveError
+from .ocp import DEFAULT_MESHES, LOIProblem, make_guess, solve_nlp
+from .solution import Solution
+from .verify import fly, verify
+
+
+def solve_loi(prob: LOIProblem, meshes=DEFAULT_MESHES, guess=None, progress=None) -> Solution:
+    """Optimal finite burn for ``prob``, verified by re-propagation.
+
+    Parameters
+    ----------
+    prob : LOIProblem
+    meshes : sequence of Mesh
+        Meshes tried in order until one passes the gate.
+    guess : Guess or None
+        Initial guess (default: :func:`lunarcap.ocp.make_guess`).
+    progress : callable(str) or None
+        Receives one line per attempt.
+
+    Raises
+    ------
+    SolveError
+        If no mesh gives a converged, verified solution.
+    """
+    t0 = time.perf_counter()
+    guess = guess or make_guess(prob)
+    attempts = []
+    for mesh in meshes:
+        raw = solve_nlp(prob, mesh, guess)
+        rec = {"mesh": f"{mesh.n_burn}x{mesh.n_coast} LGR-{mesh.degree}", "ipopt_status": raw.status,
+               "iterations": raw.iterations, "nlp_solve_s": raw.solve_s,
+               "delta_v_mps": raw.delta_v_mps}
+        if not raw.success:
+            rec["verified"] = False
+            attempts.append(rec)
+            if progress:
+                progress(f"  mesh {rec['mesh']}: IPOPT {raw.status} after {raw.iterations} it")
+            continue
+        ver = verify(raw)
+        rec.update({"verified": ver.passed, "rp_error_m": ver.rp_error_m,
+                    "inc_error_deg": ver.inc_error_deg, "gamma_error_deg": ver.gamma_error_deg,
+                    "delta_v_diff_mps": ver.delta_v_diff_mps})
+        attempts.append(rec)
+        if progress:
+            progress(f"  mesh {rec['mesh']}: {raw.status}, {raw.iterations} it, verification "
+                     f"{'passed' if ver.passed else 'FAILED: ' + '; '.join(ver.failures())}")
+        if ver.passed:
+            arcs, coast, _, _ = fly(raw)
+            return Solution(raw, ver, (arcs, coast), attempts, time.perf_counter() - t0,
+                            guess.t1_s)
+    last = attempts[-1]
+    what = (f"LOI {prob.loi} ({prob.model.thrust_N:g} N, {prob.model.isp_s:g} s, start "
+            f"{prob.start_min:g} min, {prob.model.mode} dynamics)")
+    detail = "; ".join(
+        f"{a['mesh']}: IPOPT {a['ipopt_status']}"
+        + (f", rp error {a['rp_error_m']:.3g} m, inc error {a['inc_error_deg']:.3g} deg, "
+           f"gamma error {a['gamma_error_deg']:.3g} deg" if "rp_error_m" in a else "")
+        for a in attempts)
+    raise SolveError(f"{what} failed on every mesh: {detail}", status=last["ipopt_status"],
+                     details={"attempts": attempts})
