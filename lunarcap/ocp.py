@@ -270,8 +270,9 @@ def build_nlp(mesh: Mesh, circular: bool) -> _NLP:
 
     nlp = {"x": w, "p": params, "f": J, "g": g}
     opts = {"expand": True, "print_time": False,
-            "ipopt": {"print_level": int(__import__("os").environ.get("LUNARCAP_IPOPT_PRINT", "0")), "sb": "yes", "tol": 1e-10, "acceptable_tol": 1e-8,
-                      "constr_viol_tol": 1e-10, "max_iter": 400, "linear_solver": "mumps",
+            "ipopt": {"print_level": int(__import__("os").environ.get("LUNARCAP_IPOPT_PRINT", "0")), "sb": "yes", "tol": 1e-10, "acceptable_tol": 1e-7,
+                      "acceptable_iter": 3, "acceptable_constr_viol_tol": 1e-9,
+                      "acceptable_obj_change_tol": 1e-10, "constr_viol_tol": 1e-10, "max_iter": 400, "linear_solver": "mumps",
                       "mu_strategy": "adaptive", "nlp_scaling_method": "gradient-based"}}
     solver = ca.nlpsol(f"loi_{nb}_{nc}_{d}_{int(circular)}", "ipopt", nlp, opts)
     return _NLP(solver, mesh, circular, nv, idx, g.numel(), kinds, time.perf_counter() - t0)
@@ -470,6 +471,8 @@ def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     ubg = np.zeros(nlp.ng)
     kinds = np.array(nlp.g_kinds)
     ubg[kinds == "branch"] = np.inf
+    if prob.circular:  # f = g = 0 makes e cos(nu) identically 0: drop it (LICQ)
+        lbg[kinds == "branch"] = -np.inf
     ubg[kinds == "coast_duration"] = np.inf
     lbg[kinds == "coast_duration"] = 1e-3
     tan2 = np.tan(np.radians(prob.inc_target_deg) / 2) ** 2

@@ -14,7 +14,7 @@ import time
 from .errors import SolveError
 from .ocp import DEFAULT_MESHES, LOIProblem, make_guess, solve_nlp
 from .solution import Solution
-from .verify import fly, verify
+from .verify import verify
 
 
 def solve_loi(prob: LOIProblem, meshes=DEFAULT_MESHES, guess=None, progress=None) -> Solution:
@@ -49,7 +49,7 @@ def solve_loi(prob: LOIProblem, meshes=DEFAULT_MESHES, guess=None, progress=None
             if progress:
                 progress(f"  mesh {rec['mesh']}: IPOPT {raw.status} after {raw.iterations} it")
             continue
-        ver = verify(raw)
+        ver, flight = verify(raw, return_flight=True)
         rec.update({"verified": ver.passed, "rp_error_m": ver.rp_error_m,
                     "inc_error_deg": ver.inc_error_deg, "gamma_error_deg": ver.gamma_error_deg,
                     "delta_v_diff_mps": ver.delta_v_diff_mps})
@@ -58,9 +58,7 @@ def solve_loi(prob: LOIProblem, meshes=DEFAULT_MESHES, guess=None, progress=None
             progress(f"  mesh {rec['mesh']}: {raw.status}, {raw.iterations} it, verification "
                      f"{'passed' if ver.passed else 'FAILED: ' + '; '.join(ver.failures())}")
         if ver.passed:
-            arcs, coast, _, _ = fly(raw)
-            return Solution(raw, ver, (arcs, coast), attempts, time.perf_counter() - t0,
-                            guess.t1_s)
+            return Solution(raw, ver, flight, attempts, time.perf_counter() - t0, guess.t1_s)
     last = attempts[-1]
     what = (f"LOI {prob.loi} ({prob.model.thrust_N:g} N, {prob.model.isp_s:g} s, start "
             f"{prob.start_min:g} min, {prob.model.mode} dynamics)")

@@ -19,7 +19,9 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from .constants import MU_MOON
 from .dynamics import rhs_function
+from .elements import rv_from_mee
 from .ocp import RawSolution, control_function, terminal_values
 from .propagate import ATOL, RTOL, propagate
 
@@ -96,15 +98,16 @@ def fly(raw: RawSolution, n_out: int = 0):
     return arcs, coast, dv_kmps * 1e3, nfev
 
 
-def verify(raw: RawSolution) -> Verification:
-    """Re-propagate ``raw`` and measure its residuals against the gate."""
+def verify(raw: RawSolution, return_flight: bool = False):
+    """Re-propagate ``raw`` and measure its residuals against the gate.
+
+    Returns the Verification, or (Verification, (burn arcs, coast)) with ``return_flight``.
+    """
     prob = raw.prob
     arcs, coast, dv_mps, nfev = fly(raw)
     xf = coast.final
     tv = terminal_values(xf)
     tv_col = terminal_values(raw.x_coast[:, -1])
-    from .elements import rv_from_mee
-    from .constants import MU_MOON
     r_prop = np.array(rv_from_mee(*xf[:6], MU_MOON)[0])
     r_col = np.array(rv_from_mee(*raw.x_coast[:6, -1], MU_MOON)[0])
     J_ver = dv_mps + tv["v_kmps"] * 1e3
@@ -116,4 +119,4 @@ def verify(raw: RawSolution) -> Verification:
     v = Verification(dv_mps, dv_mps - raw.delta_v_mps, J_ver - J_col, rp_err, ra_err, inc_err,
                      gam_err, float(np.linalg.norm(r_prop - r_col) * 1e3), False, nfev)
     v.passed = not v.failures()
-    return v
+    return (v, (arcs, coast)) if return_flight else v
