@@ -1,0 +1,158 @@
+"""Disk cache of expensive results, keyed by the code that produced them.
+
+:data:`memory` is a :class:`joblib.Memory` at ``.cache/joblib`` (see :mod:`lunarcap.paths`).
+:func:`cached` wraps a function with it and adds two extra key parts:
+
+* :func:`code_version`, a SHA-256 of the lunarcap source files that compute results
+  (every ``lunarcap/*.py`` except the presentation modules in :data:`PRESENTATION_MODULES`),
+  so any edit of the physics, the transcription or the solver invalidates the cache;
+* a hash of the wrapped function's own source, for functions defined outside lunarcap
+  (in a notebook or a test).
+
+Arguments are bound to the function's signature with defaults applied before hashing,
+so ``f(1, b=2)`` and ``f(1, 2)`` share one entry.
+
+Set ``LUNARCAP_NO_CACHE=1`` to compute everything afresh (nothing is read or written).
+
+Examples
+--------
+>>> from lunarcap.cache import cached
+>>> @cached
+... def slow_square(x, verbose=False):
+...     return x * x
+>>> slow_square(3)
+9
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import inspect
+import os
+from collections import OrderedDict
+from pathlib import Path
+
+import joblib
+
+from . import paths
+
+#: Modules that only present results; editing them does not invalidate cached solutions.
+PRESENTATION_MODULES = frozenset({"book.py", "plots.py", "provenance.py", "paths.py"})
+
+_PACKAGE_DIR = Path(__file__).resolve().parent
+
+
+def _enabled() -> bool:
+    return os.environ.get("LUNARCAP_NO_CACHE", "").strip().lower() in ("", "0", "false", "no")
+
+
+#: The joblib store (``location=None``, i.e. no caching, when ``LUNARCAP_NO_CACHE`` is set).
+memory = joblib.Memory(location=str(paths.JOBLIB_CACHE) if _enabled() else None, verbose=0)
+
+
+@functools.lru_cache(maxsize=None)
+def code_version(include_presentation: bool = False) -> str:
+    """SHA-256 (hex, 16 characters) of lunarcap's source files.
+
+    Parameters
+    ----------
+    include_presentation : bool
+        Also hash :data:`PRESENTATION_MODULES` (the book uses this for its stamps,
+        since a figure depends on the plotting code).
+
+    Returns
+    -------
+    str
+        Hash over the relative path and content of every ``lunarcap/**/*.py`` file,
+        in sorted order. Computed once per process.
+    """
+    h = hashlib.sha256()
+    for f in sorted(_PACKAGE_DIR.rglob("*.py")):
+        rel = f.relative_to(_PACKAGE_DIR).as_posix()
+        if "__pycache__" in rel:
+            continue
+        if not include_presentation and rel in PRESENTATION_MODULES:
+            continue
+        h.update(rel.encode())
+        h.update(b"\0")
+        h.update(f.read_bytes())
+        h.update(b"\0")
+    return h.hexdigest()[:16]
+
+
+def _source_hash(func) -> str:
+    try:
+        src = inspect.getsource(func)
+    except (OSError, TypeError):  # built-ins, some interactive definitions
+        src = getattr(getattr(func, "__code__", None), "co_code", repr(func))
+        src = src.hex() if isinstance(src, bytes) else str(src)
+    return hashlib.sha256(src.encode()).hexdigest()[:16]
+
+
+def cached(func=None, *, ignore=()):
+    """Cache ``func`` on disk with :data:`memory`, keyed also by :func:`code_version`.
+
+    Usable as ``@cached`` or ``@cached(ignore=["verbose"])``.
+
+    Parameters
+    ----------
+    func : callable
+        A function of hashable (picklable) arguments returning a picklable result.
+    ignore : sequence of str
+        Argument names left out of the key (verbosity, number of threads, ...).
+
+    Returns
+    -------
+    callable
+        Same signature as ``func``; attributes ``uncached`` (the original function),
+        ``memorized`` (the joblib object) and ``is_cached(*args, **kwargs)``.
+    """
+    if func is None:
+        return functools.partial(cached, ignore=ignore)
+    sig = inspect.signature(func)
+    ignore = tuple(ignore)
+    unknown = [n for n in ignore if n not in sig.parameters]
+    if unknown:
+        raise ValueError(f"cached({func.__qualname__}): ignore names unknown arguments {unknown}")
+    src_hash = _source_hash(func)
+
+    def _call(code_version, source_hash, arguments, ignored):
+        merged = {**arguments, **ignored}
+        ordered = OrderedDict((n, merged[n]) for n in sig.parameters if n in merged)
+        bound = inspect.BoundArguments(sig, ordered)
+        return func(*bound.args, **bound.kwargs)
+
+    # joblib names the store after module and qualified name: give each wrapped function
+    # its own (deliberately no __wrapped__, so joblib sees _call's real signature).
+    _call.__module__ = func.__module__
+    _call.__name__ = func.__name__
+    _call.__qualname__ = func.__qualname__
+    memorized = memory.cache(_call, ignore=["ignored"])
+
+    def _split(args, kwargs):
+        bound = sig.bind(*args, **kwargs)
+        bound.apply_defaults()
+        key = {n: v for n, v in bound.arguments.items() if n not in ignore}
+        ign = {n: v for n, v in bound.arguments.items() if n in ignore}
+        return (code_version(), src_hash, key, ign)
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        return memorized(*_split(args, kwargs))
+
+    def is_cached(*args, **kwargs) -> bool:
+        """True if a result for these arguments is already on disk."""
+        if memory.location is None:
+            return False
+        return memorized.check_call_in_cache(*_split(args, kwargs))
+
+    wrapper.uncached = func
+    wrapper.memorized = memorized
+    wrapper.is_cached = is_cached
+    return wrapper
+
+
+def clear() -> None:
+    """Delete every cached result."""
+    memory.clear(warn=False)

@@ -1,0 +1,190 @@
+"""The one place for paths: repository, book, generated outputs, notebooks and cache.
+
+Every table, figure and executed notebook the book shows is written below
+:data:`GENERATED` (``book/generated/``, git-ignored) through the helpers here;
+nothing else invents an output folder. Writes are atomic: the content goes to a
+temporary file in the destination directory, which is then moved into place with
+:func:`os.replace`, so an interrupted or failed run never leaves a half-written file.
+
+Layout::
+
+    <ROOT>/
+        notebooks/            source notebooks (committed without outputs)
+            manifest.yml      what the book executes (see :mod:`lunarcap.book`)
+        book/                 jupyter-book sources (_config.yml, _toc.yml, *.md)
+            generated/        executed notebooks <name>.ipynb and their stamps
+                tables/       CSV files
+                figures/      PNG and SVG files
+            _build/html/      the built site
+        .cache/joblib/        cached solutions (:mod:`lunarcap.cache`)
+
+The cache directory may be moved with the environment variable ``LUNARCAP_CACHE_DIR``,
+the whole tree with ``LUNARCAP_ROOT``.
+
+Examples
+--------
+>>> from lunarcap import paths
+>>> paths.table_path("impulsive_baseline").name
+'impulsive_baseline.csv'
+>>> paths.figure_path("fig1_geometry", "svg").relative_to(paths.GENERATED).as_posix()
+'figures/fig1_geometry.svg'
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import re
+import tempfile
+from pathlib import Path
+
+
+def _find_root() -> Path:
+    """The repository root: ``LUNARCAP_ROOT`` if set, else the source tree of this package."""
+    env = os.environ.get("LUNARCAP_ROOT")
+    if env:
+        return Path(env).resolve()
+    return Path(__file__).resolve().parent.parent
+
+
+#: Repository root (the directory holding ``pyproject.toml``); lunarcap is installed
+#: editable (``pip install -e .``), so this is the source tree. Override with the
+#: environment variable ``LUNARCAP_ROOT``.
+ROOT = _find_root()
+
+#: Source notebooks and the manifest.
+NOTEBOOKS = ROOT / "notebooks"
+MANIFEST = NOTEBOOKS / "manifest.yml"
+
+#: jupyter-book sources.
+BOOK = ROOT / "book"
+TOC = BOOK / "_toc.yml"
+BOOK_CONFIG = BOOK / "_config.yml"
+
+#: Everything the notebooks produce (git-ignored).
+GENERATED = BOOK / "generated"
+TABLES = GENERATED / "tables"
+FIGURES = GENERATED / "figures"
+
+#: The built HTML site.
+BUILD = BOOK / "_build"
+HTML = BUILD / "html"
+
+#: Cache of expensive results (git-ignored).
+CACHE = Path(os.environ.get("LUNARCAP_CACHE_DIR", ROOT / ".cache"))
+JOBLIB_CACHE = CACHE / "joblib"
+
+_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
+
+#: Figure formats written by :func:`lunarcap.plots.save_figure`.
+FIGURE_FORMATS = ("png", "svg")
+
+
+def check_name(name: str) -> str:
+    """Validate an output name (letters, digits, ``_ . -``; no path separators).
+
+    Raises
+    ------
+    ValueError
+        If ``name`` could escape its directory or is empty.
+    """
+    if not isinstance(name, str) or not _NAME.match(name) or ".." in name:
+        raise ValueError(f"invalid output name {name!r}: use letters, digits, '_', '-', '.'")
+    return name
+
+
+def executed_notebook_path(name: str) -> Path:
+    """``book/generated/<name>.ipynb``: the executed notebook of a manifest entry."""
+    return GENERATED / f"{check_name(name)}.ipynb"
+
+
+def table_path(name: str) -> Path:
+    """``book/generated/tables/<name>.csv``."""
+    return TABLES / f"{check_name(name)}.csv"
+
+
+def figure_path(name: str, fmt: str = "png") -> Path:
+    """``book/generated/figures/<name>.<fmt>``."""
+    if fmt not in FIGURE_FORMATS:
+        raise ValueError(f"figure format must be one of {FIGURE_FORMATS}, got {fmt!r}")
+    return FIGURES / f"{check_name(name)}.{fmt}"
+
+
+def relative_to_page(path: Path, page: Path | None = None) -> str:
+    """POSIX path of ``path`` relative to the directory of a book page.
+
+    Parameters
+    ----------
+    path : Path
+        A file below :data:`BOOK`.
+    page : Path, optional
+        The page (default: an executed notebook in :data:`GENERATED`).
+    """
+    page_dir = (page.parent if page is not None else GENERATED)
+    return Path(os.path.relpath(Path(path).resolve(), page_dir.resolve())).as_posix()
+
+
+def ensure_dirs() -> None:
+    """Create the generated-output directories if missing."""
+    for d in (GENERATED, TABLES, FIGURES):
+        d.mkdir(parents=True, exist_ok=True)
+
+
+@contextlib.contextmanager
+def atomic_path(path: str | os.PathLike):
+    """Yield a temporary path next to ``path``; move it onto ``path`` on success.
+
+    If the body raises, the temporary file is removed and ``path`` is left as it was.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> with atomic_path(d / "x.txt") as tmp:
+    ...     _ = tmp.write_text("hello")
+    >>> (d / "x.txt").read_text()
+    'hello'
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.",
+                               suffix=f".tmp{path.suffix}")
+    os.close(fd)
+    tmp = Path(tmp)
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def write_text_atomic(path: str | os.PathLike, text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``path`` atomically; return the path."""
+    with atomic_path(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return Path(path)
+
+
+def write_csv(df, name: str, **to_csv_kwargs) -> Path:
+    """Write a pandas DataFrame to ``book/generated/tables/<name>.csv`` atomically.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+    name : str
+        Output name (usually the manifest entry's ``output_name``, maybe with a suffix).
+    **to_csv_kwargs
+        Passed to :meth:`pandas.DataFrame.to_csv` (``index=False`` by default).
+
+    Returns
+    -------
+    Path of the CSV file.
+    """
+    if len(df) == 0:
+        raise ValueError(f"refusing to write an empty table {name!r}")
+    to_csv_kwargs.setdefault("index", False)
+    path = table_path(name)
+    with atomic_path(path) as tmp:
+        df.to_csv(tmp, **to_csv_kwargs)
+    return path
