@@ -74,6 +74,137 @@ def cmd_impulsive(args) -> int:
     return 0
 
 
+def _starts(text: str) -> tuple:
+    try:
+        vals = tuple(float(s) for s in text.split(",") if s.strip())
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"start offsets must be numbers of minutes separated "
+                                         f"by commas, got {text!r}")
+    if not vals or not all(math.isfinite(v) for v in vals):
+        raise argparse.ArgumentTypeError(f"start offsets must be finite numbers, got {text!r}")
+    return vals
+
+
+def _start(text: str) -> float:
+    vals = _starts(text)
+    if len(vals) != 1:
+        raise argparse.ArgumentTypeError(f"one start offset (min) expected, got {text!r}")
+    return vals[0]
+
+
+def _add_solver_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default="full",
+                   help="perturbations: full (J2, Earth, Sun), j2, or two-body")
+    p.add_argument("--ephemeris", default=None, metavar="BSP",
+                   help="SPK file (.bsp) instead of the bundled DE405")
+    p.add_argument("--hemisphere", choices=["north", "south"], default="north",
+                   help="lunar hemisphere of the arrival perilune")
+    p.add_argument("--no-cache", action="store_true", help="recompute, ignoring the disk cache")
+    p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+
+
+def default_previous_starts(thrust_N: float, isp_s: float, loi: int, mass_kg: float) -> tuple:
+    """Ignition offsets of the LOIs before ``loi``: the paper's best for its engines, else
+    minus half the Eq. (19) duration of each earlier burn (the paper's rule of thumb)."""
+    from .impulsive import impulsive_sequence
+    from .scenario import PAPER_BEST_STARTS_MIN
+
+    for (T, isp) in C.PAPER_ENGINES:
+        if T == thrust_N and isp == isp_s:
+            return PAPER_BEST_STARTS_MIN[T][:loi - 1]
+    burns = impulsive_sequence(thrust_N, isp_s, mass_kg)
+    return tuple(-round(b.eq19_duration_min / 2, 1) for b in burns[:loi - 1])
+
+
+def _case_kwargs(args) -> dict:
+    from .scenario import ArrivalSpec
+
+    return {"dynamics": args.dynamics,
+            "arrival": ArrivalSpec(mass_kg=args.mass, hemisphere=args.hemisphere),
+            "ephemeris": args.ephemeris, "verbose": not args.quiet}
+
+
+def _solver(args):
+    from .sequence import solve_case
+
+    return solve_case.uncached if args.no_cache else solve_case
+
+
+def _print_summary_line(s: dict) -> None:
+    v = s["verification"]
+    print(f"LOI {s['loi']}  start {s['start_min']:+.2f} min  burn {s['burn_duration_min']:.2f} min  "
+          f"dV {s['delta_v_mps']:.3f} m/s  impulsive {s['impulsive_delta_v_mps']:.3f} m/s  "
+          f"loss {s['loss_mps']:.3f} m/s ({s['loss_percent']:.2f} %)  mass "
+          f"{s['m_start_kg']:.3f} -> {s['m_end_kg']:.3f} kg  v_end {s['v_end_kmps']:.5f} km/s  "
+          f"Eq.19 {s['eq19_duration_min']:.2f} min")
+    print(f"      IPOPT {s['ipopt_status']} ({s['ipopt_iterations']} it, {s['mesh']}), "
+          f"wall {s['solve_wall_s']:.2f} s; verified: dV diff {v['delta_v_diff_mps']:.2e} m/s, "
+          f"rp {v['rp_error_m']:.3f} m, i {v['inc_error_deg']:.1e} deg, "
+          f"gamma {v['gamma_error_deg']:.1e} deg")
+
+
+def cmd_solve(args) -> int:
+    """Solve one LOI (the earlier LOIs of the chain are solved or fetched first)."""
+    from .scenario import check_loi
+
+    loi = check_loi(args.loi)
+    prev = args.previous_starts
+    if prev is None:
+        prev = default_previous_starts(args.thrust, args.isp, loi, args.mass)
+    if len(prev) != loi - 1:
+        raise InputError(f"--previous-starts needs {loi - 1} offset(s) for LOI {loi}, got {prev}")
+    sol = _solver(args)(args.thrust, args.isp, loi, args.start, tuple(prev), **_case_kwargs(args))
+    s = sol.to_dict()
+    s["previous_starts_min"] = list(prev)
+    if args.json:
+        print(json.dumps(_jsonable(s), indent=2))
+    else:
+        _print_summary_line(s)
+    return 0
+
+
+def cmd_sequence(args) -> int:
+    """Solve the three LOIs in chain order; completed LOIs are printed even if a later fails."""
+    if len(args.starts) != 3:
+        raise InputError(f"--starts needs three offsets (LOI 1, 2, 3), got {args.starts}")
+    solve = _solver(args)
+    done = []
+    try:
+        for i in range(3):
+            sol = solve(args.thrust, args.isp, i + 1, args.starts[i], tuple(args.starts[:i]),
+                        **_case_kwargs(args))
+            done.append(sol.to_dict())
+            if not args.json:
+                _print_summary_line(done[-1])
+    finally:
+        if args.json:
+            tot = {"total_delta_v_mps": sum(d["delta_v_mps"] for d in done),
+                   "total_impulsive_delta_v_mps": sum(d["impulsive_delta_v_mps"] for d in done),
+                   "total_burn_duration_min": sum(d["burn_duration_min"] for d in done),
+                   "final_mass_kg": done[-1]["m_end_kg"] if done else None,
+                   "complete": len(done) == 3}
+            tot["total_loss_mps"] = tot["total_delta_v_mps"] - tot["total_impulsive_delta_v_mps"]
+            print(json.dumps(_jsonable({"thrust_N": args.thrust, "isp_s": args.isp,
+                                        "starts_min": list(args.starts), **tot, "lois": done}),
+                             indent=2))
+    if not args.json:
+        tot_dv = sum(d["delta_v_mps"] for d in done)
+        tot_imp = sum(d["impulsive_delta_v_mps"] for d in done)
+        print(f"total: dV {tot_dv:.3f} m/s, loss {tot_dv - tot_imp:.3f} m/s "
+              f"({100 * (tot_dv - tot_imp) / tot_imp:.2f} % of {tot_imp:.3f}), burn "
+              f"{sum(d['burn_duration_min'] for d in done):.2f} min, final mass "
+              f"{done[-1]['m_end_kg']:.3f} kg")
+    return 0
+
+
+def cmd_bench(args) -> int:
+    """Solve and verify all 37 paper cases uncached; print timings and residuals."""
+    from .bench import run
+
+    rows = run(args.dynamics)
+    return 0 if all(r["verification_passed"] for r in rows) else 3
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of every subcommand."""
     parser = argparse.ArgumentParser(prog="lunarcap", description=__doc__.splitlines()[0])
@@ -81,6 +212,28 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("impulsive", help="two-body impulsive capture sequence and Eq. (19)")
     _add_engine(p)
     p.set_defaults(func=cmd_impulsive)
+
+    p = sub.add_parser("solve", help="optimal finite burn of one LOI, verified by re-propagation")
+    _add_engine(p)
+    p.add_argument("--loi", type=int, choices=[1, 2, 3], default=1, help="LOI number")
+    p.add_argument("--start", type=_start, default=-10.0,
+                   help="ignition, minutes from the nominal perilune (negative: before)")
+    p.add_argument("--previous-starts", type=_starts, default=None, metavar="S1[,S2]",
+                   help="ignition offsets of the earlier LOIs (default: the paper's best for "
+                        "its engines, else minus half the Eq. (19) duration)")
+    _add_solver_options(p)
+    p.set_defaults(func=cmd_solve)
+
+    p = sub.add_parser("sequence", help="the three LOIs of the capture chain")
+    _add_engine(p)
+    p.add_argument("--starts", type=_starts, default=(-10.0, -6.0, -5.0), metavar="S1,S2,S3",
+                   help="ignition offsets of LOI 1, 2, 3 in minutes from perilune")
+    _add_solver_options(p)
+    p.set_defaults(func=cmd_sequence)
+
+    p = sub.add_parser("bench", help="solve and verify all 37 paper cases, print timings")
+    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default="full")
+    p.set_defaults(func=cmd_bench)
     return parser
 
 
@@ -90,6 +243,10 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         return args.func(args)
+    except BrokenPipeError:  # e.g. `lunarcap impulsive --json | head`
+        import os
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except InputError as exc:
         print(f"lunarcap: error: {exc}", file=sys.stderr)
         return 2

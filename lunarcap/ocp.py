@@ -24,8 +24,9 @@ derivatives from CasADi solves it.
 
 from __future__ import annotations
 
+import os
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import casadi as ca
@@ -67,7 +68,8 @@ class LOIProblem:
     Attributes
     ----------
     x0 : ndarray (7,)
-        (p km, f, g, h, k, L rad, m kg) at ignition.
+        (p km, f, g, h, k, L rad, m kg) at ignition (with ``free_start``: at the guessed
+        ignition).
     t_ign_s, t_end_s : float
         Ignition epoch and end of the coast, TDB s past J2000.
     model : Model
@@ -78,6 +80,10 @@ class LOIProblem:
         Target a circular orbit (r_p = r_a = rp_target_km).
     dv_impulsive_mps : float or None
         Impulsive delta-V this burn is compared with.
+    free_start : bool
+        The ignition epoch is a decision variable, bounded by ``start_bounds_min``
+        (minutes from ``t_perilune_s``); ``x_ref`` at ``t_ref_s`` is the known state the
+        pre-ignition coast starts from.
     """
 
     x0: np.ndarray
@@ -92,6 +98,10 @@ class LOIProblem:
     loi: int = 0
     start_min: float = float("nan")
     t_perilune_s: float = float("nan")
+    free_start: bool = False
+    x_ref: np.ndarray | None = None
+    t_ref_s: float = float("nan")
+    start_bounds_min: tuple = (-60.0, 30.0)
 
     def __post_init__(self):
         self.x0 = np.asarray(self.x0, float)
@@ -146,6 +156,15 @@ def lagrange_eval(nodes: np.ndarray, values: np.ndarray, x) -> np.ndarray:
 
 # ------------------------------------------------------------------ the NLP
 N_X = 7
+N_PRE = 4  # intervals of the pre-ignition coast when the ignition time is free
+
+#: IPOPT settings (MUMPS, exact Hessian). The strict tolerances are on the scaled NLP;
+#: acceptance of a solution is decided by the verification gate, not by these.
+IPOPT_OPTIONS = {
+    "print_level": int(os.environ.get("LUNARCAP_IPOPT_PRINT", "0")), "sb": "yes",
+    "tol": 1e-10, "constr_viol_tol": 1e-10, "acceptable_tol": 1e-7, "acceptable_iter": 3,
+    "acceptable_constr_viol_tol": 1e-9, "acceptable_obj_change_tol": 1e-10, "max_iter": 400,
+    "linear_solver": "mumps", "mu_strategy": "adaptive", "nlp_scaling_method": "gradient-based"}
 
 
 @dataclass
@@ -165,12 +184,16 @@ def _scale_vec(mref):
 
 
 @lru_cache(maxsize=None)
-def build_nlp(mesh: Mesh, circular: bool) -> _NLP:
-    """Build (once per mesh shape and target kind) the IPOPT solver of the LOI NLP.
+def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False) -> _NLP:
+    """Build (once per mesh shape, target kind and start mode) the IPOPT solver of the LOI NLP.
 
     NLP parameters (in order): x0 (7, physical), t_ign, t_end, model parameters (N_PARAM),
     burn-mesh fractions (n_burn+1), coast-mesh fractions (n_coast+1), r_p target (LU),
-    tan^2(i_target/2), t1_max (TU).
+    tan^2(i_target/2).
+
+    With ``free_start`` the ignition epoch is a decision variable: x0 and t_ign are then
+    the reference state and epoch (the nominal perilune), and a pre-coast phase of
+    ``N_PRE`` intervals links them to the ignition.
     """
     t0 = time.perf_counter()
     d = mesh.degree
@@ -194,7 +217,12 @@ def build_nlp(mesh: Mesh, circular: bool) -> _NLP:
     V_Xb = ca.MX.sym("Xb", N_X, nb * d + 1)     # burn states incl. the initial one
     V_Ub = ca.MX.sym("Ub", 3, nb * d)           # controls at burn collocation points
     V_Xc = ca.MX.sym("Xc", N_X, nc * d)         # coast states (start shared with the burn end)
-    w = ca.vertcat(V_t1, ca.vec(V_Xb), ca.vec(V_Ub), ca.vec(V_Xc))
+    parts = [V_t1, ca.vec(V_Xb), ca.vec(V_Ub), ca.vec(V_Xc)]
+    if free_start:
+        V_ts = ca.MX.sym("ts")                      # ignition minus reference epoch, TU
+        V_X0 = ca.MX.sym("X0", N_X, N_PRE * d + 1)  # pre-coast states incl. the reference one
+        parts += [V_ts, ca.vec(V_X0)]
+    w = ca.vertcat(*parts)
     nv = w.numel()
     o = 0
     idx = {"t1": slice(0, 1)}
@@ -202,12 +230,16 @@ def build_nlp(mesh: Mesh, circular: bool) -> _NLP:
     idx["Xb"] = slice(o, o + N_X * (nb * d + 1)); o = idx["Xb"].stop
     idx["Ub"] = slice(o, o + 3 * nb * d); o = idx["Ub"].stop
     idx["Xc"] = slice(o, o + N_X * nc * d); o = idx["Xc"].stop
+    if free_start:
+        idx["ts"] = slice(o, o + 1); o += 1
+        idx["X0"] = slice(o, o + N_X * (N_PRE * d + 1)); o = idx["X0"].stop
 
     mref = P_x0[6]
     S = ca.vertcat(LU, 1, 1, 1, 1, 1, mref)
     prm_coast = ca.vertcat(P_prm[:P_THRUST], 0, P_prm[P_THRUST + 1:])
     t1_s = V_t1 * TU
-    t_burn_end = P_tign + t1_s
+    t_ign = P_tign + V_ts * TU if free_start else P_tign
+    t_burn_end = t_ign + t1_s
     dur_c = P_tend - t_burn_end
 
     def phase_defects(Xall, U, mesh_frac, t_start, dur, prm, n):
@@ -234,8 +266,15 @@ def build_nlp(mesh: Mesh, circular: bool) -> _NLP:
 
     g_list, kinds = [], []
     # burn: initial state fixed through an equality (scaled)
-    g_list.append(V_Xb[:, 0] - P_x0 / S); kinds += ["x0"] * N_X
-    gb = phase_defects(V_Xb, V_Ub, P_mb, P_tign, t1_s, P_prm, nb)
+    if free_start:
+        g_list.append(V_X0[:, 0] - P_x0 / S); kinds += ["x0"] * N_X
+        g0 = phase_defects(V_X0, ca.DM.zeros(3, N_PRE * d), ca.DM(np.linspace(0, 1, N_PRE + 1)),
+                           P_tign, V_ts * TU, prm_coast, N_PRE)
+        g_list.append(g0); kinds += ["defect_pre"] * g0.numel()
+        g_list.append(V_Xb[:, 0] - V_X0[:, -1]); kinds += ["link_pre"] * N_X
+    else:
+        g_list.append(V_Xb[:, 0] - P_x0 / S); kinds += ["x0"] * N_X
+    gb = phase_defects(V_Xb, V_Ub, P_mb, t_ign, t1_s, P_prm, nb)
     g_list.append(gb); kinds += ["defect_burn"] * gb.numel()
     Xc_all = ca.horzcat(V_Xb[:, -1], V_Xc)
     gc = phase_defects(Xc_all, ca.DM.zeros(3, nc * d), P_mc, t_burn_end, dur_c, prm_coast, nc)
@@ -270,11 +309,9 @@ def build_nlp(mesh: Mesh, circular: bool) -> _NLP:
 
     nlp = {"x": w, "p": params, "f": J, "g": g}
     opts = {"expand": True, "print_time": False,
-            "ipopt": {"print_level": int(__import__("os").environ.get("LUNARCAP_IPOPT_PRINT", "0")), "sb": "yes", "tol": 1e-10, "acceptable_tol": 1e-7,
-                      "acceptable_iter": 3, "acceptable_constr_viol_tol": 1e-9,
-                      "acceptable_obj_change_tol": 1e-10, "constr_viol_tol": 1e-10, "max_iter": 400, "linear_solver": "mumps",
-                      "mu_strategy": "adaptive", "nlp_scaling_method": "gradient-based"}}
-    solver = ca.nlpsol(f"loi_{nb}_{nc}_{d}_{int(circular)}", "ipopt", nlp, opts)
+                    "ipopt": IPOPT_OPTIONS}
+    solver = ca.nlpsol(f"loi_{nb}_{nc}_{d}_{int(circular)}{'_free' if free_start else ''}",
+                       "ipopt", nlp, opts)
     return _NLP(solver, mesh, circular, nv, idx, g.numel(), kinds, time.perf_counter() - t0)
 
 
@@ -438,7 +475,7 @@ def _taus(frac, c):
 
 def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     """Solve the LOI NLP on one mesh from a guess; no verification here."""
-    nlp = build_nlp(mesh, prob.circular)
+    nlp = build_nlp(mesh, prob.circular, prob.free_start)
     d = mesh.degree
     c, _ = radau_matrices(d)
     nb, nc = mesh.n_burn, mesh.n_coast
@@ -454,8 +491,16 @@ def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     Xb[:, 0] = prob.x0 / S
     Ub = np.array([guess.burn_u(t) for t in tb[1:]]).T
     Xc = guess.coast.sol(tc) / S[:, None]
-    w0 = np.concatenate([[t1 / TU], Xb.ravel(order="F"), Ub.ravel(order="F"),
-                         Xc.ravel(order="F")])
+    w0 = [[t1 / TU], Xb.ravel(order="F"), Ub.ravel(order="F"), Xc.ravel(order="F")]
+    if prob.free_start:
+        m0 = np.linspace(0.0, 1.0, N_PRE + 1)
+        pre = propagate(prob.model, prob.t_ref_s, prob.x_ref, prob.t_ign_s, dense=True,
+                        rtol=1e-10, atol=1e-10)
+        t0s = prob.t_ref_s + (prob.t_ign_s - prob.t_ref_s) * np.concatenate([[0.0], _taus(m0, c)])
+        X0 = (pre.sol(t0s) if pre.sol is not None else np.tile(prob.x_ref[:, None], t0s.size))
+        X0 = X0 / S[:, None]
+        w0 += [[(prob.t_ign_s - prob.t_ref_s) / TU], X0.ravel(order="F")]
+    w0 = np.concatenate(w0)
     # bounds
     lbw = -np.inf * np.ones(nlp.nv)
     ubw = np.inf * np.ones(nlp.nv)
@@ -467,6 +512,12 @@ def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
         hi = np.tile([200.0, 3, 3, 3, 3, np.inf, 1.0 + 1e-9], ncols)
         lbw[sl], ubw[sl] = lo, hi
     lbw[nlp.idx["Ub"]], ubw[nlp.idx["Ub"]] = -1.01, 1.01   # Eq. (12)
+    if prob.free_start:
+        lo, hi = (prob.t_perilune_s + 60.0 * np.array(prob.start_bounds_min) - prob.t_ref_s) / TU
+        lbw[nlp.idx["ts"]], ubw[nlp.idx["ts"]] = lo, hi
+        sl = nlp.idx["X0"]
+        lbw[sl] = np.tile([0.2, -3, -3, -3, -3, -np.inf, 0.05], N_PRE * d + 1)
+        ubw[sl] = np.tile([200.0, 3, 3, 3, 3, np.inf, 1.0 + 1e-9], N_PRE * d + 1)
     lbg = np.zeros(nlp.ng)
     ubg = np.zeros(nlp.ng)
     kinds = np.array(nlp.g_kinds)
@@ -476,7 +527,8 @@ def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     ubg[kinds == "coast_duration"] = np.inf
     lbg[kinds == "coast_duration"] = 1e-3
     tan2 = np.tan(np.radians(prob.inc_target_deg) / 2) ** 2
-    pvec = np.concatenate([prob.x0, [prob.t_ign_s, prob.t_end_s], prob.model.params(), mb, mc,
+    xp, tp = (prob.x_ref, prob.t_ref_s) if prob.free_start else (prob.x0, prob.t_ign_s)
+    pvec = np.concatenate([xp, [tp, prob.t_end_s], prob.model.params(), mb, mc,
                            [prob.rp_target_km / LU, tan2]])
     t0 = time.perf_counter()
     res = nlp.solver(x0=w0, p=pvec, lbx=lbw, ubx=ubw, lbg=lbg, ubg=ubg)
@@ -485,6 +537,12 @@ def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     w = np.asarray(res["x"]).ravel()
     gval = np.asarray(res["g"]).ravel()
     t1 = w[0] * TU
+    if prob.free_start:
+        # the ignition found; the verified flight starts from x_ref propagated to it
+        t_ign = prob.t_ref_s + float(w[nlp.idx["ts"]][0]) * TU
+        x0 = propagate(prob.model, prob.t_ref_s, prob.x_ref, t_ign).final
+        prob = replace(prob, x0=x0, t_ign_s=t_ign,
+                       start_min=(t_ign - prob.t_perilune_s) / 60.0)
     Xb = w[nlp.idx["Xb"]].reshape((N_X, nb * d + 1), order="F") * S[:, None]
     Ub = w[nlp.idx["Ub"]].reshape((3, nb * d), order="F")
     Xc = w[nlp.idx["Xc"]].reshape((N_X, nc * d), order="F") * S[:, None]

@@ -68,14 +68,30 @@ def propagate(model: Model, t0_s: float, x0, t1_s: float,
                              f"[{model.fit.t0_s}, {model.fit.t1_s}] s")
     f = rhs_function()
     prm = model.params(thrust)
+    # Integrate in time elapsed since t0_s: epochs past J2000 (~5e8 s) carry only ~6e-8 s
+    # of resolution, which would blur short high-thrust arcs.
+    t0_s = float(t0_s)
 
-    def rhs(t, x):
+    def rhs(s, x):
+        t = t0_s + s
         return np.asarray(f(x, ufun(t), t, prm)).ravel()
 
     if t1_s == t0_s:
         return Trajectory(np.array([t0_s]), x0[:, None].copy(), 0)
-    res = solve_ivp(rhs, (t0_s, t1_s), x0, method="DOP853", rtol=rtol, atol=atol,
-                    t_eval=t_eval, dense_output=dense, events=events)
+    s_eval = None if t_eval is None else np.asarray(t_eval, float) - t0_s
+    res = solve_ivp(rhs, (0.0, t1_s - t0_s), x0, method="DOP853", rtol=rtol, atol=atol,
+                    t_eval=s_eval, dense_output=dense, events=events)
     if not res.success:
         raise RuntimeError(f"propagation failed: {res.message}")
-    return Trajectory(res.t, res.y, res.nfev, res.sol if dense else None)
+    sol = _Shifted(res.sol, t0_s) if dense else None
+    return Trajectory(t0_s + res.t, res.y, res.nfev, sol)
+
+
+class _Shifted:
+    """Dense output evaluated at epochs (s past J2000) though integrated in elapsed time."""
+
+    def __init__(self, sol, t0_s: float):
+        self.sol, self.t0_s = sol, t0_s
+
+    def __call__(self, t):
+        return self.sol(np.asarray(t, float) - self.t0_s)

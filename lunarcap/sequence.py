@@ -14,12 +14,14 @@ from __future__ import annotations
 
 import sys
 
+import numpy as np
+
 from . import constants as C
 from .cache import cached
 from .dynamics import Model
 from .ephemeris import Ephemeris, default_ephemeris
 from .errors import InputError
-from .impulsive import check_engine
+from .impulsive import burn_duration_estimate_s, check_engine
 from .ocp import LOIProblem
 from .propagate import propagate
 from .scenario import ArrivalSpec, Mission, check_loi, check_start
@@ -40,25 +42,38 @@ def mission_for(arrival: ArrivalSpec = ArrivalSpec(), ephemeris: str | None = No
     return _MISSIONS[key]
 
 
-def loi_problem(mission: Mission, loi: int, thrust_N: float, isp_s: float, start_min: float,
-                x_perilune, dynamics: str = "full", dv_impulsive_mps: float | None = None
-                ) -> LOIProblem:
+def loi_problem(mission: Mission, loi: int, thrust_N: float, isp_s: float, start_min,
+                x_perilune, dynamics: str = "full", dv_impulsive_mps: float | None = None,
+                start_bounds_min: tuple | None = None) -> LOIProblem:
     """The LOIProblem of LOI ``loi`` igniting ``start_min`` from its nominal perilune.
 
     ``x_perilune`` is the state (p, f, g, h, k, L, m) at that nominal perilune epoch.
     """
     loi = check_loi(loi)
-    start_min = check_start(start_min)
     check_engine(thrust_N, isp_s)
     model = Model(mode=dynamics, thrust_N=thrust_N, isp_s=isp_s, fit=mission.fit)
     t_peri = mission.perilune_epochs_s[loi - 1]
-    t_ign = t_peri + 60.0 * start_min
-    x0 = propagate(model, t_peri, x_perilune, t_ign).final
     if dv_impulsive_mps is None:
         dv_impulsive_mps = PAPER_IMPULSIVE_DV_MPS[loi - 1]
+    free = isinstance(start_min, str)
+    if free:
+        if start_min != "free":
+            raise InputError(f"start must be a number of minutes or 'free', got {start_min!r}")
+        # guess: ignite half the Eq. (19) duration before perilune (the paper's rule);
+        # bounds: +-2 Eq. (19) durations around perilune
+        t19 = burn_duration_estimate_s(x_perilune[6], dv_impulsive_mps, thrust_N, isp_s) / 60.0
+        guess_min = -0.5 * t19
+        bounds = start_bounds_min or (max(-2.0 * t19, -120.0), min(2.0 * t19, 120.0))
+    else:
+        guess_min = check_start(start_min)
+        bounds = (guess_min, guess_min)
+    t_ign = t_peri + 60.0 * guess_min
+    x0 = propagate(model, t_peri, x_perilune, t_ign).final
     return LOIProblem(x0, t_ign, mission.perilune_epochs_s[loi], model,
                       circular=(loi == 3), dv_impulsive_mps=dv_impulsive_mps, loi=loi,
-                      start_min=start_min, t_perilune_s=t_peri)
+                      start_min=guess_min, t_perilune_s=t_peri, free_start=free,
+                      x_ref=np.asarray(x_perilune, float), t_ref_s=t_peri,
+                      start_bounds_min=bounds)
 
 
 def _log(msg: str) -> None:
@@ -76,7 +91,8 @@ def solve_case(thrust_N: float, isp_s: float, loi: int, start_min: float,
     ----------
     thrust_N, isp_s : engine (N, s)
     loi : 1, 2 or 3
-    start_min : ignition offset from the nominal perilune, min (negative: before)
+    start_min : ignition offset from the nominal perilune, min (negative: before), or
+        "free" to optimise it
     previous_starts : ignition offsets of the earlier LOIs of the chain, min
         (``()`` for LOI 1, ``(s1,)`` for LOI 2, ``(s1, s2)`` for LOI 3)
     dynamics : "full", "j2" or "two-body"
@@ -88,7 +104,7 @@ def solve_case(thrust_N: float, isp_s: float, loi: int, start_min: float,
     Solution
     """
     loi = check_loi(loi)
-    previous_starts = tuple(float(s) for s in previous_starts)
+    previous_starts = tuple(s if s == "free" else float(s) for s in previous_starts)
     if len(previous_starts) != loi - 1:
         raise InputError(f"LOI {loi} needs the ignition offsets of the {loi - 1} earlier LOI(s), "
                          f"got {previous_starts}")
@@ -103,7 +119,7 @@ def solve_case(thrust_N: float, isp_s: float, loi: int, start_min: float,
         x_peri = prev.end_state
     prob = loi_problem(mission, loi, thrust_N, isp_s, start_min, x_peri, dynamics)
     if verbose:
-        _log(f"LOI {loi}, {thrust_N:g} N / {isp_s:g} s, start {start_min:+g} min, {dynamics}:")
+        _log(f"LOI {loi}, {thrust_N:g} N / {isp_s:g} s, start {start_min} min, {dynamics}:")
     sol = solve_loi(prob, progress=_log if verbose else None)
     if verbose:
         s = sol.summary()
@@ -114,7 +130,7 @@ def solve_case(thrust_N: float, isp_s: float, loi: int, start_min: float,
 
 def solve_sequence(thrust_N: float, isp_s: float, starts=(-10.0, -6.0, -5.0), **kw) -> list:
     """The three LOIs of one engine at the given ignition offsets (min), in chain order."""
-    starts = tuple(float(s) for s in starts)
+    starts = tuple(s if s == "free" else float(s) for s in starts)
     if len(starts) != 3:
         raise InputError(f"a capture sequence needs three ignition offsets, got {starts}")
     return [solve_case(thrust_N, isp_s, i + 1, starts[i], starts[:i], **kw) for i in range(3)]
@@ -126,3 +142,68 @@ def sweep(thrust_N: float, isp_s: float, loi: int, starts, previous_starts=(), *
     if not starts:
         raise InputError("an ignition-time sweep needs at least one start offset")
     return [solve_case(thrust_N, isp_s, loi, s, tuple(previous_starts), **kw) for s in starts]
+
+
+def _previous_state(thrust_N, isp_s, loi, previous_starts, dynamics, arrival, ephemeris, verbose):
+    """State at the nominal perilune preceding LOI ``loi`` in the finite-burn chain."""
+    mission = mission_for(arrival, ephemeris)
+    if loi == 1:
+        x = mission.arrival.state
+        x[6] = arrival.mass_kg
+        return mission, x
+    prev = solve_case(thrust_N, isp_s, loi - 1, previous_starts[-1], tuple(previous_starts[:-1]),
+                      dynamics, arrival, ephemeris, verbose)
+    return mission, prev.end_state
+
+
+#: Burn durations (s) of the two high-thrust solves of :func:`solve_impulsive_case`.
+IMPULSIVE_LIMIT_DURATIONS_S = (4.0, 2.0)
+
+
+@cached(ignore=["verbose"])
+def solve_impulsive_case(thrust_N: float, isp_s: float, loi: int, previous_starts: tuple = (),
+                         dynamics: str = "full", arrival: ArrivalSpec = ArrivalSpec(),
+                         ephemeris: str | None = None, verbose: bool = False) -> dict:
+    """Impulsive LOI in the same dynamics, from the same pre-burn orbit as the finite chain.
+
+    One impulse, free epoch (within +-10 min of the nominal perilune) and direction, the
+    same terminal conditions and objective (Eq. 9). It is computed as the limit of finite
+    burns: the free-start problem is solved with a thrust giving a 4 s burn; a 2 s burn
+    centred on the same epoch is then solved; their delta-Vs differ from the impulsive
+    one by a loss proportional to the duration squared, and Richardson extrapolation,
+    dV_imp = (4 dV(2 s) - dV(4 s)) / 3, removes that term. Both solves are verified.
+
+    Note: the objective dV + v_perilune is nearly flat along the impulse epoch (a later
+    impulse needs more dV and leaves a slower perilune), so local optima a few seconds
+    apart can differ by ~0.2 m/s in dV while their objectives agree to ~0.003 m/s; the
+    sum over the chain is the well-conditioned quantity.
+
+    Returns
+    -------
+    dict with delta_v_mps (extrapolated), the two finite-limit delta-Vs, impulse epoch
+    offset (min) and end speed (km/s).
+    """
+    loi = check_loi(loi)
+    mission, x_peri = _previous_state(thrust_N, isp_s, loi, tuple(previous_starts), dynamics,
+                                      arrival, ephemeris, verbose)
+    dv_guess = PAPER_IMPULSIVE_DV_MPS[loi - 1]
+    d_long, d_short = IMPULSIVE_LIMIT_DURATIONS_S
+    big = x_peri[6] * dv_guess / d_long  # N: m * dV / t
+    prob = loi_problem(mission, loi, big, isp_s, "free", x_peri, dynamics,
+                       start_bounds_min=(-10.0, 10.0))
+    s_long = solve_loi(prob, progress=_log if verbose else None)
+    # the short burn is centred on the same epoch, so both lie on one t^2 curve
+    centre_min = s_long.problem.start_min + s_long.raw.t1_s / 120.0
+    big2 = big * d_long / d_short
+    t_short_min = s_long.raw.t1_s * d_short / d_long / 60.0
+    prob2 = loi_problem(mission, loi, big2, isp_s, centre_min - t_short_min / 2, x_peri, dynamics)
+    s_short = solve_loi(prob2, progress=_log if verbose else None)
+    dv4, dv2 = s_long.delta_v_mps, s_short.delta_v_mps
+    sm = s_short.summary()
+    return {"loi": loi, "delta_v_mps": (4 * dv2 - dv4) / 3,
+            "delta_v_long_mps": dv4, "delta_v_short_mps": dv2,
+            "burn_long_s": s_long.raw.t1_s, "burn_short_s": s_short.raw.t1_s,
+            "impulse_offset_min": centre_min, "v_end_kmps": sm["v_end_kmps"],
+            "objective_mps": (4 * s_short.raw.objective_kmps - s_long.raw.objective_kmps) / 3 * 1e3,
+            "m_before_kg": float(x_peri[6]), "dynamics": dynamics,
+            "verification_passed": bool(s_long.verification.passed and s_short.verification.passed)}

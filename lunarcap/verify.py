@@ -67,7 +67,20 @@ class Verification:
         return out
 
 
-def fly(raw: RawSolution, n_out: int = 0):
+class _ArcAt:
+    """A burn arc integrated in time since ignition, evaluated at epochs."""
+
+    def __init__(self, res, t_ign: float):
+        self.res, self.t_ign = res, t_ign
+        self.t = t_ign + res.t
+        self.y = res.y
+        self.nfev = res.nfev
+
+    def sol(self, t):
+        return self.res.sol(np.asarray(t, float) - self.t_ign)
+
+
+def fly(raw: RawSolution):
     """Re-propagate the solution's steering; returns (burn arcs list, coast Trajectory, dv)."""
     prob = raw.prob
     model = prob.model
@@ -76,8 +89,11 @@ def fly(raw: RawSolution, n_out: int = 0):
     prm = model.params()
     T_kN = model.thrust_N * 1e-3
     x = np.concatenate([prob.x0, [0.0]])  # augmented with the delta-V quadrature (km/s)
+    t_ign = prob.t_ign_s
+    rel = raw.t1_s * raw.mesh_burn  # burn mesh in time since ignition (full precision)
 
-    def rhs(t, y):
+    def rhs(s, y):
+        t = t_ign + s
         xd = np.asarray(f(y[:7], u_of_t(t), t, prm)).ravel()
         return np.concatenate([xd, [T_kN / y[6]]])
 
@@ -85,15 +101,15 @@ def fly(raw: RawSolution, n_out: int = 0):
     nfev = 0
     atol = np.concatenate([ATOL, [1e-13]])
     for j in range(len(bounds) - 1):
-        res = solve_ivp(rhs, (bounds[j], bounds[j + 1]), x, method="DOP853", rtol=RTOL,
+        res = solve_ivp(rhs, (rel[j], rel[j + 1]), x, method="DOP853", rtol=RTOL,
                         atol=atol, dense_output=True)
         if not res.success:
             raise RuntimeError(f"verification propagation failed: {res.message}")
-        arcs.append(res)
+        arcs.append(_ArcAt(res, t_ign))
         nfev += res.nfev
         x = res.y[:, -1]
     dv_kmps = x[7]
-    coast = propagate(model, bounds[-1], x[:7], prob.t_end_s, u=None, dense=True)
+    coast = propagate(model, t_ign + raw.t1_s, x[:7], prob.t_end_s, u=None, dense=True)
     nfev += coast.nfev
     return arcs, coast, dv_kmps * 1e3, nfev
 
