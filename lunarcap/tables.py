@@ -1,0 +1,162 @@
+"""Tables of results beside the paper's printed values (pandas; no plotting, no file I/O).
+
+Each function solves (or fetches from the cache) what it needs through
+:mod:`lunarcap.sequence` and returns a DataFrame whose column names carry units.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from . import constants as C
+from .paper import paper_best, paper_table
+from .scenario import PAPER_BEST_STARTS_MIN
+from .sequence import PAPER_IMPULSIVE_DV_MPS, solve_case, solve_impulsive_case
+
+
+def _paper_row(thrust_N, loi, start):
+    try:
+        t = paper_table(thrust_N, loi)
+    except Exception:  # not one of the paper's engines
+        return None
+    hit = t[np.isclose(t.start_min.astype(float), float(start))]
+    return None if hit.empty else hit.iloc[0]
+
+
+def default_previous(thrust_N: float, loi: int) -> tuple:
+    """The paper's best earlier ignition offsets (Table B1) for its engines."""
+    return tuple(PAPER_BEST_STARTS_MIN[float(thrust_N)][:loi - 1])
+
+
+def sweep_table(thrust_N: float, isp_s: float, loi: int, starts, previous_starts=None,
+                dynamics: str = "full", verbose: bool = False, **kw) -> pd.DataFrame:
+    """One LOI for several ignition offsets, shaped like the paper's Tables 1-5.
+
+    Columns: start_min; burn duration (paper, ours, difference, min); delta-V (paper, ours,
+    difference m/s and %); loss relative to the paper's impulsive delta-V (paper's
+    printed %, ours %); best flags; the verification verdict and residuals.
+    """
+    if previous_starts is None:
+        previous_starts = default_previous(thrust_N, loi)
+    rows = []
+    for s in starts:
+        sol = solve_case(thrust_N, isp_s, loi, s, tuple(previous_starts), dynamics,
+                         verbose=verbose, **kw)
+        sm = sol.summary()
+        p = _paper_row(thrust_N, loi, sm["start_min"]) if s != "free" else None
+        ver = sm["verification"]
+        rows.append({
+            "start_min": sm["start_min"], "free_start": s == "free",
+            "paper_burn_duration_min": np.nan if p is None else p.burn_duration_min,
+            "burn_duration_min": sm["burn_duration_min"],
+            "paper_delta_v_mps": np.nan if p is None else p.delta_v_mps,
+            "delta_v_mps": sm["delta_v_mps"],
+            "paper_loss_percent": np.nan if p is None else p.diff_percent,
+            "loss_percent": sm["loss_percent"],
+            "eq19_duration_min": sm["eq19_duration_min"],
+            "m_start_kg": sm["m_start_kg"], "m_end_kg": sm["m_end_kg"],
+            "verified": ver["passed"], "rp_error_m": ver["rp_error_m"],
+            "inc_error_deg": ver["inc_error_deg"], "gamma_error_deg": ver["gamma_error_deg"],
+            "ipopt_iterations": sm["ipopt_iterations"], "solve_wall_s": sm["solve_wall_s"],
+        })
+    df = pd.DataFrame(rows)
+    df["burn_duration_diff_min"] = df.burn_duration_min - df.paper_burn_duration_min
+    df["delta_v_diff_mps"] = df.delta_v_mps - df.paper_delta_v_mps
+    df["delta_v_diff_percent"] = 100 * df.delta_v_diff_mps / df.paper_delta_v_mps
+    fixed = df[~df.free_start]
+    df["best"] = False
+    if not fixed.empty:
+        df.loc[fixed.delta_v_mps.idxmin(), "best"] = True
+    df["paper_best"] = False
+    try:
+        pb = paper_best(thrust_N, loi)["start_min"]
+        df.loc[np.isclose(df.start_min, pb) & ~df.free_start, "paper_best"] = True
+    except Exception:
+        pass
+    df.attrs.update({"thrust_N": thrust_N, "isp_s": isp_s, "loi": loi, "dynamics": dynamics,
+                     "previous_starts_min": tuple(previous_starts),
+                     "impulsive_delta_v_mps": PAPER_IMPULSIVE_DV_MPS[loi - 1]})
+    return df
+
+
+def sequence_table(thrust_N: float, isp_s: float, starts=None, dynamics: str = "full",
+                   with_impulsive_model: bool = True, verbose: bool = False, **kw) -> pd.DataFrame:
+    """The best chain of one engine (Table B1 rows) with our model-to-model impulsive loss.
+
+    One row per LOI: start, duration, delta-V (paper, ours), loss vs the paper's impulsive
+    values (m/s, %), and, with ``with_impulsive_model``, the impulsive delta-V in the same
+    dynamics from the same pre-burn orbit and the loss against it.
+    """
+    starts = tuple(starts or PAPER_BEST_STARTS_MIN[float(thrust_N)])
+    rows = []
+    for i, s in enumerate(starts):
+        loi = i + 1
+        sol = solve_case(thrust_N, isp_s, loi, s, starts[:i], dynamics, verbose=verbose, **kw)
+        sm = sol.summary()
+        try:
+            pb = paper_best(thrust_N, loi)
+        except Exception:
+            pb = None
+        row = {"loi": loi, "start_min": sm["start_min"],
+               "paper_start_min": np.nan if pb is None else pb["start_min"],
+               "burn_duration_min": sm["burn_duration_min"],
+               "paper_burn_duration_min": np.nan if pb is None else pb["burn_duration_min"],
+               "delta_v_mps": sm["delta_v_mps"],
+               "paper_delta_v_mps": np.nan if pb is None else pb["delta_v_mps"],
+               "paper_impulsive_delta_v_mps": PAPER_IMPULSIVE_DV_MPS[i],
+               "loss_mps": sm["loss_mps"], "loss_percent": sm["loss_percent"],
+               "paper_loss_percent": np.nan if pb is None else pb["diff_percent"],
+               "m_start_kg": sm["m_start_kg"], "m_end_kg": sm["m_end_kg"],
+               "fuel_kg": sm["fuel_kg"], "v_end_kmps": sm["v_end_kmps"],
+               "verified": sm["verification"]["passed"]}
+        if with_impulsive_model:
+            imp = solve_impulsive_case(thrust_N, isp_s, loi, starts[:i], dynamics,
+                                       verbose=verbose, **kw)
+            row["model_impulsive_delta_v_mps"] = imp["delta_v_mps"]
+            row["model_loss_mps"] = sm["delta_v_mps"] - imp["delta_v_mps"]
+            row["model_loss_percent"] = 100 * row["model_loss_mps"] / imp["delta_v_mps"]
+            row["objective_loss_mps"] = sm["objective_mps"] - imp["objective_mps"]
+        rows.append(row)
+    df = pd.DataFrame(rows)
+    df.attrs.update({"thrust_N": thrust_N, "isp_s": isp_s, "starts_min": starts,
+                     "dynamics": dynamics})
+    return df
+
+
+def sequence_totals(df: pd.DataFrame, mass0_kg: float = C.ARRIVAL_MASS_KG) -> dict:
+    """Totals of a :func:`sequence_table`: delta-V, loss (m/s and % of the impulsive total),
+    the paper's way of quoting it (mean of the per-burn %), fuel, burn time, final mass."""
+    imp = df.paper_impulsive_delta_v_mps.sum()
+    out = {"total_delta_v_mps": df.delta_v_mps.sum(), "total_impulsive_delta_v_mps": imp,
+           "total_loss_mps": df.loss_mps.sum(),
+           "total_loss_percent": 100 * df.loss_mps.sum() / imp,
+           "mean_of_burn_loss_percent": df.loss_percent.mean(),
+           "total_fuel_kg": mass0_kg - df.m_end_kg.iloc[-1],
+           "total_burn_duration_min": df.burn_duration_min.sum(),
+           "final_mass_kg": df.m_end_kg.iloc[-1]}
+    if "model_loss_mps" in df:
+        out["total_model_loss_mps"] = df.model_loss_mps.sum()
+        out["total_model_impulsive_delta_v_mps"] = df.model_impulsive_delta_v_mps.sum()
+        out["total_model_loss_percent"] = 100 * df.model_loss_mps.sum() / \
+            df.model_impulsive_delta_v_mps.sum()
+    return out
+
+
+def verification_table(solutions) -> pd.DataFrame:
+    """Verification residuals of a list of Solutions, one row each."""
+    rows = []
+    for sol in solutions:
+        s = sol.summary()
+        v = s["verification"]
+        rows.append({"thrust_N": s["thrust_N"], "isp_s": s["isp_s"], "loi": s["loi"],
+                     "start_min": s["start_min"], "dynamics": s["dynamics"], "mesh": s["mesh"],
+                     "ipopt_status": s["ipopt_status"], "iterations": s["ipopt_iterations"],
+                     "delta_v_mps": s["delta_v_mps"],
+                     "verified_delta_v_diff_mps": v["delta_v_diff_mps"],
+                     "objective_diff_mps": v["objective_diff_mps"],
+                     "rp_error_m": v["rp_error_m"], "ra_error_m": v["ra_error_m"],
+                     "inc_error_deg": v["inc_error_deg"], "gamma_error_deg": v["gamma_error_deg"],
+                     "final_position_diff_m": v["final_position_diff_m"], "passed": v["passed"],
+                     "solve_wall_s": s["solve_wall_s"]})
+    return pd.DataFrame(rows)
