@@ -164,7 +164,7 @@ def find_cycle(graph: dict[str, list[str]]) -> list[str] | None:
     return None
 
 
-def validate_manifest(data, notebooks_dir: Path = paths.NOTEBOOKS,
+def validate_manifest(data, notebooks_dir: Path | None = None,
                       check_notebooks: bool = True) -> list[Entry]:
     """Validate a parsed manifest and return its entries in file order.
 
@@ -172,8 +172,8 @@ def validate_manifest(data, notebooks_dir: Path = paths.NOTEBOOKS,
     ----------
     data : dict
         The parsed YAML: ``{"entries": [ {...}, ... ]}``.
-    notebooks_dir : Path
-        Directory the ``notebook`` fields are relative to.
+    notebooks_dir : Path, optional
+        Directory the ``notebook`` fields are relative to (default ``notebooks/``).
     check_notebooks : bool
         Also open each notebook and check its parameters cell declares every parameter
         the manifest gives (and ``quick``, ``output_name``).
@@ -184,6 +184,7 @@ def validate_manifest(data, notebooks_dir: Path = paths.NOTEBOOKS,
         Listing every problem found (unknown or missing keys, duplicate names, missing
         notebooks, unknown parameters, unknown dependencies, dependency cycles).
     """
+    notebooks_dir = Path(notebooks_dir or paths.NOTEBOOKS)
     errors: list[str] = []
     if not isinstance(data, dict) or set(data) != {"entries"} or not isinstance(
             data.get("entries"), list):
@@ -270,9 +271,12 @@ def validate_manifest(data, notebooks_dir: Path = paths.NOTEBOOKS,
     return entries
 
 
-def load_manifest(path: Path = paths.MANIFEST, check_notebooks: bool = True) -> list[Entry]:
-    """Read and validate the manifest (see :func:`validate_manifest`)."""
-    path = Path(path)
+def load_manifest(path: Path | None = None, check_notebooks: bool = True) -> list[Entry]:
+    """Read and validate the manifest (default ``notebooks/manifest.yml``).
+
+    See :func:`validate_manifest`.
+    """
+    path = Path(path or paths.MANIFEST)
     if not path.is_file():
         raise ManifestError(f"manifest not found: {path}")
     try:
@@ -282,9 +286,9 @@ def load_manifest(path: Path = paths.MANIFEST, check_notebooks: bool = True) -> 
     return validate_manifest(data, path.parent, check_notebooks)
 
 
-def toc_files(toc_path: Path = paths.TOC) -> list[str]:
+def toc_files(toc_path: Path | None = None) -> list[str]:
     """Every ``file:`` of the jupyter-book table of contents, root first (no extension)."""
-    toc = yaml.safe_load(Path(toc_path).read_text(encoding="utf-8"))
+    toc = yaml.safe_load(Path(toc_path or paths.TOC).read_text(encoding="utf-8"))
     out = [toc["root"]]
 
     def walk(node):
@@ -301,13 +305,14 @@ def toc_files(toc_path: Path = paths.TOC) -> list[str]:
     return [re.sub(r"\.(md|ipynb)$", "", f) for f in out]
 
 
-def check_toc(entries: list[Entry], toc_path: Path = paths.TOC) -> None:
+def check_toc(entries: list[Entry], toc_path: Path | None = None) -> None:
     """Every entry must appear in the toc as ``generated/<name>`` and vice versa.
 
     Raises
     ------
     ManifestError
     """
+    toc_path = Path(toc_path or paths.TOC)
     files = toc_files(toc_path)
     gen = {f.split("/", 1)[1] for f in files if f.startswith("generated/")}
     names = {e.name for e in entries}
@@ -462,6 +467,7 @@ def _execute(entry, parameters, stamp, timeout, tmp, t0, errlog) -> dict:
     import papermill as pm
     from papermill.exceptions import PapermillExecutionError
 
+    started = time.time() - 1.0  # declared outputs must be written by this run
     try:
         pm.execute_notebook(str(entry.notebook), str(tmp), parameters=parameters,
                             kernel_name=KERNEL, cwd=str(entry.notebook.parent),
@@ -471,11 +477,14 @@ def _execute(entry, parameters, stamp, timeout, tmp, t0, errlog) -> dict:
         prepare_for_book(nb, entry.title)
         nbformat.write(nb, str(tmp))
         missing = [o for o in entry.outputs if not (paths.GENERATED / o).is_file()
-                   or (paths.GENERATED / o).stat().st_size == 0]
+                   or (paths.GENERATED / o).stat().st_size == 0
+                   or (paths.GENERATED / o).stat().st_mtime < started]
         if missing:
             os.replace(tmp, entry.failed_path)
             return {"ok": False, "seconds": time.perf_counter() - t0,
-                    "error": f"the notebook ran but did not write its declared outputs {missing}"}
+                    "error": f"the notebook ran but did not write its declared outputs {missing} "
+                             "(paths below book/generated; fix the manifest's 'outputs' or the "
+                             "notebook)"}
         os.replace(tmp, entry.output)
         errlog.unlink(missing_ok=True)
         stamp = dict(stamp, executed_utc=time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),

@@ -193,7 +193,7 @@ def _text_align(vec) -> dict:
     return {"ha": ha, "va": va}
 
 
-def plot_fig1_geometry(geo: Fig1Geometry, figsize=(7.0, 8.0)):
+def plot_fig1_geometry(geo: Fig1Geometry, figsize=(7.0, 6.8)):
     """Draw Fig. 1: (a) the orbit plane with i_r, i_t, v and alpha; (b) the RTN triad, u, beta.
 
     Parameters
@@ -206,8 +206,9 @@ def plot_fig1_geometry(geo: Fig1Geometry, figsize=(7.0, 8.0)):
     matplotlib.figure.Figure
     """
     fig = plt.figure(figsize=figsize, layout="constrained")
-    ax = fig.add_subplot(2, 1, 1)
-    ax3 = fig.add_subplot(2, 1, 2, projection="3d")
+    gs = fig.add_gridspec(2, 1, height_ratios=(1.0, 0.9))
+    ax = fig.add_subplot(gs[0])
+    ax3 = fig.add_subplot(gs[1], projection="3d")
     col = {"r": "tab:red", "t": "tab:green", "n": "tab:blue", "u": "black", "v": "0.45"}
 
     # ---------------------------------------------------------------- (a) orbit plane
@@ -276,11 +277,12 @@ def plot_fig1_geometry(geo: Fig1Geometry, figsize=(7.0, 8.0)):
     ax3.plot(*sq, color="0.8", lw=0.8)
     ax3.set_xlim(-1, 1)
     ax3.set_ylim(-1, 1)
-    ax3.set_zlim(-1, 1)
-    ax3.set_box_aspect((1, 1, 1), zoom=1.35)
+    ax3.set_zlim(-0.2, 1.1)
+    ax3.set_box_aspect((1, 1, 0.65), zoom=1.45)
     ax3.view_init(elev=25, azim=-70)
     ax3.set_axis_off()
-    ax3.set_title("(b) RTN frame at the spacecraft", fontsize=11, loc="left")
+    ax3.text2D(0.0, 0.88, "(b) RTN frame at the spacecraft", fontsize=11,
+               transform=ax3.transAxes)
     return fig
 
 
@@ -341,19 +343,27 @@ def _display_markdown(text: str) -> None:
 
 
 def show_table(df, name: str, caption: str, notebook: str, parameters: dict | None = None,
-               floatfmt: str | dict = ".3f", label: str | None = None, display: bool = True) -> str:
+               floatfmt: str | dict = ".3f", labels: dict | None = None, label: str | None = None,
+               display: bool = True) -> str:
     """Write ``df`` to ``tables/<name>.csv`` and show it as a numbered MyST table.
 
     Parameters
     ----------
     df : pandas.DataFrame
+        Column names are those of the CSV: plain ``snake_case`` with the unit as suffix
+        (``delta_v_mps``) is easiest for whoever reads the CSV back.
     name : str
         Output name (the CSV file name without extension).
     caption : str
         Caption (MyST Markdown; give units).
     notebook, parameters : the source notebook and the parameters of this run,
         named under the table (:func:`lunarcap.provenance.source_note`).
-    floatfmt : format of float cells in the displayed table (the CSV keeps full precision).
+    floatfmt : str or dict
+        Format of float cells in the displayed table, one for all or per column name
+        (the CSV keeps full precision).
+    labels : dict, optional
+        Column name -> header shown in the book (with units), e.g.
+        ``{"delta_v_mps": "ΔV (m/s)"}``.
     label : str, optional
         Cross-reference label (default ``tbl-<name>``), for ``{numref}`` from other pages.
     display : bool
@@ -367,8 +377,11 @@ def show_table(df, name: str, caption: str, notebook: str, parameters: dict | No
     csv = paths.write_csv(df, name)
     label = label or f"tbl-{name}"
     rel = paths.relative_to_page(csv)
+    shown = df.rename(columns=labels or {})
+    if isinstance(floatfmt, dict) and labels:
+        floatfmt = {labels.get(k, k): v for k, v in floatfmt.items()}
     text = (f":::{{table}} {caption}\n:name: {label}\n:align: center\n\n"
-            f"{markdown_table(df, floatfmt)}\n:::\n\n"
+            f"{markdown_table(shown, floatfmt)}\n:::\n\n"
             f"{source_note(notebook, parameters)} Data: {{download}}`{csv.name} <{rel}>`.\n")
     if display:
         _display_markdown(text)

@@ -1,0 +1,326 @@
+"""The book machinery: manifest validation, scheduling, stamps, paths and cache (fast).
+
+One test (marked ``notebooks``) runs the real executor on a throw-away tree with a
+failing notebook.
+"""
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import nbformat
+import pytest
+import yaml
+
+from lunarcap import book, cache, paths
+from lunarcap.book import ManifestError, validate_manifest
+
+
+def _notebook(path: Path, params: str = "x = 1\nquick = False\noutput_name = 'n'",
+              body: str = "print(x)", n_param_cells: int = 1) -> Path:
+    nb = nbformat.v4.new_notebook()
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
+                                 "language": "python"}
+    nb.cells = [nbformat.v4.new_markdown_cell("# Source title")]
+    for _ in range(n_param_cells):
+        c = nbformat.v4.new_code_cell(params)
+        c.metadata["tags"] = ["parameters"]
+        nb.cells.append(c)
+    nb.cells.append(nbformat.v4.new_code_cell(body))
+    nbformat.write(nb, str(path))
+    return path
+
+
+def _entry(name, notebook="a.ipynb", **kw):
+    return {"name": name, "title": name.title(), "notebook": notebook, **kw}
+
+
+@pytest.fixture
+def nbdir(tmp_path):
+    _notebook(tmp_path / "a.ipynb")
+    _notebook(tmp_path / "b.ipynb")
+    return tmp_path
+
+
+# ------------------------------------------------------------------ manifest validation
+def test_valid_manifest_returns_entries_in_order(nbdir):
+    entries = validate_manifest({"entries": [
+        _entry("one", parameters={"x": 2}, quick_parameters={"x": 3}, outputs=["tables/o.csv"]),
+        _entry("two", "b.ipynb", depends_on=["one"]),
+    ]}, nbdir)
+    assert [e.name for e in entries] == ["one", "two"]
+    one = entries[0]
+    assert one.effective_parameters(quick=False) == {"x": 2, "quick": False, "output_name": "one"}
+    assert one.effective_parameters(quick=True) == {"x": 3, "quick": True, "output_name": "one"}
+    assert entries[1].depends_on == ("one",)
+
+
+def test_cycle_is_one_clear_error(nbdir):
+    with pytest.raises(ManifestError) as err:
+        validate_manifest({"entries": [_entry("a", depends_on=["c"]), _entry("b", depends_on=["a"]),
+                                       _entry("c", depends_on=["b"])]}, nbdir)
+    msg = str(err.value)
+    assert "dependency cycle" in msg
+    assert "a -> c -> b -> a" in msg or "c -> b -> a -> c" in msg or "b -> a -> c -> b" in msg
+
+
+def test_self_dependency_is_reported(nbdir):
+    with pytest.raises(ManifestError, match="depends on itself"):
+        validate_manifest({"entries": [_entry("a", depends_on=["a"])]}, nbdir)
+
+
+def test_unknown_notebook_is_reported(nbdir):
+    with pytest.raises(ManifestError, match=r"notebook 'missing\.ipynb' not found"):
+        validate_manifest({"entries": [_entry("a", "missing.ipynb")]}, nbdir)
+
+
+def test_unknown_key_is_reported(nbdir):
+    with pytest.raises(ManifestError, match=r"unknown key\(s\) \['paramters'\]"):
+        validate_manifest({"entries": [_entry("a", paramters={"x": 1})]}, nbdir)
+
+
+def test_all_problems_are_listed_at_once(nbdir):
+    with pytest.raises(ManifestError) as err:
+        validate_manifest({"entries": [_entry("a", colour="red"), _entry("b", "nope.ipynb"),
+                                       _entry("c", depends_on=["zzz"]), {"name": "d"}]}, nbdir)
+    msg = str(err.value)
+    for needle in ("colour", "nope.ipynb", "unknown entry 'zzz'", "missing key(s)"):
+        assert needle in msg, needle
+
+
+@pytest.mark.parametrize("data", [None, [], {"entries": {}}, {"entries": [], "extra": 1}])
+def test_bad_top_level(data, nbdir):
+    with pytest.raises(ManifestError, match="one key 'entries'"):
+        validate_manifest(data, nbdir)
+
+
+def test_duplicate_and_invalid_names(nbdir):
+    with pytest.raises(ManifestError, match="duplicate name 'a'"):
+        validate_manifest({"entries": [_entry("a"), _entry("a")]}, nbdir)
+    with pytest.raises(ManifestError, match="invalid output name"):
+        validate_manifest({"entries": [_entry("../escape")]}, nbdir)
+
+
+def test_parameters_must_exist_in_the_notebook(nbdir):
+    with pytest.raises(ManifestError, match=r"parameter\(s\) \['y'\] are not defined"):
+        validate_manifest({"entries": [_entry("a", quick_parameters={"y": 1})]}, nbdir)
+
+
+def test_injected_parameters_may_not_be_set(nbdir):
+    with pytest.raises(ManifestError, match="may not set"):
+        validate_manifest({"entries": [_entry("a", parameters={"quick": True})]}, nbdir)
+
+
+def test_notebook_needs_one_parameters_cell_with_quick_and_output_name(tmp_path):
+    _notebook(tmp_path / "two.ipynb", n_param_cells=2)
+    _notebook(tmp_path / "none.ipynb", n_param_cells=0)
+    _notebook(tmp_path / "noquick.ipynb", params="x = 1\noutput_name = 'n'")
+    with pytest.raises(ManifestError) as err:
+        validate_manifest({"entries": [_entry("a", "two.ipynb"), _entry("b", "none.ipynb"),
+                                       _entry("c", "noquick.ipynb")]}, tmp_path)
+    msg = str(err.value)
+    assert "exactly one cell tagged 'parameters' (found 2)" in msg
+    assert "(found 0)" in msg
+    assert "must define 'quick'" in msg
+
+
+def test_outputs_must_stay_below_generated(nbdir):
+    with pytest.raises(ManifestError, match="outputs must be a list"):
+        validate_manifest({"entries": [_entry("a", outputs=["../x.csv"])]}, nbdir)
+
+
+def test_load_manifest_reports_yaml_errors(tmp_path):
+    bad = tmp_path / "manifest.yml"
+    bad.write_text("entries: [\n")
+    with pytest.raises(ManifestError, match="not valid YAML"):
+        book.load_manifest(bad)
+    with pytest.raises(ManifestError, match="manifest not found"):
+        book.load_manifest(tmp_path / "absent.yml")
+
+
+def test_real_manifest_and_toc_are_valid():
+    entries = book.load_manifest()
+    book.check_toc(entries)
+    assert entries, "the manifest has no entries"
+
+
+# ------------------------------------------------------------------ toc, selection
+def test_toc_must_match_the_manifest(nbdir, tmp_path):
+    bookdir = tmp_path / "bk"
+    bookdir.mkdir()
+    (bookdir / "intro.md").write_text("# Intro\n")
+    toc = bookdir / "_toc.yml"
+    toc.write_text(yaml.safe_dump({"format": "jb-book", "root": "intro", "chapters": [
+        {"file": "generated/a"}, {"file": "generated/ghost"}, {"file": "missing_page"}]}))
+    entries = validate_manifest({"entries": [_entry("a"), _entry("b", "b.ipynb")]}, nbdir)
+    with pytest.raises(ManifestError) as err:
+        book.check_toc(entries, toc)
+    msg = str(err.value)
+    assert "manifest entry 'b' is not in _toc.yml" in msg
+    assert "generated/ghost, which no manifest entry produces" in msg
+    assert "missing_page, which does not exist" in msg
+
+
+def test_only_selects_dependencies_too(nbdir):
+    entries = validate_manifest({"entries": [_entry("a"), _entry("b", depends_on=["a"]),
+                                             _entry("c")]}, nbdir)
+    assert [e.name for e in book.select(entries, ["b"])] == ["a", "b"]
+    assert [e.name for e in book.select(entries, None)] == ["a", "b", "c"]
+    with pytest.raises(ManifestError, match="unknown entry"):
+        book.select(entries, ["nope"])
+
+
+def test_find_cycle():
+    assert book.find_cycle({"a": ["b"], "b": []}) is None
+    assert book.find_cycle({"a": ["b"], "b": ["a"]}) in (["a", "b", "a"], ["b", "a", "b"])
+
+
+def test_cli_exit_status_2_on_invalid_manifest(tmp_path, monkeypatch, capsys):
+    man = tmp_path / "manifest.yml"
+    man.write_text(yaml.safe_dump({"entries": [_entry("a", "absent.ipynb")]}))
+    monkeypatch.setattr(paths, "MANIFEST", man)
+    assert book.main(["check"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("lunarcap.book: error: invalid manifest")
+    assert "absent.ipynb" in err
+
+
+# ------------------------------------------------------------------ page preparation, stamps
+def test_prepare_for_book_sets_title_and_folds_code():
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_markdown_cell("# Old\ntext"),
+                nbformat.v4.new_code_cell("x = 1"), nbformat.v4.new_code_cell("x = 2"),
+                nbformat.v4.new_code_cell("y = x"), nbformat.v4.new_code_cell("assert y"),
+                nbformat.v4.new_code_cell("show()")]
+    nb.cells[1].metadata["tags"] = ["parameters"]
+    nb.cells[2].metadata["tags"] = ["injected-parameters"]
+    nb.cells[4].metadata["tags"] = ["remove-input"]
+    nb.cells[5].metadata["tags"] = ["show-input"]
+    book.prepare_for_book(nb, "New title")
+    assert nb.cells[0].source == "# New title\ntext"
+    tags = [c.metadata.get("tags") for c in nb.cells[1:]]
+    assert tags == [["parameters", "hide-cell"], ["injected-parameters", "remove-cell"],
+                    ["hide-input"], ["remove-input"], ["show-input"]]
+    nb2 = nbformat.v4.new_notebook()
+    nb2.cells = [nbformat.v4.new_code_cell("1")]
+    book.prepare_for_book(nb2, "T")
+    assert nb2.cells[0].source == "# T"
+
+
+def test_stamp_changes_with_parameters_and_detects_missing_outputs(nbdir, tmp_path, monkeypatch):
+    monkeypatch.setattr(paths, "GENERATED", tmp_path / "gen")
+    (tmp_path / "gen").mkdir()
+    e = validate_manifest({"entries": [_entry("a", parameters={"x": 2},
+                                              outputs=["tables/a.csv"])]}, nbdir)[0]
+    s_full, s_quick = book.stamp_for(e, False, {}), book.stamp_for(e, True, {})
+    assert s_full["digest"] != s_quick["digest"]
+    assert not book.is_up_to_date(e, s_full)
+    e.output.write_text("{}")
+    e.stamp_path.write_text(json.dumps(s_full))
+    assert not book.is_up_to_date(e, s_full)  # declared output missing
+    (tmp_path / "gen" / "tables").mkdir()
+    (tmp_path / "gen" / "tables" / "a.csv").write_text("a\n1\n")
+    assert book.is_up_to_date(e, s_full)
+    assert not book.is_up_to_date(e, s_quick)
+    assert book.stamp_for(e, False, {"dep": "x"})["digest"] == s_full["digest"]  # no deps
+
+
+# ------------------------------------------------------------------ paths and cache
+def test_atomic_write_leaves_nothing_on_failure(tmp_path):
+    target = tmp_path / "t.csv"
+    target.write_text("old")
+    with pytest.raises(RuntimeError):
+        with paths.atomic_path(target) as tmp:
+            tmp.write_text("half")
+            raise RuntimeError("boom")
+    assert target.read_text() == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["t.csv"]
+    paths.write_text_atomic(target, "new")
+    assert target.read_text() == "new"
+
+
+def test_output_names_cannot_escape():
+    for bad in ("", "../x", "a/b", "/abs", ".hidden"):
+        with pytest.raises(ValueError):
+            paths.table_path(bad)
+    assert paths.figure_path("f", "svg").parent == paths.FIGURES
+    with pytest.raises(ValueError):
+        paths.figure_path("f", "gif")
+
+
+def test_write_csv_refuses_empty_tables(tmp_path, monkeypatch):
+    import pandas as pd
+
+    monkeypatch.setattr(paths, "TABLES", tmp_path)
+    with pytest.raises(ValueError, match="empty table"):
+        paths.write_csv(pd.DataFrame({"a": []}), "e")
+    out = paths.write_csv(pd.DataFrame({"a": [1.5]}), "t")
+    assert out.read_text() == "a\n1.5\n"
+
+
+def test_cached_keys_include_code_version_and_bound_arguments(tmp_path, monkeypatch):
+    import joblib
+
+    monkeypatch.setattr(cache, "memory", joblib.Memory(str(tmp_path), verbose=0))
+    calls = []
+
+    @cache.cached(ignore=["verbose"])
+    def f(a, b=2, verbose=False):
+        calls.append((a, b))
+        return a + b
+
+    assert f(1) == f(1, 2) == f(1, b=2) == f(1, verbose=True) == 3
+    assert calls == [(1, 2)]
+    assert f.is_cached(1) and not f.is_cached(5)
+    monkeypatch.setattr(cache, "code_version", lambda include_presentation=False: "other")
+    assert f(1) == 3 and calls == [(1, 2), (1, 2)]  # a new code version recomputes
+    with pytest.raises(ValueError, match="ignore names unknown"):
+        cache.cached(ignore=["nope"])(lambda x: x)
+
+
+def test_code_version_ignores_presentation_modules():
+    v, vp = cache.code_version(), cache.code_version(include_presentation=True)
+    assert len(v) == 16 and v != vp
+
+
+# ------------------------------------------------------------------ executor (kernels)
+@pytest.mark.notebooks
+def test_failed_entry_stops_the_run_and_keeps_other_outputs(tmp_path):
+    root = tmp_path / "tree"
+    nbdir = root / "notebooks"
+    nbdir.mkdir(parents=True)
+    (root / "book").mkdir()
+    (root / "book" / "intro.md").write_text("# Intro\n")
+    _notebook(nbdir / "good.ipynb", body=textwrap.dedent("""
+        import pandas as pd
+        from lunarcap import paths
+        paths.write_csv(pd.DataFrame({"x": [x]}), output_name)
+        """))
+    _notebook(nbdir / "bad.ipynb", body="1 / 0")
+    (nbdir / "manifest.yml").write_text(yaml.safe_dump({"entries": [
+        _entry("good", "good.ipynb", parameters={"x": 7}, outputs=["tables/good.csv"]),
+        _entry("bad", "bad.ipynb"),
+        _entry("after", "good.ipynb", depends_on=["bad"]),
+    ]}))
+    (root / "book" / "_toc.yml").write_text(yaml.safe_dump({
+        "format": "jb-book", "root": "intro",
+        "chapters": [{"file": f"generated/{n}"} for n in ("good", "bad", "after")]}))
+    env = dict(os.environ, LUNARCAP_ROOT=str(root), LUNARCAP_NO_CACHE="1")
+    cmd = [sys.executable, "-m", "lunarcap.book", "build", "--no-build", "--jobs", "2"]
+    run = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300)
+    out = run.stdout + run.stderr
+    assert run.returncode == 1, out
+    assert "error: entry 'bad'" in out and "ZeroDivisionError" in out and "1 / 0" in out
+    gen = root / "book" / "generated"
+    assert (gen / "good.ipynb").is_file() and (gen / "tables" / "good.csv").read_text() == "x\n7\n"
+    assert (gen / "bad.failed.ipynb").is_file() and not (gen / "bad.ipynb").exists()
+    assert not (gen / "after.ipynb").exists()
+    assert not list(gen.glob(".*.tmp.ipynb"))
+    # a rerun of the good entry alone is skipped: its stamp matches
+    run2 = subprocess.run(cmd + ["--only", "good"], env=env, capture_output=True, text=True,
+                          timeout=300)
+    assert run2.returncode == 0, run2.stdout + run2.stderr
+    assert "good ... up to date (skipped)" in run2.stdout
