@@ -58,7 +58,7 @@ class Mesh:
 
 
 #: Meshes tried in turn until verification passes.
-DEFAULT_MESHES = (Mesh(10, 24, 5), Mesh(15, 36, 5), Mesh(22, 54, 6))
+DEFAULT_MESHES = (Mesh(8, 16, 5), Mesh(12, 24, 5), Mesh(18, 36, 6))
 
 
 @dataclass
@@ -358,8 +358,10 @@ def make_guess(prob: LOIProblem, t1_s: float | None = None, burn_u=None,
     t1 = t1_s or prob.eq19_duration_s or 600.0
     t1 = min(t1, 0.9 * (prob.t_end_s - prob.t_ign_s))
     if tune and burn_u is None and not prob.circular:
-        t1 = _tune_duration(prob, t1)
-    return _guess_arcs(prob, t1, burn_u)
+        t1, arc = _tune_duration(prob, t1)
+        if arc is not None:
+            return arc
+    return _guess_arcs(prob, t1, burn_u, rtol=GUESS_RTOL)
 
 
 def _mean_motion_and_anomaly(x, mu=C.MU_MOON):
@@ -372,17 +374,22 @@ def _mean_motion_and_anomaly(x, mu=C.MU_MOON):
     return np.sqrt(mu / a ** 3), E - e * np.sin(E)
 
 
-def _tune_duration(prob: LOIProblem, t1: float, revs: int = 1) -> float:
+#: Tolerance of the guess propagations (the guess need not be exact: IPOPT corrects it).
+GUESS_RTOL = 1e-8
+
+
+def _tune_duration(prob: LOIProblem, t1: float, revs: int = 1):
     """Burn duration for which the anti-velocity guess reaches perilune at t_end.
 
     The total mean anomaly swept from the burn end to t_end, M(t1) + n(t1) (t_end - t_b),
     is continuous in t1; on the osculating Kepler orbit after the burn it must equal
     2 pi revs. Its root is bracketed on a dense grid of the propagated burn, then
     corrected with numerical coasts (the Earth and Sun shift the timing by minutes).
+    Returns the duration and the guess arcs propagated for it (None if not found).
     """
     span = prob.t_end_s - prob.t_ign_s
     tmax = min(2.0 * t1, 0.9 * span)
-    g = _guess_arcs(prob, tmax, None, rtol=1e-9, coast=False)
+    g = _guess_arcs(prob, tmax, None, rtol=GUESS_RTOL, coast=False)
     ts = np.linspace(0.3 * t1, tmax, 600)
     xs = g.burn.sol(prob.t_ign_s + ts)
     ok = np.hypot(xs[1], xs[2]) < 1
@@ -391,17 +398,17 @@ def _tune_duration(prob: LOIProblem, t1: float, revs: int = 1) -> float:
     tot = M + n * (span - ts) - 2 * np.pi * revs
     sign = np.nonzero(np.diff(np.sign(tot)) != 0)[0]
     if sign.size == 0:
-        return t1
+        return t1, None
     i = sign[0]
     tk = ts[i] - tot[i] * (ts[i + 1] - ts[i]) / (tot[i + 1] - tot[i])
     slope = (tot[i + 1] - tot[i]) / (ts[i + 1] - ts[i])
-    for _ in range(3):  # numerical correction of the Kepler root
-        arc = _guess_arcs(prob, tk, None, rtol=1e-9)
+    for _ in range(4):  # numerical correction of the Kepler root
+        arc = _guess_arcs(prob, tk, None, rtol=GUESS_RTOL)
         _, Mend = _mean_motion_and_anomaly(arc.coast.x[:, -1])
-        if abs(Mend) < 1e-7:
-            break
+        if abs(Mend) < 1e-5:  # ~0.1 s from perilune on a 12 h orbit: ample for a guess
+            return float(tk), arc
         tk = tk - Mend / slope
-    return float(tk)
+    return float(tk), None
 
 
 def _guess_arcs(prob: LOIProblem, t1: float, burn_u, rtol: float = 1e-10,
