@@ -62,3 +62,32 @@ def rtn_basis(r, v, xp=np):
     i_n = h / np.linalg.norm(h, axis=0)
     it = np.cross(i_n, ir, axis=0)
     return np.stack([ir, it, i_n], axis=0)
+
+
+def thrust_angles_deg(u_rtn):
+    """Thrust angles of Eq. (14), Song 2011, from RTN thrust directions, degrees.
+
+    alpha = atan2(u_r, u_t) (Eq. 14a), the in-plane angle from the tangential axis,
+    wrapped to [0, 360); beta = asin(u_n / |u|) (Eq. 14b), the out-of-plane angle.
+    Vectorised: ``u_rtn`` may have shape (3,) or (3, N).
+
+    Examples
+    --------
+    >>> a, b = thrust_angles_deg([0.0, -1.0, 0.0])
+    >>> float(a), float(b)
+    (180.0, 0.0)
+    """
+    u = np.asarray(u_rtn, dtype=float)
+    norm = np.linalg.norm(u, axis=0)
+    alpha = np.degrees(np.arctan2(u[0], u[1])) % 360.0
+    beta = np.degrees(np.arcsin(np.clip(u[2] / norm, -1.0, 1.0)))
+    return alpha, beta
+
+
+def thrust_direction_rtn(alpha_deg: float, beta_deg: float) -> np.ndarray:
+    """Unit thrust direction (u_r, u_t, u_n) from the thrust angles (inverse of Eq. 14).
+
+    ``(cos b sin a, cos b cos a, sin b)`` with a = alpha, b = beta in degrees.
+    """
+    a, b = np.radians(alpha_deg), np.radians(beta_deg)
+    return np.array([np.cos(b) * np.sin(a), np.cos(b) * np.cos(a), np.sin(b)])

@@ -22,55 +22,11 @@ import numpy as np
 from . import constants as C
 from . import paths
 from .elements import rv_from_coe, semi_major_axis_from_period
-from .frames import rtn_basis
+from .frames import rtn_basis, thrust_angles_deg, thrust_direction_rtn  # noqa: F401
 from .provenance import source_note
 
 # Reproducible SVG output (no random ids, no date).
 matplotlib.rcParams["svg.hashsalt"] = "lunarcap"
-
-
-# =============================================================================== Eq. (14)
-def thrust_direction_rtn(alpha_deg: float, beta_deg: float) -> np.ndarray:
-    """Unit thrust direction (u_r, u_t, u_n) from the thrust angles (inverse of Eq. (14)).
-
-    Parameters
-    ----------
-    alpha_deg : float
-        In-plane angle, deg, from the tangential axis i_t towards the radial axis i_r.
-    beta_deg : float
-        Out-of-plane angle, deg, from the orbit plane towards the normal axis i_n.
-
-    Returns
-    -------
-    ndarray, shape (3,)
-        ``(cos b sin a, cos b cos a, sin b)``.
-
-    Examples
-    --------
-    >>> np.round(thrust_direction_rtn(180.0, 0.0), 12) + 0.0
-    array([ 0., -1.,  0.])
-    """
-    a, b = math.radians(alpha_deg), math.radians(beta_deg)
-    return np.array([math.cos(b) * math.sin(a), math.cos(b) * math.cos(a), math.sin(b)])
-
-
-def thrust_angles_deg(u_rtn) -> tuple[np.ndarray, np.ndarray]:
-    """Thrust angles of Eq. (14) from RTN thrust directions, deg.
-
-    alpha = atan2(u_r, u_t) (Eq. 14a), wrapped to [0, 360); beta = asin(u_n / |u|)
-    (Eq. 14b). Vectorised: ``u_rtn`` may have shape (3,) or (3, N).
-
-    Examples
-    --------
-    >>> a, b = thrust_angles_deg([0.0, -1.0, 0.0])
-    >>> float(a), float(b)
-    (180.0, 0.0)
-    """
-    u = np.asarray(u_rtn, dtype=float)
-    norm = np.linalg.norm(u, axis=0)
-    alpha = np.degrees(np.arctan2(u[0], u[1])) % 360.0
-    beta = np.degrees(np.arcsin(np.clip(u[2] / norm, -1.0, 1.0)))
-    return alpha, beta
 
 
 # =============================================================================== Fig. 1

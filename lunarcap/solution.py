@@ -11,18 +11,9 @@ import pandas as pd
 from . import constants as C
 from .elements import rv_from_mee
 from .epochs import calendar_from_seconds
+from .frames import thrust_angles_deg
 from .ocp import RawSolution, control_function, terminal_values
 from .verify import Verification
-
-
-def thrust_angles_deg(u):
-    """In-plane angle alpha (from the tangential axis, in [0, 360)) and out-of-plane angle
-    beta, degrees, of RTN unit vectors u (3, N): Eq. (14), alpha = atan2(u_r, u_t),
-    beta = asin(u_n)."""
-    u = np.asarray(u, float)
-    alpha = np.degrees(np.arctan2(u[0], u[1])) % 360.0
-    beta = np.degrees(np.arcsin(np.clip(u[2], -1, 1)))
-    return alpha, beta
 
 
 @dataclass
