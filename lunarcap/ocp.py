@@ -102,6 +102,7 @@ class LOIProblem:
     x_ref: np.ndarray | None = None
     t_ref_s: float = float("nan")
     start_bounds_min: tuple = (-60.0, 30.0)
+    steering: str = "optimal"
 
     def __post_init__(self):
         self.x0 = np.asarray(self.x0, float)
@@ -110,6 +111,25 @@ class LOIProblem:
             raise InputError("the coast must end after ignition (t_end > t_ign)")
         if self.rp_target_km <= C.R_MOON:
             raise InputError(f"target perilune radius {self.rp_target_km} km is below the surface")
+        if self.steering not in STEERING_LAWS:
+            raise InputError(f"steering must be one of {STEERING_LAWS}, got {self.steering!r}")
+
+    @property
+    def released_targets(self) -> frozenset:
+        """Terminal conditions a closed-form steering law cannot meet and therefore leaves free.
+
+        Thrust opposite the velocity is in-plane and has only the ignition time and the
+        duration free: it keeps the perilune timing (gamma = 0 at the end epoch; for LOI 3
+        the circularity f = g = 0) and releases the inclination and the perilune radius (the
+        radius, for a circle). A fixed inertial direction (two more parameters) meets every
+        target except, for LOI 3, the circle's radius. What is released is reported, not
+        gated.
+        """
+        if self.steering == "antivelocity":
+            return frozenset({"inc", "p"}) if self.circular else frozenset({"inc", "rp"})
+        if self.steering == "inertial" and self.circular:
+            return frozenset({"p"})
+        return frozenset()
 
     @property
     def eq19_duration_s(self) -> float | None:
@@ -183,9 +203,40 @@ def _scale_vec(mref):
     return [LU, 1.0, 1.0, 1.0, 1.0, 1.0, mref]
 
 
+#: Steering laws: the optimal time-varying direction (the paper's), a direction fixed in
+#: inertial space (optimised), and thrust opposite the velocity.
+STEERING_LAWS = ("optimal", "inertial", "antivelocity")
+
+
+def steering_law_expr(steering: str, X, u_in=None):
+    """RTN thrust directions (3, N) of a steering law at states X (7, N), generic ops.
+
+    "antivelocity": u = -(v_r, v_t, 0)/|v| with v_r ~ f sin L - g cos L, v_t ~ 1 + f cos L +
+    g sin L (the common factor sqrt(mu/p) cancels); "inertial": u = Q(h, k, L) u_in, the
+    fixed inertial unit vector u_in expressed in the local RTN frame (Eq. A5).
+    """
+    from .dynamics import rtn_from_mee
+    from ._ops import ops
+
+    f, g, h, k, L = X[1, :], X[2, :], X[3, :], X[4, :], X[5, :]
+    xp = ops(X)
+    if steering == "antivelocity":
+        vr = f * xp.sin(L) - g * xp.cos(L)
+        vt = 1 + f * xp.cos(L) + g * xp.sin(L)
+        n = xp.sqrt(vr * vr + vt * vt)
+        rows = [-vr / n, -vt / n, 0 * n]
+    elif steering == "inertial":
+        ir, it, i_n = rtn_from_mee(h, k, L)
+        rows = [sum(a[i] * u_in[i] for i in range(3)) for a in (ir, it, i_n)]
+    else:
+        raise InputError(f"no closed-form steering law {steering!r}")
+    return ca.vertcat(*rows) if xp.casadi else np.vstack(rows)
+
+
 @lru_cache(maxsize=None)
-def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False) -> _NLP:
-    """Build (once per mesh shape, target kind and start mode) the IPOPT solver of the LOI NLP.
+def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False,
+              steering: str = "optimal") -> _NLP:
+    """Build (once per mesh shape, target kind, start mode, steering law) the LOI's IPOPT solver.
 
     NLP parameters (in order): x0 (7, physical), t_ign, t_end, model parameters (N_PARAM),
     burn-mesh fractions (n_burn+1), coast-mesh fractions (n_coast+1), r_p target (LU),
@@ -222,6 +273,9 @@ def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False) -> _NLP:
         V_ts = ca.MX.sym("ts")                      # ignition minus reference epoch, TU
         V_X0 = ca.MX.sym("X0", N_X, N_PRE * d + 1)  # pre-coast states incl. the reference one
         parts += [V_ts, ca.vec(V_X0)]
+    if steering == "inertial":
+        V_uin = ca.MX.sym("u_in", 3)                # fixed thrust direction, M-MME2000
+        parts += [V_uin]
     w = ca.vertcat(*parts)
     nv = w.numel()
     o = 0
@@ -233,6 +287,8 @@ def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False) -> _NLP:
     if free_start:
         idx["ts"] = slice(o, o + 1); o += 1
         idx["X0"] = slice(o, o + N_X * (N_PRE * d + 1)); o = idx["X0"].stop
+    if steering == "inertial":
+        idx["u_in"] = slice(o, o + 3); o += 3
 
     mref = P_x0[6]
     S = ca.vertcat(LU, 1, 1, 1, 1, 1, mref)
@@ -280,8 +336,15 @@ def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False) -> _NLP:
     gc = phase_defects(Xc_all, ca.DM.zeros(3, nc * d), P_mc, t_burn_end, dur_c, prm_coast, nc)
     g_list.append(gc); kinds += ["defect_coast"] * gc.numel()
     # |u| = 1, Eq. (13)
-    gu = ca.sum1(V_Ub ** 2).T - 1
-    g_list.append(gu); kinds += ["unit_u"] * gu.numel()
+    if steering == "optimal":
+        gu = ca.sum1(V_Ub ** 2).T - 1
+        g_list.append(gu); kinds += ["unit_u"] * gu.numel()
+    else:  # the controls follow the law at every collocation point
+        law = steering_law_expr(steering, V_Xb[:, 1:], V_uin if steering == "inertial" else None)
+        gl = ca.vec(V_Ub - law)
+        g_list.append(gl); kinds += ["law"] * gl.numel()
+        if steering == "inertial":
+            g_list.append(ca.sumsqr(V_uin) - 1); kinds += ["unit_u_in"]
     # terminal conditions, Eqs. (17)-(18)
     xf = V_Xc[:, -1]
     p, fe, ge, he, ke, Le = (xf[i] for i in range(6))
@@ -310,8 +373,8 @@ def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False) -> _NLP:
     nlp = {"x": w, "p": params, "f": J, "g": g}
     opts = {"expand": True, "print_time": False,
                     "ipopt": IPOPT_OPTIONS}
-    solver = ca.nlpsol(f"loi_{nb}_{nc}_{d}_{int(circular)}{'_free' if free_start else ''}",
-                       "ipopt", nlp, opts)
+    solver = ca.nlpsol(f"loi_{nb}_{nc}_{d}_{int(circular)}{'_free' if free_start else ''}"
+                       f"_{steering}", "ipopt", nlp, opts)
     return _NLP(solver, mesh, circular, nv, idx, g.numel(), kinds, time.perf_counter() - t0)
 
 
@@ -468,6 +531,7 @@ class RawSolution:
     solve_s: float
     build_s: float
     max_defect: float
+    u_inertial: np.ndarray | None = None
 
     @property
     def delta_v_mps(self) -> float:
@@ -482,7 +546,7 @@ def _taus(frac, c):
 
 def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     """Solve the LOI NLP on one mesh from a guess; no verification here."""
-    nlp = build_nlp(mesh, prob.circular, prob.free_start)
+    nlp = build_nlp(mesh, prob.circular, prob.free_start, prob.steering)
     d = mesh.degree
     c, _ = radau_matrices(d)
     nb, nc = mesh.n_burn, mesh.n_coast
@@ -507,6 +571,10 @@ def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
         X0 = (pre.sol(t0s) if pre.sol is not None else np.tile(prob.x_ref[:, None], t0s.size))
         X0 = X0 / S[:, None]
         w0 += [[(prob.t_ign_s - prob.t_ref_s) / TU], X0.ravel(order="F")]
+    if prob.steering == "inertial":  # anti-velocity direction at mid-burn, M-MME2000
+        xm = guess.burn.sol(prob.t_ign_s + 0.5 * t1)
+        _, vm = rv_from_mee(*xm[:6], C.MU_MOON)
+        w0 += [-np.array(vm) / np.linalg.norm(vm)]
     w0 = np.concatenate(w0)
     # bounds
     lbw = -np.inf * np.ones(nlp.nv)
@@ -519,6 +587,8 @@ def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
         hi = np.tile([200.0, 3, 3, 3, 3, np.inf, 1.0 + 1e-9], ncols)
         lbw[sl], ubw[sl] = lo, hi
     lbw[nlp.idx["Ub"]], ubw[nlp.idx["Ub"]] = -1.01, 1.01   # Eq. (12)
+    if prob.steering == "inertial":
+        lbw[nlp.idx["u_in"]], ubw[nlp.idx["u_in"]] = -1.01, 1.01
     if prob.free_start:
         lo, hi = (prob.t_perilune_s + 60.0 * np.array(prob.start_bounds_min) - prob.t_ref_s) / TU
         lbw[nlp.idx["ts"]], ubw[nlp.idx["ts"]] = lo, hi
@@ -533,6 +603,8 @@ def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
         lbg[kinds == "branch"] = -np.inf
     ubg[kinds == "coast_duration"] = np.inf
     lbg[kinds == "coast_duration"] = 1e-3
+    for kind in prob.released_targets:
+        lbg[kinds == kind], ubg[kinds == kind] = -np.inf, np.inf
     tan2 = np.tan(np.radians(prob.inc_target_deg) / 2) ** 2
     xp, tp = (prob.x_ref, prob.t_ref_s) if prob.free_start else (prob.x0, prob.t_ign_s)
     pvec = np.concatenate([xp, [tp, prob.t_end_s], prob.model.params(), mb, mc,
@@ -557,10 +629,30 @@ def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     tcs = prob.t_ign_s + t1
     tc = tcs + (prob.t_end_s - tcs) * np.concatenate([[0.0], _taus(mc, c)])
     defect_mask = np.char.startswith(kinds.astype(str), "defect")
+    u_in = None
+    if prob.steering == "inertial":
+        u_in = w[nlp.idx["u_in"]] / np.linalg.norm(w[nlp.idx["u_in"]])
     return RawSolution(prob, mesh, t1, tb, Xb, tb[1:], Ub, tc, np.column_stack([Xb[:, -1], Xc]),
                        mb, mc, float(res["f"]) * VU, stats["return_status"], bool(stats["success"]),
                        int(stats["iter_count"]), solve_s, nlp.build_s,
-                       float(np.max(np.abs(gval[defect_mask]))))
+                       float(np.max(np.abs(gval[defect_mask]))), u_in)
+
+
+def steering_function(raw: RawSolution):
+    """u(t, x): the solution's thrust direction in RTN at epoch t and state x.
+
+    For the optimal law, the collocated controls interpolated in time (``x`` unused); for
+    the closed-form laws, the law evaluated on the state (state feedback).
+    """
+    steering = raw.prob.steering
+    if steering == "optimal":
+        u_of_t, _ = control_function(raw)
+        return lambda t, x: u_of_t(t)
+    u_in = raw.u_inertial
+
+    def law(t, x):
+        return steering_law_expr(steering, np.asarray(x, float)[:, None], u_in)[:, 0]
+    return law
 
 
 def control_function(raw: RawSolution):

@@ -44,7 +44,7 @@ def mission_for(arrival: ArrivalSpec = ArrivalSpec(), ephemeris: str | None = No
 
 def loi_problem(mission: Mission, loi: int, thrust_N: float, isp_s: float, start_min,
                 x_perilune, dynamics: str = "full", dv_impulsive_mps: float | None = None,
-                start_bounds_min: tuple | None = None) -> LOIProblem:
+                start_bounds_min: tuple | None = None, steering: str = "optimal") -> LOIProblem:
     """The LOIProblem of LOI ``loi`` igniting ``start_min`` from its nominal perilune.
 
     ``x_perilune`` is the state (p, f, g, h, k, L, m) at that nominal perilune epoch.
@@ -73,7 +73,7 @@ def loi_problem(mission: Mission, loi: int, thrust_N: float, isp_s: float, start
                       circular=(loi == 3), dv_impulsive_mps=dv_impulsive_mps, loi=loi,
                       start_min=guess_min, t_perilune_s=t_peri, free_start=free,
                       x_ref=np.asarray(x_perilune, float), t_ref_s=t_peri,
-                      start_bounds_min=bounds)
+                      start_bounds_min=bounds, steering=steering)
 
 
 def _log(msg: str) -> None:
@@ -84,7 +84,7 @@ def _log(msg: str) -> None:
 def solve_case(thrust_N: float, isp_s: float, loi: int, start_min: float,
                previous_starts: tuple = (), dynamics: str = "full",
                arrival: ArrivalSpec = ArrivalSpec(), ephemeris: str | None = None,
-               verbose: bool = False):
+               verbose: bool = False, steering: str = "optimal"):
     """Solve (or fetch from the cache) one LOI of the chain.
 
     Parameters
@@ -98,6 +98,9 @@ def solve_case(thrust_N: float, isp_s: float, loi: int, start_min: float,
     dynamics : "full", "j2" or "two-body"
     arrival : ArrivalSpec
     ephemeris : path of an SPK file, or None for DE405
+    steering : "optimal" (the paper's), "inertial" (fixed inertial direction, optimised) or
+        "antivelocity" (thrust opposite the velocity); applies to this LOI only, the
+        earlier LOIs of the chain are the optimal ones
 
     Returns
     -------
@@ -117,7 +120,8 @@ def solve_case(thrust_N: float, isp_s: float, loi: int, start_min: float,
         prev = solve_case(thrust_N, isp_s, loi - 1, previous_starts[-1], previous_starts[:-1],
                           dynamics, arrival, ephemeris, verbose)
         x_peri = prev.end_state
-    prob = loi_problem(mission, loi, thrust_N, isp_s, start_min, x_peri, dynamics)
+    prob = loi_problem(mission, loi, thrust_N, isp_s, start_min, x_peri, dynamics,
+                       steering=steering)
     if verbose:
         _log(f"LOI {loi}, {thrust_N:g} N / {isp_s:g} s, start {start_min} min, {dynamics}:")
     sol = solve_loi(prob, progress=_log if verbose else None)

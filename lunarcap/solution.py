@@ -12,7 +12,7 @@ from . import constants as C
 from .elements import rv_from_mee
 from .epochs import calendar_from_seconds
 from .frames import thrust_angles_deg
-from .ocp import RawSolution, control_function, terminal_values
+from .ocp import RawSolution, control_function, steering_function, terminal_values
 from .verify import Verification
 
 
@@ -65,7 +65,8 @@ class Solution:
         eq19 = prob.eq19_duration_s
         return {
             "loi": prob.loi, "thrust_N": prob.model.thrust_N, "isp_s": prob.model.isp_s,
-            "dynamics": prob.model.mode, "start_min": prob.start_min,
+            "dynamics": prob.model.mode, "steering": prob.steering,
+            "free_start": prob.free_start, "start_min": prob.start_min,
             "ignition_epoch": calendar_from_seconds(prob.t_ign_s),
             "end_epoch": calendar_from_seconds(prob.t_end_s),
             "burn_duration_min": raw.t1_s / 60.0, "delta_v_mps": raw.delta_v_mps,
@@ -80,6 +81,7 @@ class Solution:
             "ipopt_status": raw.status, "ipopt_iterations": raw.iterations,
             "mesh": f"{raw.mesh.n_burn}x{raw.mesh.n_coast} LGR-{raw.mesh.degree}",
             "nlp_solve_s": raw.solve_s, "solve_wall_s": self.wall_s,
+            "u_inertial": None if raw.u_inertial is None else list(raw.u_inertial),
             "verification": {k: v for k, v in self.verification.to_dict().items()},
         }
 
@@ -103,10 +105,11 @@ class Solution:
         """
         arcs, coast = self.flight
         prob = self.problem
-        u_of_t, bounds = control_function(self.raw)
+        u_fn = steering_function(self.raw)
+        _, bounds = control_function(self.raw)
         tb = np.linspace(bounds[0], bounds[-1], n_burn)
         xb = np.column_stack([_arc_eval(arcs, bounds, t) for t in tb])[:7]
-        ub = np.column_stack([u_of_t(t) for t in tb])
+        ub = np.column_stack([u_fn(t, xb[:, i]) for i, t in enumerate(tb)])
         tc = np.linspace(coast.t[0], coast.t[-1], n_coast)[1:]
         xc = coast.sol(tc)
         t = np.concatenate([tb, tc])
