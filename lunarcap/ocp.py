@@ -199,6 +199,35 @@ class _NLP:
     build_s: float
 
 
+def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S):
+    """LGR collocation defects of one phase (CasADi expressions).
+
+    Parameters
+    ----------
+    Xall : (7, n*d+1) scaled states: the phase's start, then the d points of each interval
+    U : (3, n*d) RTN thrust directions at the collocation points
+    mesh_frac : (n+1,) interval boundaries as fractions of the phase
+    t_start, dur : phase start epoch (s past J2000) and duration (s; may be negative)
+    prm : dynamics parameter vector (thrust 0 for a coast)
+    n, d : intervals and LGR degree
+    S : (7,) state scales (LU for p, the reference mass for m, 1 otherwise)
+    """
+    c, D = radau_matrices(d)
+    f = rhs_function()
+    tau = ca.horzcat(*[mesh_frac[j] + (mesh_frac[j + 1] - mesh_frac[j]) * c[k]
+                       for j in range(n) for k in range(d)])
+    tpts = t_start + dur * tau
+    Sm = ca.repmat(S, 1, n * d)
+    F = f.map(n * d)(Xall[:, 1:] * Sm, U, tpts, ca.repmat(prm, 1, n * d))
+    Fnd = F / Sm * dur  # d x / d tau
+    defects = []
+    for j in range(n):
+        h = mesh_frac[j + 1] - mesh_frac[j]
+        dX = ca.mtimes(Xall[:, j * d: j * d + d + 1], D)   # (7, d)
+        defects.append(ca.vec(dX - h * Fnd[:, j * d: j * d + d]))
+    return ca.vertcat(*defects)
+
+
 def _scale_vec(mref):
     return [LU, 1.0, 1.0, 1.0, 1.0, 1.0, mref]
 
@@ -299,26 +328,7 @@ def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False,
     dur_c = P_tend - t_burn_end
 
     def phase_defects(Xall, U, mesh_frac, t_start, dur, prm, n):
-        """Collocation defects of one phase; Xall has n*d+1 columns (start + points)."""
-        # epochs of all collocation points
-        taus = []
-        for j in range(n):
-            h = mesh_frac[j + 1] - mesh_frac[j]
-            for k in range(d):
-                taus.append(mesh_frac[j] + h * c[k])
-        tau = ca.horzcat(*taus)
-        tpts = t_start + dur * tau
-        Xpts = Xall[:, 1:]
-        Xphys = Xpts * ca.repmat(S, 1, n * d)
-        F = f.map(n * d)(Xphys, U, tpts, ca.repmat(prm, 1, n * d))
-        Fnd = F / ca.repmat(S, 1, n * d) * dur  # d x / d tau
-        defects = []
-        for j in range(n):
-            h = mesh_frac[j + 1] - mesh_frac[j]
-            Xint = Xall[:, j * d: j * d + d + 1]      # start + d points
-            dX = ca.mtimes(Xint, D)                     # (7, d)
-            defects.append(ca.vec(dX - h * Fnd[:, j * d: j * d + d]))
-        return ca.vertcat(*defects)
+        return collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S)
 
     g_list, kinds = [], []
     # burn: initial state fixed through an equality (scaled)

@@ -160,3 +160,102 @@ def verification_table(solutions) -> pd.DataFrame:
                      "final_position_diff_m": v["final_position_diff_m"], "passed": v["passed"],
                      "solve_wall_s": s["solve_wall_s"]})
     return pd.DataFrame(rows)
+
+
+def free_vs_grid_table(thrust_N: float, isp_s: float, dynamics: str = "full",
+                       verbose: bool = False) -> pd.DataFrame:
+    """Free-ignition optimum beside the best point of the paper's grid, per LOI.
+
+    Both chains start each LOI from the previous LOI's best (grid chain: the paper's best
+    offsets; free chain: the free optima). What the grid "left on the table" is measured
+    in the paper's performance index J = delta-V + end speed (Eq. 9), which the free
+    optimum cannot exceed, and in delta-V.
+    """
+    grid_starts = PAPER_BEST_STARTS_MIN.get(float(thrust_N))
+    rows = []
+    for loi in (1, 2, 3):
+        prev_free = ("free",) * (loi - 1)
+        free = solve_case(thrust_N, isp_s, loi, "free", prev_free, dynamics, verbose=verbose)
+        fs = free.summary()
+        row = {"loi": loi, "free_start_min": fs["start_min"],
+               "free_burn_duration_min": fs["burn_duration_min"],
+               "free_delta_v_mps": fs["delta_v_mps"], "free_objective_mps": fs["objective_mps"],
+               "free_loss_percent": fs["loss_percent"], "eq19_half_duration_min":
+               0.5 * fs["eq19_duration_min"], "free_verified": fs["verification"]["passed"]}
+        if grid_starts is not None:
+            # the grid point on the same pre-burn orbit as the free optimum
+            starts = [s for s in _paper_starts(thrust_N, loi)]
+            grid = [solve_case(thrust_N, isp_s, loi, s, prev_free, dynamics, verbose=verbose)
+                    for s in starts]
+            best = min(grid, key=lambda s: s.raw.objective_kmps)
+            gs = best.summary()
+            row.update({"grid_start_min": gs["start_min"], "grid_delta_v_mps": gs["delta_v_mps"],
+                        "grid_objective_mps": gs["objective_mps"],
+                        "objective_gain_mps": gs["objective_mps"] - fs["objective_mps"],
+                        "delta_v_gain_mps": gs["delta_v_mps"] - fs["delta_v_mps"]})
+        rows.append(row)
+    df = pd.DataFrame(rows)
+    df.attrs.update({"thrust_N": thrust_N, "isp_s": isp_s, "dynamics": dynamics})
+    return df
+
+
+def _paper_starts(thrust_N, loi):
+    from .scenario import PAPER_STARTS_MIN
+    return PAPER_STARTS_MIN[(float(thrust_N), loi)]
+
+
+def steering_table(thrust_N: float, isp_s: float, dynamics: str = "full",
+                   verbose: bool = False) -> pd.DataFrame:
+    """Delta-V penalty of simple steering laws against the optimal steering, per LOI.
+
+    Laws (each with its ignition time optimised): "optimal" (the paper's), "inertial"
+    (one fixed inertial direction, optimised), "antivelocity" (thrust opposite the
+    velocity). Each LOI starts from the free-ignition optimal chain's previous orbit.
+    The antivelocity law cannot meet every target; the released targets and how far it
+    misses them are reported (perilune radius error in km, inclination error in deg).
+    """
+    rows = []
+    for loi in (1, 2, 3):
+        prev = ("free",) * (loi - 1)
+        ref = None
+        for law in ("optimal", "inertial", "antivelocity"):
+            sol = solve_case(thrust_N, isp_s, loi, "free", prev, dynamics, verbose=verbose,
+                             steering=law)
+            s = sol.summary()
+            v = s["verification"]
+            if law == "optimal":
+                ref = s
+            rows.append({"loi": loi, "steering": law, "start_min": s["start_min"],
+                         "burn_duration_min": s["burn_duration_min"],
+                         "delta_v_mps": s["delta_v_mps"], "objective_mps": s["objective_mps"],
+                         "delta_v_penalty_mps": s["delta_v_mps"] - ref["delta_v_mps"],
+                         "objective_penalty_mps": s["objective_mps"] - ref["objective_mps"],
+                         "released_targets": ", ".join(v["released"]) or "none",
+                         "rp_miss_km": v["rp_error_m"] / 1e3 if "rp" in v["released"] or
+                         "p" in v["released"] else 0.0,
+                         "inc_miss_deg": v["inc_error_deg"] if "inc" in v["released"] else 0.0,
+                         "verified": v["passed"]})
+    df = pd.DataFrame(rows)
+    df.attrs.update({"thrust_N": thrust_N, "isp_s": isp_s, "dynamics": dynamics})
+    return df
+
+
+def chain_table(thrust_N: float, isp_s: float, dynamics: str = "full") -> pd.DataFrame:
+    """The three burns as one NLP beside the one-at-a-time free-ignition chain, per LOI."""
+    from .chain import chain_summary
+
+    r = chain_summary(thrust_N, isp_s, dynamics)
+    rows = []
+    for k, (j, s) in enumerate(zip(r["legs"], r["sequential"])):
+        rows.append({"loi": k + 1, "joint_start_min": j["start_min"],
+                     "sequential_start_min": s["start_min"],
+                     "joint_burn_duration_min": j["burn_duration_min"],
+                     "sequential_burn_duration_min": s["burn_duration_min"],
+                     "joint_delta_v_mps": j["delta_v_mps"],
+                     "sequential_delta_v_mps": s["delta_v_mps"],
+                     "difference_mps": s["delta_v_mps"] - j["delta_v_mps"],
+                     "joint_verified": j["verification"]["passed"]})
+    df = pd.DataFrame(rows)
+    df.attrs.update({"thrust_N": thrust_N, "isp_s": isp_s, "ipopt_status": r["ipopt_status"],
+                     "iterations": r["iterations"], "solve_s": r["solve_s"]})
+    return df
