@@ -48,7 +48,7 @@ class _ChainNLP:
 
 
 @lru_cache(maxsize=None)
-def build_chain_nlp(mesh: Mesh) -> _ChainNLP:
+def build_chain_nlp(mesh: Mesh, mode: str = "full") -> _ChainNLP:
     """The joint NLP of the three LOIs (legs 1-2 elliptic targets, leg 3 circular)."""
     t0 = time.perf_counter()
     d = mesh.degree
@@ -86,14 +86,14 @@ def build_chain_nlp(mesh: Mesh) -> _ChainNLP:
         start = P_x0 / S if k == 0 else prev_end
         g.append(V["X0"][:, 0] - start); kinds += [f"link{k}"] * N_X
         gd = collocation_defects(V["X0"], ca.DM.zeros(3, N_PRE * d), pre_mesh, t_ref,
-                                 V["ts"] * TU, prm_coast, N_PRE, d, S)
+                                 V["ts"] * TU, prm_coast, N_PRE, d, S, mode)
         g.append(gd); kinds += [f"defect_pre{k}"] * gd.numel()
         g.append(V["Xb"][:, 0] - V["X0"][:, -1]); kinds += [f"link_pre{k}"] * N_X
-        gb = collocation_defects(V["Xb"], V["Ub"], P_mb[:, k], t_ign, t1, P_prm, nb, d, S)
+        gb = collocation_defects(V["Xb"], V["Ub"], P_mb[:, k], t_ign, t1, P_prm, nb, d, S, mode)
         g.append(gb); kinds += [f"defect_burn{k}"] * gb.numel()
         Xc_all = ca.horzcat(V["Xb"][:, -1], V["Xc"])
         gc = collocation_defects(Xc_all, ca.DM.zeros(3, nc * d), P_mc[:, k], t_ign + t1,
-                                 t_end - t_ign - t1, prm_coast, nc, d, S)
+                                 t_end - t_ign - t1, prm_coast, nc, d, S, mode)
         g.append(gc); kinds += [f"defect_coast{k}"] * gc.numel()
         gu = ca.sum1(V["Ub"] ** 2).T - 1
         g.append(gu); kinds += [f"unit_u{k}"] * gu.numel()
@@ -113,7 +113,7 @@ def build_chain_nlp(mesh: Mesh) -> _ChainNLP:
         prev_end = xf
     w = ca.vertcat(*parts)
     gv = ca.vertcat(*g)
-    solver = ca.nlpsol(f"chain_{nb}_{nc}_{d}", "ipopt", {"x": w, "p": params, "f": J, "g": gv},
+    solver = ca.nlpsol(f"chain_{nb}_{nc}_{d}_{mode}".replace("-", "_"), "ipopt", {"x": w, "p": params, "f": J, "g": gv},
                        {"expand": True, "print_time": False, "ipopt": IPOPT_OPTIONS})
     return _ChainNLP(solver, mesh, w.numel(), idx, kinds, gv.numel(), time.perf_counter() - t0)
 
@@ -151,7 +151,7 @@ def solve_chain(thrust_N: float, isp_s: float, dynamics: str = "full", mesh: Mes
     seq = solve_sequence(thrust_N, isp_s, ("free", "free", "free"), dynamics=dynamics,
                          arrival=arrival, ephemeris=ephemeris)
     mission = mission_for(arrival, ephemeris)
-    nlp = build_chain_nlp(mesh)
+    nlp = build_chain_nlp(mesh, dynamics)
     d = mesh.degree
     c, _ = radau_matrices(d)
     nb, nc = mesh.n_burn, mesh.n_coast

@@ -193,16 +193,28 @@ def mee_rates(x, u, t, prm):
 
 
 @lru_cache(maxsize=None)
-def rhs_function() -> ca.Function:
-    """CasADi Function ``f(x[7], u[3], t, prm[N_PARAM]) -> xdot[7]`` built once from :func:`mee_rates`."""
+def rhs_function(mode: str | None = None) -> ca.Function:
+    """CasADi Function ``f(x[7], u[3], t, prm[N_PARAM]) -> xdot[7]`` built once from :func:`mee_rates`.
+
+    With ``mode`` ("two-body", "j2", "full") the perturbation switches are built in as
+    constants (the switch entries of ``prm`` are then ignored), so CasADi drops the terms
+    that are switched off: a smaller graph and cheaper derivatives. With ``mode=None``
+    the switches are read from ``prm``.
+    """
     x = ca.SX.sym("x", 7)
     u = ca.SX.sym("u", 3)
     t = ca.SX.sym("t")
     prm = ca.SX.sym("prm", N_PARAM)
-    rates = mee_rates([x[i] for i in range(7)], [u[i] for i in range(3)], t,
-                      [prm[i] for i in range(N_PARAM)])
-    return ca.Function("mee_rhs", [x, u, t, prm], [ca.vertcat(*rates)],
-                       ["x", "u", "t", "prm"], ["xdot"])
+    plist = [prm[i] for i in range(N_PARAM)]
+    if mode is not None:
+        if mode not in MODES:
+            raise InputError(f"dynamics must be one of {sorted(MODES)}, got {mode!r}")
+        plist[P_KJ2], plist[P_KE], plist[P_KS] = (ca.SX(v) for v in MODES[mode])
+    rates = mee_rates([x[i] for i in range(7)], [u[i] for i in range(3)], t, plist)
+    if mode is not None and MODES[mode][1] == 0 and MODES[mode][2] == 0:
+        rates = [ca.simplify(r) for r in rates]
+    return ca.Function(f"mee_rhs_{mode or 'switchable'}".replace("-", "_"), [x, u, t, prm],
+                       [ca.vertcat(*rates)], ["x", "u", "t", "prm"], ["xdot"])
 
 
 # ------------------------------------------------------------------ independent check

@@ -199,7 +199,7 @@ class _NLP:
     build_s: float
 
 
-def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S):
+def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode=None):
     """LGR collocation defects of one phase (CasADi expressions).
 
     Parameters
@@ -211,9 +211,10 @@ def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S):
     prm : dynamics parameter vector (thrust 0 for a coast)
     n, d : intervals and LGR degree
     S : (7,) state scales (LU for p, the reference mass for m, 1 otherwise)
+    mode : dynamics mode built into the right-hand side (None: switches read from prm)
     """
     c, D = radau_matrices(d)
-    f = rhs_function()
+    f = rhs_function(mode)
     tau = ca.horzcat(*[mesh_frac[j] + (mesh_frac[j + 1] - mesh_frac[j]) * c[k]
                        for j in range(n) for k in range(d)])
     tpts = t_start + dur * tau
@@ -264,7 +265,7 @@ def steering_law_expr(steering: str, X, u_in=None):
 
 @lru_cache(maxsize=None)
 def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False,
-              steering: str = "optimal") -> _NLP:
+              steering: str = "optimal", mode: str = "full") -> _NLP:
     """Build (once per mesh shape, target kind, start mode, steering law) the LOI's IPOPT solver.
 
     NLP parameters (in order): x0 (7, physical), t_ign, t_end, model parameters (N_PARAM),
@@ -277,8 +278,6 @@ def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False,
     """
     t0 = time.perf_counter()
     d = mesh.degree
-    c, D = radau_matrices(d)
-    f = rhs_function()
     nb, nc = mesh.n_burn, mesh.n_coast
 
     # parameters
@@ -328,7 +327,7 @@ def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False,
     dur_c = P_tend - t_burn_end
 
     def phase_defects(Xall, U, mesh_frac, t_start, dur, prm, n):
-        return collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S)
+        return collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode)
 
     g_list, kinds = [], []
     # burn: initial state fixed through an equality (scaled)
@@ -384,7 +383,7 @@ def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False,
     opts = {"expand": True, "print_time": False,
                     "ipopt": IPOPT_OPTIONS}
     solver = ca.nlpsol(f"loi_{nb}_{nc}_{d}_{int(circular)}{'_free' if free_start else ''}"
-                       f"_{steering}", "ipopt", nlp, opts)
+                       f"_{steering}_{mode}".replace("-", "_"), "ipopt", nlp, opts)
     return _NLP(solver, mesh, circular, nv, idx, g.numel(), kinds, time.perf_counter() - t0)
 
 
@@ -489,7 +488,7 @@ def _guess_arcs(prob: LOIProblem, t1: float, burn_u, rtol: float = 1e-10,
     model = prob.model
     if burn_u is None:
         # anti-velocity: u depends on the state, so propagate with a state feedback
-        f = rhs_function()
+        f = rhs_function(model.mode)
         prm = model.params()
         from scipy.integrate import solve_ivp
 
@@ -556,7 +555,7 @@ def _taus(frac, c):
 
 def solve_nlp(prob: LOIProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     """Solve the LOI NLP on one mesh from a guess; no verification here."""
-    nlp = build_nlp(mesh, prob.circular, prob.free_start, prob.steering)
+    nlp = build_nlp(mesh, prob.circular, prob.free_start, prob.steering, prob.model.mode)
     d = mesh.degree
     c, _ = radau_matrices(d)
     nb, nc = mesh.n_burn, mesh.n_coast

@@ -66,7 +66,7 @@ def propagate(model: Model, t0_s: float, x0, t1_s: float,
         if lo < model.fit.t0_s - 1e-6 or hi > model.fit.t1_s + 1e-6:
             raise InputError("propagation leaves the ephemeris-fit window "
                              f"[{model.fit.t0_s}, {model.fit.t1_s}] s")
-    f = rhs_function()
+    f = rhs_function(model.mode)
     prm = model.params(thrust)
     # Integrate in time elapsed since t0_s: epochs past J2000 (~5e8 s) carry only ~6e-8 s
     # of resolution, which would blur short high-thrust arcs.

@@ -89,7 +89,7 @@ def fly(raw: RawSolution):
     model = prob.model
     u_fn = steering_function(raw)
     _, bounds = control_function(raw)
-    f = rhs_function()
+    f = rhs_function(model.mode)
     prm = model.params()
     T_kN = model.thrust_N * 1e-3
     x = np.concatenate([prob.x0, [0.0]])  # augmented with the delta-V quadrature (km/s)
