@@ -75,12 +75,14 @@ def cmd_impulsive(args) -> int:
 
 
 def _starts(text: str) -> tuple:
+    """Comma-separated ignition offsets (min) or 'free'."""
     try:
-        vals = tuple(float(s) for s in text.split(",") if s.strip())
+        vals = tuple("free" if s.strip() == "free" else float(s)
+                     for s in text.split(",") if s.strip())
     except ValueError:
-        raise argparse.ArgumentTypeError(f"start offsets must be numbers of minutes separated "
-                                         f"by commas, got {text!r}")
-    if not vals or not all(math.isfinite(v) for v in vals):
+        raise argparse.ArgumentTypeError(f"start offsets must be numbers of minutes (or 'free') "
+                                         f"separated by commas, got {text!r}")
+    if not vals or not all(v == "free" or math.isfinite(v) for v in vals):
         raise argparse.ArgumentTypeError(f"start offsets must be finite numbers, got {text!r}")
     return vals
 
@@ -119,9 +121,12 @@ def default_previous_starts(thrust_N: float, isp_s: float, loi: int, mass_kg: fl
 def _case_kwargs(args) -> dict:
     from .scenario import ArrivalSpec
 
-    return {"dynamics": args.dynamics,
-            "arrival": ArrivalSpec(mass_kg=args.mass, hemisphere=args.hemisphere),
-            "ephemeris": args.ephemeris, "verbose": not args.quiet}
+    kw = {"dynamics": args.dynamics,
+          "arrival": ArrivalSpec(mass_kg=args.mass, hemisphere=args.hemisphere),
+          "ephemeris": args.ephemeris, "verbose": not args.quiet}
+    if getattr(args, "steering", "optimal") != "optimal":
+        kw["steering"] = args.steering
+    return kw
 
 
 def _solver(args):
@@ -132,7 +137,7 @@ def _solver(args):
 
 def _print_summary_line(s: dict) -> None:
     v = s["verification"]
-    print(f"LOI {s['loi']}  start {s['start_min']:+.2f} min  burn {s['burn_duration_min']:.2f} min  "
+    print(f"LOI {s['loi']}  start {s['start_min']:+.3f} min  burn {s['burn_duration_min']:.2f} min  "
           f"dV {s['delta_v_mps']:.3f} m/s  impulsive {s['impulsive_delta_v_mps']:.3f} m/s  "
           f"loss {s['loss_mps']:.3f} m/s ({s['loss_percent']:.2f} %)  mass "
           f"{s['m_start_kg']:.3f} -> {s['m_end_kg']:.3f} kg  v_end {s['v_end_kmps']:.5f} km/s  "
@@ -205,6 +210,22 @@ def cmd_bench(args) -> int:
     return 0 if all(r["verification_passed"] for r in rows) else 3
 
 
+def cmd_study(args) -> int:
+    """Engine trade study on Dask: loss against thrust-to-weight, free ignition, per Isp."""
+    from .study import StudySpec, format_summary, run_study
+
+    spec = StudySpec(args.thrust_min, args.thrust_max, args.points, args.isp, args.dynamics)
+    try:
+        res = run_study(spec, out=args.out, workers=args.workers, scheduler=args.scheduler,
+                        retry_failed=args.retry_failed, progress=not args.no_progress)
+    except KeyboardInterrupt:
+        print("lunarcap: interrupted; finished engines are in the table, run the same command "
+              "again to resume", file=sys.stderr)
+        return 130
+    print(format_summary(res))
+    return 0 if res.failures.empty else 3
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of every subcommand."""
     parser = argparse.ArgumentParser(prog="lunarcap", description=__doc__.splitlines()[0])
@@ -217,10 +238,13 @@ def build_parser() -> argparse.ArgumentParser:
     _add_engine(p)
     p.add_argument("--loi", type=int, choices=[1, 2, 3], default=1, help="LOI number")
     p.add_argument("--start", type=_start, default=-10.0,
-                   help="ignition, minutes from the nominal perilune (negative: before)")
+                   help="ignition, minutes from the nominal perilune (negative: before), or "
+                        "'free' to optimise it within +-2 Eq. (19) durations")
     p.add_argument("--previous-starts", type=_starts, default=None, metavar="S1[,S2]",
                    help="ignition offsets of the earlier LOIs (default: the paper's best for "
                         "its engines, else minus half the Eq. (19) duration)")
+    p.add_argument("--steering", choices=["optimal", "inertial", "antivelocity"],
+                   default="optimal", help="steering law of this LOI (earlier LOIs: optimal)")
     _add_solver_options(p)
     p.set_defaults(func=cmd_solve)
 
@@ -234,6 +258,25 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("bench", help="solve and verify all 37 paper cases, print timings")
     p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default="full")
     p.set_defaults(func=cmd_bench)
+
+    p = sub.add_parser("study", help="engine trade study: loss vs thrust-to-weight on Dask")
+    p.add_argument("--thrust-min", default="50", metavar="N", help="lowest thrust, N (50)")
+    p.add_argument("--thrust-max", default="2000", metavar="N", help="highest thrust, N (2000)")
+    p.add_argument("--points", default="30", metavar="K", help="log-spaced thrusts (30)")
+    p.add_argument("--isp", default="200,250,300", metavar="S1,S2,...",
+                   help="specific impulses, s (200,250,300)")
+    p.add_argument("--workers", default="2", metavar="W",
+                   help="local Dask worker processes, one thread each (2)")
+    p.add_argument("--scheduler", default=None, metavar="ADDR",
+                   help="address of an existing Dask scheduler instead of a local cluster")
+    p.add_argument("--out", default=None, metavar="PATH",
+                   help="CSV table, appended as engines finish and resumed on rerun "
+                        "(default .cache/study/engine_trade.csv)")
+    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default="full")
+    p.add_argument("--retry-failed", action="store_true",
+                   help="recompute engines that failed in an earlier run")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_study)
     return parser
 
 
