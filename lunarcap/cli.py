@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
 
 from . import constants as C
@@ -280,10 +281,28 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+_LIST_OPTIONS = ("--starts", "--previous-starts", "--start")
+
+
+def _join_negative_lists(argv: list) -> list:
+    """Let ``--starts -10,-6,-5`` work: argparse would take '-10,-6,-5' for an option."""
+    out = []
+    i = 0
+    while i < len(argv):
+        a = argv[i]
+        if a in _LIST_OPTIONS and i + 1 < len(argv) and re.match(r"^-\d", argv[i + 1]):
+            out.append(f"{a}={argv[i + 1]}")
+            i += 2
+            continue
+        out.append(a)
+        i += 1
+    return out
+
+
 def main(argv=None) -> int:
     """Entry point; returns the exit status."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args = parser.parse_args(_join_negative_lists(sys.argv[1:] if argv is None else list(argv)))
     try:
         return args.func(args)
     except BrokenPipeError:  # e.g. `lunarcap impulsive --json | head`
