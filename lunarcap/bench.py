@@ -32,7 +32,7 @@ def run(dynamics: str = "full", out=print, cases=None) -> list[dict]:
     """Solve the cases uncached; print one line each and the medians. Returns the rows."""
     os.environ["LUNARCAP_NO_CACHE"] = "1"
     from . import cache
-    cache.memory.location = None  # noqa: make sure nothing is read from disk
+    cache.memory.location = None  # make sure nothing is read from disk
     from .sequence import solve_case
 
     cases = cases or paper_cases()

@@ -26,8 +26,21 @@ import numpy as np
 from .cache import cached
 from .dynamics import N_PARAM, P_THRUST
 from .errors import SolveError
-from .ocp import (IPOPT_OPTIONS, LU, N_PRE, N_X, TU, VU, Mesh, RawSolution, _taus,
-                  collocation_defects, radau_matrices, steering_function, terminal_values)
+from .ocp import (
+    IPOPT_OPTIONS,
+    LU,
+    N_PRE,
+    N_X,
+    TU,
+    VU,
+    Mesh,
+    RawSolution,
+    _taus,
+    collocation_defects,
+    radau_matrices,
+    steering_function,
+    terminal_values,
+)
 from .propagate import propagate
 from .sequence import ArrivalSpec, loi_problem, mission_for, solve_sequence
 from .solution import Solution, _arc_eval
@@ -84,19 +97,25 @@ def build_chain_nlp(mesh: Mesh, mode: str = "full") -> _ChainNLP:
         t_ign = t_ref + V["ts"] * TU
         t1 = V["t1"] * TU
         start = P_x0 / S if k == 0 else prev_end
-        g.append(V["X0"][:, 0] - start); kinds += [f"link{k}"] * N_X
+        g.append(V["X0"][:, 0] - start)
+        kinds += [f"link{k}"] * N_X
         gd = collocation_defects(V["X0"], ca.DM.zeros(3, N_PRE * d), pre_mesh, t_ref,
                                  V["ts"] * TU, prm_coast, N_PRE, d, S, mode)
-        g.append(gd); kinds += [f"defect_pre{k}"] * gd.numel()
-        g.append(V["Xb"][:, 0] - V["X0"][:, -1]); kinds += [f"link_pre{k}"] * N_X
+        g.append(gd)
+        kinds += [f"defect_pre{k}"] * gd.numel()
+        g.append(V["Xb"][:, 0] - V["X0"][:, -1])
+        kinds += [f"link_pre{k}"] * N_X
         gb = collocation_defects(V["Xb"], V["Ub"], P_mb[:, k], t_ign, t1, P_prm, nb, d, S, mode)
-        g.append(gb); kinds += [f"defect_burn{k}"] * gb.numel()
+        g.append(gb)
+        kinds += [f"defect_burn{k}"] * gb.numel()
         Xc_all = ca.horzcat(V["Xb"][:, -1], V["Xc"])
         gc = collocation_defects(Xc_all, ca.DM.zeros(3, nc * d), P_mc[:, k], t_ign + t1,
                                  t_end - t_ign - t1, prm_coast, nc, d, S, mode)
-        g.append(gc); kinds += [f"defect_coast{k}"] * gc.numel()
+        g.append(gc)
+        kinds += [f"defect_coast{k}"] * gc.numel()
         gu = ca.sum1(V["Ub"] ** 2).T - 1
-        g.append(gu); kinds += [f"unit_u{k}"] * gu.numel()
+        g.append(gu)
+        kinds += [f"unit_u{k}"] * gu.numel()
         xf = V["Xc"][:, -1]
         p, fe, ge, he, ke, Le = (xf[i] for i in range(6))
         if k == N_LEGS - 1:
@@ -108,7 +127,8 @@ def build_chain_nlp(mesh: Mesh, mode: str = "full") -> _ChainNLP:
                                 fe * ca.sin(Le) - ge * ca.cos(Le),
                                 fe * ca.cos(Le) + ge * ca.sin(Le)))
             kinds += ["rp", "inc", "gamma", "branch"]
-        g.append((t_end - t_ign - t1) / TU); kinds += ["coast_duration"]
+        g.append((t_end - t_ign - t1) / TU)
+        kinds += ["coast_duration"]
         J = J + vex * ca.log(V["Xb"][6, 0] / V["Xb"][6, -1])
         prev_end = xf
     w = ca.vertcat(*parts)

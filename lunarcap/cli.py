@@ -108,7 +108,8 @@ def _add_solver_options(p: argparse.ArgumentParser) -> None:
 
 def default_previous_starts(thrust_N: float, isp_s: float, loi: int, mass_kg: float) -> tuple:
     """Ignition offsets of the LOIs before ``loi``: the paper's best for its engines, else
-    minus half the Eq. (19) duration of each earlier burn (the paper's rule of thumb)."""
+    minus half the Eq. (19) duration of each earlier burn (the paper's rule of thumb).
+    """
     from .impulsive import impulsive_sequence
     from .scenario import PAPER_BEST_STARTS_MIN
 

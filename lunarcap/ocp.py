@@ -35,7 +35,7 @@ import numpy as np
 from . import constants as C
 from .dynamics import N_PARAM, P_THRUST, Model, rhs_function
 from .elements import rv_from_mee
-from .errors import InputError, SolveError
+from .errors import InputError
 from .impulsive import burn_duration_estimate_s, check_engine
 from .propagate import propagate
 
@@ -245,8 +245,8 @@ def steering_law_expr(steering: str, X, u_in=None):
     g sin L (the common factor sqrt(mu/p) cancels); "inertial": u = Q(h, k, L) u_in, the
     fixed inertial unit vector u_in expressed in the local RTN frame (Eq. A5).
     """
-    from .dynamics import rtn_from_mee
     from ._ops import ops
+    from .dynamics import rtn_from_mee
 
     f, g, h, k, L = X[1, :], X[2, :], X[3, :], X[4, :], X[5, :]
     xp = ops(X)
@@ -309,14 +309,20 @@ def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False,
     o = 0
     idx = {"t1": slice(0, 1)}
     o = 1
-    idx["Xb"] = slice(o, o + N_X * (nb * d + 1)); o = idx["Xb"].stop
-    idx["Ub"] = slice(o, o + 3 * nb * d); o = idx["Ub"].stop
-    idx["Xc"] = slice(o, o + N_X * nc * d); o = idx["Xc"].stop
+    idx["Xb"] = slice(o, o + N_X * (nb * d + 1))
+    o = idx["Xb"].stop
+    idx["Ub"] = slice(o, o + 3 * nb * d)
+    o = idx["Ub"].stop
+    idx["Xc"] = slice(o, o + N_X * nc * d)
+    o = idx["Xc"].stop
     if free_start:
-        idx["ts"] = slice(o, o + 1); o += 1
-        idx["X0"] = slice(o, o + N_X * (N_PRE * d + 1)); o = idx["X0"].stop
+        idx["ts"] = slice(o, o + 1)
+        o += 1
+        idx["X0"] = slice(o, o + N_X * (N_PRE * d + 1))
+        o = idx["X0"].stop
     if steering == "inertial":
-        idx["u_in"] = slice(o, o + 3); o += 3
+        idx["u_in"] = slice(o, o + 3)
+        o += 3
 
     mref = P_x0[6]
     S = ca.vertcat(LU, 1, 1, 1, 1, 1, mref)
@@ -332,28 +338,37 @@ def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False,
     g_list, kinds = [], []
     # burn: initial state fixed through an equality (scaled)
     if free_start:
-        g_list.append(V_X0[:, 0] - P_x0 / S); kinds += ["x0"] * N_X
+        g_list.append(V_X0[:, 0] - P_x0 / S)
+        kinds += ["x0"] * N_X
         g0 = phase_defects(V_X0, ca.DM.zeros(3, N_PRE * d), ca.DM(np.linspace(0, 1, N_PRE + 1)),
                            P_tign, V_ts * TU, prm_coast, N_PRE)
-        g_list.append(g0); kinds += ["defect_pre"] * g0.numel()
-        g_list.append(V_Xb[:, 0] - V_X0[:, -1]); kinds += ["link_pre"] * N_X
+        g_list.append(g0)
+        kinds += ["defect_pre"] * g0.numel()
+        g_list.append(V_Xb[:, 0] - V_X0[:, -1])
+        kinds += ["link_pre"] * N_X
     else:
-        g_list.append(V_Xb[:, 0] - P_x0 / S); kinds += ["x0"] * N_X
+        g_list.append(V_Xb[:, 0] - P_x0 / S)
+        kinds += ["x0"] * N_X
     gb = phase_defects(V_Xb, V_Ub, P_mb, t_ign, t1_s, P_prm, nb)
-    g_list.append(gb); kinds += ["defect_burn"] * gb.numel()
+    g_list.append(gb)
+    kinds += ["defect_burn"] * gb.numel()
     Xc_all = ca.horzcat(V_Xb[:, -1], V_Xc)
     gc = phase_defects(Xc_all, ca.DM.zeros(3, nc * d), P_mc, t_burn_end, dur_c, prm_coast, nc)
-    g_list.append(gc); kinds += ["defect_coast"] * gc.numel()
+    g_list.append(gc)
+    kinds += ["defect_coast"] * gc.numel()
     # |u| = 1, Eq. (13)
     if steering == "optimal":
         gu = ca.sum1(V_Ub ** 2).T - 1
-        g_list.append(gu); kinds += ["unit_u"] * gu.numel()
+        g_list.append(gu)
+        kinds += ["unit_u"] * gu.numel()
     else:  # the controls follow the law at every collocation point
         law = steering_law_expr(steering, V_Xb[:, 1:], V_uin if steering == "inertial" else None)
         gl = ca.vec(V_Ub - law)
-        g_list.append(gl); kinds += ["law"] * gl.numel()
+        g_list.append(gl)
+        kinds += ["law"] * gl.numel()
         if steering == "inertial":
-            g_list.append(ca.sumsqr(V_uin) - 1); kinds += ["unit_u_in"]
+            g_list.append(ca.sumsqr(V_uin) - 1)
+            kinds += ["unit_u_in"]
     # terminal conditions, Eqs. (17)-(18)
     xf = V_Xc[:, -1]
     p, fe, ge, he, ke, Le = (xf[i] for i in range(6))
@@ -368,8 +383,10 @@ def build_nlp(mesh: Mesh, circular: bool, free_start: bool = False,
     g_list.append(term)
     # perilune branch: e cos(nu) >= 0 (inequality), and a positive coast duration
     branch = fe * ca.cos(Le) + ge * ca.sin(Le)
-    g_list.append(branch); kinds += ["branch"]
-    g_list.append(dur_c / TU); kinds += ["coast_duration"]
+    g_list.append(branch)
+    kinds += ["branch"]
+    g_list.append(dur_c / TU)
+    kinds += ["coast_duration"]
     g = ca.vertcat(*g_list)
 
     # objective, Eq. (9): Delta-V (exact for constant thrust) + speed at the end, in VU

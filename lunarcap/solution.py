@@ -59,7 +59,7 @@ class Solution:
 
     def summary(self) -> dict:
         """Flat summary with units in the keys (the CLI's JSON)."""
-        prob, raw, ver = self.problem, self.raw, self.verification
+        prob, raw = self.problem, self.raw
         imp = prob.dv_impulsive_mps
         tv = terminal_values(self.end_state)
         eq19 = prob.eq19_duration_s

@@ -126,7 +126,8 @@ def sequence_table(thrust_N: float, isp_s: float, starts=None, dynamics: str = "
 
 def sequence_totals(df: pd.DataFrame, mass0_kg: float = C.ARRIVAL_MASS_KG) -> dict:
     """Totals of a :func:`sequence_table`: delta-V, loss (m/s and % of the impulsive total),
-    the paper's way of quoting it (mean of the per-burn %), fuel, burn time, final mass."""
+    the paper's way of quoting it (mean of the per-burn %), fuel, burn time, final mass.
+    """
     imp = df.paper_impulsive_delta_v_mps.sum()
     out = {"total_delta_v_mps": df.delta_v_mps.sum(), "total_impulsive_delta_v_mps": imp,
            "total_loss_mps": df.loss_mps.sum(),
