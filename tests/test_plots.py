@@ -143,3 +143,262 @@ def test_show_table_and_figure_write_files(tmp_path, monkeypatch):
         assert (gen / "figures" / f"f1.{ext}").stat().st_size > 1000
     assert ":::{figure} figures/f1.png" in md and ":name: fig-f1" in md
     assert not [p for p in (gen / "figures").iterdir() if ".tmp" in p.name]
+
+
+# ------------------------------------------------------------------ Figs. 2-5: capture sequence
+def test_orbit_plane_basis_is_right_handed_and_follows_the_pole():
+    rng = np.random.default_rng(2)
+    for _ in range(50):
+        r, v = rng.normal(size=3) * 2000, rng.normal(size=3)
+        b = plots.orbit_plane_basis(r, v)
+        np.testing.assert_allclose(b @ b.T, np.eye(3), atol=1e-12)
+        np.testing.assert_allclose(np.cross(b[0], b[1]), b[2], atol=1e-12)
+        h = np.cross(r, v)
+        np.testing.assert_allclose(b[2], h / np.linalg.norm(h), atol=1e-12)
+        assert abs(b[:2] @ h).max() < 1e-9 * np.linalg.norm(h)   # e_x, e_y in the plane
+        assert b[0][2] == pytest.approx(0.0, abs=1e-12)          # e_x on the equator
+    # a polar orbit: e_y is the M-MME2000 z axis and the orbit turns counter-clockwise
+    b = plots.orbit_plane_basis([1838.2, 0, 0], [0.2, 0, 1.6])
+    np.testing.assert_allclose(b[1], [0, 0, 1], atol=1e-12)
+    # equatorial orbit: falls back on the direction of r
+    b = plots.orbit_plane_basis([1838.2, 0, 0], [0, 1.6, 0])
+    np.testing.assert_allclose(b[1], [1, 0, 0], atol=1e-12)
+    with pytest.raises(ValueError):
+        plots.orbit_plane_basis([1, 0, 0], [2, 0, 0])
+
+
+@pytest.fixture(scope="module")
+def capture():
+    """The paper's 150 N chain (-10, -6, -5 min): solved once, then from the disk cache."""
+    from lunarcap import sequence
+
+    sols = sequence.solve_sequence(150.0, 200.0, (-10.0, -6.0, -5.0))
+    mission = sequence.mission_for()
+    return sols, mission, plots.capture_geometry(sols, mission.arrival)
+
+
+@pytest.mark.slow
+def test_capture_geometry_burn_arcs_lie_near_the_100km_perilune(capture):
+    sols, mission, geo = capture
+    rp = C.R_MOON + C.PERILUNE_ALTITUDE_KM
+    burns = geo.select("burn")
+    assert [a.loi for a in burns] == [1, 2, 3]
+    assert geo.max_out_of_plane_km < 10.0           # the chain stays in the arrival plane
+    for a in burns:
+        r = a.radius_km
+        r_proj = np.linalg.norm(a.xy_LU, axis=0) * C.LU_KM
+        np.testing.assert_allclose(r_proj, r, atol=0.05)     # projection keeps radii
+        assert abs(r.min() - rp) < 2.0, (a.loi, r.min())      # perilune at 100 km +- 2 km
+        assert (r >= rp - 2.0).all() and r.max() < rp + 400.0
+    # ignition before and cutoff after each pass's perilune, both within 60 deg of it
+    t = geo.burns
+    assert (t.ignition_from_perilune_deg < 0).all() and (t.cutoff_from_perilune_deg > 0).all()
+    assert (t.ignition_from_perilune_deg > -60).all() and (t.cutoff_from_perilune_deg < 60).all()
+    np.testing.assert_allclose(t.burn_duration_min,
+                               [s.summary()["burn_duration_min"] for s in sols], atol=1e-6)
+    np.testing.assert_allclose(t.perilune_radius_km, rp, atol=2.0)
+
+
+@pytest.mark.slow
+def test_capture_geometry_arcs_join_up(capture):
+    sols, mission, geo = capture
+    hyp = geo.select("hyperbola")[0]
+    burns, coasts = geo.select("burn"), geo.select("coast")
+    assert hyp.t_s[0] < hyp.t_s[-1] == pytest.approx(sols[0].problem.t_ign_s)
+    assert (np.diff(hyp.t_s) > 0).all()
+    assert hyp.t_s[-1] - hyp.t_s[0] == pytest.approx(
+        geo.hyperbola_hours * 3600 - 60 * 10.0, abs=1e-6)
+    np.testing.assert_allclose(hyp.r_km[:, -1], burns[0].r_km[:, 0], atol=1e-3)
+    for n in range(3):
+        np.testing.assert_allclose(burns[n].r_km[:, -1], coasts[n].r_km[:, 0], atol=1e-3)
+        if n < 2:   # each coast ends where the next burn ignites (km)
+            np.testing.assert_allclose(coasts[n].r_km[:, -1], burns[n + 1].r_km[:, 0],
+                                       atol=1e-2)
+            assert coasts[n].t_s[-1] == pytest.approx(sols[n + 1].problem.t_ign_s)
+    final = geo.select("final")[0]
+    np.testing.assert_allclose(final.radius_km, C.R_MOON + C.PERILUNE_ALTITUDE_KM, atol=25.0)
+    # the hyperbola without LOI 1 leaves the Moon; the captured path does not
+    assert geo.select("uncaptured")[0].radius_km[-1] > 3 * C.R_MOON
+    assert coasts[0].radius_km.max() < 8 * C.R_MOON
+
+
+@pytest.mark.slow
+def test_fig4_steering_data(capture):
+    sols = capture[0]
+    d = plots.fig4_steering(sols[0])
+    s = sols[0].summary()
+    assert d.m_kg[0] == pytest.approx(s["m_start_kg"], abs=1e-9)
+    assert d.m_kg[-1] == pytest.approx(s["m_end_kg"], abs=1e-6)
+    assert (np.diff(d.m_kg) < 0).all()                        # mass decreases throughout
+    assert d.t_min[0] == pytest.approx(0.0, abs=1e-9)
+    assert d.burn_duration_min == pytest.approx(s["burn_duration_min"], abs=1e-9)
+    assert d.perilune_min == pytest.approx(10.0)
+    # Sec. 3.3: alpha from about 137.5 to 215.3 deg through 180, beta almost 0
+    assert abs(d.alpha_deg[0] - 137.5) < 3 and abs(d.alpha_deg[-1] - 215.3) < 3
+    assert np.abs(d.beta_deg).max() < 0.5
+    assert list(d.table().columns) == ["min_from_ignition", "alpha_deg", "beta_deg", "m_kg"]
+
+
+@pytest.mark.slow
+def test_fig5_thrust_opposes_velocity_through_the_burn(capture):
+    sols, mission, geo = capture
+    d = plots.fig5_vectors(sols[0], geo.basis)
+    assert (d.angle_deg > 90).all()                           # "tend to de-accelerate"
+    # the projected vectors keep the angle (the motion is nearly planar)
+    cos2d = (d.v_xy_kmps * d.a_xy_mps2).sum(0) / (np.linalg.norm(d.v_xy_kmps, axis=0)
+                                                   * np.linalg.norm(d.a_xy_mps2, axis=0))
+    assert (cos2d < 0).all()
+    # thrust acceleration T/m, m/s^2, grows as the mass falls
+    acc = np.linalg.norm(d.a_mps2, axis=0)
+    h = plots.fig4_steering(sols[0])
+    np.testing.assert_allclose(acc, 150.0 / h.m_kg, rtol=1e-9)
+    assert d.arrows[0] == 0 and d.arrows[-1] == d.t_min.size - 1
+    assert len(d.table()) == d.arrows.size
+
+
+@pytest.mark.slow
+def test_capture_figures_draw(capture):
+    sols, mission, geo = capture
+    figs = [(plots.plot_fig2_capture(geo), 1),
+            (plots.plot_fig3_burn_arcs(geo), 2),
+            (plots.plot_fig4_steering(plots.fig4_steering(sols[0]), (137.5, 215.3), 434.471,
+                                      19.51), 3),
+            (plots.plot_fig5_vectors(plots.fig5_vectors(sols[0], geo.basis), geo), 2)]
+    for fig, n_axes in figs:
+        assert len(fig.axes) == n_axes
+        for ax in fig.axes:   # units on every axis (shared x axes: on the bottom one)
+            assert "(" in ax.get_ylabel()
+            assert "(" in ax.get_xlabel() or ax is not fig.axes[-1] and not ax.get_xlabel()
+        assert "(" in fig.axes[-1].get_xlabel()
+        plots.plt.close(fig)
+
+
+# ------------------------------------------------------------------ reproduction report
+def _fake_sweep(thrust, loi, isp):
+    from lunarcap import paper
+
+    p = paper.paper_table(thrust, loi)
+    df = pd.DataFrame({
+        "start_min": p.start_min.astype(float), "free_start": False,
+        "paper_burn_duration_min": p.burn_duration_min, "burn_duration_min":
+            p.burn_duration_min + 0.01, "paper_delta_v_mps": p.delta_v_mps,
+        "delta_v_mps": p.delta_v_mps - 0.5, "paper_loss_percent": p.diff_percent,
+        "loss_percent": p.diff_percent + 0.1, "paper_best": p.best, "verified": True})
+    df["best"] = df.delta_v_mps == df.delta_v_mps.min()
+    df.attrs.update(thrust_N=float(thrust), isp_s=isp, loi=loi)
+    return df
+
+
+def test_paper_tables_long_has_every_printed_number():
+    from lunarcap import paper
+
+    sweeps = {(150.0, n): _fake_sweep(150, n, 200.0) for n in (1, 2, 3)}
+    t = plots.paper_tables_long(sweeps, impulsive_dv_mps=[353.272, 254.0, 245.5])
+    n_rows = sum(len(paper.paper_table(150, n)) for n in (1, 2, 3))
+    assert (t.source != "Table B1").sum() == 3 * n_rows + 3
+    assert (t.source == "Table B1").sum() == 9 and t[t.source == "Table B1"].paper_best.all()
+    np.testing.assert_allclose(t.difference, t.ours - t.paper)
+    dv = t[(t.quantity == "delta-V")]
+    np.testing.assert_allclose(dv.difference, -0.5, atol=1e-9)
+    imp = t[t.quantity == "impulsive delta-V"]
+    np.testing.assert_allclose(imp.difference, [0.0, 254.0 - 254.034, 245.5 - 245.363],
+                               atol=1e-9)
+    assert set(t.unit) == {"min", "m/s", "%"}
+    assert t[t.source == "Table 1"].start_min.nunique() == 6
+
+
+def _fake_chain(thrust, isp):
+    from lunarcap import paper
+
+    out, m = [], C.ARRIVAL_MASS_KG
+    for n in (1, 2, 3):
+        b = paper.paper_best(thrust, n)
+        imp = paper.PAPER_IMPULSIVE_DV_MPS[n - 1]
+        m_end = m * math.exp(-b["delta_v_mps"] / (C.G0_MPS2 * isp))
+        out.append({"loss_mps": b["delta_v_mps"] - imp,
+                    "loss_percent": 100 * (b["delta_v_mps"] - imp) / imp,
+                    "burn_duration_min": b["burn_duration_min"], "m_start_kg": m,
+                    "m_end_kg": m_end, "fuel_kg": m - m_end, "eq19_duration_min": 10.0 * n,
+                    "rp_end_km": C.R_MOON + 100.0, "inc_end_deg": 90.0})
+        m = m_end
+    return out
+
+
+def test_quote_equivalents_and_comparison():
+    from lunarcap import paper
+
+    chains = {t: _fake_chain(t, isp) for t, isp in C.PAPER_ENGINES}
+    ours = plots.quote_equivalents(
+        chains, impulsive_final_mass_kg={t: 340.0 for t, _ in C.PAPER_ENGINES},
+        best_starts={(150.0, 1): -10.0, (150.0, 2): -6.0, (150.0, 3): -5.0},
+        audit_values={"period/final": 117.868})
+    assert set(ours) <= set(paper.QUOTES)
+    q = plots.quotes_comparison(ours)
+    assert len(q) == len(paper.QUOTES) and q.name.is_unique
+    by = q.set_index("name")
+    # signs of the ignition offsets follow the printed convention ("10" minutes before)
+    assert by.loc["best_start_loi1_150N_min", "ours"] == 10.0
+    assert by.loc["best_start_loi2_150N_min", "ours"] == -6.0
+    # totals: the sum of Table B1's losses (20.273 m/s), and a percentage of the total
+    assert by.loc["loss_total_150N_mps", "ours"] == pytest.approx(20.273, abs=1e-9)
+    assert by.loc["loss_total_150N_percent", "ours"] == pytest.approx(2.3776, abs=1e-4)
+    assert by.loc["burn_total_150N_min", "ours"] == pytest.approx(41.02, abs=1e-9)
+    assert by.loc["fuel_finite_150N_kg", "ours"] == pytest.approx(
+        C.ARRIVAL_MASS_KG - chains[150.0][2]["m_end_kg"])
+    assert by.loc["fuel_impulsive_150N_kg", "ours"] == pytest.approx(C.ARRIVAL_MASS_KG - 340)
+    assert by.loc["eq19_half_loi3_150N_min", "ours"] == pytest.approx(15.0)
+    assert "117.868" in by.loc["period_final_min", "note"]
+    assert by.loc["mu_sun_km3s2", "ours"] == C.MU_SUN
+    # no equivalent: NaN and said so
+    none = q[q.ours.isna()]
+    assert (none.note.str.contains("no equivalent")).all() and none.difference.isna().all()
+    assert {"lro_thrust_N", "kick_motor_dry_mass_kg"} <= set(none.name)
+    assert "fig4_alpha_start_deg" in set(none.name)            # no Fig. 4 data given
+    np.testing.assert_allclose(q.difference.dropna(), (q.ours - q.paper).dropna())
+
+
+def test_epochs_comparison():
+    from lunarcap.epochs import seconds_from_calendar
+
+    t0 = seconds_from_calendar(C.ARRIVAL_EPOCH_TDB)
+    ep = np.cumsum([t0, *C.CAPTURE_PERIODS_S])
+    t = plots.epochs_comparison(ep)
+    assert list(t.perilune) == [1, 2, 3]
+    np.testing.assert_allclose(t.difference_s, [0.0, -1.0, -3.0], atol=1e-6)
+    assert t.ours.iloc[0] == "2017-02-20 03:41:26 TDB"
+
+
+def test_short_where_and_check_titles():
+    assert plots.short_where("Sec. 3.2.1, para 2 ('As shown in Table 1...')") == \
+        "Sec. 3.2.1, para 2"
+    from lunarcap import audit
+
+    assert set(audit.findings_table().check) <= set(plots.AUDIT_CHECK_TITLES)
+
+
+def test_quotes_display_is_compact_and_keeps_every_row():
+    chains = {t: _fake_chain(t, isp) for t, isp in C.PAPER_ENGINES}
+    q = plots.quotes_comparison(plots.quote_equivalents(chains))
+    d = plots.quotes_display(q, max_words=40)
+    assert len(d) == len(q) and list(d.columns) == ["words", "printed", "ours",
+                                                    "difference", "note"]
+    assert (d.words.str.split(": ", n=1).str[1].str.len() <= 40).all()
+    row = d[q.name == "loss_total_150N_mps"].iloc[0]
+    assert row.printed == "20.20 m/s" and row.ours == "20.273" and row.difference == "+0.073"
+    assert d[q.name == "abstract_period_capture1_h"].ours.iloc[0] == "12.235"
+    assert row["words"].startswith("§3.2.1 ¶")
+    none = d[q.ours.isna()]
+    assert (none.ours == "—").all() and (none.difference == "—").all()
+    assert d[q.name == "mu_sun_km3s2"].ours.iloc[0] == "1.327124e+11"
+
+
+def test_findings_display():
+    from lunarcap import audit
+
+    t = audit.findings_table(only_inconsistent=True)
+    d = plots.findings_display(t)
+    assert len(d) == len(t) and list(d.columns) == ["finding", "printed", "computed",
+                                                    "explanation"]
+    row = d[t.id == "sun-gm"].iloc[0]
+    assert row.finding == "a: sun-gm" and row.printed == "1.32712e+10 km^3/s^2"
+    assert row.explanation.startswith("Sec. 3.1, para 1. ")
