@@ -1,0 +1,145 @@
+r"""Analytic finite-burn loss: Robbins' (1966) estimate, evaluated for the capture chain.
+
+Robbins (1966) estimated the extra velocity change a finite burn needs over the impulse
+it replaces as
+
+.. math::
+
+    \Delta V_{loss} \lesssim \frac{1}{24} (\omega_s t_b)^2 \, \Delta V,
+    \qquad \omega_s^2 = \mu / r^3,
+
+with :math:`t_b` the burn duration, :math:`\Delta V` the impulsive velocity change and
+:math:`\omega_s` the Schuler frequency at the burn radius :math:`r` (for a burn centred
+on a perilune, :math:`r = r_p`).
+
+Sources
+-------
+* H. M. Robbins, "An analytical study of the impulsive approximation", AIAA Journal
+  4(8):1417-1423, 1966, doi:10.2514/3.3687 (the original; paywalled, **not read here**).
+* J. C. F. Confraria, "Finite burn losses in spacecraft maneuvers revisited", MSc thesis,
+  Instituto Superior Tecnico, Lisbon, 2020, Sec. 2.2, Eq. (2.17)-(2.18), which quotes
+  Robbins' expression, takes :math:`t_b` from the impulsive :math:`\Delta V`, Isp and
+  thrust-to-weight ratio, and finds it overestimates the losses of velocity-following
+  burns (by about 125 % near T/W0 = 0.1, less at higher T/W0).
+
+What was actually read: the expression above and Confraria's description of it, in a
+public literature review quoting her thesis; neither the thesis nor Robbins' paper
+itself. Robbins' exact assumptions (constant thrust or constant acceleration, the
+choice of r, whether it is stated as a bound) are therefore not verified here.
+
+What is verified here: the expression is the exact leading-order loss of a burn of
+constant acceleration in a fixed inertial direction, centred on an apse, for
+:math:`\Delta V \ll v`. Expanding gravity along the burn (position :math:`y \approx v t`
+along the velocity, gravity component :math:`-\omega_s^2 y`), the work done by the thrust
+falls short of the impulse's by :math:`\omega_s^2 v t_b^2 \Delta V / 24`, which at the
+speed :math:`v` is the velocity loss above. ``tests/test_study.py`` checks this against a
+numerical integration. The optimal burns of :mod:`lunarcap.ocp` steer the thrust and
+choose the ignition time (and their acceleration grows as mass is spent, and the
+delta-V is not small against the perilune speed), so the estimate is a yardstick for
+them, not a prediction: the trade study shows how far apart the two are.
+
+Here :math:`t_b` is the Eq. (19) duration (Song 2011) of each LOI, with the masses of the
+impulsive chain (rocket equation from the arrival mass), so the estimate is closed-form
+and independent of the optimiser.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import constants as C
+from .errors import InputError
+from .impulsive import burn_duration_estimate_s, check_engine, rocket_mass_after
+from .paper import PAPER_IMPULSIVE_DV_MPS
+
+#: Radius of every capture perilune, km (R_Moon + 100 km, Song 2011 Sec. 3.2.1).
+PERILUNE_RADIUS_KM = C.R_MOON + C.PERILUNE_ALTITUDE_KM
+
+
+def schuler_rate_rad_s(r_km: float, mu: float = C.MU_MOON) -> float:
+    """Schuler frequency sqrt(mu / r^3), rad/s.
+
+    Parameters
+    ----------
+    r_km : float
+        Radius, km.
+    mu : float
+        Gravitational parameter, km^3/s^2.
+    """
+    r_km = np.asarray(r_km, dtype=float)
+    if not np.all(np.isfinite(r_km)) or np.any(r_km <= 0):
+        raise InputError(f"radius must be a positive number of km, got {r_km!r}")
+    return np.sqrt(mu / r_km ** 3)
+
+
+def robbins_loss_mps(dv_mps, burn_s, r_km: float = PERILUNE_RADIUS_KM, mu: float = C.MU_MOON):
+    """Robbins' (1966) finite-burn loss estimate (1/24) (omega_s t_b)^2 dV, m/s.
+
+    Parameters
+    ----------
+    dv_mps : float or ndarray
+        Impulsive velocity change, m/s.
+    burn_s : float or ndarray
+        Burn duration, s.
+    r_km : float
+        Radius of the burn (its centre), km; default the capture perilune.
+    mu : float
+        Gravitational parameter, km^3/s^2.
+
+    Returns
+    -------
+    float or ndarray
+        Velocity loss, m/s (same units as ``dv_mps``).
+
+    Examples
+    --------
+    >>> w = float(schuler_rate_rad_s(PERILUNE_RADIUS_KM))
+    >>> round(float(robbins_loss_mps(240.0, 1.0 / w)), 6)  # (omega t)^2 = 1: dV/24
+    10.0
+    """
+    dv = np.asarray(dv_mps, dtype=float)
+    tb = np.asarray(burn_s, dtype=float)
+    if not (np.all(np.isfinite(dv)) and np.all(np.isfinite(tb))) or np.any(dv < 0) \
+            or np.any(tb < 0):
+        raise InputError("delta-V and burn duration must be non-negative finite numbers")
+    w = schuler_rate_rad_s(r_km, mu)
+    out = (w * tb) ** 2 * dv / 24.0
+    return float(out) if out.ndim == 0 else out
+
+
+def capture_chain_estimate(thrust_N: float, isp_s: float, mass_kg: float = C.ARRIVAL_MASS_KG,
+                           dv_mps=PAPER_IMPULSIVE_DV_MPS, r_km: float = PERILUNE_RADIUS_KM,
+                           mu: float = C.MU_MOON) -> list[dict]:
+    """Eq. (19) durations and Robbins losses of the three LOIs of one engine.
+
+    The mass before each LOI is that of the impulsive chain (rocket equation with the
+    impulsive delta-Vs from ``mass_kg``); Eq. (19) turns it into the burn duration.
+
+    Parameters
+    ----------
+    thrust_N, isp_s : float
+        Engine, N and s.
+    mass_kg : float
+        Mass at the first perilune, kg.
+    dv_mps : sequence of three floats
+        Impulsive delta-Vs of LOI 1, 2, 3, m/s (default: the paper's, Table B1).
+    r_km, mu : burn radius (km) and gravitational parameter (km^3/s^2).
+
+    Returns
+    -------
+    list of dict
+        One per LOI: ``loi``, ``impulsive_delta_v_mps``, ``m_before_kg``,
+        ``eq19_duration_min``, ``loss_mps``, ``loss_percent``.
+    """
+    check_engine(thrust_N, isp_s, mass_kg)
+    if len(dv_mps) != 3:
+        raise InputError(f"three impulsive delta-Vs expected, got {dv_mps!r}")
+    rows, m = [], float(mass_kg)
+    for i, dv in enumerate(dv_mps):
+        tb = float(burn_duration_estimate_s(m, dv, thrust_N, isp_s))
+        loss = robbins_loss_mps(dv, tb, r_km, mu)
+        rows.append({"loi": i + 1, "impulsive_delta_v_mps": float(dv), "m_before_kg": m,
+                     "eq19_duration_min": tb / 60.0, "loss_mps": loss,
+                     "loss_percent": 100.0 * loss / dv})
+        m = float(rocket_mass_after(m, dv, isp_s))
+    return rows

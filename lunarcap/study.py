@@ -1,0 +1,876 @@
+"""Engine trade study: finite-burn loss of the capture chain against thrust-to-weight ratio.
+
+For every engine (thrust T, specific impulse Isp) of a grid, the whole capture chain is
+solved with :func:`lunarcap.sequence.solve_case`: LOI 1, 2 and 3 each with a free
+ignition time (``start_min="free"``), each starting from the previous LOI's optimum.
+The thrusts are log-spaced (default 30 points from 50 N to 2000 N), the Isp a short list
+(default 200, 250, 300 s). Beside each optimum the table gives the Eq. (19) burn
+duration and Robbins' analytic loss estimate (:mod:`lunarcap.finite_burn_theory`).
+
+Definitions
+-----------
+Thrust-to-weight ratio
+    ``thrust_to_weight = T / (m0 g0)``, with m0 = 524.895 kg the mass at the first
+    perilune, before LOI 1 (Song 2011, Sec. 3.2.1) and g0 = 9.80665 m/s^2 standard
+    gravity (the g0 of the rocket equation and of Eq. (19)). This is the conventional,
+    Earth-weight ratio: the paper's engines (150, 300, 450 N) have 0.0291, 0.0583 and
+    0.0874. The same ratio for the lunar weight, ``T / (m0 g_moon)`` with
+    g_moon = mu / R^2 = 1.6227 m/s^2 (:data:`G_MOON_MPS2`), is 6.04 times larger and is
+    tabulated as ``thrust_to_lunar_weight``. Both use the arrival mass for every LOI,
+    so one engine has one abscissa.
+Loss
+    ``delta_v - impulsive_delta_v`` with the paper's impulsive delta-Vs (353.272,
+    254.034, 245.363 m/s; Table B1), in m/s and in % of the impulsive delta-V, exactly as
+    in the paper's Tables 1-5. For the whole sequence the three are summed (% of
+    852.669 m/s). Our full-dynamics impulsive limit differs from the paper's values by a
+    few tenths of m/s (:func:`lunarcap.sequence.solve_impulsive_case`), so a very strong
+    engine's loss is within a few tenths of m/s of zero, of either sign.
+
+Execution
+---------
+One Dask task per engine computes its three-LOI chain (the task imports lunarcap in the
+worker). By default a :class:`dask.distributed.LocalCluster` of ``workers`` processes
+with one thread each is started; ``scheduler="tcp://host:port"`` uses an existing
+cluster instead (its workers need lunarcap installed). Solutions are also cached on disk
+by joblib inside the workers (:mod:`lunarcap.cache`), so a later study or notebook that
+needs the same engine reuses them.
+
+Results go to one CSV table (default :func:`default_table_path`, below the cache
+directory), four rows per engine (``part`` = LOI1, LOI2, LOI3, sequence), appended as
+each task completes: the table is rewritten to a temporary file and moved into place,
+so it is never half-written. Rows carry :func:`lunarcap.cache.code_version`; a rerun
+skips every engine (thrust, Isp, dynamics) already present for the current code
+version, so an interrupted study resumes where it stopped. A failed engine is recorded
+(``status`` "failed" with IPOPT's status, or "task error"), not dropped and not retried
+(unless ``retry_failed``). Each run appends its wall time, counts and the machine's load
+to ``<table stem>.runs.json`` next to the table (:func:`runs_path`), also when it is
+interrupted. A lock file keeps two runs from writing the same table at once.
+
+Examples
+--------
+>>> spec = StudySpec(thrust_min_N=100, thrust_max_N=1000, points=3, isp_s=(250,))
+>>> spec.thrusts_N
+(100.0, 316.2, 1000.0)
+>>> round(thrust_to_weight(150.0), 4)
+0.0291
+"""
+
+from __future__ import annotations
+
+import contextlib
+import datetime as _dt
+import json
+import logging
+import math
+import os
+import socket
+import sys
+import time
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from . import constants as C
+from . import paths
+from .errors import InputError
+
+#: Lunar surface gravity mu / R^2, m/s^2 (from :data:`lunarcap.constants.MU_MOON` and
+#: :data:`lunarcap.constants.R_MOON`, Song 2011's values).
+G_MOON_MPS2 = C.MU_MOON / C.R_MOON ** 2 * 1e3
+
+#: Default grid: thrust range (N), number of log-spaced thrusts, specific impulses (s).
+DEFAULT_THRUST_MIN_N = 50.0
+DEFAULT_THRUST_MAX_N = 2000.0
+DEFAULT_POINTS = 30
+DEFAULT_ISP_S = (200.0, 250.0, 300.0)
+DYNAMICS = ("full", "j2", "two-body")
+
+#: Significant digits kept in grid thrusts (so that table keys survive a CSV round trip).
+THRUST_DIGITS = 4
+
+#: The four rows of an engine.
+PARTS = ("LOI1", "LOI2", "LOI3", "sequence")
+
+#: Columns of the study table (units in the names).
+COLUMNS = (
+    "thrust_N", "isp_s", "dynamics", "part", "status",
+    "thrust_to_weight", "thrust_to_lunar_weight",
+    "start_min", "burn_duration_min", "eq19_duration_min", "burn_to_eq19_ratio",
+    "delta_v_mps", "impulsive_delta_v_mps", "loss_mps", "loss_percent",
+    "analytic_eq19_duration_min", "analytic_loss_mps", "analytic_loss_percent",
+    "m_start_kg", "m_end_kg", "fuel_kg",
+    "ipopt_status", "ipopt_iterations", "verified", "mesh", "solve_wall_s",
+    "task_wall_s", "worker", "code_version", "completed_utc", "error",
+)
+
+#: Row statuses: solved and verified; SolveError (see ``ipopt_status``); skipped because
+#: an earlier LOI failed; an unexpected exception in the task; the Dask task itself
+#: failed (worker lost); a sequence with a failed LOI.
+STATUSES = ("ok", "failed", "not run", "error", "task error", "incomplete")
+
+_KEY = ("thrust_N", "isp_s", "dynamics")
+
+
+# ====================================================================== definitions
+def thrust_to_weight(thrust_N, mass_kg: float = C.ARRIVAL_MASS_KG, g_mps2: float = C.G0_MPS2):
+    """Thrust-to-weight ratio T / (m g) (dimensionless).
+
+    Parameters
+    ----------
+    thrust_N : float or ndarray
+        Thrust, N.
+    mass_kg : float
+        Mass, kg (default: the arrival mass before LOI 1, 524.895 kg).
+    g_mps2 : float
+        Reference gravity, m/s^2 (default: standard gravity g0 = 9.80665 m/s^2; pass
+        :data:`G_MOON_MPS2` for the lunar weight).
+    """
+    if np.ndim(thrust_N):
+        return np.asarray(thrust_N, dtype=float) / (mass_kg * g_mps2)
+    return float(thrust_N) / (mass_kg * g_mps2)
+
+
+def thrust_from_weight_ratio(ratio, mass_kg: float = C.ARRIVAL_MASS_KG,
+                             g_mps2: float = C.G0_MPS2):
+    """Inverse of :func:`thrust_to_weight`: the thrust (N) of a thrust-to-weight ratio."""
+    return np.asarray(ratio, dtype=float) * mass_kg * g_mps2
+
+
+# ====================================================================== parameters
+def _number(name: str, value, unit: str) -> float:
+    """A positive finite float from a number or numeric text, else InputError."""
+    if isinstance(value, bool):
+        raise InputError(f"{name} must be a positive number of {unit}, got {value!r}")
+    try:
+        val = float(value.strip() if isinstance(value, str) else value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a positive number of {unit}, got {value!r}") from None
+    if not math.isfinite(val) or val <= 0:
+        raise InputError(f"{name} must be a positive number of {unit}, got {value!r}")
+    return val
+
+
+def _count(name: str, value, minimum: int) -> int:
+    """An integer >= minimum (int, integral float or digits), else InputError."""
+    if isinstance(value, bool):
+        raise InputError(f"{name} must be an integer, got {value!r}")
+    try:
+        f = float(value.strip() if isinstance(value, str) else value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be an integer, got {value!r}") from None
+    if not math.isfinite(f) or f != int(f):
+        raise InputError(f"{name} must be an integer, got {value!r}")
+    if f < minimum:
+        raise InputError(f"{name} must be at least {minimum}, got {value!r}")
+    return int(f)
+
+
+def parse_isp_list(value) -> tuple:
+    """Specific impulses from ``"200,250,300"`` or a sequence of numbers, s.
+
+    Raises
+    ------
+    InputError
+        Empty list, empty item, non-numeric or non-positive value, or a duplicate.
+    """
+    if isinstance(value, str):
+        items = [s.strip() for s in value.split(",")]
+        if not value.strip():
+            raise InputError("the Isp list is empty: give e.g. --isp 200,250,300")
+        if any(s == "" for s in items):
+            raise InputError(f"malformed Isp list {value!r}: give numbers of seconds separated "
+                             f"by commas, e.g. 200,250,300")
+    elif isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool):
+        items = [value]
+    else:
+        try:
+            items = list(value)
+        except TypeError:
+            raise InputError(f"Isp must be a list of numbers of seconds, got {value!r}") from None
+    if not items:
+        raise InputError("the Isp list is empty: give at least one specific impulse (s)")
+    isps = tuple(_number("specific impulse", v, "s") for v in items)
+    if len(set(isps)) != len(isps):
+        raise InputError(f"the Isp list has duplicates: {value!r}")
+    return isps
+
+
+def thrust_grid(thrust_min_N: float, thrust_max_N: float, points: int) -> tuple:
+    """Log-spaced thrusts from min to max inclusive, rounded to 4 significant digits, N."""
+    tmin = _number("minimum thrust", thrust_min_N, "N")
+    tmax = _number("maximum thrust", thrust_max_N, "N")
+    n = _count("the number of thrust points", points, 2)
+    if tmin > tmax:
+        raise InputError(f"minimum thrust {tmin:g} N is above the maximum {tmax:g} N")
+    if tmin == tmax:
+        raise InputError(f"the thrust range {tmin:g}-{tmax:g} N is empty: the maximum must "
+                         f"exceed the minimum")
+    grid = tuple(float(f"{t:.{THRUST_DIGITS}g}") for t in np.geomspace(tmin, tmax, n))
+    grid = (tmin,) + grid[1:-1] + (tmax,)  # endpoints exactly as given
+    if len(set(grid)) != n:
+        raise InputError(f"{n} log-spaced points between {tmin:g} and {tmax:g} N are not "
+                         f"distinct at {THRUST_DIGITS} significant digits: use fewer points "
+                         f"or a wider range")
+    return grid
+
+
+@dataclass(frozen=True)
+class StudySpec:
+    """The grid of a trade study (validated on construction; InputError if bad).
+
+    Attributes
+    ----------
+    thrust_min_N, thrust_max_N : float
+        Thrust range, N (0 < min < max).
+    points : int
+        Number of log-spaced thrusts (at least 2).
+    isp_s : tuple of float
+        Specific impulses, s (a list, or text "200,250,300").
+    dynamics : str
+        "full", "j2" or "two-body".
+    """
+
+    thrust_min_N: float = DEFAULT_THRUST_MIN_N
+    thrust_max_N: float = DEFAULT_THRUST_MAX_N
+    points: int = DEFAULT_POINTS
+    isp_s: tuple = DEFAULT_ISP_S
+    dynamics: str = "full"
+
+    def __post_init__(self):
+        grid = thrust_grid(self.thrust_min_N, self.thrust_max_N, self.points)
+        object.__setattr__(self, "thrust_min_N", grid[0])
+        object.__setattr__(self, "thrust_max_N", grid[-1])
+        object.__setattr__(self, "points", len(grid))
+        object.__setattr__(self, "isp_s", parse_isp_list(self.isp_s))
+        if self.dynamics not in DYNAMICS:
+            raise InputError(f"dynamics must be one of {', '.join(DYNAMICS)}, "
+                             f"got {self.dynamics!r}")
+
+    @property
+    def thrusts_N(self) -> tuple:
+        """The grid's thrusts, N."""
+        return thrust_grid(self.thrust_min_N, self.thrust_max_N, self.points)
+
+    @property
+    def engines(self) -> list:
+        """(thrust N, Isp s) of every grid point, Isp-major, thrust ascending."""
+        return [(t, isp) for isp in self.isp_s for t in self.thrusts_N]
+
+    def to_dict(self) -> dict:
+        """Plain dict (JSON-ready)."""
+        d = asdict(self)
+        d["isp_s"] = list(self.isp_s)
+        return d
+
+
+def check_workers(workers) -> int:
+    """Number of local Dask workers (an integer >= 1), else InputError."""
+    return _count("the number of workers", workers, 1)
+
+
+def default_table_path() -> Path:
+    """``<cache>/study/engine_trade.csv`` (below :data:`lunarcap.paths.CACHE`)."""
+    return paths.CACHE / "study" / "engine_trade.csv"
+
+
+def runs_path(table: str | os.PathLike) -> Path:
+    """The run log next to a table: ``<stem>.runs.json``."""
+    table = Path(table)
+    return table.with_name(f"{table.stem}.runs.json")
+
+
+def _key(thrust_N, isp_s, dynamics) -> tuple:
+    return (f"{float(thrust_N):.6g}", f"{float(isp_s):.6g}", str(dynamics))
+
+
+# ====================================================================== rows
+def engine_rows(thrust_N: float, isp_s: float, dynamics: str, summaries: list,
+                failure: dict | None = None, task_wall_s: float = float("nan"),
+                worker: str = "", code_version: str = "") -> list[dict]:
+    """The four table rows (LOI1, LOI2, LOI3, sequence) of one engine.
+
+    Parameters
+    ----------
+    thrust_N, isp_s, dynamics : the engine and the dynamics
+    summaries : list of dict
+        :meth:`lunarcap.solution.Solution.summary` of the LOIs solved, in chain order
+        (fewer than three if one failed).
+    failure : dict, optional
+        ``{"loi": n or None, "status": "failed" | "error" | "task error",
+        "ipopt_status": str, "error": str}`` for the LOI that failed (None: the whole
+        task failed).
+    task_wall_s, worker, code_version : recorded as given.
+
+    Returns
+    -------
+    list of dict, keys :data:`COLUMNS`
+    """
+    from .finite_burn_theory import capture_chain_estimate
+    from .paper import PAPER_IMPULSIVE_DV_MPS
+
+    base = {"thrust_N": float(thrust_N), "isp_s": float(isp_s), "dynamics": dynamics,
+            "thrust_to_weight": thrust_to_weight(thrust_N),
+            "thrust_to_lunar_weight": thrust_to_weight(thrust_N, g_mps2=G_MOON_MPS2),
+            "task_wall_s": task_wall_s, "worker": worker, "code_version": code_version,
+            "completed_utc": _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S")}
+    theory = capture_chain_estimate(thrust_N, isp_s)
+    rows = []
+    for i in range(3):
+        row = dict.fromkeys(COLUMNS, np.nan)
+        row.update(base, part=PARTS[i], impulsive_delta_v_mps=PAPER_IMPULSIVE_DV_MPS[i],
+                   analytic_eq19_duration_min=theory[i]["eq19_duration_min"],
+                   analytic_loss_mps=theory[i]["loss_mps"],
+                   analytic_loss_percent=theory[i]["loss_percent"], ipopt_status="", mesh="",
+                   error="")
+        if i < len(summaries):
+            s = summaries[i]
+            row.update({k: s[k] for k in ("start_min", "burn_duration_min", "eq19_duration_min",
+                                          "delta_v_mps", "impulsive_delta_v_mps", "loss_mps",
+                                          "loss_percent", "m_start_kg", "m_end_kg", "fuel_kg",
+                                          "ipopt_status", "ipopt_iterations", "mesh",
+                                          "solve_wall_s")})
+            row["burn_to_eq19_ratio"] = s["burn_duration_min"] / s["eq19_duration_min"]
+            row["verified"] = bool(s["verification"]["passed"])
+            row["status"] = "ok" if row["verified"] else "failed"
+        elif failure is not None and (failure.get("loi") in (None, i + 1)):
+            row.update(status=failure["status"], ipopt_status=failure.get("ipopt_status", ""),
+                       error=_one_line(failure.get("error", "")), verified=False)
+        else:
+            row.update(status="not run", verified=False,
+                       error=f"LOI {failure['loi']} failed" if failure else "no solution")
+        rows.append(row)
+    seq = dict.fromkeys(COLUMNS, np.nan)
+    seq.update(base, part="sequence", ipopt_status="", mesh="", error="")
+    imp = sum(PAPER_IMPULSIVE_DV_MPS)
+    seq.update(impulsive_delta_v_mps=imp,
+               analytic_eq19_duration_min=sum(t["eq19_duration_min"] for t in theory),
+               analytic_loss_mps=sum(t["loss_mps"] for t in theory))
+    seq["analytic_loss_percent"] = 100.0 * seq["analytic_loss_mps"] / imp
+    if all(r["status"] == "ok" for r in rows):
+        for k in ("burn_duration_min", "eq19_duration_min", "delta_v_mps", "loss_mps",
+                  "fuel_kg", "ipopt_iterations", "solve_wall_s"):
+            seq[k] = sum(r[k] for r in rows)
+        seq["impulsive_delta_v_mps"] = sum(r["impulsive_delta_v_mps"] for r in rows)
+        seq["loss_percent"] = 100.0 * seq["loss_mps"] / seq["impulsive_delta_v_mps"]
+        seq["burn_to_eq19_ratio"] = seq["burn_duration_min"] / seq["eq19_duration_min"]
+        seq.update(m_start_kg=rows[0]["m_start_kg"], m_end_kg=rows[-1]["m_end_kg"],
+                   verified=True, status="ok")
+    else:
+        bad = next(r for r in rows if r["status"] != "ok")
+        seq.update(status="incomplete", verified=False,
+                   error=f"{bad['part']}: {bad['status']}"
+                         + (f" ({bad['ipopt_status']})" if bad["ipopt_status"] else ""))
+    rows.append(seq)
+    return rows
+
+
+def _one_line(text: str, limit: int = 500) -> str:
+    text = " ".join(str(text).split())
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def solve_engine(thrust_N: float, isp_s: float, dynamics: str = "full") -> list[dict]:
+    """Dask task: the free-ignition chain LOI 1, 2, 3 of one engine, as table rows.
+
+    Imports lunarcap inside the worker. A :class:`~lunarcap.errors.SolveError` stops the
+    chain and is recorded (status "failed" with IPOPT's status); any other exception is
+    recorded as "error". Never raises for a solver failure.
+    """
+    import lunarcap.sequence as sequence
+    from lunarcap.cache import code_version
+    from lunarcap.errors import SolveError
+
+    t0 = time.perf_counter()
+    summaries, failure = [], None
+    for loi in (1, 2, 3):
+        try:
+            sol = sequence.solve_case(thrust_N, isp_s, loi, "free", ("free",) * (loi - 1),
+                                      dynamics)
+        except SolveError as exc:
+            failure = {"loi": loi, "status": "failed", "ipopt_status": exc.status or "",
+                       "error": str(exc)}
+            break
+        except Exception as exc:  # a bug must not lose the rest of the study
+            failure = {"loi": loi, "status": "error", "ipopt_status": "",
+                       "error": f"{type(exc).__name__}: {exc}"}
+            break
+        summaries.append(sol.summary())
+    return engine_rows(thrust_N, isp_s, dynamics, summaries, failure,
+                       task_wall_s=time.perf_counter() - t0,
+                       worker=f"{socket.gethostname()}:{os.getpid()}",
+                       code_version=code_version())
+
+
+# ====================================================================== table I/O
+def read_table(path: str | os.PathLike) -> pd.DataFrame:
+    """The study table at ``path`` with :data:`COLUMNS` (empty if the file is absent).
+
+    Raises
+    ------
+    InputError
+        If ``path`` is a directory, unreadable, or not a study table.
+    """
+    path = Path(path)
+    if path.is_dir():
+        raise InputError(f"the study table {path} is a directory: give a file name (.csv)")
+    if not path.exists() or path.stat().st_size == 0:
+        return pd.DataFrame(columns=list(COLUMNS))
+    try:
+        df = pd.read_csv(path, dtype={"dynamics": str, "part": str, "status": str,
+                                      "ipopt_status": str, "mesh": str, "worker": str,
+                                      "code_version": str, "error": str},
+                         keep_default_na=True)
+    except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError,
+            ValueError) as exc:
+        raise InputError(f"cannot read the study table {path}: {exc}") from None
+    missing = [c for c in (*_KEY, "part", "status", "code_version") if c not in df.columns]
+    if missing:
+        raise InputError(f"{path} is not a study table (no column {', '.join(missing)}); "
+                         f"give another --out")
+    for c in ("ipopt_status", "mesh", "error", "worker"):
+        if c in df:
+            df[c] = df[c].fillna("")
+    return df.reindex(columns=list(COLUMNS))
+
+
+def _to_csv_text(rows: list[dict], header: bool) -> str:
+    return pd.DataFrame(rows).reindex(columns=list(COLUMNS)).to_csv(index=False, header=header)
+
+
+def append_rows(path: str | os.PathLike, rows: list[dict]) -> None:
+    """Append rows to the table atomically (rewrite to a temporary file, then rename)."""
+    path = Path(path)
+    old = path.read_bytes() if path.exists() else b""
+    if old and not old.endswith(b"\n"):
+        old += b"\n"
+    text = _to_csv_text(rows, header=not old).encode()
+    with paths.atomic_path(path) as tmp:
+        tmp.write_bytes(old + text)
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp's 0600 would hide the table
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _normalise_table(path: Path, df: pd.DataFrame) -> None:
+    """Rewrite a table whose header is not :data:`COLUMNS` (an older layout)."""
+    if not path.exists() or path.stat().st_size == 0:
+        return
+    header = path.open(encoding="utf-8", errors="replace").readline().strip().split(",")
+    if header != list(COLUMNS):
+        with paths.atomic_path(path) as tmp:
+            df.to_csv(tmp, index=False)
+
+
+@contextlib.contextmanager
+def _table_lock(path: Path, wait_s: float = 0.0):
+    """Hold an exclusive lock on ``.<table>.lock``.
+
+    Waits up to ``wait_s`` seconds for another run to release it, then raises InputError.
+    """
+    import fcntl
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    lock = path.with_name(f".{path.name}.lock")
+    fh = open(lock, "w")
+    deadline = time.monotonic() + max(0.0, float(wait_s))
+    try:
+        while True:
+            try:
+                fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                break
+            except BlockingIOError:
+                if time.monotonic() >= deadline:
+                    raise InputError(f"the study table {path} is being written by another "
+                                     f"run; wait for it to finish or give another --out") \
+                        from None
+                time.sleep(1.0)
+        yield
+    finally:
+        fh.close()
+
+
+def latest_rows(table: pd.DataFrame) -> pd.DataFrame:
+    """The last row of every (thrust, Isp, dynamics, code version, part) of a table."""
+    if table.empty:
+        return table
+    k = table.assign(_k=[_key(*r) for r in table[list(_KEY)].itertuples(index=False)])
+    k = k.drop_duplicates(subset=["_k", "code_version", "part"], keep="last")
+    return k.drop(columns="_k")
+
+
+def select(table: pd.DataFrame, spec: StudySpec, code_version: str | None = None
+           ) -> pd.DataFrame:
+    """Rows of ``table`` on the grid of ``spec`` (latest per engine and part), sorted.
+
+    ``code_version`` None: the current :func:`lunarcap.cache.code_version`.
+    """
+    if code_version is None:
+        from .cache import code_version as _cv
+        code_version = _cv()
+    wanted = {_key(t, i, spec.dynamics) for t, i in spec.engines}
+    t = latest_rows(table[table.code_version.astype(str) == code_version])
+    if t.empty:
+        return t.reset_index(drop=True)
+    keep = [_key(*r) in wanted for r in t[list(_KEY)].itertuples(index=False)]
+    t = t[keep].copy()
+    t["_part"] = t.part.map({p: i for i, p in enumerate(PARTS)})
+    return t.sort_values(["isp_s", "thrust_N", "_part"]).drop(columns="_part") \
+        .reset_index(drop=True)
+
+
+def plan(table: pd.DataFrame, spec: StudySpec, code_version: str,
+         retry_failed: bool = False) -> tuple[list, list]:
+    """Split the grid's engines into (to compute, already in the table)."""
+    done = select(table, spec, code_version)
+    have = {}
+    for r in done[done.part == "sequence"].itertuples(index=False):
+        have[_key(r.thrust_N, r.isp_s, r.dynamics)] = r.status
+    todo, reused = [], []
+    for t, i in spec.engines:
+        st = have.get(_key(t, i, spec.dynamics))
+        if st is None or (retry_failed and st != "ok"):
+            todo.append((t, i))
+        else:
+            reused.append((t, i))
+    return todo, reused
+
+
+# ====================================================================== running
+@dataclass
+class StudyResult:
+    """What :func:`run_study` returns.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        The grid's rows (four per engine; columns :data:`COLUMNS`).
+    path : Path
+        The table file.
+    run : dict
+        This run's record (also appended to :func:`runs_path`).
+    """
+
+    table: pd.DataFrame
+    path: Path
+    run: dict
+
+    @property
+    def failures(self) -> pd.DataFrame:
+        """LOI rows whose status is not "ok"."""
+        t = self.table
+        return t[(t.part != "sequence") & (t.status != "ok")].reset_index(drop=True)
+
+    def wide(self) -> pd.DataFrame:
+        """One row per engine (see :func:`wide_table`)."""
+        return wide_table(self.table)
+
+
+@contextlib.contextmanager
+def _dask_client(workers: int, scheduler: str | None, processes: bool = True):
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler:
+        try:
+            client = Client(scheduler, timeout="20s")
+        except (OSError, TimeoutError, ValueError, TypeError) as exc:
+            raise InputError(f"cannot connect to the Dask scheduler {scheduler!r}: {exc}") \
+                from None
+        try:
+            yield client
+        finally:
+            client.close()
+        return
+    # no dashboard; the scheduler's HTTP (health) server on a free port, not 8787
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=processes,
+                      dashboard_address=None, scheduler_kwargs={"dashboard_address": ":0"},
+                      silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+        yield client
+
+
+def _loadavg() -> float | None:
+    """1-minute load average of the machine (None where unavailable)."""
+    try:
+        return round(os.getloadavg()[0], 2)
+    except (AttributeError, OSError):
+        return None
+
+
+def _cache_description() -> str:
+    from . import cache
+
+    loc = cache.memory.location
+    return "disabled (LUNARCAP_NO_CACHE)" if loc is None else f"joblib at {loc}"
+
+
+def _append_run(path: Path, record: dict) -> None:
+    rp = runs_path(path)
+    runs = []
+    if rp.exists():
+        try:
+            runs = json.loads(rp.read_text(encoding="utf-8"))
+            if not isinstance(runs, list):
+                raise ValueError("not a list")
+        except ValueError:
+            os.replace(rp, rp.with_suffix(".json.unreadable"))
+            runs = []
+    runs.append(record)
+    paths.write_text_atomic(rp, json.dumps(runs, indent=1, default=str) + "\n")
+
+
+def read_runs(table: str | os.PathLike) -> list[dict]:
+    """The run records of a table (empty if none)."""
+    rp = runs_path(table)
+    try:
+        runs = json.loads(rp.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return []
+    return runs if isinstance(runs, list) else []
+
+
+def run_study(spec: StudySpec | None = None, out: str | os.PathLike | None = None,
+              workers=2, scheduler: str | None = None, retry_failed: bool = False,
+              progress: bool = True, lock_wait_s: float = 0.0, task=None,
+              processes: bool = True) -> StudyResult:
+    """Run (or resume) an engine trade study on Dask.
+
+    Parameters
+    ----------
+    spec : StudySpec
+        The grid (default: 50-2000 N, 30 points, Isp 200, 250, 300 s, full dynamics).
+    out : path, optional
+        The CSV table (default :func:`default_table_path`).
+    workers : int
+        Worker processes of the local cluster (one thread each); ignored with
+        ``scheduler``.
+    scheduler : str, optional
+        Address of an existing Dask scheduler (``tcp://host:8786``).
+    retry_failed : bool
+        Recompute engines whose earlier attempt failed (default: keep their rows).
+    progress : bool
+        Show a tqdm progress bar on stderr.
+    lock_wait_s : float
+        How long to wait for another run writing the same table (default: fail at once).
+    task : callable, optional
+        The per-engine function ``(thrust_N, isp_s, dynamics) -> rows`` (default
+        :func:`solve_engine`; tests substitute a stub).
+    processes : bool
+        Local workers as processes (default) or threads (tests).
+
+    Returns
+    -------
+    StudyResult
+
+    Raises
+    ------
+    InputError
+        Bad parameters, an unusable table path, a table in use (after ``lock_wait_s``),
+        or an unreachable scheduler; always before any engine is solved.
+    """
+    from .cache import code_version
+
+    t0 = time.perf_counter()
+    spec = spec if spec is not None else StudySpec()
+    if not isinstance(spec, StudySpec):
+        raise InputError(f"spec must be a StudySpec, got {type(spec).__name__}")
+    workers = check_workers(workers)
+    if scheduler is not None and (not isinstance(scheduler, str) or not scheduler.strip()):
+        raise InputError(f"scheduler must be an address such as tcp://host:8786, "
+                         f"got {scheduler!r}")
+    path = Path(out) if out is not None else default_table_path()
+    if path.exists() and path.is_dir():
+        raise InputError(f"--out {path} is a directory: give a file name (.csv)")
+    task = task or solve_engine
+    cv = code_version()
+    started = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
+    load_start = _loadavg()
+    counts = {"computed": 0, "failed": 0}
+    cluster_s = 0.0
+    n_workers = 0
+    with _table_lock(path, lock_wait_s):
+        table = read_table(path)
+        _normalise_table(path, table)
+        todo, reused = plan(table, spec, cv, retry_failed)
+        interrupted = False
+
+        def record() -> dict:
+            run = {"started_utc": started, "wall_s": round(time.perf_counter() - t0, 2),
+                   "cluster_start_s": round(cluster_s, 2),
+                   "scheduler": (scheduler or "LocalCluster") if todo
+                   else "none (all in the table)",
+                   "workers": n_workers if todo else 0,
+                   "engines": len(spec.engines), "computed": counts["computed"],
+                   "reused": len(reused), "failed_computed": counts["failed"],
+                   "interrupted": interrupted, "grid": spec.to_dict(), "table": str(path),
+                   "cache": _cache_description(), "code_version": cv,
+                   "host": socket.gethostname(), "cpu_count": os.cpu_count(),
+                   "load_avg_1min_start": load_start, "load_avg_1min_end": _loadavg()}
+            _append_run(path, run)
+            return run
+
+        try:
+            if todo:
+                tc = time.perf_counter()
+                with _dask_client(workers, scheduler, processes) as client:
+                    cluster_s = time.perf_counter() - tc
+                    n_workers = len(client.scheduler_info().get("workers", {})) or workers
+                    _compute(client, task, todo, spec, cv, path, counts, progress, n_workers)
+        except KeyboardInterrupt:
+            interrupted = True
+            record()
+            raise
+        run = record()
+        table = read_table(path)
+    return StudyResult(select(table, spec, cv), path, run)
+
+
+def _compute(client, task, todo, spec, cv, path, counts, progress, n_workers) -> None:
+    """Submit one task per engine; append each engine's rows as its task completes."""
+    from dask.distributed import as_completed
+    from tqdm import tqdm
+
+    # slow (low-thrust) engines first, for better packing on few workers
+    order = sorted(todo, key=lambda e: e[0])
+    futures = {}
+    for rank, (t, i) in enumerate(order):
+        fut = client.submit(task, t, i, spec.dynamics, pure=False, priority=len(order) - rank)
+        futures[fut] = (t, i)
+    bar = tqdm(as_completed(list(futures)), total=len(futures), unit="engine",
+               desc=f"trade study ({n_workers} worker{'s' * (n_workers > 1)})",
+               file=sys.stderr, disable=not progress, dynamic_ncols=True)
+    for fut in bar:
+        t, i = futures.pop(fut)
+        try:
+            rows = fut.result()
+        except Exception as exc:  # the task raised, its worker died, or it was cancelled
+            rows = engine_rows(t, i, spec.dynamics, [], {
+                "loi": None, "status": "task error", "ipopt_status": "",
+                "error": f"{type(exc).__name__}: {exc}"}, code_version=cv)
+        fut.release()
+        for r in rows:
+            r["code_version"] = cv  # the version this run scheduled under
+        append_rows(path, rows)
+        counts["computed"] += 1
+        if any(r["status"] != "ok" for r in rows):
+            counts["failed"] += 1
+        bar.set_postfix(failed=counts["failed"], refresh=False)
+
+
+# ====================================================================== summaries
+def wide_table(table: pd.DataFrame) -> pd.DataFrame:
+    """One row per engine: loss (% per LOI and sequence), durations, status.
+
+    Columns: thrust_N, isp_s, thrust_to_weight, loss_percent_loi1..3, loss_percent_sequence,
+    loss_mps_sequence, analytic_loss_percent_sequence, burn_duration_min_loi1..3,
+    eq19_duration_min_loi1..3, status (the sequence row's), failed_part.
+    """
+    if table.empty:
+        return pd.DataFrame()
+    out = []
+    for (t, i), g in table.groupby(["thrust_N", "isp_s"], sort=True):
+        g = g.set_index("part")
+        row = {"thrust_N": t, "isp_s": i, "thrust_to_weight": thrust_to_weight(t)}
+        for p in PARTS[:3]:
+            row[f"loss_percent_{p.lower()}"] = g.loc[p, "loss_percent"] if p in g.index else np.nan
+        seq = g.loc["sequence"] if "sequence" in g.index else None
+        row["loss_percent_sequence"] = np.nan if seq is None else seq["loss_percent"]
+        row["loss_mps_sequence"] = np.nan if seq is None else seq["loss_mps"]
+        row["analytic_loss_percent_sequence"] = np.nan if seq is None else \
+            seq["analytic_loss_percent"]
+        for p in PARTS[:3]:
+            row[f"burn_duration_min_{p.lower()}"] = g.loc[p, "burn_duration_min"] \
+                if p in g.index else np.nan
+        for p in PARTS[:3]:
+            row[f"eq19_duration_min_{p.lower()}"] = g.loc[p, "eq19_duration_min"] \
+                if p in g.index else np.nan
+        row["status"] = "missing" if seq is None else seq["status"]
+        row["failed_part"] = "" if seq is None or seq["status"] == "ok" else seq["error"]
+        out.append(row)
+    return pd.DataFrame(out).sort_values(["isp_s", "thrust_N"]).reset_index(drop=True)
+
+
+def format_summary(result: StudyResult) -> str:
+    """The CLI's text: one line per engine, failures, and the wall time."""
+    w = result.wide()
+    lines = [f"Engine trade study: {len(w)} engines, free ignition for every LOI, "
+             f"{result.run['grid']['dynamics']} dynamics; loss vs the paper's impulsive "
+             f"delta-V; T/W = T / (524.895 kg x 9.80665 m/s^2)",
+             f"{'thrust N':>9} {'Isp s':>6} {'T/W':>7} | {'loss %: LOI1':>12} {'LOI2':>6} "
+             f"{'LOI3':>6} {'seq':>6} {'seq m/s':>8} | {'burn/Eq.19 LOI1':>15} | status"]
+    for r in w.itertuples(index=False):
+        ratio = r.burn_duration_min_loi1 / r.eq19_duration_min_loi1
+        lines.append(
+            f"{r.thrust_N:9.4g} {r.isp_s:6.4g} {r.thrust_to_weight:7.4f} | "
+            f"{_f(r.loss_percent_loi1, 12)} {_f(r.loss_percent_loi2, 6)} "
+            f"{_f(r.loss_percent_loi3, 6)} {_f(r.loss_percent_sequence, 6)} "
+            f"{_f(r.loss_mps_sequence, 8)} | {_f(ratio, 15)} | "
+            + (r.status if r.status == "ok" else f"{r.status}: {r.failed_part}"))
+    run = result.run
+    n_bad = int((w.status != "ok").sum()) if len(w) else 0
+    lines.append(f"{run['computed']} engine(s) computed, {run['reused']} taken from the "
+                 f"table, {n_bad} failed; wall time {run['wall_s']:.1f} s "
+                 f"({run['scheduler']}, {run['workers']} worker(s), cache: {run['cache']})")
+    lines.append(f"table: {result.path}")
+    return "\n".join(lines)
+
+
+def _f(v, width: int, fmt: str = ".3f") -> str:
+    return f"{'—':>{width}}" if v is None or not np.isfinite(v) else f"{v:{width}{fmt}}"
+
+
+def paper_points() -> pd.DataFrame:
+    """The paper's three engines with their Table B1 losses, per LOI and for the sequence.
+
+    Columns: thrust_N, isp_s, thrust_to_weight, part, burn_duration_min, loss_mps,
+    loss_percent (per LOI the percentage as printed in Table B1; for the sequence the sum of
+    the losses in % of the summed impulsive delta-V).
+    """
+    from .paper import paper_table_b1
+
+    b1 = paper_table_b1()
+    rows = []
+    for t, g in b1.groupby("thrust_N", sort=True):
+        isp = float(g.isp_s.iloc[0])
+        for r in g.itertuples(index=False):
+            rows.append({"thrust_N": float(t), "isp_s": isp, "part": f"LOI{r.loi}",
+                         "burn_duration_min": r.burn_duration_min,
+                         "loss_mps": r.delta_v_mps - r.impulsive_delta_v_mps,
+                         "loss_percent": r.diff_percent})
+        loss = float((g.delta_v_mps - g.impulsive_delta_v_mps).sum())
+        rows.append({"thrust_N": float(t), "isp_s": isp, "part": "sequence",
+                     "burn_duration_min": float(g.burn_duration_min.sum()), "loss_mps": loss,
+                     "loss_percent": 100.0 * loss / float(g.impulsive_delta_v_mps.sum())})
+    df = pd.DataFrame(rows)
+    df.insert(2, "thrust_to_weight", thrust_to_weight(df.thrust_N.to_numpy()))
+    return df
+
+
+def analytic_curves(thrusts_N, isp_s) -> pd.DataFrame:
+    """Robbins' estimate and the Eq. (19) duration on a (dense) thrust grid, per Isp.
+
+    Columns: thrust_N, isp_s, thrust_to_weight, part, eq19_duration_min, loss_mps,
+    loss_percent (closed form, :func:`lunarcap.finite_burn_theory.capture_chain_estimate`).
+    """
+    from .finite_burn_theory import capture_chain_estimate
+
+    rows = []
+    for isp in parse_isp_list(list(isp_s)):
+        for t in np.asarray(thrusts_N, dtype=float):
+            est = capture_chain_estimate(float(t), isp)
+            for e in est:
+                rows.append({"thrust_N": float(t), "isp_s": isp, "part": f"LOI{e['loi']}",
+                             "eq19_duration_min": e["eq19_duration_min"],
+                             "loss_mps": e["loss_mps"], "loss_percent": e["loss_percent"]})
+            loss = sum(e["loss_mps"] for e in est)
+            imp = sum(e["impulsive_delta_v_mps"] for e in est)
+            rows.append({"thrust_N": float(t), "isp_s": isp, "part": "sequence",
+                         "eq19_duration_min": sum(e["eq19_duration_min"] for e in est),
+                         "loss_mps": loss, "loss_percent": 100.0 * loss / imp})
+    df = pd.DataFrame(rows)
+    df.insert(2, "thrust_to_weight", thrust_to_weight(df.thrust_N.to_numpy()))
+    return df
