@@ -106,18 +106,12 @@ def _add_solver_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
 
 
-def default_previous_starts(thrust_N: float, isp_s: float, loi: int, mass_kg: float) -> tuple:
+def default_previous_starts(thrust_N: float, isp_s: float, loi: int) -> tuple:
     """Ignition offsets of the LOIs before ``loi``: the paper's best for its engines, else
-    minus half the Eq. (19) duration of each earlier burn (the paper's rule of thumb).
-    """
-    from .impulsive import impulsive_sequence
-    from .scenario import PAPER_BEST_STARTS_MIN
+    the free-ignition optima ("free")."""
+    from .tables import default_previous
 
-    for (T, isp) in C.PAPER_ENGINES:
-        if T == thrust_N and isp == isp_s:
-            return PAPER_BEST_STARTS_MIN[T][:loi - 1]
-    burns = impulsive_sequence(thrust_N, isp_s, mass_kg)
-    return tuple(-round(b.eq19_duration_min / 2, 1) for b in burns[:loi - 1])
+    return default_previous(thrust_N, loi, isp_s)
 
 
 def _case_kwargs(args) -> dict:
@@ -157,7 +151,7 @@ def cmd_solve(args) -> int:
     loi = check_loi(args.loi)
     prev = args.previous_starts
     if prev is None:
-        prev = default_previous_starts(args.thrust, args.isp, loi, args.mass)
+        prev = default_previous_starts(args.thrust, args.isp, loi)
     if len(prev) != loi - 1:
         raise InputError(f"--previous-starts needs {loi - 1} offset(s) for LOI {loi}, got {prev}")
     sol = _solver(args)(args.thrust, args.isp, loi, args.start, tuple(prev), **_case_kwargs(args))
@@ -244,7 +238,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "'free' to optimise it within +-2 Eq. (19) durations")
     p.add_argument("--previous-starts", type=_starts, default=None, metavar="S1[,S2]",
                    help="ignition offsets of the earlier LOIs (default: the paper's best for "
-                        "its engines, else minus half the Eq. (19) duration)")
+                        "its engines, else the free-ignition optima)")
     p.add_argument("--steering", choices=["optimal", "inertial", "antivelocity"],
                    default="optimal", help="steering law of this LOI (earlier LOIs: optimal)")
     _add_solver_options(p)

@@ -24,9 +24,17 @@ def _paper_row(thrust_N, loi, start):
     return None if hit.empty else hit.iloc[0]
 
 
-def default_previous(thrust_N: float, loi: int) -> tuple:
-    """The paper's best earlier ignition offsets (Table B1) for its engines."""
-    return tuple(PAPER_BEST_STARTS_MIN[float(thrust_N)][:loi - 1])
+def default_previous(thrust_N: float, loi: int, isp_s: float | None = None) -> tuple:
+    """Ignition offsets of the LOIs before ``loi``.
+
+    The paper's best (Table B1) for its engines; for any other engine (or another Isp)
+    the free-ignition optima of the earlier LOIs (``"free"``).
+    """
+    engines = dict(C.PAPER_ENGINES)
+    T = float(thrust_N)
+    if T in PAPER_BEST_STARTS_MIN and (isp_s is None or float(isp_s) == engines[T]):
+        return tuple(PAPER_BEST_STARTS_MIN[T][:loi - 1])
+    return ("free",) * (loi - 1)
 
 
 def sweep_table(thrust_N: float, isp_s: float, loi: int, starts, previous_starts=None,
@@ -38,7 +46,7 @@ def sweep_table(thrust_N: float, isp_s: float, loi: int, starts, previous_starts
     printed %, ours %); best flags; the verification verdict and residuals.
     """
     if previous_starts is None:
-        previous_starts = default_previous(thrust_N, loi)
+        previous_starts = default_previous(thrust_N, loi, isp_s)
     rows = []
     for s in starts:
         sol = solve_case(thrust_N, isp_s, loi, s, tuple(previous_starts), dynamics,
