@@ -16,7 +16,6 @@ import sys
 
 import numpy as np
 
-from . import constants as C
 from .cache import cached
 from .dynamics import Model
 from .ephemeris import Ephemeris, default_ephemeris
@@ -111,15 +110,8 @@ def solve_case(thrust_N: float, isp_s: float, loi: int, start_min: float,
     if len(previous_starts) != loi - 1:
         raise InputError(f"LOI {loi} needs the ignition offsets of the {loi - 1} earlier LOI(s), "
                          f"got {previous_starts}")
-    mission = mission_for(arrival, ephemeris)
-    if loi == 1:
-        x_peri = mission.arrival.state
-        if arrival.mass_kg != C.ARRIVAL_MASS_KG:
-            x_peri[6] = arrival.mass_kg
-    else:
-        prev = solve_case(thrust_N, isp_s, loi - 1, previous_starts[-1], previous_starts[:-1],
-                          dynamics, arrival, ephemeris, verbose)
-        x_peri = prev.end_state
+    mission, x_peri = _previous_state(thrust_N, isp_s, loi, previous_starts, dynamics, arrival,
+                                      ephemeris, verbose)
     prob = loi_problem(mission, loi, thrust_N, isp_s, start_min, x_peri, dynamics,
                        steering=steering)
     if verbose:
@@ -151,10 +143,8 @@ def sweep(thrust_N: float, isp_s: float, loi: int, starts, previous_starts=(), *
 def _previous_state(thrust_N, isp_s, loi, previous_starts, dynamics, arrival, ephemeris, verbose):
     """State at the nominal perilune preceding LOI ``loi`` in the finite-burn chain."""
     mission = mission_for(arrival, ephemeris)
-    if loi == 1:
-        x = mission.arrival.state
-        x[6] = arrival.mass_kg
-        return mission, x
+    if loi == 1:  # the arrival state carries the spec's mass
+        return mission, mission.arrival.state
     prev = solve_case(thrust_N, isp_s, loi - 1, previous_starts[-1], tuple(previous_starts[:-1]),
                       dynamics, arrival, ephemeris, verbose)
     return mission, prev.end_state
