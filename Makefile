@@ -27,10 +27,10 @@ test: $(STAMP)
 	$(PY) -m pytest
 
 book: $(STAMP)
-	$(PY) -m lunarcap.book build
+	$(PY) -m lunarcap.report.build build
 
 book-quick: $(STAMP)
-	$(PY) -m lunarcap.book build --quick
+	$(PY) -m lunarcap.report.build build --quick
 
 bench: $(STAMP)
 	$(PY) -m lunarcap bench

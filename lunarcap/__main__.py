@@ -1,5 +1,5 @@
 """``python -m lunarcap``: the command-line interface."""
 
-from .cli import main
+from lunarcap.cli import main
 
 raise SystemExit(main())

@@ -13,8 +13,8 @@ import math
 import re
 import sys
 
-from . import constants as C
-from .errors import InputError, LunarcapError, SolveError
+from lunarcap.physics import constants as C
+from lunarcap.errors import InputError, LunarcapError, SolveError
 
 
 def _positive(kind: str, unit: str):
@@ -51,7 +51,7 @@ def _jsonable(obj):
 
 def cmd_impulsive(args) -> int:
     """Print the two-body impulsive capture sequence and Eq. (19) estimates."""
-    from .impulsive import impulsive_sequence
+    from lunarcap.mission.impulsive import impulsive_sequence
 
     burns = impulsive_sequence(args.thrust, args.isp, args.mass)
     rows = [{"loi": b.loi, "delta_v_mps": b.delta_v_mps,
@@ -109,13 +109,13 @@ def _add_solver_options(p: argparse.ArgumentParser) -> None:
 def default_previous_starts(thrust_N: float, isp_s: float, loi: int) -> tuple:
     """Ignition offsets of the LOIs before ``loi``: the paper's best for its engines, else
     the free-ignition optima ("free")."""
-    from .tables import default_previous
+    from lunarcap.runs.sweeps import default_previous
 
     return default_previous(thrust_N, loi, isp_s)
 
 
 def _case_kwargs(args) -> dict:
-    from .scenario import ArrivalSpec
+    from lunarcap.mission.arrival import ArrivalSpec
 
     kw = {"dynamics": args.dynamics,
           "arrival": ArrivalSpec(mass_kg=args.mass, hemisphere=args.hemisphere),
@@ -126,7 +126,7 @@ def _case_kwargs(args) -> dict:
 
 
 def _solver(args):
-    from .sequence import solve_case
+    from lunarcap.runs.chain import solve_case
 
     return solve_case.uncached if args.no_cache else solve_case
 
@@ -146,7 +146,7 @@ def _print_summary_line(s: dict) -> None:
 
 def cmd_solve(args) -> int:
     """Solve one LOI (the earlier LOIs of the chain are solved or fetched first)."""
-    from .scenario import check_loi
+    from lunarcap.mission.arrival import check_loi
 
     loi = check_loi(args.loi)
     prev = args.previous_starts
@@ -200,7 +200,7 @@ def cmd_sequence(args) -> int:
 
 def cmd_bench(args) -> int:
     """Solve and verify all 37 paper cases uncached; print timings and residuals."""
-    from .bench import run
+    from lunarcap.runs.bench import run
 
     rows = run(args.dynamics)
     return 0 if all(r["verification_passed"] for r in rows) else 3
@@ -208,7 +208,7 @@ def cmd_bench(args) -> int:
 
 def cmd_study(args) -> int:
     """Engine trade study on Dask: loss against thrust-to-weight, free ignition, per Isp."""
-    from .study import StudySpec, format_summary, run_study
+    from lunarcap.runs.study import StudySpec, format_summary, run_study
 
     spec = StudySpec(args.thrust_min, args.thrust_max, args.points, args.isp, args.dynamics)
     try:

@@ -1,18 +1,17 @@
-"""Tests of lunarcap.audit: each consistency finding recomputes the right number.
+"""Tests of lunarcap.paper.audit: each consistency finding recomputes the right number.
 
 Expected values are recomputed here by hand from Song 2011's printed numbers
 (J. Astron. Space Sci. 28(3) 203-216), with g0 = 9.80665 m/s^2, so that a wrong formula
-in lunarcap.audit, or a wrong transcription in lunarcap.paper, makes a test fail.
+in lunarcap.paper.audit, or a wrong transcription in lunarcap.paper.printed, makes a test fail.
 """
 
 import math
 
 import pytest
 
-from lunarcap import audit as A
-from lunarcap import constants as C
-from lunarcap import paper as P
-
+from lunarcap.paper import audit as A
+from lunarcap.physics import constants as C
+from lunarcap.paper import printed as P
 G0 = 9.80665
 IMP = (353.272, 254.034, 245.363)
 

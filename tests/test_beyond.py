@@ -2,17 +2,17 @@
 
 Real IPOPT solves (marked slow; they still run in `make test`), in two-body dynamics to
 keep them fast, for the 450 N / 300 s engine. The LOI-1 solves are built directly with
-:func:`lunarcap.solve.solve_loi` (not the disk cache), so they test the optimiser and not
+:func:`lunarcap.optim.solve.solve_loi` (not the disk cache), so they test the optimiser and not
 a stored result. The book pages behind these checks are notebooks/free_ignition.ipynb,
 steering_laws.ipynb and joint_capture.ipynb.
 """
 
 import pytest
 
-from lunarcap.chain import solve_chain
-from lunarcap.scenario import PAPER_STARTS_MIN
-from lunarcap.sequence import loi_problem, mission_for
-from lunarcap.solve import solve_loi
+from lunarcap.runs.joint import solve_chain
+from lunarcap.paper.printed import PAPER_STARTS_MIN
+from lunarcap.runs.chain import loi_problem, mission_for
+from lunarcap.optim.solve import solve_loi
 
 pytestmark = pytest.mark.slow
 

@@ -15,8 +15,10 @@ import nbformat
 import pytest
 import yaml
 
-from lunarcap import book, cache, paths
-from lunarcap.book import ManifestError, validate_manifest
+from lunarcap.report import build as book
+from lunarcap.repro import cache
+from lunarcap.repro import paths
+from lunarcap.report.build import ManifestError, validate_manifest
 
 
 def _notebook(path: Path, params: str = "x = 1\nquick = False\noutput_name = 'n'",
@@ -184,7 +186,7 @@ def test_cli_exit_status_2_on_invalid_manifest(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(paths, "MANIFEST", man)
     assert book.main(["check"]) == 2
     err = capsys.readouterr().err
-    assert err.startswith("lunarcap.book: error: invalid manifest")
+    assert err.startswith("lunarcap.report.build: error: invalid manifest")
     assert "absent.ipynb" in err
 
 
@@ -296,7 +298,7 @@ def test_failed_entry_stops_the_run_and_keeps_other_outputs(tmp_path):
     (root / "book" / "intro.md").write_text("# Intro\n")
     _notebook(nbdir / "good.ipynb", body=textwrap.dedent("""
         import pandas as pd
-        from lunarcap import paths
+        from lunarcap.repro import paths
         paths.write_csv(pd.DataFrame({"x": [x]}), output_name)
         """))
     _notebook(nbdir / "bad.ipynb", body="1 / 0")
@@ -309,7 +311,7 @@ def test_failed_entry_stops_the_run_and_keeps_other_outputs(tmp_path):
         "format": "jb-book", "root": "intro",
         "chapters": [{"file": f"generated/{n}"} for n in ("good", "bad", "after")]}))
     env = dict(os.environ, LUNARCAP_ROOT=str(root), LUNARCAP_NO_CACHE="1")
-    cmd = [sys.executable, "-m", "lunarcap.book", "build", "--no-build", "--jobs", "2"]
+    cmd = [sys.executable, "-m", "lunarcap.report.build", "build", "--no-build", "--jobs", "2"]
     run = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300)
     out = run.stdout + run.stderr
     assert run.returncode == 1, out

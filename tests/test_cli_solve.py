@@ -54,7 +54,7 @@ def test_failed_solve_exits_3_with_status(monkeypatch, capsys):
     def boom(*a, **k):
         raise SolveError("LOI 1 failed on every mesh: 8x16 LGR-5: IPOPT Infeasible_Problem_Detected",
                          status="Infeasible_Problem_Detected")
-    import lunarcap.sequence as seq
+    import lunarcap.runs.chain as seq
     monkeypatch.setattr(seq.solve_case, "uncached", boom, raising=False)
     monkeypatch.setattr(seq, "solve_case", boom)
     rc = cli.main(["solve", "--loi", "1", "--start", "-10", "--quiet"])

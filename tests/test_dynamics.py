@@ -1,4 +1,4 @@
-"""Tests of lunarcap.dynamics: Eqs. (2)-(8) in MEE against independent formulations.
+"""Tests of lunarcap.physics.dynamics: Eqs. (2)-(8) in MEE against independent formulations.
 
 * Eq. (7) J2 in RTN against the finite-difference gradient of the J2 potential.
 * The MEE rates (Gauss form, Eqs. 2, A2-A4) against the Cartesian equations of motion,
@@ -10,10 +10,11 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from lunarcap import constants as C
-from lunarcap import dynamics as dyn
-from lunarcap import elements as el
-from lunarcap import frames, scenario
+from lunarcap.physics import constants as C
+from lunarcap.physics import dynamics as dyn
+from lunarcap.physics import elements as el
+from lunarcap.physics import frames
+from lunarcap.mission import arrival as scenario
 from lunarcap.errors import InputError
 
 MU, RM, J2 = C.MU_MOON, C.R_MOON, C.J2_MOON

@@ -1,4 +1,4 @@
-"""Tests of lunarcap.elements: classical <-> MEE <-> Cartesian conversions and Eq. (18).
+"""Tests of lunarcap.physics.elements: classical <-> MEE <-> Cartesian conversions and Eq. (18).
 
 Round trips run over seeded random elements covering elliptic and hyperbolic, circular
 (e = 0, e = 1e-9), equatorial (i = 0), polar (i = 90 deg) and highly inclined orbits,
@@ -9,8 +9,8 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from lunarcap import elements as el
-from lunarcap.constants import MU_MOON, R_MOON
+from lunarcap.physics import elements as el
+from lunarcap.physics.constants import MU_MOON, R_MOON
 from lunarcap.errors import InputError
 
 MU = MU_MOON

@@ -1,4 +1,4 @@
-"""Tests of lunarcap.ephemeris against raw DE405 read directly with jplephem.
+"""Tests of lunarcap.physics.ephemeris against raw DE405 read directly with jplephem.
 
 The reference values are computed here with ``jplephem.ephem.Ephemeris(de405)`` and the
 two-part Julian date, independently of lunarcap's wrapper; the only lunarcap piece
@@ -11,11 +11,12 @@ import numpy as np
 import pytest
 from jplephem.ephem import Ephemeris as RawEphemeris
 
-from lunarcap import ephemeris, scenario
-from lunarcap.constants import ARRIVAL_EPOCH_TDB
-from lunarcap.epochs import seconds_from_calendar
+from lunarcap.physics import ephemeris
+from lunarcap.mission import arrival as scenario
+from lunarcap.physics.constants import ARRIVAL_EPOCH_TDB
+from lunarcap.physics.epochs import seconds_from_calendar
 from lunarcap.errors import EphemerisRangeError, InputError
-from lunarcap.frames import C_ICRF_TO_MME
+from lunarcap.physics.frames import C_ICRF_TO_MME
 
 RAW = RawEphemeris(de405)
 T_ARRIVAL = seconds_from_calendar(ARRIVAL_EPOCH_TDB)

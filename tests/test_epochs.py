@@ -1,4 +1,4 @@
-"""Tests of lunarcap.epochs: TDB calendar strings, Julian dates, seconds past J2000.
+"""Tests of lunarcap.physics.epochs: TDB calendar strings, Julian dates, seconds past J2000.
 
 The independent reference is Python's :mod:`datetime`, which implements the same
 proleptic Gregorian calendar with its own (C) arithmetic.
@@ -9,8 +9,8 @@ from datetime import datetime, timedelta
 import numpy as np
 import pytest
 
-from lunarcap import epochs
-from lunarcap.constants import ARRIVAL_EPOCH_TDB
+from lunarcap.physics import epochs
+from lunarcap.physics.constants import ARRIVAL_EPOCH_TDB
 from lunarcap.errors import InputError
 
 J2000 = datetime(2000, 1, 1, 12, 0, 0)

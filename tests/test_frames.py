@@ -1,10 +1,9 @@
-"""Tests of lunarcap.frames: the ICRF -> M-MME2000 rotation and the RTN basis (Eq. A5)."""
+"""Tests of lunarcap.physics.frames: the ICRF -> M-MME2000 rotation and the RTN basis (Eq. A5)."""
 
 import numpy as np
 import pytest
 
-from lunarcap import frames
-
+from lunarcap.physics import frames
 # Double-precision round-off on unit vectors built from a few trigonometric calls and
 # cross products is a few 1e-16; 1e-14 leaves a margin and still catches any real error.
 TOL = 1e-14

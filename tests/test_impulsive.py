@@ -1,4 +1,4 @@
-"""Tests of lunarcap.impulsive: the two-body impulsive capture chain and Eq. (19).
+"""Tests of lunarcap.mission.impulsive: the two-body impulsive capture chain and Eq. (19).
 
 Paper values are from Song 2011, Tables 1-5 (impulsive delta-V 353.272, 254.034,
 245.363 m/s) and Sec. 3.2.1 (Eq. 19 estimates 18.82, 11.50, 9.76 min for 150 N / 200 s).
@@ -7,8 +7,9 @@ Paper values are from Song 2011, Tables 1-5 (impulsive delta-V 353.272, 254.034,
 import numpy as np
 import pytest
 
-from lunarcap import constants as C
-from lunarcap import impulsive as imp
+from lunarcap.physics import constants as C
+from lunarcap.mission import impulsive as imp
+from lunarcap.physics import rocket
 from lunarcap.errors import InputError
 
 G0 = 9.80665  # m/s^2, exact by definition (CGPM 1901)
@@ -58,7 +59,7 @@ def test_rocket_equation_closed_form(burns):
         assert G0 * 200.0 * np.log(b.m_before_kg / b.m_after_kg) == pytest.approx(
             b.delta_v_mps, rel=1e-12)
         assert b.fuel_kg == pytest.approx(b.m_before_kg - b.m_after_kg, rel=1e-14)
-    assert imp.rocket_mass_after(1000.0, G0 * 300.0, 300.0) == pytest.approx(1000.0 / np.e,
+    assert rocket.rocket_mass_after(1000.0, G0 * 300.0, 300.0) == pytest.approx(1000.0 / np.e,
                                                                              rel=1e-15)
 
 
@@ -81,12 +82,12 @@ def test_eq19_with_paper_finite_masses():
 
 def test_eq19_closed_form_and_small_burn_limit():
     m0, dv, T, isp = 500.0, 300.0, 300.0, 250.0
-    t1 = imp.burn_duration_estimate_s(m0, dv, T, isp)
+    t1 = rocket.burn_duration_estimate_s(m0, dv, T, isp)
     # burning for t1 at the flow T/(g0 Isp) consumes exactly the rocket-equation propellant
-    assert t1 * T / (G0 * isp) == pytest.approx(m0 - imp.rocket_mass_after(m0, dv, isp), rel=1e-14)
+    assert t1 * T / (G0 * isp) == pytest.approx(m0 - rocket.rocket_mass_after(m0, dv, isp), rel=1e-14)
     # small delta-V: impulse = momentum, t1 -> m0 dv / T (relative error dv / (2 g0 Isp))
     small = 0.5
-    t_small = imp.burn_duration_estimate_s(m0, small, T, isp)
+    t_small = rocket.burn_duration_estimate_s(m0, small, T, isp)
     assert t_small == pytest.approx(m0 * small / T, rel=small / (G0 * isp))
 
 
@@ -107,7 +108,7 @@ def test_non_positive_engine_or_mass_is_an_input_error(thrust, isp, mass):
     with pytest.raises(InputError, match="must be a positive number"):
         imp.impulsive_sequence(thrust, isp, mass)
     with pytest.raises(InputError):
-        imp.burn_duration_estimate_s(mass, 100.0, thrust, isp)
+        rocket.burn_duration_estimate_s(mass, 100.0, thrust, isp)
 
 
 def test_perilune_below_surface_is_an_input_error():

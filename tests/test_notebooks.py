@@ -1,6 +1,6 @@
 """Notebooks are tested by running them: a quick build of the whole book, then checks.
 
-The build (``python -m lunarcap.book build --quick``) writes into the real, git-ignored
+The build (``python -m lunarcap.report.build build --quick``) writes into the real, git-ignored
 ``book/generated`` and ``book/_build``. The source-notebook lint tests at the end are
 fast and not marked.
 """
@@ -15,14 +15,14 @@ from urllib.parse import unquote, urlparse
 import nbformat
 import pytest
 
-from lunarcap import book, paths
-
+from lunarcap.report import build as book
+from lunarcap.repro import paths
 ENTRIES = book.load_manifest()
 
 
 @pytest.fixture(scope="module")
 def quick_build():
-    run = subprocess.run([sys.executable, "-m", "lunarcap.book", "build", "--quick"],
+    run = subprocess.run([sys.executable, "-m", "lunarcap.report.build", "build", "--quick"],
                          cwd=paths.ROOT, capture_output=True, text=True, timeout=1800)
     assert run.returncode == 0, run.stdout + run.stderr
     return run.stdout
@@ -124,7 +124,7 @@ def test_pages_are_self_contained(quick_build):
 
 @pytest.mark.notebooks
 def test_rerun_with_nothing_changed_executes_nothing(quick_build):
-    run = subprocess.run([sys.executable, "-m", "lunarcap.book", "build", "--quick",
+    run = subprocess.run([sys.executable, "-m", "lunarcap.report.build", "build", "--quick",
                           "--no-build"], cwd=paths.ROOT, capture_output=True, text=True,
                          timeout=600)
     assert run.returncode == 0, run.stdout + run.stderr

@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 
 from lunarcap.errors import SolveError
-from lunarcap.impulsive import v_inf_from_loi1
-from lunarcap.ocp import Mesh, make_guess, solve_nlp
-from lunarcap.sequence import loi_problem, mission_for, solve_impulsive_case
-from lunarcap.solve import solve_loi
-from lunarcap.verify import mesh_convergence, verify
+from lunarcap.mission.impulsive import v_inf_from_loi1
+from lunarcap.optim.nlp import Mesh, make_guess, solve_nlp
+from lunarcap.runs.chain import loi_problem, mission_for, solve_impulsive_case
+from lunarcap.optim.solve import solve_loi
+from lunarcap.optim.verify import mesh_convergence, verify
 
 pytestmark = pytest.mark.slow
 
@@ -131,8 +131,8 @@ def test_circular_target_loi3(mission):
 
 def _loi3_start_state(mission):
     """A 3.525 h ellipse's perilune state in the plane of the arrival hyperbola."""
-    from lunarcap import constants as C
-    from lunarcap.elements import mee_from_rv, semi_major_axis_from_period
+    from lunarcap.physics import constants as C
+    from lunarcap.physics.elements import mee_from_rv, semi_major_axis_from_period
     arr = mission.arrival
     rp = np.linalg.norm(arr.r_km)
     a = semi_major_axis_from_period(3.525 * 3600, C.MU_MOON)

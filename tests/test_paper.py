@@ -1,4 +1,4 @@
-"""Tests of lunarcap.paper: Song 2011's printed numbers, complete and self-consistent in shape.
+"""Tests of lunarcap.paper.printed: Song 2011's printed numbers, complete and self-consistent in shape.
 
 Song, Park, Kim, Lee & Sim (2011), J. Astron. Space Sci. 28(3) 203-216. Tables 1-5 and
 B1 are transcribed separately, so agreement between them is a real check of the
@@ -12,8 +12,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from lunarcap import constants as C
-from lunarcap import paper as P
+from lunarcap.physics import constants as C
+from lunarcap.paper import printed as P
 from lunarcap.errors import InputError
 
 PAPER_TXT = Path("/work/shared/paper/song2011_lunar_capture_finite_thrust.txt")
@@ -84,7 +84,7 @@ def test_burn_duration_totals_are_table_b1_sums():
 
 
 def test_start_offsets_agree_with_scenario_module():
-    from lunarcap.scenario import PAPER_BEST_STARTS_MIN, PAPER_STARTS_MIN
+    from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_STARTS_MIN
 
     for (t, n) in CASES:
         assert sorted(P.paper_table(t, n).start_min.astype(float)) == sorted(

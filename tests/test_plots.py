@@ -6,10 +6,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from lunarcap import constants as C
-from lunarcap import paths, plots
-
-
+from lunarcap.physics import constants as C
+from lunarcap.repro import paths
+from lunarcap.report import figures as plots
 def _unit(rng, n):
     u = rng.normal(size=(3, n))
     return u / np.linalg.norm(u, axis=0)
@@ -50,9 +49,9 @@ def test_thrust_direction_inverts_eq14():
 
 
 def test_eq14_agrees_with_the_solution_module():
-    sol = pytest.importorskip("lunarcap.solution")
+    sol = pytest.importorskip("lunarcap.optim.solution")
     if not hasattr(sol, "thrust_angles_deg"):
-        pytest.skip("lunarcap.solution has no thrust_angles_deg")
+        pytest.skip("lunarcap.optim.solution has no thrust_angles_deg")
     u = _unit(np.random.default_rng(3), 100)
     for ours, theirs in zip(plots.thrust_angles_deg(u), sol.thrust_angles_deg(u)):
         np.testing.assert_allclose(ours, theirs, atol=1e-12)
@@ -170,8 +169,7 @@ def test_orbit_plane_basis_is_right_handed_and_follows_the_pole():
 @pytest.fixture(scope="module")
 def capture():
     """The paper's 150 N chain (-10, -6, -5 min): solved once, then from the disk cache."""
-    from lunarcap import sequence
-
+    from lunarcap.runs import chain as sequence
     sols = sequence.solve_sequence(150.0, 200.0, (-10.0, -6.0, -5.0))
     mission = sequence.mission_for()
     return sols, mission, plots.capture_geometry(sols, mission.arrival)
@@ -275,8 +273,7 @@ def test_capture_figures_draw(capture):
 
 # ------------------------------------------------------------------ reproduction report
 def _fake_sweep(thrust, loi, isp):
-    from lunarcap import paper
-
+    from lunarcap.paper import printed as paper
     p = paper.paper_table(thrust, loi)
     df = pd.DataFrame({
         "start_min": p.start_min.astype(float), "free_start": False,
@@ -290,8 +287,7 @@ def _fake_sweep(thrust, loi, isp):
 
 
 def test_paper_tables_long_has_every_printed_number():
-    from lunarcap import paper
-
+    from lunarcap.paper import printed as paper
     sweeps = {(150.0, n): _fake_sweep(150, n, 200.0) for n in (1, 2, 3)}
     t = plots.paper_tables_long(sweeps, impulsive_dv_mps=[353.272, 254.0, 245.5])
     n_rows = sum(len(paper.paper_table(150, n)) for n in (1, 2, 3))
@@ -308,8 +304,7 @@ def test_paper_tables_long_has_every_printed_number():
 
 
 def _fake_chain(thrust, isp):
-    from lunarcap import paper
-
+    from lunarcap.paper import printed as paper
     out, m = [], C.ARRIVAL_MASS_KG
     for n in (1, 2, 3):
         b = paper.paper_best(thrust, n)
@@ -325,8 +320,7 @@ def _fake_chain(thrust, isp):
 
 
 def test_quote_equivalents_and_comparison():
-    from lunarcap import paper
-
+    from lunarcap.paper import printed as paper
     chains = {t: _fake_chain(t, isp) for t, isp in C.PAPER_ENGINES}
     ours = plots.quote_equivalents(
         chains, impulsive_final_mass_kg={t: 340.0 for t, _ in C.PAPER_ENGINES},
@@ -358,7 +352,7 @@ def test_quote_equivalents_and_comparison():
 
 
 def test_epochs_comparison():
-    from lunarcap.epochs import seconds_from_calendar
+    from lunarcap.physics.epochs import seconds_from_calendar
 
     t0 = seconds_from_calendar(C.ARRIVAL_EPOCH_TDB)
     ep = np.cumsum([t0, *C.CAPTURE_PERIODS_S])
@@ -371,8 +365,7 @@ def test_epochs_comparison():
 def test_short_where_and_check_titles():
     assert plots.short_where("Sec. 3.2.1, para 2 ('As shown in Table 1...')") == \
         "Sec. 3.2.1, para 2"
-    from lunarcap import audit
-
+    from lunarcap.paper import audit
     assert set(audit.findings_table().check) <= set(plots.AUDIT_CHECK_TITLES)
 
 
@@ -393,8 +386,7 @@ def test_quotes_display_is_compact_and_keeps_every_row():
 
 
 def test_findings_display():
-    from lunarcap import audit
-
+    from lunarcap.paper import audit
     t = audit.findings_table(only_inconsistent=True)
     d = plots.findings_display(t)
     assert len(d) == len(t) and list(d.columns) == ["finding", "printed", "computed",

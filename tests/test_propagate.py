@@ -1,4 +1,4 @@
-"""Tests of lunarcap.propagate: MEE propagation against an independent Cartesian one and
+"""Tests of lunarcap.physics.propagate: MEE propagation against an independent Cartesian one and
 against Kepler's equation.
 """
 
@@ -7,11 +7,11 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from lunarcap import constants as C
-from lunarcap import dynamics as dyn
-from lunarcap import elements as el
-from lunarcap import propagate as prop
-from lunarcap import scenario
+from lunarcap.physics import constants as C
+from lunarcap.physics import dynamics as dyn
+from lunarcap.physics import elements as el
+from lunarcap.physics import propagate as prop
+from lunarcap.mission import arrival as scenario
 from lunarcap.errors import InputError
 
 MU = C.MU_MOON

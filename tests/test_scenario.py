@@ -1,4 +1,4 @@
-"""Tests of lunarcap.scenario: the reconstructed arrival hyperbola and the capture chain.
+"""Tests of lunarcap.mission.arrival: the reconstructed arrival hyperbola and the capture chain.
 
 Every property is computed here from the Cartesian state with elementary vector algebra;
 the Moon's velocity comes straight from jplephem (DE405), rotated with frames.C_ICRF_TO_MME.
@@ -11,13 +11,13 @@ import numpy as np
 import pytest
 from jplephem.ephem import Ephemeris as RawEphemeris
 
-from lunarcap import constants as C
-from lunarcap import elements as el
-from lunarcap import impulsive as imp
-from lunarcap import scenario
-from lunarcap.epochs import seconds_from_calendar
+from lunarcap.physics import constants as C
+from lunarcap.physics import elements as el
+from lunarcap.mission import impulsive as imp
+from lunarcap.mission import arrival as scenario
+from lunarcap.physics.epochs import seconds_from_calendar
 from lunarcap.errors import EphemerisRangeError, InputError
-from lunarcap.frames import C_ICRF_TO_MME
+from lunarcap.physics.frames import C_ICRF_TO_MME
 
 MU = C.MU_MOON
 RP = C.R_MOON + 100.0  # 1838.2 km

@@ -15,11 +15,11 @@ import pandas as pd
 import pytest
 from scipy.integrate import solve_ivp
 
-from lunarcap import constants as C
-from lunarcap import finite_burn_theory as fbt
-from lunarcap import study
+from lunarcap.physics import constants as C
+from lunarcap.physics import losses as fbt
+from lunarcap.runs import study
 from lunarcap.errors import InputError, SolveError
-from lunarcap.impulsive import burn_duration_estimate_s
+from lunarcap.physics.rocket import burn_duration_estimate_s
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -39,7 +39,7 @@ def _fake_summary(thrust_N, isp_s, loi):
 
 
 def study_imp(loi):
-    from lunarcap.paper import PAPER_IMPULSIVE_DV_MPS
+    from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
 
     return PAPER_IMPULSIVE_DV_MPS[loi - 1]
 
@@ -262,9 +262,9 @@ def test_overlapping_grid_reuses_shared_engines(tmp_path):
 def test_rows_of_another_code_version_are_not_reused(tmp_path, monkeypatch):
     out = tmp_path / "t.csv"
     _run(SMALL, out)
-    import lunarcap.cache
+    import lunarcap.repro.cache
 
-    monkeypatch.setattr(lunarcap.cache, "code_version", lambda *a, **k: "0123456789abcdef")
+    monkeypatch.setattr(lunarcap.repro.cache, "code_version", lambda *a, **k: "0123456789abcdef")
     CALLS.clear()
     res = _run(SMALL, out)
     assert len(CALLS) == 6 and set(res.table.code_version) == {"0123456789abcdef"}
@@ -290,7 +290,7 @@ def test_failed_task_is_recorded_and_not_retried_unless_asked(tmp_path):
 
 
 def test_solve_error_in_the_chain_is_recorded_with_ipopt_status(monkeypatch):
-    import lunarcap.sequence as sequence
+    import lunarcap.runs.chain as sequence
 
     class FakeSolution:
         def __init__(self, s):
@@ -339,7 +339,7 @@ def test_robbins_formula_value_and_burn_time_squared_scaling():
 
 
 def test_analytic_loss_vanishes_as_thrust_grows_like_one_over_thrust_squared():
-    loss = [sum(r["loss_mps"] for r in fbt.capture_chain_estimate(t, 250.0))
+    loss = [sum(r["loss_mps"] for r in study.capture_chain_estimate(t, 250.0))
             for t in (1e2, 1e3, 1e4, 1e5)]
     assert all(a > b for a, b in zip(loss, loss[1:]))
     assert loss[-1] < 1e-4
@@ -348,7 +348,7 @@ def test_analytic_loss_vanishes_as_thrust_grows_like_one_over_thrust_squared():
 
 
 def test_chain_estimate_uses_eq19_with_the_impulsive_chain_masses():
-    est = fbt.capture_chain_estimate(150.0, 200.0)
+    est = study.capture_chain_estimate(150.0, 200.0)
     m = C.ARRIVAL_MASS_KG
     for e in est:
         assert e["m_before_kg"] == pytest.approx(m)
@@ -410,7 +410,7 @@ def test_paper_points_are_table_b1():
 def test_analytic_curves_match_the_chain_estimate():
     df = study.analytic_curves([150.0, 300.0], [200.0])
     assert len(df) == 8 and set(df.part) == set(study.PARTS)
-    est = fbt.capture_chain_estimate(150.0, 200.0)
+    est = study.capture_chain_estimate(150.0, 200.0)
     row = df[(df.thrust_N == 150.0) & (df.part == "sequence")].iloc[0]
     assert row.loss_mps == pytest.approx(sum(e["loss_mps"] for e in est))
 

@@ -1,4 +1,4 @@
-"""The tables beside the paper (lunarcap.tables): their data, not their looks.
+"""The tables beside the paper (lunarcap.runs.sweeps): their data, not their looks.
 
 The arithmetic tests build tables from the paper's own numbers and run in milliseconds.
 The tests marked ``slow`` solve a few cases in the two-body model (cached on disk after
@@ -14,10 +14,11 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from lunarcap import constants as C
-from lunarcap import paper, tables
-from lunarcap.scenario import PAPER_BEST_STARTS_MIN
-from lunarcap.sequence import PAPER_IMPULSIVE_DV_MPS
+from lunarcap.physics import constants as C
+from lunarcap.paper import printed as paper
+from lunarcap.runs import sweeps as tables
+from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN
+from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
 
 #: Unit suffixes of numeric columns, and the numeric columns that are counts or flags.
 UNIT_SUFFIX = re.compile(r"_(min|mps|kmps|percent|kg|m|deg|s|N)$")
@@ -164,7 +165,7 @@ def test_sequence_table_and_totals_of_a_chain():
 
 @pytest.mark.slow
 def test_verification_table_one_row_per_solution():
-    from lunarcap.sequence import solve_case
+    from lunarcap.runs.chain import solve_case
 
     sols = [solve_case(150.0, 200.0, 1, s, (), "two-body") for s in (-8.0, -10.0)]
     v = tables.verification_table(sols)

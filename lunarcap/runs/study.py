@@ -1,11 +1,11 @@
 """Engine trade study: finite-burn loss of the capture chain against thrust-to-weight ratio.
 
 For every engine (thrust T, specific impulse Isp) of a grid, the whole capture chain is
-solved with :func:`lunarcap.sequence.solve_case`: LOI 1, 2 and 3 each with a free
+solved with :func:`lunarcap.runs.chain.solve_case`: LOI 1, 2 and 3 each with a free
 ignition time (``start_min="free"``), each starting from the previous LOI's optimum.
 The thrusts are log-spaced (default 30 points from 50 N to 2000 N), the Isp a short list
 (default 200, 250, 300 s). Beside each optimum the table gives the Eq. (19) burn
-duration and Robbins' analytic loss estimate (:mod:`lunarcap.finite_burn_theory`).
+duration and Robbins' analytic loss estimate (:mod:`lunarcap.physics.losses`).
 
 Definitions
 -----------
@@ -23,7 +23,7 @@ Loss
     254.034, 245.363 m/s; Table B1), in m/s and in % of the impulsive delta-V, exactly as
     in the paper's Tables 1-5. For the whole sequence the three are summed (% of
     852.669 m/s). Our full-dynamics impulsive limit differs from the paper's values by a
-    few tenths of m/s (:func:`lunarcap.sequence.solve_impulsive_case`), so a very strong
+    few tenths of m/s (:func:`lunarcap.runs.chain.solve_impulsive_case`), so a very strong
     engine's loss is within a few tenths of m/s of zero, of either sign.
 
 Execution
@@ -32,13 +32,13 @@ One Dask task per engine computes its three-LOI chain (the task imports lunarcap
 worker). By default a :class:`dask.distributed.LocalCluster` of ``workers`` processes
 with one thread each is started; ``scheduler="tcp://host:port"`` uses an existing
 cluster instead (its workers need lunarcap installed). Solutions are also cached on disk
-by joblib inside the workers (:mod:`lunarcap.cache`), so a later study or notebook that
+by joblib inside the workers (:mod:`lunarcap.repro.cache`), so a later study or notebook that
 needs the same engine reuses them.
 
 Results go to one CSV table (default :func:`default_table_path`, below the cache
 directory), four rows per engine (``part`` = LOI1, LOI2, LOI3, sequence), appended as
 each task completes: the table is rewritten to a temporary file and moved into place,
-so it is never half-written. Rows carry :func:`lunarcap.cache.code_version`; a rerun
+so it is never half-written. Rows carry :func:`lunarcap.repro.cache.code_version`; a rerun
 skips every engine (thrust, Isp, dynamics) already present for the current code
 version, so an interrupted study resumes where it stopped. A failed engine is recorded
 (``status`` "failed" with IPOPT's status, or "task error"), not dropped and not retried
@@ -72,12 +72,15 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from . import constants as C
-from . import paths
-from .errors import InputError
+from lunarcap.physics import constants as C
+from lunarcap.repro import paths
+from lunarcap.errors import InputError
+from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
+from lunarcap.physics.losses import PERILUNE_RADIUS_KM, robbins_loss_mps
+from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine, rocket_mass_after
 
-#: Lunar surface gravity mu / R^2, m/s^2 (from :data:`lunarcap.constants.MU_MOON` and
-#: :data:`lunarcap.constants.R_MOON`, Song 2011's values).
+#: Lunar surface gravity mu / R^2, m/s^2 (from :data:`lunarcap.physics.constants.MU_MOON` and
+#: :data:`lunarcap.physics.constants.R_MOON`, Song 2011's values).
 G_MOON_MPS2 = C.MU_MOON / C.R_MOON ** 2 * 1e3
 
 #: Default grid: thrust range (N), number of log-spaced thrusts, specific impulses (s).
@@ -271,7 +274,7 @@ def check_workers(workers) -> int:
 
 
 def default_table_path() -> Path:
-    """``<cache>/study/engine_trade.csv`` (below :data:`lunarcap.paths.CACHE`)."""
+    """``<cache>/study/engine_trade.csv`` (below :data:`lunarcap.repro.paths.CACHE`)."""
     return paths.CACHE / "study" / "engine_trade.csv"
 
 
@@ -295,7 +298,7 @@ def engine_rows(thrust_N: float, isp_s: float, dynamics: str, summaries: list,
     ----------
     thrust_N, isp_s, dynamics : the engine and the dynamics
     summaries : list of dict
-        :meth:`lunarcap.solution.Solution.summary` of the LOIs solved, in chain order
+        :meth:`lunarcap.optim.solution.Solution.summary` of the LOIs solved, in chain order
         (fewer than three if one failed).
     failure : dict, optional
         ``{"loi": n or None, "status": "failed" | "error" | "task error",
@@ -307,8 +310,6 @@ def engine_rows(thrust_N: float, isp_s: float, dynamics: str, summaries: list,
     -------
     list of dict, keys :data:`COLUMNS`
     """
-    from .finite_burn_theory import capture_chain_estimate
-    from .paper import PAPER_IMPULSIVE_DV_MPS
 
     base = {"thrust_N": float(thrust_N), "isp_s": float(isp_s), "dynamics": dynamics,
             "thrust_to_weight": thrust_to_weight(thrust_N),
@@ -378,8 +379,8 @@ def solve_engine(thrust_N: float, isp_s: float, dynamics: str = "full") -> list[
     chain and is recorded (status "failed" with IPOPT's status); any other exception is
     recorded as "error". Never raises for a solver failure.
     """
-    import lunarcap.sequence as sequence
-    from lunarcap.cache import code_version
+    import lunarcap.runs.chain as sequence
+    from lunarcap.repro.cache import code_version
     from lunarcap.errors import SolveError
 
     t0 = time.perf_counter()
@@ -508,10 +509,10 @@ def select(table: pd.DataFrame, spec: StudySpec, code_version: str | None = None
            ) -> pd.DataFrame:
     """Rows of ``table`` on the grid of ``spec`` (latest per engine and part), sorted.
 
-    ``code_version`` None: the current :func:`lunarcap.cache.code_version`.
+    ``code_version`` None: the current :func:`lunarcap.repro.cache.code_version`.
     """
     if code_version is None:
-        from .cache import code_version as _cv
+        from lunarcap.repro.cache import code_version as _cv
         code_version = _cv()
     wanted = {_key(t, i, spec.dynamics) for t, i in spec.engines}
     t = latest_rows(table[table.code_version.astype(str) == code_version])
@@ -602,8 +603,7 @@ def _loadavg() -> float | None:
 
 
 def _cache_description() -> str:
-    from . import cache
-
+    from lunarcap.repro import cache
     loc = cache.memory.location
     return "disabled (LUNARCAP_NO_CACHE)" if loc is None else f"joblib at {loc}"
 
@@ -672,7 +672,7 @@ def run_study(spec: StudySpec | None = None, out: str | os.PathLike | None = Non
         Bad parameters, an unusable table path, a table in use (after ``lock_wait_s``),
         or an unreachable scheduler; always before any engine is solved.
     """
-    from .cache import code_version
+    from lunarcap.repro.cache import code_version
 
     t0 = time.perf_counter()
     spec = spec if spec is not None else StudySpec()
@@ -830,7 +830,7 @@ def paper_points() -> pd.DataFrame:
     loss_percent (per LOI the percentage as printed in Table B1; for the sequence the sum of
     the losses in % of the summed impulsive delta-V).
     """
-    from .paper import paper_table_b1
+    from lunarcap.paper.printed import paper_table_b1
 
     b1 = paper_table_b1()
     rows = []
@@ -854,9 +854,8 @@ def analytic_curves(thrusts_N, isp_s) -> pd.DataFrame:
     """Robbins' estimate and the Eq. (19) duration on a (dense) thrust grid, per Isp.
 
     Columns: thrust_N, isp_s, thrust_to_weight, part, eq19_duration_min, loss_mps,
-    loss_percent (closed form, :func:`lunarcap.finite_burn_theory.capture_chain_estimate`).
+    loss_percent (closed form, :func:`lunarcap.physics.losses.capture_chain_estimate`).
     """
-    from .finite_burn_theory import capture_chain_estimate
 
     rows = []
     for isp in parse_isp_list(list(isp_s)):
@@ -874,3 +873,41 @@ def analytic_curves(thrusts_N, isp_s) -> pd.DataFrame:
     df = pd.DataFrame(rows)
     df.insert(2, "thrust_to_weight", thrust_to_weight(df.thrust_N.to_numpy()))
     return df
+
+
+def capture_chain_estimate(thrust_N: float, isp_s: float, mass_kg: float = C.ARRIVAL_MASS_KG,
+                           dv_mps=PAPER_IMPULSIVE_DV_MPS, r_km: float = PERILUNE_RADIUS_KM,
+                           mu: float = C.MU_MOON) -> list[dict]:
+    """Eq. (19) durations and Robbins losses of the three LOIs of one engine.
+
+    The mass before each LOI is that of the impulsive chain (rocket equation with the
+    impulsive delta-Vs from ``mass_kg``); Eq. (19) turns it into the burn duration.
+
+    Parameters
+    ----------
+    thrust_N, isp_s : float
+        Engine, N and s.
+    mass_kg : float
+        Mass at the first perilune, kg.
+    dv_mps : sequence of three floats
+        Impulsive delta-Vs of LOI 1, 2, 3, m/s (default: the paper's, Table B1).
+    r_km, mu : burn radius (km) and gravitational parameter (km^3/s^2).
+
+    Returns
+    -------
+    list of dict
+        One per LOI: ``loi``, ``impulsive_delta_v_mps``, ``m_before_kg``,
+        ``eq19_duration_min``, ``loss_mps``, ``loss_percent``.
+    """
+    check_engine(thrust_N, isp_s, mass_kg)
+    if len(dv_mps) != 3:
+        raise InputError(f"three impulsive delta-Vs expected, got {dv_mps!r}")
+    rows, m = [], float(mass_kg)
+    for i, dv in enumerate(dv_mps):
+        tb = float(burn_duration_estimate_s(m, dv, thrust_N, isp_s))
+        loss = robbins_loss_mps(dv, tb, r_km, mu)
+        rows.append({"loi": i + 1, "impulsive_delta_v_mps": float(dv), "m_before_kg": m,
+                     "eq19_duration_min": tb / 60.0, "loss_mps": loss,
+                     "loss_percent": 100.0 * loss / dv})
+        m = float(rocket_mass_after(m, dv, isp_s))
+    return rows

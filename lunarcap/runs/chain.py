@@ -1,7 +1,7 @@
 """The paper's capture chain: LOI problems built from the scenario, solved and cached.
 
 LOI n ignites ``start`` minutes from the nominal perilune epoch of its orbit
-(:attr:`lunarcap.scenario.Mission.perilune_epochs_s`) and coasts to the next one. Its
+(:attr:`lunarcap.mission.arrival.Mission.perilune_epochs_s`) and coasts to the next one. Its
 initial state is the arrival perilune state (LOI 1) or the previous LOI's verified
 end-of-coast state (LOI 2, 3), propagated backward to the ignition epoch in the same
 dynamics (the paper's chain, Song 2011 Sec. 3.1-3.2). Mass carries through the chain.
@@ -16,15 +16,15 @@ import sys
 
 import numpy as np
 
-from .cache import cached
-from .dynamics import Model
-from .ephemeris import Ephemeris, default_ephemeris
-from .errors import InputError
-from .impulsive import burn_duration_estimate_s, check_engine
-from .ocp import LOIProblem
-from .propagate import propagate
-from .scenario import ArrivalSpec, Mission, check_loi, check_start
-from .solve import solve_loi
+from lunarcap.repro.cache import cached
+from lunarcap.physics.dynamics import Model
+from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
+from lunarcap.errors import InputError
+from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine
+from lunarcap.optim.nlp import LOIProblem
+from lunarcap.physics.propagate import propagate
+from lunarcap.mission.arrival import ArrivalSpec, Mission, check_loi, check_start
+from lunarcap.optim.solve import solve_loi
 
 #: Song 2011's impulsive delta-Vs (m/s), Table B1 (from Song et al. 2009c).
 PAPER_IMPULSIVE_DV_MPS = (353.272, 254.034, 245.363)

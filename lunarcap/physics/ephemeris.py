@@ -20,9 +20,9 @@ from functools import cached_property
 
 import numpy as np
 
-from .epochs import calendar_from_seconds, jd_split_from_seconds, seconds_from_jd
-from .errors import EphemerisRangeError, InputError
-from .frames import C_ICRF_TO_MME
+from lunarcap.physics.epochs import calendar_from_seconds, jd_split_from_seconds, seconds_from_jd
+from lunarcap.errors import EphemerisRangeError, InputError
+from lunarcap.physics.frames import C_ICRF_TO_MME
 
 __all__ = ["Ephemeris", "ChebyshevFit", "default_ephemeris", "chebyshev_eval"]
 

@@ -6,7 +6,7 @@ J. Astron. Space Sci. 28(3), 203-216, doi:10.5140/JASS.2011.28.3.203
 (hereafter "Song 2011").
 
 Nothing here is computed: the values are transcribed as printed, errors included
-(:mod:`lunarcap.audit` checks them against each other and against physics). Each
+(:mod:`lunarcap.paper.audit` checks them against each other and against physics). Each
 table names its table number; each number from the prose names its section, the
 paragraph within that section counted in reading order (paragraph breaks are inferred
 from the flattened two-column text, so the opening words of the paragraph or sentence
@@ -38,7 +38,7 @@ from decimal import Decimal
 
 import pandas as pd
 
-from .errors import InputError
+from lunarcap.errors import InputError
 
 __all__ = [
     "PAPER_IMPULSIVE_DV_MPS",
@@ -62,6 +62,23 @@ PAPER_IMPULSIVE_DV_MPS = (353.272, 254.034, 245.363)
 #: The three engines studied, thrust N -> specific impulse s (abstract; Sec. 3.1, para 2;
 #: Sec. 3.2, para 1; Table B1).
 PAPER_ENGINES = {150: 200.0, 300: 250.0, 450: 300.0}
+
+#: The paper's ignition offsets, min before perilune (Tables 1-5), by (thrust N, LOI).
+PAPER_STARTS_MIN = {
+    (150.0, 1): (0.0, -6.0, -8.0, -10.0, -12.0, -14.0),
+    (150.0, 2): (0.0, -3.0, -6.0, -9.0),
+    (150.0, 3): (0.0, -3.0, -5.0, -7.0),
+    (300.0, 1): (0.0, -2.0, -4.0, -6.0),
+    (300.0, 2): (0.0, -1.0, -3.0, -5.0),
+    (300.0, 3): (0.0, -1.0, -2.0, -3.0),
+    (450.0, 1): (0.0, -2.0, -3.0, -4.0),
+    (450.0, 2): (0.0, -2.0, -4.0),
+    (450.0, 3): (0.0, -1.0, -2.0, -3.0),
+}
+
+#: The paper's best offsets (Table B1), min, by thrust N -> (LOI1, LOI2, LOI3).
+PAPER_BEST_STARTS_MIN = {150.0: (-10.0, -6.0, -5.0), 300.0: (-4.0, -3.0, -2.0),
+                         450.0: (-3.0, -2.0, -2.0)}
 
 #: Columns of :func:`paper_table`.
 TABLE_COLUMNS = ("start_min", "burn_duration_min", "delta_v_mps", "diff_percent", "best")
@@ -661,7 +678,7 @@ def quote(name: str) -> Quote:
     try:
         return QUOTES[name]
     except KeyError:
-        raise InputError(f"no printed number called {name!r}; see lunarcap.paper.QUOTES") from None
+        raise InputError(f"no printed number called {name!r}; see lunarcap.paper.printed.QUOTES") from None
 
 
 def quotes_table() -> pd.DataFrame:

@@ -32,12 +32,12 @@ from functools import lru_cache
 import casadi as ca
 import numpy as np
 
-from . import constants as C
-from .dynamics import N_PARAM, P_THRUST, Model, rhs_function
-from .elements import rv_from_mee
-from .errors import InputError
-from .impulsive import burn_duration_estimate_s, check_engine
-from .propagate import propagate
+from lunarcap.physics import constants as C
+from lunarcap.physics.dynamics import N_PARAM, P_THRUST, Model, rhs_function
+from lunarcap.physics.elements import rv_from_mee
+from lunarcap.errors import InputError
+from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine
+from lunarcap.physics.propagate import propagate
 
 LU = C.LU_KM
 TU = float(np.sqrt(LU ** 3 / C.MU_MOON))
@@ -245,8 +245,8 @@ def steering_law_expr(steering: str, X, u_in=None):
     g sin L (the common factor sqrt(mu/p) cancels); "inertial": u = Q(h, k, L) u_in, the
     fixed inertial unit vector u_in expressed in the local RTN frame (Eq. A5).
     """
-    from ._ops import ops
-    from .dynamics import rtn_from_mee
+    from lunarcap.physics._ops import ops
+    from lunarcap.physics.dynamics import rtn_from_mee
 
     f, g, h, k, L = X[1, :], X[2, :], X[3, :], X[4, :], X[5, :]
     xp = ops(X)
@@ -698,7 +698,7 @@ def control_function(raw: RawSolution):
 
 def terminal_values(x) -> dict:
     """Perilune radius (km), inclination (deg), flight-path angle (deg), speed (km/s) of x."""
-    from .elements import eccentricity, flight_path_angle, inclination, perilune_radius
+    from lunarcap.physics.elements import eccentricity, flight_path_angle, inclination, perilune_radius
     p, f, g, h, k, L = x[:6]
     e = eccentricity(f, g)
     r, v = rv_from_mee(p, f, g, h, k, L, C.MU_MOON)

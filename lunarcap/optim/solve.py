@@ -1,6 +1,6 @@
 """Solve one LOI with automatic mesh refinement behind the verification gate.
 
-:func:`solve_loi` tries the meshes of :data:`lunarcap.ocp.DEFAULT_MESHES` in turn:
+:func:`solve_loi` tries the meshes of :data:`lunarcap.optim.nlp.DEFAULT_MESHES` in turn:
 build (cached per mesh shape), guess, IPOPT, independent re-propagation. The first
 solution that converges *and* passes verification is returned; otherwise a
 :class:`~lunarcap.errors.SolveError` carries IPOPT's status and the residuals of every
@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import time
 
-from .errors import SolveError
-from .ocp import DEFAULT_MESHES, LOIProblem, make_guess, solve_nlp
-from .solution import Solution
-from .verify import verify
+from lunarcap.errors import SolveError
+from lunarcap.optim.nlp import DEFAULT_MESHES, LOIProblem, make_guess, solve_nlp
+from lunarcap.optim.solution import Solution
+from lunarcap.optim.verify import verify
 
 
 def solve_loi(prob: LOIProblem, meshes=DEFAULT_MESHES, guess=None, progress=None) -> Solution:
@@ -26,7 +26,7 @@ def solve_loi(prob: LOIProblem, meshes=DEFAULT_MESHES, guess=None, progress=None
     meshes : sequence of Mesh
         Meshes tried in order until one passes the gate.
     guess : Guess or None
-        Initial guess (default: :func:`lunarcap.ocp.make_guess`).
+        Initial guess (default: :func:`lunarcap.optim.nlp.make_guess`).
     progress : callable(str) or None
         Receives one line per attempt.
 

@@ -13,7 +13,7 @@ import os
 import statistics
 import time
 
-from .scenario import PAPER_BEST_STARTS_MIN, PAPER_STARTS_MIN
+from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_STARTS_MIN
 
 ENGINES = {150.0: 200.0, 300.0: 250.0, 450.0: 300.0}
 
@@ -31,9 +31,9 @@ def paper_cases():
 def run(dynamics: str = "full", out=print, cases=None) -> list[dict]:
     """Solve the cases uncached; print one line each and the medians. Returns the rows."""
     os.environ["LUNARCAP_NO_CACHE"] = "1"
-    from . import cache
+    from lunarcap.repro import cache
     cache.memory.location = None  # make sure nothing is read from disk
-    from .sequence import solve_case
+    from lunarcap.runs.chain import solve_case
 
     cases = cases or paper_cases()
     rows = []

@@ -19,11 +19,11 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .constants import MU_MOON
-from .dynamics import rhs_function
-from .elements import rv_from_mee
-from .ocp import RawSolution, control_function, steering_function, terminal_values
-from .propagate import ATOL, RTOL, propagate
+from lunarcap.physics.constants import MU_MOON
+from lunarcap.physics.dynamics import rhs_function
+from lunarcap.physics.elements import rv_from_mee
+from lunarcap.optim.nlp import RawSolution, control_function, steering_function, terminal_values
+from lunarcap.physics.propagate import ATOL, RTOL, propagate
 
 TOL_DV_MPS = 0.01
 TOL_RP_M = 10.0
@@ -158,7 +158,7 @@ def mesh_convergence(prob, meshes, guess=None):
     """
     import pandas as pd
 
-    from .ocp import make_guess, solve_nlp
+    from lunarcap.optim.nlp import make_guess, solve_nlp
 
     guess = guess or make_guess(prob)
     rows = []

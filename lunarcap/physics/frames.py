@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .constants import MOON_POLE_DEC_DEG, MOON_POLE_RA_DEG
+from lunarcap.physics.constants import MOON_POLE_DEC_DEG, MOON_POLE_RA_DEG
 
 
 def moon_pole_icrf(ra_deg: float = MOON_POLE_RA_DEG, dec_deg: float = MOON_POLE_DEC_DEG

@@ -1,7 +1,7 @@
 """Tables of results beside the paper's printed values (pandas; no plotting, no file I/O).
 
 Each function solves (or fetches from the cache) what it needs through
-:mod:`lunarcap.sequence` and returns a DataFrame whose column names carry units.
+:mod:`lunarcap.runs.chain` and returns a DataFrame whose column names carry units.
 """
 
 from __future__ import annotations
@@ -9,10 +9,11 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from . import constants as C
-from .paper import paper_best, paper_table
-from .scenario import PAPER_BEST_STARTS_MIN
-from .sequence import PAPER_IMPULSIVE_DV_MPS, solve_case, solve_impulsive_case
+from lunarcap.physics import constants as C
+from lunarcap.paper.printed import paper_best, paper_table
+from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN
+from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
+from lunarcap.runs.chain import solve_case, solve_impulsive_case
 
 
 def _paper_row(thrust_N, loi, start):
@@ -209,7 +210,7 @@ def free_vs_grid_table(thrust_N: float, isp_s: float, dynamics: str = "full",
 
 
 def _paper_starts(thrust_N, loi):
-    from .scenario import PAPER_STARTS_MIN
+    from lunarcap.paper.printed import PAPER_STARTS_MIN
     return PAPER_STARTS_MIN[(float(thrust_N), loi)]
 
 
@@ -251,7 +252,7 @@ def steering_table(thrust_N: float, isp_s: float, dynamics: str = "full",
 
 def chain_table(thrust_N: float, isp_s: float, dynamics: str = "full") -> pd.DataFrame:
     """The three burns as one NLP beside the one-at-a-time free-ignition chain, per LOI."""
-    from .chain import chain_summary
+    from lunarcap.runs.joint import chain_summary
 
     r = chain_summary(thrust_N, isp_s, dynamics)
     rows = []

@@ -8,12 +8,12 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from . import constants as C
-from .elements import rv_from_mee
-from .epochs import calendar_from_seconds
-from .frames import thrust_angles_deg
-from .ocp import RawSolution, control_function, steering_function, terminal_values
-from .verify import Verification
+from lunarcap.physics import constants as C
+from lunarcap.physics.elements import rv_from_mee
+from lunarcap.physics.epochs import calendar_from_seconds
+from lunarcap.physics.frames import thrust_angles_deg
+from lunarcap.optim.nlp import RawSolution, control_function, steering_function, terminal_values
+from lunarcap.optim.verify import Verification
 
 
 @dataclass
@@ -126,7 +126,7 @@ class Solution:
             "vz_kmps": v[2], "u_r": u[0], "u_t": u[1], "u_n": u[2],
             "alpha_deg": alpha, "beta_deg": beta})
         # thrust acceleration in M-MME2000 (km/s^2): T/m (u_r i_r + u_t i_t + u_n i_n)
-        from .dynamics import rtn_from_mee
+        from lunarcap.physics.dynamics import rtn_from_mee
         ir, it, i_n = (np.array(a) for a in rtn_from_mee(x[3], x[4], x[5]))
         acc = prob.model.thrust_N * 1e-3 / x[6]
         for j, ax in enumerate("xyz"):

@@ -3,11 +3,11 @@
 Each figure has a *data* function returning plain arrays (tested) and a *drawing*
 function that only draws them (not tested pixel by pixel). The display helpers
 write a table (CSV) or figure (PNG + SVG) below ``book/generated/`` through
-:mod:`lunarcap.paths` and show it in the notebook as a numbered MyST ``table`` or
+:mod:`lunarcap.repro.paths` and show it in the notebook as a numbered MyST ``table`` or
 ``figure`` with a caption and a note naming the notebook and parameters that made it.
 
 This module is presentation only: no physics is defined here (the RTN frame comes
-from :func:`lunarcap.frames.rtn_basis`, orbits from :mod:`lunarcap.elements`).
+from :func:`lunarcap.physics.frames.rtn_basis`, orbits from :mod:`lunarcap.physics.elements`).
 """
 
 from __future__ import annotations
@@ -19,11 +19,11 @@ import matplotlib
 import matplotlib.pyplot as plt
 import numpy as np
 
-from . import constants as C
-from . import paths
-from .elements import rv_from_coe, semi_major_axis_from_period
-from .frames import rtn_basis, thrust_angles_deg, thrust_direction_rtn  # noqa: F401
-from .provenance import source_note
+from lunarcap.physics import constants as C
+from lunarcap.repro import paths
+from lunarcap.physics.elements import rv_from_coe, semi_major_axis_from_period
+from lunarcap.physics.frames import rtn_basis, thrust_angles_deg, thrust_direction_rtn  # noqa: F401
+from lunarcap.report.provenance import source_note
 
 # Reproducible SVG output (no random ids, no date).
 matplotlib.rcParams["svg.hashsalt"] = "lunarcap"
@@ -44,7 +44,7 @@ class Fig1Geometry:
     r_LU, v_hat : ndarray, shape (3,)
         Spacecraft position (LU) and velocity direction.
     rtn : ndarray, shape (3, 3)
-        Rows i_r, i_t, i_n in the drawing frame (Eq. A5, :func:`lunarcap.frames.rtn_basis`).
+        Rows i_r, i_t, i_n in the drawing frame (Eq. A5, :func:`lunarcap.physics.frames.rtn_basis`).
     u_rtn : ndarray, shape (3,)
         Thrust direction in RTN.
     u, u_plane : ndarray, shape (3,)
@@ -313,7 +313,7 @@ def show_table(df, name: str, caption: str, notebook: str, parameters: dict | No
     caption : str
         Caption (MyST Markdown; give units).
     notebook, parameters : the source notebook and the parameters of this run,
-        named under the table (:func:`lunarcap.provenance.source_note`).
+        named under the table (:func:`lunarcap.report.provenance.source_note`).
     floatfmt : str or dict
         Format of float cells in the displayed table, one for all or per column name
         (the CSV keeps full precision).
@@ -356,7 +356,7 @@ def show_figure(fig, name: str, caption: str, notebook: str, parameters: dict | 
         Output name (``figures/<name>.png`` and ``.svg``).
     caption : str
         Caption (MyST Markdown; give units).
-    notebook, parameters : named in the caption (:func:`lunarcap.provenance.source_note`).
+    notebook, parameters : named in the caption (:func:`lunarcap.report.provenance.source_note`).
     alt : str, optional
         Alternative text (default: the caption's first sentence).
     label : str, optional
@@ -389,7 +389,7 @@ def show_figure(fig, name: str, caption: str, notebook: str, parameters: dict | 
 # The capture sequence of Song 2011, Sec. 3.3: the whole capture (Fig. 2), the burn arcs
 # (Fig. 3), the LOI-1 steering and mass (Fig. 4) and the LOI-1 thrust and velocity
 # vectors (Fig. 5). The data functions sample verified Solutions (and propagate coasts
-# with lunarcap.propagate); the drawing functions only draw.
+# with lunarcap.physics.propagate); the drawing functions only draw.
 
 #: Colours of the capture-sequence figures: one per orbit, one per burn.
 CAPTURE_COLOURS = {"hyperbola": "0.35", "coast1": "tab:blue", "coast2": "tab:green",
@@ -522,7 +522,7 @@ def _make_arc(basis, kind, loi, label, t, r):
 
 def _rv_of_states(x):
     """Positions (3, N) km from MEE states (7, N)."""
-    from .elements import rv_from_mee
+    from lunarcap.physics.elements import rv_from_mee
 
     r, _ = rv_from_mee(*np.asarray(x)[:6], C.MU_MOON)
     return np.array(r, float)
@@ -550,8 +550,8 @@ def capture_geometry(solutions, arrival, hyperbola_hours: float = 3.0,
     Parameters
     ----------
     solutions : list of Solution
-        The chain LOI 1, 2, 3 (:func:`lunarcap.sequence.solve_sequence`).
-    arrival : lunarcap.scenario.Arrival
+        The chain LOI 1, 2, 3 (:func:`lunarcap.runs.chain.solve_sequence`).
+    arrival : lunarcap.mission.arrival.Arrival
         The arrival perilune state (``Mission.arrival``); defines the drawing plane.
     hyperbola_hours : float
         The arrival hyperbola is drawn from this many hours before the arrival perilune
@@ -574,7 +574,7 @@ def capture_geometry(solutions, arrival, hyperbola_hours: float = 3.0,
     """
     import pandas as pd
 
-    from .propagate import propagate
+    from lunarcap.physics.propagate import propagate
 
     sols = list(solutions)
     if not 1 <= len(sols) <= 3:
@@ -1114,10 +1114,10 @@ def plot_fig5_vectors(d: Fig5Vectors, geo: CaptureGeometry | None = None, figsiz
 
 # =============================================================================== report
 # Tables of the reproduction report: every number Song 2011 prints beside ours. Pure
-# functions of DataFrames and dicts the notebook computes with lunarcap.tables and
-# lunarcap.sequence; nothing here solves or integrates.
+# functions of DataFrames and dicts the notebook computes with lunarcap.runs.sweeps and
+# lunarcap.runs.chain; nothing here solves or integrates.
 
-#: Titles of the audit's groups of checks (:func:`lunarcap.audit.audit_findings`).
+#: Titles of the audit's groups of checks (:func:`lunarcap.paper.audit.audit_findings`).
 AUDIT_CHECK_TITLES = {
     "a": "constants of Sec. 3.1",
     "b": "the 'difference %' of Tables 1-5 and B1",
@@ -1150,7 +1150,7 @@ def paper_tables_long(sweeps: dict, impulsive_dv_mps=None):
     Parameters
     ----------
     sweeps : dict
-        ``{(thrust_N, loi): DataFrame}`` from :func:`lunarcap.tables.sweep_table` with the
+        ``{(thrust_N, loi): DataFrame}`` from :func:`lunarcap.runs.sweeps.sweep_table` with the
         paper's ignition offsets (columns ``paper_*`` beside ours; ``attrs`` ``thrust_N``,
         ``isp_s``).
     impulsive_dv_mps : sequence of 3 floats, optional
@@ -1167,8 +1167,7 @@ def paper_tables_long(sweeps: dict, impulsive_dv_mps=None):
     """
     import pandas as pd
 
-    from . import paper as P
-
+    from lunarcap.paper import printed as P
     rows = []
     b1 = P.paper_table_b1()
     for (thrust, loi), df in sorted(sweeps.items()):
@@ -1230,7 +1229,7 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
     fig4 : Fig4Steering, optional
         The 150 N LOI-1 steering (:func:`fig4_steering`).
     audit_values : dict, optional
-        ``{finding id: computed value}`` from :func:`lunarcap.audit.audit_findings`
+        ``{finding id: computed value}`` from :func:`lunarcap.paper.audit.audit_findings`
         (used for the two-body period of the 100 km orbit).
 
     Returns
@@ -1239,8 +1238,7 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
         ``{quote name: (value, note)}`` in the quote's unit; names missing have no
         equivalent (or were not computed in this run).
     """
-    from . import paper as P
-
+    from lunarcap.paper import printed as P
     out: dict = {}
     per = C.CAPTURE_PERIODS_S
     inp = "input (the paper's value)"
@@ -1268,7 +1266,7 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
         out[f"engine{j}_thrust_N"] = (t, inp)
         out[f"engine{j}_isp_s"] = (isp, inp)
     for n in ("thrust_direction_bound_lower", "thrust_direction_bound_upper"):
-        out[n] = (np.nan, "no equivalent number: the same bounds are used (lunarcap.ocp), "
+        out[n] = (np.nan, "no equivalent number: the same bounds are used (lunarcap.optim.nlp), "
                           "with |u| = 1 imposed")
 
     def key(t):
@@ -1364,7 +1362,7 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
 
 
 def quotes_comparison(ours: dict):
-    """Every number of the paper's prose (:data:`lunarcap.paper.QUOTES`) beside ours.
+    """Every number of the paper's prose (:data:`lunarcap.paper.printed.QUOTES`) beside ours.
 
     Parameters
     ----------
@@ -1380,8 +1378,7 @@ def quotes_comparison(ours: dict):
     """
     import pandas as pd
 
-    from . import paper as P
-
+    from lunarcap.paper import printed as P
     rows = []
     for q in P.QUOTES.values():
         val, note = ours.get(q.name, (np.nan, "no equivalent"))
@@ -1409,8 +1406,8 @@ def epochs_comparison(perilune_epochs_s):
     """
     import pandas as pd
 
-    from . import paper as P
-    from .epochs import calendar_from_seconds, seconds_from_calendar
+    from lunarcap.paper import printed as P
+    from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 
     months = {"Jan": 1, "Feb": 2, "Mar": 3, "Apr": 4, "May": 5, "Jun": 6, "Jul": 7,
               "Aug": 8, "Sep": 9, "Oct": 10, "Nov": 11, "Dec": 12}
@@ -1459,8 +1456,7 @@ def quotes_display(quotes, max_words: int = 70, extra_decimals: int = 1,
     """
     import pandas as pd
 
-    from . import paper as P
-
+    from lunarcap.paper import printed as P
     rows = []
     for r in quotes.itertuples(index=False):
         q = P.QUOTES[r.name]
@@ -1476,11 +1472,11 @@ def quotes_display(quotes, max_words: int = 70, extra_decimals: int = 1,
 
 
 def findings_display(findings):
-    """A compact version of :func:`lunarcap.audit.findings_table` for the page.
+    """A compact version of :func:`lunarcap.paper.audit.findings_table` for the page.
 
     Parameters
     ----------
-    findings : DataFrame from :func:`lunarcap.audit.findings_table`
+    findings : DataFrame from :func:`lunarcap.paper.audit.findings_table`
 
     Returns
     -------

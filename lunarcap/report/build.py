@@ -2,8 +2,8 @@
 
 Usage::
 
-    python -m lunarcap.book build [--quick] [--jobs N] [--only NAME ...] [--force] [--no-build]
-    python -m lunarcap.book check          # validate the manifest and the table of contents
+    python -m lunarcap.report.build build [--quick] [--jobs N] [--only NAME ...] [--force] [--no-build]
+    python -m lunarcap.report.build check          # validate the manifest and the table of contents
 
 The manifest ``notebooks/manifest.yml`` has one entry per execution::
 
@@ -24,9 +24,9 @@ and cell, keeps the failed notebook as ``book/generated/<name>.failed.ipynb`` an
 leaves every other output intact.
 
 An entry is skipped when its stamp ``book/generated/<name>.stamp.json`` matches: same
-source notebook, parameters, quick flag, lunarcap source (:func:`lunarcap.cache.code_version`),
+source notebook, parameters, quick flag, lunarcap source (:func:`lunarcap.repro.cache.code_version`),
 environment lock, title and dependency stamps, and its outputs exist. Expensive
-solutions are cached separately by :mod:`lunarcap.cache`.
+solutions are cached separately by :mod:`lunarcap.repro.cache`.
 
 The book is then built with ``jupyter-book build book -W -n --keep-going`` with
 execution off (``--all`` whenever the generated notebooks changed since the last
@@ -53,8 +53,7 @@ from pathlib import Path
 
 import yaml
 
-from . import paths
-
+from lunarcap.repro import paths
 ENTRY_KEYS = {"name", "title", "notebook", "parameters", "quick_parameters", "depends_on",
               "outputs"}
 REQUIRED_KEYS = {"name", "title", "notebook"}
@@ -356,7 +355,7 @@ def _sha256_file(path: Path) -> str:
 
 def stamp_for(entry: Entry, quick: bool, dep_digests: dict[str, str]) -> dict:
     """What an executed notebook is made from (its ``digest`` summarises the rest)."""
-    from .cache import code_version
+    from lunarcap.repro.cache import code_version
 
     lock = paths.ROOT / "environment-lock.txt"
     rec = {
@@ -596,7 +595,7 @@ def build_book(entries: list[Entry], log=print) -> bool:
     missing = [e.name for e in entries if not e.output.is_file()]
     if missing:
         log(f"error: cannot build the book: no executed notebook for {missing}; run "
-            f"`python -m lunarcap.book build` (without --only) first")
+            f"`python -m lunarcap.report.build build` (without --only) first")
         return False
     digest = _generated_digest(entries)
     marker = paths.BUILD / ".generated-digest"
@@ -629,7 +628,7 @@ def build_book(entries: list[Entry], log=print) -> bool:
 # ====================================================================== CLI
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser."""
-    p = argparse.ArgumentParser(prog="python -m lunarcap.book",
+    p = argparse.ArgumentParser(prog="python -m lunarcap.report.build",
                                 description="Execute the notebook manifest and build the book.")
     sub = p.add_subparsers(dest="command", required=True)
     b = sub.add_parser("build", help="execute notebooks (papermill) and build the HTML book")
@@ -660,10 +659,10 @@ def main(argv=None) -> int:
             raise ManifestError("--jobs must be at least 1")
         chosen = select(entries, args.only)
     except ManifestError as exc:
-        print(f"lunarcap.book: error: {exc}", file=sys.stderr)
+        print(f"lunarcap.report.build: error: {exc}", file=sys.stderr)
         return 2
     mode = "quick" if args.quick else "full"
-    print(f"lunarcap.book: {len(chosen)} of {len(entries)} entries, {mode} parameters, "
+    print(f"lunarcap.report.build: {len(chosen)} of {len(entries)} entries, {mode} parameters, "
           f"up to {args.jobs} in parallel")
     ok = run_entries(chosen, quick=args.quick, jobs=args.jobs, force=args.force,
                      timeout=args.timeout)

@@ -23,10 +23,10 @@ from functools import lru_cache
 import casadi as ca
 import numpy as np
 
-from .cache import cached
-from .dynamics import N_PARAM, P_THRUST
-from .errors import SolveError
-from .ocp import (
+from lunarcap.repro.cache import cached
+from lunarcap.physics.dynamics import N_PARAM, P_THRUST
+from lunarcap.errors import SolveError
+from lunarcap.optim.nlp import (
     IPOPT_OPTIONS,
     LU,
     N_PRE,
@@ -41,10 +41,10 @@ from .ocp import (
     steering_function,
     terminal_values,
 )
-from .propagate import propagate
-from .sequence import ArrivalSpec, loi_problem, mission_for, solve_sequence
-from .solution import Solution, _arc_eval
-from .verify import verify
+from lunarcap.physics.propagate import propagate
+from lunarcap.runs.chain import ArrivalSpec, loi_problem, mission_for, solve_sequence
+from lunarcap.optim.solution import Solution, _arc_eval
+from lunarcap.optim.verify import verify
 
 N_LEGS = 3
 

@@ -5,7 +5,7 @@ altitude, 90 deg inclination in M-MME2000, mass 524.895 kg. The paper does not p
 the hyperbola's speed or orientation. We reconstruct them:
 
 * **Speed.** v_inf is chosen so that a tangential impulse at perilune into the 12.235 h
-  ellipse costs the paper's impulsive 353.272 m/s (:func:`lunarcap.impulsive.v_inf_from_loi1`),
+  ellipse costs the paper's impulsive 353.272 m/s (:func:`lunarcap.mission.impulsive.v_inf_from_loi1`),
   giving v_inf = 0.918 km/s.
 * **Direction.** The paper's transfer (Song et al. 2009c, 2010a) is a direct,
   Hohmann-like trans-lunar trajectory. Such a trajectory arrives near its geocentric
@@ -26,30 +26,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import constants as C
-from .elements import mee_from_rv
-from .ephemeris import ChebyshevFit, Ephemeris, default_ephemeris
-from .epochs import seconds_from_calendar
-from .errors import InputError
-from .impulsive import check_engine, check_perilune_radius, v_inf_from_loi1
-
-#: The paper's ignition offsets, min before perilune (Tables 1-5), by (thrust N, LOI).
-PAPER_STARTS_MIN = {
-    (150.0, 1): (0.0, -6.0, -8.0, -10.0, -12.0, -14.0),
-    (150.0, 2): (0.0, -3.0, -6.0, -9.0),
-    (150.0, 3): (0.0, -3.0, -5.0, -7.0),
-    (300.0, 1): (0.0, -2.0, -4.0, -6.0),
-    (300.0, 2): (0.0, -1.0, -3.0, -5.0),
-    (300.0, 3): (0.0, -1.0, -2.0, -3.0),
-    (450.0, 1): (0.0, -2.0, -3.0, -4.0),
-    (450.0, 2): (0.0, -2.0, -4.0),
-    (450.0, 3): (0.0, -1.0, -2.0, -3.0),
-}
-
-#: The paper's best offsets (Table B1), min, by thrust N -> (LOI1, LOI2, LOI3).
-PAPER_BEST_STARTS_MIN = {150.0: (-10.0, -6.0, -5.0), 300.0: (-4.0, -3.0, -2.0),
-                         450.0: (-3.0, -2.0, -2.0)}
-
+from lunarcap.physics import constants as C
+from lunarcap.physics.elements import mee_from_rv
+from lunarcap.physics.ephemeris import ChebyshevFit, Ephemeris, default_ephemeris
+from lunarcap.physics.epochs import seconds_from_calendar
+from lunarcap.errors import InputError
+from lunarcap.mission.impulsive import v_inf_from_loi1
+from lunarcap.physics.rocket import check_engine, check_perilune_radius
 
 @dataclass(frozen=True)
 class ArrivalSpec:

@@ -1,7 +1,7 @@
 """Internal consistency of Song et al. (2011), recomputed from the printed numbers.
 
 Song, Park, Kim, Lee & Sim (2011), J. Astron. Space Sci. 28(3) 203-216 ("Song 2011").
-Every finding takes the numbers of :mod:`lunarcap.paper` as printed, recomputes one of
+Every finding takes the numbers of :mod:`lunarcap.paper.printed` as printed, recomputes one of
 them from the others (arithmetic, the rocket equation, Eq. (19), the two-body period,
 the epochs) and compares. Nothing is concluded by hand: each verdict is
 ``|printed - computed| <= tolerance`` and each explanation is formatted from computed
@@ -23,7 +23,7 @@ Tolerances
   The paper does not state SOCS's tolerances; :data:`SOLVER_REL_TOL` (1e-4 of the
   computed value) is allowed on top of rounding for these relations.
 
-g0 = 9.80665 m/s^2 (:data:`lunarcap.constants.G0_MPS2`).
+g0 = 9.80665 m/s^2 (:data:`lunarcap.physics.constants.G0_MPS2`).
 
 Examples
 --------
@@ -43,10 +43,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from . import constants as C
-from . import paper as P
-from .epochs import calendar_from_seconds, seconds_from_calendar
-from .impulsive import impulsive_sequence
+from lunarcap.physics import constants as C
+from lunarcap.paper import printed as P
+from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
+from lunarcap.mission.impulsive import impulsive_sequence
 
 __all__ = [
     "CONSISTENT",
@@ -378,7 +378,7 @@ def _check_a() -> list[Finding]:
     return [Finding(
         "sun-gm", "a", _where("mu_sun_km3s2"), "gravitational parameter of the Sun",
         p, c, "km^3/s^2", _half("mu_sun_km3s2") + 0.5,
-        f"IAU 2009 / DE405 value 1.32712440018e11 km^3/s^2 (lunarcap.constants.MU_SUN). "
+        f"IAU 2009 / DE405 value 1.32712440018e11 km^3/s^2 (lunarcap.physics.constants.MU_SUN). "
         f"The printed value is {ratio:.9f} times too small. {tcb_note}",
         extra={"ratio_correct_over_printed": ratio, "tcb_value": tcb,
                "rel_diff_10x_printed_vs_tcb": rel_tcb})]

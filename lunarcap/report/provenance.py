@@ -22,8 +22,10 @@ import os
 import platform
 import subprocess
 
-from . import __version__, paths
-from .cache import code_version
+from lunarcap import __version__
+
+from lunarcap.repro import paths
+from lunarcap.repro.cache import code_version
 
 
 def _git(*args: str) -> str | None:
@@ -36,7 +38,7 @@ def _git(*args: str) -> str | None:
 
 
 def git_state() -> dict:
-    """Git commit of :data:`lunarcap.paths.ROOT` and whether tracked files differ from it.
+    """Git commit of :data:`lunarcap.repro.paths.ROOT` and whether tracked files differ from it.
 
     Returns
     -------
@@ -87,7 +89,7 @@ def collect(ephemeris=None, solver: dict | None = None) -> dict:
 
     Parameters
     ----------
-    ephemeris : lunarcap.ephemeris.Ephemeris, None or False
+    ephemeris : lunarcap.physics.ephemeris.Ephemeris, None or False
         The ephemeris used (default: the process-wide DE405); ``False`` to leave it out.
     solver : dict, optional
         Solver settings to record (transcription, mesh, tolerances), added as ``solver``.
@@ -110,7 +112,7 @@ def collect(ephemeris=None, solver: dict | None = None) -> dict:
     })
     if ephemeris is not False:
         if ephemeris is None:
-            from .ephemeris import default_ephemeris
+            from lunarcap.physics.ephemeris import default_ephemeris
 
             ephemeris = default_ephemeris()
         desc = ephemeris.describe()

@@ -1,6 +1,6 @@
 """Disk cache of expensive results, keyed by the code that produced them.
 
-:data:`memory` is a :class:`joblib.Memory` at ``.cache/joblib`` (see :mod:`lunarcap.paths`).
+:data:`memory` is a :class:`joblib.Memory` at ``.cache/joblib`` (see :mod:`lunarcap.repro.paths`).
 :func:`cached` wraps a function with it and adds two extra key parts:
 
 * :func:`code_version`, a SHA-256 of the lunarcap source files that compute results
@@ -16,7 +16,7 @@ Set ``LUNARCAP_NO_CACHE=1`` to compute everything afresh (nothing is read or wri
 
 Examples
 --------
->>> from lunarcap.cache import cached
+>>> from lunarcap.repro.cache import cached
 >>> @cached
 ... def slow_square(x, verbose=False):
 ...     return x * x
@@ -35,8 +35,7 @@ from pathlib import Path
 
 import joblib
 
-from . import paths
-
+from lunarcap.repro import paths
 #: Modules that only present results; editing them does not invalidate cached solutions.
 PRESENTATION_MODULES = frozenset({"book.py", "plots.py", "provenance.py", "paths.py"})
 

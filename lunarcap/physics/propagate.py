@@ -1,6 +1,6 @@
 """Adaptive-step propagation of coasts and burns (scipy DOP853), forward or backward.
 
-The right-hand side is the CasADi Function of :func:`lunarcap.dynamics.rhs_function`,
+The right-hand side is the CasADi Function of :func:`lunarcap.physics.dynamics.rhs_function`,
 called numerically, so propagation and the transcription use the same equations.
 """
 
@@ -12,8 +12,8 @@ from typing import Callable
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .dynamics import Model, rhs_function
-from .errors import InputError
+from lunarcap.physics.dynamics import Model, rhs_function
+from lunarcap.errors import InputError
 
 #: Default tolerances: relative 1e-12, absolute per state (p km, f, g, h, k, L rad, m kg).
 RTOL = 1e-12

@@ -33,7 +33,7 @@ constant acceleration in a fixed inertial direction, centred on an apse, for
 along the velocity, gravity component :math:`-\omega_s^2 y`), the work done by the thrust
 falls short of the impulse's by :math:`\omega_s^2 v t_b^2 \Delta V / 24`, which at the
 speed :math:`v` is the velocity loss above. ``tests/test_study.py`` checks this against a
-numerical integration. The optimal burns of :mod:`lunarcap.ocp` steer the thrust and
+numerical integration. The optimal burns of :mod:`lunarcap.optim.nlp` steer the thrust and
 choose the ignition time (and their acceleration grows as mass is spent, and the
 delta-V is not small against the perilune speed), so the estimate is a yardstick for
 them, not a prediction: the trade study shows how far apart the two are.
@@ -47,10 +47,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import constants as C
-from .errors import InputError
-from .impulsive import burn_duration_estimate_s, check_engine, rocket_mass_after
-from .paper import PAPER_IMPULSIVE_DV_MPS
+from lunarcap.physics import constants as C
+from lunarcap.errors import InputError
 
 #: Radius of every capture perilune, km (R_Moon + 100 km, Song 2011 Sec. 3.2.1).
 PERILUNE_RADIUS_KM = C.R_MOON + C.PERILUNE_ALTITUDE_KM
@@ -105,41 +103,3 @@ def robbins_loss_mps(dv_mps, burn_s, r_km: float = PERILUNE_RADIUS_KM, mu: float
     w = schuler_rate_rad_s(r_km, mu)
     out = (w * tb) ** 2 * dv / 24.0
     return float(out) if out.ndim == 0 else out
-
-
-def capture_chain_estimate(thrust_N: float, isp_s: float, mass_kg: float = C.ARRIVAL_MASS_KG,
-                           dv_mps=PAPER_IMPULSIVE_DV_MPS, r_km: float = PERILUNE_RADIUS_KM,
-                           mu: float = C.MU_MOON) -> list[dict]:
-    """Eq. (19) durations and Robbins losses of the three LOIs of one engine.
-
-    The mass before each LOI is that of the impulsive chain (rocket equation with the
-    impulsive delta-Vs from ``mass_kg``); Eq. (19) turns it into the burn duration.
-
-    Parameters
-    ----------
-    thrust_N, isp_s : float
-        Engine, N and s.
-    mass_kg : float
-        Mass at the first perilune, kg.
-    dv_mps : sequence of three floats
-        Impulsive delta-Vs of LOI 1, 2, 3, m/s (default: the paper's, Table B1).
-    r_km, mu : burn radius (km) and gravitational parameter (km^3/s^2).
-
-    Returns
-    -------
-    list of dict
-        One per LOI: ``loi``, ``impulsive_delta_v_mps``, ``m_before_kg``,
-        ``eq19_duration_min``, ``loss_mps``, ``loss_percent``.
-    """
-    check_engine(thrust_N, isp_s, mass_kg)
-    if len(dv_mps) != 3:
-        raise InputError(f"three impulsive delta-Vs expected, got {dv_mps!r}")
-    rows, m = [], float(mass_kg)
-    for i, dv in enumerate(dv_mps):
-        tb = float(burn_duration_estimate_s(m, dv, thrust_N, isp_s))
-        loss = robbins_loss_mps(dv, tb, r_km, mu)
-        rows.append({"loi": i + 1, "impulsive_delta_v_mps": float(dv), "m_before_kg": m,
-                     "eq19_duration_min": tb / 60.0, "loss_mps": loss,
-                     "loss_percent": 100.0 * loss / dv})
-        m = float(rocket_mass_after(m, dv, isp_s))
-    return rows

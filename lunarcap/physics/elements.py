@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._ops import ops
-from .errors import InputError
+from lunarcap.physics._ops import ops
+from lunarcap.errors import InputError
 
 
 # --------------------------------------------------------------------------- classical

@@ -10,13 +10,13 @@ Layout::
 
     <ROOT>/
         notebooks/            source notebooks (committed without outputs)
-            manifest.yml      what the book executes (see :mod:`lunarcap.book`)
+            manifest.yml      what the book executes (see :mod:`lunarcap.report.build`)
         book/                 jupyter-book sources (_config.yml, _toc.yml, *.md)
             generated/        executed notebooks <name>.ipynb and their stamps
                 tables/       CSV files
                 figures/      PNG and SVG files
             _build/html/      the built site
-        .cache/joblib/        cached solutions (:mod:`lunarcap.cache`)
+        .cache/joblib/        cached solutions (:mod:`lunarcap.repro.cache`)
 
 The cache directory may be moved with the environment variable ``LUNARCAP_CACHE_DIR``,
 the whole tree with ``LUNARCAP_ROOT``.
@@ -44,7 +44,7 @@ def _find_root() -> Path:
     env = os.environ.get("LUNARCAP_ROOT")
     if env:
         return Path(env).resolve()
-    return Path(__file__).resolve().parent.parent
+    return Path(__file__).resolve().parents[2]
 
 
 #: Repository root (the directory holding ``pyproject.toml``); lunarcap is installed
@@ -76,7 +76,7 @@ JOBLIB_CACHE = CACHE / "joblib"
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
 
-#: Figure formats written by :func:`lunarcap.plots.save_figure`.
+#: Figure formats written by :func:`lunarcap.report.figures.save_figure`.
 FIGURE_FORMATS = ("png", "svg")
 
 

@@ -23,11 +23,11 @@ from functools import lru_cache
 import casadi as ca
 import numpy as np
 
-from . import constants as C
-from ._ops import ops
-from .elements import rv_from_mee
-from .ephemeris import ChebyshevFit, earth_sun_from_params
-from .errors import InputError
+from lunarcap.physics import constants as C
+from lunarcap.physics._ops import ops
+from lunarcap.physics.elements import rv_from_mee
+from lunarcap.physics.ephemeris import ChebyshevFit, earth_sun_from_params
+from lunarcap.errors import InputError
 
 #: Layout of the numeric parameter vector of the dynamics Function.
 P_MU, P_R, P_J2, P_MUE, P_MUS, P_THRUST, P_VEX, P_KJ2, P_KE, P_KS = range(10)

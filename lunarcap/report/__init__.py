@@ -1,0 +1,1 @@
+"""Report: figure data, figures, tables for the book, provenance and the book build."""

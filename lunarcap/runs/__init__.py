@@ -1,0 +1,1 @@
+"""Runs: chains of burns solved in order and cached, sweeps, the trade study, the bench."""
