@@ -13,7 +13,6 @@ import math
 import re
 import sys
 
-from lunarcap.physics import constants as C
 from lunarcap.errors import InputError, LunarcapError, SolveError
 
 
@@ -29,12 +28,14 @@ def _positive(kind: str, unit: str):
     return conv
 
 
-def _add_engine(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--thrust", type=_positive("thrust", "N"), default=150.0, help="thrust, N")
-    p.add_argument("--isp", type=_positive("Isp", "s"), default=200.0, help="specific impulse, s")
-    p.add_argument("--mass", type=_positive("mass", "kg"), default=C.ARRIVAL_MASS_KG,
-                   help="mass at the first perilune, kg")
-    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+def _burn_number(text: str) -> int:
+    try:
+        val = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"a burn number is an integer from 1, got {text!r}")
+    if val < 1:
+        raise argparse.ArgumentTypeError(f"a burn number is an integer from 1, got {text!r}")
+    return val
 
 
 def _jsonable(obj):
@@ -47,32 +48,6 @@ def _jsonable(obj):
     if isinstance(obj, float) and not math.isfinite(obj):
         return None
     return obj
-
-
-def cmd_impulsive(args) -> int:
-    """Print the two-body impulsive capture sequence and Eq. (19) estimates."""
-    from lunarcap.mission.impulsive import impulsive_sequence
-
-    burns = impulsive_sequence(args.thrust, args.isp, args.mass)
-    rows = [{"loi": b.loi, "delta_v_mps": b.delta_v_mps,
-             "period_before_h": b.period_before_h, "period_after_h": b.period_after_h,
-             "v_perilune_before_kmps": b.v_before_kmps, "v_perilune_after_kmps": b.v_after_kmps,
-             "m_before_kg": b.m_before_kg, "m_after_kg": b.m_after_kg, "fuel_kg": b.fuel_kg,
-             "eq19_burn_duration_min": b.eq19_duration_min} for b in burns]
-    if args.json:
-        out = {"thrust_N": args.thrust, "isp_s": args.isp, "mass_kg": args.mass,
-               "total_delta_v_mps": sum(r["delta_v_mps"] for r in rows), "burns": rows}
-        print(json.dumps(_jsonable(out), indent=2))
-        return 0
-    print(f"Two-body impulsive capture, {args.thrust:g} N / {args.isp:g} s, "
-          f"{args.mass:g} kg at arrival")
-    print(f"{'LOI':>3} {'dV m/s':>9} {'P after h':>9} {'m before kg':>11} {'m after kg':>10} "
-          f"{'fuel kg':>8} {'Eq.19 min':>9}")
-    for r in rows:
-        print(f"{r['loi']:>3} {r['delta_v_mps']:9.3f} {r['period_after_h']:9.3f} "
-              f"{r['m_before_kg']:11.3f} {r['m_after_kg']:10.3f} {r['fuel_kg']:8.3f} "
-              f"{r['eq19_burn_duration_min']:9.2f}")
-    return 0
 
 
 def _starts(text: str) -> tuple:
@@ -88,114 +63,209 @@ def _starts(text: str) -> tuple:
     return vals
 
 
-def _start(text: str) -> float:
+def _start(text: str):
     vals = _starts(text)
     if len(vals) != 1:
         raise argparse.ArgumentTypeError(f"one start offset (min) expected, got {text!r}")
     return vals[0]
 
 
-def _add_solver_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default="full",
-                   help="perturbations: full (J2, Earth, Sun), j2, or two-body")
+# ---------------------------------------------------------------------- plans
+def _add_plan_options(p: argparse.ArgumentParser, plan_positional: bool) -> None:
+    if plan_positional:
+        p.add_argument("plan", metavar="PLAN",
+                       help="a plan file (YAML) or the name of a packaged plan "
+                            "(song2011-150N, song2011-300N, song2011-450N)")
+    else:
+        p.add_argument("--plan", default=None, metavar="PLAN",
+                       help="a plan file (YAML) or packaged plan name (default: the paper's "
+                            "capture with the engine of --thrust and --isp)")
+    p.add_argument("--thrust", type=_positive("thrust", "N"), default=None,
+                   help="engine thrust, N (overrides the plan's; default 150)")
+    p.add_argument("--isp", type=_positive("Isp", "s"), default=None,
+                   help="specific impulse, s (overrides the plan's; default 200)")
+    p.add_argument("--mass", type=_positive("mass", "kg"), default=None,
+                   help="mass at the first perilune, kg (overrides the plan's)")
+    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default=None,
+                   help="perturbations: full (J2, Earth, Sun), j2, or two-body (overrides the "
+                        "plan's)")
+    p.add_argument("--hemisphere", choices=["north", "south"], default=None,
+                   help="lunar hemisphere of the arrival perilune (overrides the plan's)")
     p.add_argument("--ephemeris", default=None, metavar="BSP",
-                   help="SPK file (.bsp) instead of the bundled DE405")
-    p.add_argument("--hemisphere", choices=["north", "south"], default="north",
-                   help="lunar hemisphere of the arrival perilune")
-    p.add_argument("--no-cache", action="store_true", help="recompute, ignoring the disk cache")
-    p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+                   help="SPK file (.bsp) instead of the plan's (default: the bundled DE405)")
+    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
-def default_previous_starts(thrust_N: float, isp_s: float, loi: int) -> tuple:
-    """Ignition offsets of the LOIs before ``loi``: the paper's best for its engines, else
-    the free-ignition optima ("free")."""
-    from lunarcap.runs.sweeps import default_previous
+def _plan_from_args(args):
+    """The plan named by the arguments, with their overrides applied."""
+    from dataclasses import replace
 
-    return default_previous(thrust_N, loi, isp_s)
+    from lunarcap.mission.plan import load_plan, paper_plan
+
+    source = getattr(args, "plan", None)
+    if source is None:
+        plan = paper_plan(args.thrust or 150.0, args.isp or 200.0)
+    else:
+        plan = load_plan(source)
+        if args.thrust is not None or args.isp is not None:
+            plan = plan.with_engine(args.thrust or plan.engine.thrust_N,
+                                    args.isp or plan.engine.isp_s, name=plan.name)
+    arrival = plan.arrival
+    if args.mass is not None:
+        arrival = replace(arrival, mass_kg=args.mass)
+    if args.hemisphere is not None:
+        arrival = replace(arrival, hemisphere=args.hemisphere)
+    if arrival != plan.arrival:
+        plan = replace(plan, arrival=arrival)
+    if args.dynamics is not None:
+        plan = plan.with_dynamics(args.dynamics)
+    if args.ephemeris is not None:
+        from pathlib import Path
+        plan = replace(plan, ephemeris=str(Path(args.ephemeris).expanduser().resolve()))
+    if getattr(args, "starts", None) is not None:
+        plan = plan.with_starts(args.starts)
+    return plan
 
 
-def _case_kwargs(args) -> dict:
-    from lunarcap.mission.arrival import ArrivalSpec
+def cmd_impulsive(args) -> int:
+    """Print the plan's two-body impulsive chain and Eq. (19) estimates."""
+    plan = _plan_from_args(args)
+    burns = plan.impulsive()
+    rows = [{"burn": b.burn, "delta_v_mps": b.delta_v_mps,
+             "period_before_h": b.period_before_h, "period_after_h": b.period_after_h,
+             "v_perilune_before_kmps": b.v_before_kmps, "v_perilune_after_kmps": b.v_after_kmps,
+             "m_before_kg": b.m_before_kg, "m_after_kg": b.m_after_kg, "fuel_kg": b.fuel_kg,
+             "eq19_burn_duration_min": b.eq19_duration_min} for b in burns]
+    if args.json:
+        out = {"plan": plan.name, "thrust_N": plan.engine.thrust_N, "isp_s": plan.engine.isp_s,
+               "mass_kg": plan.arrival.mass_kg, "v_inf_kmps": plan.arrival.v_inf_kmps,
+               "total_delta_v_mps": sum(r["delta_v_mps"] for r in rows), "burns": rows}
+        print(json.dumps(_jsonable(out), indent=2))
+        return 0
+    print(f"Two-body impulsive capture of plan {plan.name}: {plan.engine.thrust_N:g} N / "
+          f"{plan.engine.isp_s:g} s, {plan.arrival.mass_kg:g} kg at arrival, v_inf "
+          f"{plan.arrival.v_inf_kmps:.5f} km/s")
+    print(f"{'burn':>4} {'dV m/s':>9} {'P after h':>9} {'m before kg':>11} {'m after kg':>10} "
+          f"{'fuel kg':>8} {'Eq.19 min':>9}")
+    for r in rows:
+        print(f"{r['burn']:>4} {r['delta_v_mps']:9.3f} {r['period_after_h']:9.3f} "
+              f"{r['m_before_kg']:11.3f} {r['m_after_kg']:10.3f} {r['fuel_kg']:8.3f} "
+              f"{r['eq19_burn_duration_min']:9.2f}")
+    print(f"total {sum(r['delta_v_mps'] for r in rows):.3f} m/s")
+    return 0
 
-    kw = {"dynamics": args.dynamics,
-          "arrival": ArrivalSpec(mass_kg=args.mass, hemisphere=args.hemisphere),
-          "ephemeris": args.ephemeris, "verbose": not args.quiet}
-    if getattr(args, "steering", "optimal") != "optimal":
-        kw["steering"] = args.steering
-    return kw
 
 
-def _solver(args):
-    from lunarcap.runs.chain import solve_case
-
-    return solve_case.uncached if args.no_cache else solve_case
+def _fmt(v, spec: str, width: int) -> str:
+    return f"{'—':>{width}}" if v is None else f"{v:{width}{spec}}"
 
 
-def _print_summary_line(s: dict) -> None:
-    v = s["verification"]
-    print(f"LOI {s['loi']}  start {s['start_min']:+.3f} min  burn {s['burn_duration_min']:.2f} min  "
-          f"dV {s['delta_v_mps']:.3f} m/s  impulsive {s['impulsive_delta_v_mps']:.3f} m/s  "
-          f"loss {s['loss_mps']:.3f} m/s ({s['loss_percent']:.2f} %)  mass "
-          f"{s['m_start_kg']:.3f} -> {s['m_end_kg']:.3f} kg  v_end {s['v_end_kmps']:.5f} km/s  "
-          f"Eq.19 {s['eq19_duration_min']:.2f} min")
-    print(f"      IPOPT {s['ipopt_status']} ({s['ipopt_iterations']} it, {s['mesh']}), "
-          f"wall {s['solve_wall_s']:.2f} s; verified: dV diff {v['delta_v_diff_mps']:.2e} m/s, "
-          f"rp {v['rp_error_m']:.3f} m, i {v['inc_error_deg']:.1e} deg, "
-          f"gamma {v['gamma_error_deg']:.1e} deg")
+def _print_plan_header(plan) -> None:
+    a = plan.arrival
+    print(f"Plan {plan.name}: {plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} s, "
+          f"{plan.dynamics} dynamics, {plan.n_burns} burn(s); arrival {a.epoch}, perilune "
+          f"{a.perilune_altitude_km:g} km, inclination {a.inclination_deg:g} deg, "
+          f"v_inf {a.v_inf_kmps:.5f} km/s, {a.mass_kg:g} kg")
+    print(f"{'burn':>4}  {'target':<22} {'ignition (TDB)':<27} {'start min':>9} "
+          f"{'dur min':>7} {'dV m/s':>9} {'imp m/s':>9} {'loss m/s':>8} {'loss %':>6} "
+          f"{'m start kg':>10} {'m end kg':>9}  verification", flush=True)
+
+
+def _print_burn_row(plan, r: dict) -> None:
+    b = plan.burns[r["burn"] - 1]
+    ver = ("passed" if r["verification_passed"] else "FAILED") + \
+        f" (rp {r['verification_rp_error_m']:.2g} m, i {r['verification_inc_error_deg']:.1g} deg"
+    if r["verification_gamma_error_deg"] is not None:
+        ver += f", gamma {r['verification_gamma_error_deg']:.1g} deg"
+    if r["verification_ra_error_m"] is not None:
+        ver += f", ra {r['verification_ra_error_m']:.2g} m"
+    ver += ")"
+    print(f"{r['burn']:>4}  {b.describe():<22} {r['ignition_epoch']:<27} {r['start_min']:9.3f} "
+          f"{r['burn_duration_min']:7.2f} {r['delta_v_mps']:9.3f} "
+          f"{_fmt(r['impulsive_delta_v_mps'], '.3f', 9)} {_fmt(r['loss_mps'], '.3f', 8)} "
+          f"{_fmt(r['loss_percent'], '.2f', 6)} {r['m_start_kg']:10.3f} {r['m_end_kg']:9.3f}  "
+          f"{ver}", flush=True)
+
+
+def _print_totals(tot: dict) -> None:
+    loss = "" if tot["total_loss_mps"] is None else \
+        (f", impulsive {tot['total_impulsive_delta_v_mps']:.3f} m/s, loss "
+         f"{tot['total_loss_mps']:.3f} m/s ({tot['total_loss_percent']:.2f} %)")
+    print(f"total: dV {tot['total_delta_v_mps']:.3f} m/s{loss}; burns "
+          f"{tot['total_burn_duration_min']:.2f} min; fuel {tot['total_fuel_kg']:.3f} kg, final "
+          f"mass {tot['final_mass_kg']:.3f} kg; final orbit {tot['final_rp_km']:.1f} x "
+          f"{tot['final_ra_km']:.1f} km, {tot['final_inc_deg']:.4f} deg, reached "
+          f"{tot['final_perilune_epoch']} ({tot['time_to_final_orbit_h']:.2f} h after arrival)")
+
+
+def cmd_plan(args) -> int:
+    """Solve and verify every burn of a capture plan; print each burn and the totals."""
+    from lunarcap.runs.chain import PlanResult, plan_result
+
+    plan = _plan_from_args(args)
+    done = []
+
+    def on_burn(b):
+        done.append(b)
+        if not args.json:
+            _print_burn_row(plan, b.row())
+
+    if not args.json:
+        _print_plan_header(plan)
+    try:
+        res = plan_result(plan, impulsive=not args.no_impulsive, verbose=not args.quiet,
+                          use_cache=not args.no_cache, on_burn=on_burn)
+    finally:
+        if args.json:
+            partial = PlanResult(plan, done)
+            out = {"plan": plan.to_dict(), "complete": len(done) == plan.n_burns,
+                   "burns": [b.row() for b in done],
+                   "totals": partial.totals() if done else None}
+            print(json.dumps(_jsonable(out), indent=2))
+    if not args.json:
+        _print_totals(res.totals())
+    return 0 if res.totals()["all_verified"] else 3
 
 
 def cmd_solve(args) -> int:
-    """Solve one LOI (the earlier LOIs of the chain are solved or fetched first)."""
-    from lunarcap.mission.arrival import check_loi
+    """Solve one burn of a plan (its earlier burns are solved or fetched first)."""
+    from lunarcap.runs.chain import BurnResult, impulsive_limit, solve_burn
 
-    loi = check_loi(args.loi)
+    plan = _plan_from_args(args)
+    n = args.burn
+    if n > plan.n_burns:
+        raise InputError(f"--burn {n}: plan {plan.name} has burns 1 to {plan.n_burns}")
     prev = args.previous_starts
-    if prev is None:
-        prev = default_previous_starts(args.thrust, args.isp, loi)
-    if len(prev) != loi - 1:
-        raise InputError(f"--previous-starts needs {loi - 1} offset(s) for LOI {loi}, got {prev}")
-    sol = _solver(args)(args.thrust, args.isp, loi, args.start, tuple(prev), **_case_kwargs(args))
-    s = sol.to_dict()
-    s["previous_starts_min"] = list(prev)
+    if prev is not None:
+        if len(prev) != n - 1:
+            raise InputError(f"--previous-starts needs {n - 1} offset(s) for burn {n}, "
+                             f"got {len(prev)}")
+        for j, s in enumerate(prev):
+            plan = plan.with_start(j, s)
+    if args.start is not None:
+        plan = plan.with_start(n - 1, args.start)
+    if args.steering != "optimal":
+        plan = plan.with_steering(n - 1, args.steering)
+    key = plan.key(n)
+    verbose = not args.quiet
+    sol = (solve_burn.uncached if args.no_cache else solve_burn)(key, verbose=verbose)
+    imp = None
+    if not args.no_impulsive:
+        imp = (impulsive_limit.uncached if args.no_cache else impulsive_limit)(
+            key, verbose=verbose)
+    r = BurnResult(sol, imp)
     if args.json:
-        print(json.dumps(_jsonable(s), indent=2))
+        out = sol.to_dict()
+        row = r.row()
+        for k in ("impulsive_delta_v_mps", "loss_mps", "loss_percent", "objective_loss_mps"):
+            out[k] = row[k]
+        out["plan"] = plan.name
+        out["previous_starts_min"] = [b.start_min for b in plan.burns[:n - 1]]
+        print(json.dumps(_jsonable(out), indent=2))
     else:
-        _print_summary_line(s)
-    return 0
-
-
-def cmd_sequence(args) -> int:
-    """Solve the three LOIs in chain order; completed LOIs are printed even if a later fails."""
-    if len(args.starts) != 3:
-        raise InputError(f"--starts needs three offsets (LOI 1, 2, 3), got {args.starts}")
-    solve = _solver(args)
-    done = []
-    try:
-        for i in range(3):
-            sol = solve(args.thrust, args.isp, i + 1, args.starts[i], tuple(args.starts[:i]),
-                        **_case_kwargs(args))
-            done.append(sol.to_dict())
-            if not args.json:
-                _print_summary_line(done[-1])
-    finally:
-        if args.json:
-            tot = {"total_delta_v_mps": sum(d["delta_v_mps"] for d in done),
-                   "total_impulsive_delta_v_mps": sum(d["impulsive_delta_v_mps"] for d in done),
-                   "total_burn_duration_min": sum(d["burn_duration_min"] for d in done),
-                   "final_mass_kg": done[-1]["m_end_kg"] if done else None,
-                   "complete": len(done) == 3}
-            tot["total_loss_mps"] = tot["total_delta_v_mps"] - tot["total_impulsive_delta_v_mps"]
-            print(json.dumps(_jsonable({"thrust_N": args.thrust, "isp_s": args.isp,
-                                        "starts_min": list(args.starts), **tot, "lois": done}),
-                             indent=2))
-    if not args.json:
-        tot_dv = sum(d["delta_v_mps"] for d in done)
-        tot_imp = sum(d["impulsive_delta_v_mps"] for d in done)
-        print(f"total: dV {tot_dv:.3f} m/s, loss {tot_dv - tot_imp:.3f} m/s "
-              f"({100 * (tot_dv - tot_imp) / tot_imp:.2f} % of {tot_imp:.3f}), burn "
-              f"{sum(d['burn_duration_min'] for d in done):.2f} min, final mass "
-              f"{done[-1]['m_end_kg']:.3f} kg")
-    return 0
+        _print_plan_header(plan)
+        _print_burn_row(plan, r.row())
+    return 0 if sol.verification.passed else 3
 
 
 def cmd_bench(args) -> int:
@@ -204,6 +274,19 @@ def cmd_bench(args) -> int:
 
     rows = run(args.dynamics)
     return 0 if all(r["verification_passed"] for r in rows) else 3
+
+
+def cmd_plans(args) -> int:
+    """List the packaged plans, or print one as YAML."""
+    from lunarcap.mission.plan import available_plans, load_plan
+
+    if args.name is None:
+        for name in available_plans():
+            plan = load_plan(name)
+            print(f"{name:<16} {plan.description or plan.name}")
+        return 0
+    print(load_plan(args.name).to_yaml(), end="")
+    return 0
 
 
 def cmd_study(args) -> int:
@@ -226,30 +309,42 @@ def build_parser() -> argparse.ArgumentParser:
     """The argument parser of every subcommand."""
     parser = argparse.ArgumentParser(prog="lunarcap", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
-    p = sub.add_parser("impulsive", help="two-body impulsive capture sequence and Eq. (19)")
-    _add_engine(p)
-    p.set_defaults(func=cmd_impulsive)
 
-    p = sub.add_parser("solve", help="optimal finite burn of one LOI, verified by re-propagation")
-    _add_engine(p)
-    p.add_argument("--loi", type=int, choices=[1, 2, 3], default=1, help="LOI number")
-    p.add_argument("--start", type=_start, default=-10.0,
+    p = sub.add_parser("plan", help="solve and verify every burn of a capture plan")
+    _add_plan_options(p, plan_positional=True)
+    p.add_argument("--starts", type=_starts, default=None, metavar="S1,S2,...",
+                   help="ignition offsets of every burn, min from perilune (or 'free'), "
+                        "overriding the plan's")
+    p.add_argument("--no-impulsive", action="store_true",
+                   help="skip the impulsive limits in the same dynamics (no loss column)")
+    p.add_argument("--no-cache", action="store_true", help="recompute, ignoring the disk cache")
+    p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+    p.set_defaults(func=cmd_plan)
+
+    p = sub.add_parser("solve", help="optimal finite burn of one burn of a plan, verified")
+    _add_plan_options(p, plan_positional=False)
+    p.add_argument("--burn", "--loi", dest="burn", type=_burn_number, default=1,
+                   help="burn number, from 1 (--loi is the same)")
+    p.add_argument("--start", type=_start, default=None,
                    help="ignition, minutes from the nominal perilune (negative: before), or "
-                        "'free' to optimise it within +-2 Eq. (19) durations")
-    p.add_argument("--previous-starts", type=_starts, default=None, metavar="S1[,S2]",
-                   help="ignition offsets of the earlier LOIs (default: the paper's best for "
-                        "its engines, else the free-ignition optima)")
+                        "'free' to optimise it (default: the plan's)")
+    p.add_argument("--previous-starts", type=_starts, default=None, metavar="S1[,S2...]",
+                   help="ignition offsets of the earlier burns (default: the plan's)")
     p.add_argument("--steering", choices=["optimal", "inertial", "antivelocity"],
-                   default="optimal", help="steering law of this LOI (earlier LOIs: optimal)")
-    _add_solver_options(p)
+                   default="optimal", help="steering law of this burn (earlier burns: the plan's)")
+    p.add_argument("--no-impulsive", action="store_true",
+                   help="skip the impulsive limit in the same dynamics (no loss)")
+    p.add_argument("--no-cache", action="store_true", help="recompute, ignoring the disk cache")
+    p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
     p.set_defaults(func=cmd_solve)
 
-    p = sub.add_parser("sequence", help="the three LOIs of the capture chain")
-    _add_engine(p)
-    p.add_argument("--starts", type=_starts, default=(-10.0, -6.0, -5.0), metavar="S1,S2,S3",
-                   help="ignition offsets of LOI 1, 2, 3 in minutes from perilune")
-    _add_solver_options(p)
-    p.set_defaults(func=cmd_sequence)
+    p = sub.add_parser("impulsive", help="a plan's two-body impulsive chain and Eq. (19)")
+    _add_plan_options(p, plan_positional=False)
+    p.set_defaults(func=cmd_impulsive)
+
+    p = sub.add_parser("plans", help="list the packaged plans, or print one as YAML")
+    p.add_argument("name", nargs="?", default=None, help="a packaged plan to print")
+    p.set_defaults(func=cmd_plans)
 
     p = sub.add_parser("bench", help="solve and verify all 37 paper cases, print timings")
     p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default="full")

@@ -16,10 +16,11 @@ from lunarcap import cli
 from lunarcap.mission import impulsive as imp
 from lunarcap.physics import rocket
 from lunarcap.errors import InputError, SolveError
+from lunarcap.mission.plan import CapturePlan
 
 ROOT = Path(__file__).resolve().parents[1]
 UNIT_SUFFIXES = ("_mps", "_kmps", "_kg", "_h", "_min", "_s", "_N")
-UNITLESS_KEYS = {"loi", "burns"}
+UNITLESS_KEYS = {"burn", "burns", "plan"}
 SNAKE = re.compile(r"^[a-z][a-z0-9]*(_[a-z0-9]+)*(_N)?$")  # N: the SI symbol of the newton
 
 
@@ -59,7 +60,7 @@ def test_impulsive_json_subprocess():
         assert SNAKE.match(key), key
         assert key in UNITLESS_KEYS or key.endswith(UNIT_SUFFIXES), f"{key} names no unit"
     burns = out["burns"]
-    assert [b["loi"] for b in burns] == [1, 2, 3]
+    assert [b["burn"] for b in burns] == [1, 2, 3]
     assert burns[0]["delta_v_mps"] == pytest.approx(353.272, abs=1e-9)  # by construction
     # JSON carries the full double: the same numbers as the library call
     lib = imp.impulsive_sequence(150.0, 200.0, 524.895)
@@ -117,7 +118,7 @@ def test_library_errors_become_one_line(monkeypatch, capsys, exc, code):
     # come out as one 'lunarcap: error:' line and a non-zero status
     def boom(*a, **k):
         raise exc
-    monkeypatch.setattr(imp, "impulsive_sequence", boom)
+    monkeypatch.setattr(CapturePlan, "impulsive", boom)
     assert cli.main(["impulsive"]) == code
     err = capsys.readouterr().err
     _assert_one_clean_error(err)

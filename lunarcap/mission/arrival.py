@@ -1,6 +1,6 @@
-"""The paper's scenario: arrival state, capture chain epochs, engines and cases.
+"""The arrival hyperbola at its first perilune, reconstructed from a few numbers.
 
-Arrival (Song 2011, Sec. 3.2.1): first perilune on 2017-02-20 03:41:26 TDB at 100 km
+The paper's arrival (Song 2011, Sec. 3.2.1): first perilune on 2017-02-20 03:41:26 TDB at 100 km
 altitude, 90 deg inclination in M-MME2000, mass 524.895 kg. The paper does not print
 the hyperbola's speed or orientation. We reconstruct them:
 
@@ -22,13 +22,13 @@ the hyperbola's speed or orientation. We reconstruct them:
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import mee_from_rv
-from lunarcap.physics.ephemeris import ChebyshevFit, Ephemeris, default_ephemeris
+from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
 from lunarcap.physics.epochs import seconds_from_calendar
 from lunarcap.errors import InputError
 from lunarcap.mission.impulsive import v_inf_from_loi1
@@ -36,19 +36,33 @@ from lunarcap.physics.rocket import check_engine, check_perilune_radius
 
 @dataclass(frozen=True)
 class ArrivalSpec:
-    """Hashable parameters of the arrival reconstruction (see :func:`arrival_state`)."""
+    """Hashable parameters of the arrival reconstruction (see :func:`arrival_state`).
+
+    The ``arrival`` section of a capture plan (:mod:`lunarcap.mission.plan`). ``v_inf_kmps``
+    is the hyperbolic excess speed, km/s (``None``: derived from the paper's impulsive
+    LOI 1); ``approach_dir`` a unit 3-vector in M-MME2000 (``None``: anti-parallel to the
+    Moon's geocentric velocity).
+    """
 
     epoch: str = C.ARRIVAL_EPOCH_TDB
-    altitude_km: float = C.PERILUNE_ALTITUDE_KM
+    perilune_altitude_km: float = C.PERILUNE_ALTITUDE_KM
     inclination_deg: float = 90.0
     mass_kg: float = C.ARRIVAL_MASS_KG
     v_inf_kmps: float | None = None
     hemisphere: str = "north"
+    approach_dir: tuple | None = None
+
+    @property
+    def perilune_radius_km(self) -> float:
+        """R_Moon + perilune altitude, km."""
+        return C.R_MOON + self.perilune_altitude_km
 
     def build(self, eph: Ephemeris | None = None) -> "Arrival":
         """The Arrival state of these parameters."""
-        return arrival_state(self.epoch, self.altitude_km, self.inclination_deg, self.mass_kg,
-                             self.v_inf_kmps, hemisphere=self.hemisphere, eph=eph)
+        approach = "anti-lunar-velocity" if self.approach_dir is None else self.approach_dir
+        return arrival_state(self.epoch, self.perilune_altitude_km, self.inclination_deg,
+                             self.mass_kg, self.v_inf_kmps, approach=approach,
+                             hemisphere=self.hemisphere, eph=eph)
 
 
 @dataclass
@@ -138,46 +152,3 @@ def arrival_state(epoch: str = C.ARRIVAL_EPOCH_TDB, altitude_km: float = C.PERIL
     south = min(cands, key=lambda c: c[0] @ z)
     rhat, vhat = north if hemisphere == "north" else south
     return Arrival(t, rp * rhat, vp * vhat, float(mass_kg), vinf, s, hemisphere)
-
-
-@dataclass
-class Mission:
-    """The capture chain's fixed epochs and ephemeris fit.
-
-    Attributes
-    ----------
-    arrival : Arrival
-    perilune_epochs_s : tuple of 4 floats
-        Nominal perilune epochs (TDB s past J2000): arrival, +12.235 h, +3.525 h, and the
-        end of the final coast (+117.848 min). LOI n ignites ``start`` minutes from
-        ``perilune_epochs_s[n-1]`` and its coast ends at ``perilune_epochs_s[n]``.
-    fit : ChebyshevFit over the whole chain with margins
-    """
-
-    arrival: Arrival
-    eph: Ephemeris = field(default_factory=default_ephemeris)
-    periods_s: tuple = C.CAPTURE_PERIODS_S
-
-    def __post_init__(self):
-        t0 = self.arrival.epoch_s
-        ep = [t0]
-        for T in self.periods_s:
-            ep.append(ep[-1] + T)
-        self.perilune_epochs_s = tuple(ep)
-        self.fit = ChebyshevFit.fit(self.eph, t0 - 6 * 3600.0, ep[-1] + 6 * 3600.0)
-
-
-def check_start(start_min: float, limit_min: float = 120.0) -> float:
-    """Validate an ignition offset (min from perilune)."""
-    if not isinstance(start_min, (int, float, np.floating, np.integer)) or not np.isfinite(start_min):
-        raise InputError(f"start offset must be a number of minutes, got {start_min!r}")
-    if abs(start_min) > limit_min:
-        raise InputError(f"start offset {start_min} min is more than {limit_min} min from perilune")
-    return float(start_min)
-
-
-def check_loi(loi) -> int:
-    """Validate an LOI number (1, 2 or 3)."""
-    if loi not in (1, 2, 3):
-        raise InputError(f"LOI number must be 1, 2 or 3, got {loi!r}")
-    return int(loi)

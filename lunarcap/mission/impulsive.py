@@ -1,10 +1,13 @@
-"""Two-body impulsive capture sequence and the burn-duration estimate of Eq. (19).
+"""Two-body impulsive capture chain and the burn-duration estimate of Eq. (19).
 
-Capture at a fixed perilune radius r_p = R_Moon + 100 km:
-hyperbola (v_inf) -> ellipse of period 12.235 h -> ellipse of 3.525 h -> circle,
-each impulse tangential at perilune. The arrival hyperbola's v_inf is not printed in
-Song 2011; it is derived here from the paper's impulsive LOI-1 delta-V (353.272 m/s),
-so LOI 1 reproduces that number by construction and LOI 2-3 are genuine checks.
+Every burn is an impulse, tangential at a fixed perilune radius r_p: from the arrival
+hyperbola (v_inf) through ellipses of given periods, possibly to a circle at r_p. The
+speeds are those of vis-viva at r_p, so the delta-Vs are closed forms. For the paper's
+chain (12.235 h, 3.525 h, circle at 100 km), :func:`impulsive_sequence`.
+
+The arrival hyperbola's v_inf is not printed in Song 2011; :func:`v_inf_from_loi1` derives
+it from an impulsive first burn (the paper's 353.272 m/s), so that burn reproduces the
+given delta-V by construction and the later burns are genuine checks.
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from lunarcap.errors import InputError
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import semi_major_axis_from_period, vis_viva_speed
 from lunarcap.physics.rocket import (
@@ -21,7 +25,6 @@ from lunarcap.physics.rocket import (
     check_perilune_radius,
     rocket_mass_after,
 )
-from lunarcap.errors import InputError
 
 #: Song 2011's impulsive LOI-1 delta-V, m/s (Table 1; from Song et al. 2009c).
 PAPER_DV_LOI1_MPS = 353.272
@@ -29,22 +32,41 @@ PAPER_DV_LOI1_MPS = 353.272
 
 def v_inf_from_loi1(dv_loi1_mps: float = PAPER_DV_LOI1_MPS, rp_km: float | None = None,
                     period_s: float = C.CAPTURE_PERIODS_S[0], mu: float = C.MU_MOON) -> float:
-    """Hyperbolic excess speed (km/s) whose tangential perilune impulse dv gives the period."""
+    """Hyperbolic excess speed (km/s) whose tangential perilune impulse dv gives the period.
+
+    Parameters
+    ----------
+    dv_loi1_mps : impulsive delta-V of the first burn, m/s
+    rp_km : perilune radius, km (default R_Moon + 100 km)
+    period_s : period of the orbit the first burn reaches, s
+    mu : gravitational parameter, km^3/s^2
+    """
     rp = C.R_MOON + C.PERILUNE_ALTITUDE_KM if rp_km is None else rp_km
     check_perilune_radius(rp)
+    if not np.isfinite(dv_loi1_mps) or dv_loi1_mps <= 0:
+        raise InputError(f"the impulsive first-burn delta-V must be a positive number of m/s, "
+                         f"got {dv_loi1_mps!r}")
     a1 = semi_major_axis_from_period(period_s, mu)
     vp_hyp = vis_viva_speed(rp, a1, mu) + dv_loi1_mps * 1e-3
     vinf2 = vp_hyp ** 2 - 2 * mu / rp
     if vinf2 <= 0:
-        raise InputError("the given LOI-1 delta-V leaves the spacecraft bound before LOI")
+        raise InputError(f"an impulsive first burn of {dv_loi1_mps:g} m/s into that orbit "
+                         "leaves the spacecraft bound before it arrives: give a larger delta-V")
     return float(np.sqrt(vinf2))
+
+
+def perilune_speed_kmps(rp_km: float, period_s: float | None, mu: float = C.MU_MOON) -> float:
+    """Speed at perilune r_p of an ellipse of the given period (None: the circle at r_p), km/s."""
+    if period_s is None:
+        return float(np.sqrt(mu / rp_km))
+    return float(vis_viva_speed(rp_km, semi_major_axis_from_period(period_s, mu), mu))
 
 
 @dataclass
 class ImpulsiveBurn:
-    """One impulsive LOI at perilune (speeds km/s, delta-V m/s, masses kg, durations min)."""
+    """One impulse at perilune (speeds km/s, delta-V m/s, masses kg, duration min)."""
 
-    loi: int
+    burn: int
     period_before_h: float  # inf for the hyperbola
     period_after_h: float
     v_before_kmps: float
@@ -60,11 +82,51 @@ class ImpulsiveBurn:
         return asdict(self)
 
 
+def impulsive_chain(rp_km: float, v_inf_kmps: float, periods_after_s, thrust_N: float,
+                    isp_s: float, mass_kg: float, mu: float = C.MU_MOON,
+                    eq19_masses_kg=None) -> list[ImpulsiveBurn]:
+    """Tangential perilune impulses from a hyperbola through orbits of given periods.
+
+    Parameters
+    ----------
+    rp_km : perilune radius of every orbit, km
+    v_inf_kmps : arrival hyperbolic excess speed, km/s
+    periods_after_s : sequence, the period (s) of the orbit each burn reaches, ``None`` for
+        the circle at r_p
+    thrust_N, isp_s : engine for the masses and Eq. (19) (N, s)
+    mass_kg : mass at the first perilune, kg
+    eq19_masses_kg : optional masses at each burn for Eq. (19) (default: this chain's)
+
+    Returns
+    -------
+    list of ImpulsiveBurn, one per burn
+    """
+    check_engine(thrust_N, isp_s, mass_kg)
+    check_perilune_radius(rp_km)
+    if not np.isfinite(v_inf_kmps) or v_inf_kmps <= 0:
+        raise InputError(f"v_inf must be positive (km/s), got {v_inf_kmps}")
+    speeds = [float(np.sqrt(v_inf_kmps ** 2 + 2 * mu / rp_km))]
+    periods_h = [np.inf]
+    for T in periods_after_s:
+        speeds.append(perilune_speed_kmps(rp_km, T, mu))
+        periods_h.append((2 * np.pi * np.sqrt(rp_km ** 3 / mu) if T is None else T) / 3600)
+    burns, m = [], float(mass_kg)
+    for i in range(len(speeds) - 1):
+        dv = (speeds[i] - speeds[i + 1]) * 1e3
+        m_after = float(rocket_mass_after(m, dv, isp_s))
+        m19 = m if eq19_masses_kg is None else eq19_masses_kg[i]
+        t19 = burn_duration_estimate_s(m19, dv, thrust_N, isp_s) / 60
+        burns.append(ImpulsiveBurn(i + 1, periods_h[i], periods_h[i + 1], speeds[i],
+                                   speeds[i + 1], dv, m, m_after, m - m_after, t19))
+        m = m_after
+    return burns
+
+
 def impulsive_sequence(thrust_N: float = 150.0, isp_s: float = 200.0,
                        mass_kg: float = C.ARRIVAL_MASS_KG, altitude_km: float = 100.0,
                        v_inf_kmps: float | None = None, periods_s=C.CAPTURE_PERIODS_S[:2],
                        mu: float = C.MU_MOON, eq19_masses_kg=None) -> list[ImpulsiveBurn]:
-    """The two-body impulsive capture sequence at a fixed perilune radius.
+    """The paper's two-body impulsive chain: hyperbola, 12.235 h, 3.525 h, circle.
 
     Parameters
     ----------
@@ -76,31 +138,10 @@ def impulsive_sequence(thrust_N: float = 150.0, isp_s: float = 200.0,
     eq19_masses_kg : optional masses at the start of each burn for Eq. (19); by default
         those of this impulsive chain. Song 2011 evaluated Eq. (19) with the masses of
         its finite-burn chain (524.895, 434.471, 381.005 kg).
-
-    Returns
-    -------
-    list of three ImpulsiveBurn
     """
-    check_engine(thrust_N, isp_s, mass_kg)
     rp = C.R_MOON + altitude_km
     check_perilune_radius(rp)
     if v_inf_kmps is None:
         v_inf_kmps = v_inf_from_loi1(rp_km=rp, period_s=periods_s[0], mu=mu)
-    if not np.isfinite(v_inf_kmps) or v_inf_kmps <= 0:
-        raise InputError(f"v_inf must be positive (km/s), got {v_inf_kmps}")
-    speeds = [np.sqrt(v_inf_kmps ** 2 + 2 * mu / rp)]
-    for T in periods_s:
-        speeds.append(vis_viva_speed(rp, semi_major_axis_from_period(T, mu), mu))
-    speeds.append(np.sqrt(mu / rp))
-    periods_h = [np.inf] + [T / 3600 for T in periods_s] + [2 * np.pi * np.sqrt(rp ** 3 / mu) / 3600]
-    burns = []
-    m = mass_kg
-    for i in range(3):
-        dv = (speeds[i] - speeds[i + 1]) * 1e3
-        m_after = rocket_mass_after(m, dv, isp_s)
-        m19 = m if eq19_masses_kg is None else eq19_masses_kg[i]
-        t19 = burn_duration_estimate_s(m19, dv, thrust_N, isp_s) / 60
-        burns.append(ImpulsiveBurn(i + 1, periods_h[i], periods_h[i + 1], speeds[i],
-                                   speeds[i + 1], dv, m, m_after, m - m_after, t19))
-        m = m_after
-    return burns
+    return impulsive_chain(rp, v_inf_kmps, (*periods_s, None), thrust_N, isp_s, mass_kg, mu,
+                           eq19_masses_kg)

@@ -1,4 +1,4 @@
-"""The result of one verified LOI optimisation: histories, summary, diagnostics."""
+"""The result of one verified burn optimisation: histories, summary, diagnostics."""
 
 from __future__ import annotations
 
@@ -12,13 +12,15 @@ from lunarcap.physics import constants as C
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.frames import thrust_angles_deg
-from lunarcap.optim.nlp import RawSolution, control_function, steering_function, terminal_values
-from lunarcap.optim.verify import Verification
+from lunarcap.optim.nlp import RawSolution, control_function, steering_function
+from lunarcap.optim.verify import Flight, Verification
+from lunarcap.physics.dynamics import rtn_from_mee
+from lunarcap.physics.elements import orbit_summary
 
 
 @dataclass
 class Solution:
-    """A verified finite-burn LOI solution.
+    """A verified finite-burn solution.
 
     Attributes
     ----------
@@ -26,8 +28,8 @@ class Solution:
         Collocation solution and IPOPT diagnostics (accepted mesh).
     verification : Verification
         Residuals of the independent re-propagation.
-    flight : tuple
-        (burn arcs, coast Trajectory) of the verified re-propagation.
+    flight : Flight
+        The verified re-propagation (burn and coast trajectories, delta-V).
     attempts : list of dict
         Every mesh tried: mesh, IPOPT status, iterations, verification verdict.
     wall_s : float
@@ -36,7 +38,7 @@ class Solution:
 
     raw: RawSolution
     verification: Verification
-    flight: tuple
+    flight: Flight
     attempts: list = field(default_factory=list)
     wall_s: float = 0.0
     guess_t1_s: float = 0.0
@@ -44,7 +46,7 @@ class Solution:
     # ------------------------------------------------------------------ summary
     @property
     def problem(self):
-        """The LOIProblem solved."""
+        """The BurnProblem solved."""
         return self.raw.prob
 
     @property
@@ -55,34 +57,36 @@ class Solution:
     @property
     def end_state(self) -> np.ndarray:
         """Verified state (p, f, g, h, k, L, m) at the end of the coast."""
-        return self.flight[1].final
+        return self.flight.end_state
 
     def summary(self) -> dict:
-        """Flat summary with units in the keys (the CLI's JSON)."""
+        """Flat summary with units in the keys (the CLI's JSON).
+
+        ``impulsive_two_body_mps`` is the closed-form two-body impulse of this burn (vis-viva,
+        tangential at perilune) from which Eq. (19) estimates ``eq19_duration_min``; the
+        impulsive limit in the same dynamics, and the loss against it, are computed by
+        :mod:`lunarcap.runs.chain`.
+        """
         prob, raw = self.problem, self.raw
-        imp = prob.dv_impulsive_mps
-        tv = terminal_values(self.end_state)
-        eq19 = prob.eq19_duration_s
+        tv = orbit_summary(self.end_state, C.MU_MOON)
         return {
-            "loi": prob.loi, "thrust_N": prob.model.thrust_N, "isp_s": prob.model.isp_s,
-            "dynamics": prob.model.mode, "steering": prob.steering,
+            "burn": prob.index, "thrust_N": prob.model.thrust_N, "isp_s": prob.model.isp_s,
+            "dynamics": prob.model.mode, "steering": prob.steering, "target": prob.target.kind,
             "free_start": prob.free_start, "start_min": prob.start_min,
             "ignition_epoch": calendar_from_seconds(prob.t_ign_s),
             "end_epoch": calendar_from_seconds(prob.t_end_s),
             "burn_duration_min": raw.t1_s / 60.0, "delta_v_mps": raw.delta_v_mps,
-            "impulsive_delta_v_mps": imp,
-            "loss_mps": None if imp is None else raw.delta_v_mps - imp,
-            "loss_percent": None if imp is None else 100.0 * (raw.delta_v_mps - imp) / imp,
+            "impulsive_two_body_mps": prob.dv_impulsive_mps,
             "m_start_kg": prob.x0[6], "m_end_kg": float(raw.x_burn[6, -1]),
             "fuel_kg": prob.x0[6] - float(raw.x_burn[6, -1]),
-            "v_end_kmps": tv["v_kmps"], "rp_end_km": tv["rp_km"], "inc_end_deg": tv["inc_deg"],
-            "eq19_duration_min": None if eq19 is None else eq19 / 60.0,
+            "v_end_kmps": tv["v_kmps"], "rp_end_km": tv["rp_km"], "ra_end_km": tv["ra_km"],
+            "inc_end_deg": tv["inc_deg"], "period_end_h": _period_h(tv),
+            "eq19_duration_min": prob.eq19_duration_s / 60.0,
             "objective_mps": raw.objective_kmps * 1e3,
             "ipopt_status": raw.status, "ipopt_iterations": raw.iterations,
-            "mesh": f"{raw.mesh.n_burn}x{raw.mesh.n_coast} LGR-{raw.mesh.degree}",
-            "nlp_solve_s": raw.solve_s, "solve_wall_s": self.wall_s,
+            "mesh": raw.mesh.label(), "nlp_solve_s": raw.solve_s, "solve_wall_s": self.wall_s,
             "u_inertial": None if raw.u_inertial is None else list(raw.u_inertial),
-            "verification": {k: v for k, v in self.verification.to_dict().items()},
+            "verification": self.verification.to_dict(),
         }
 
     def to_dict(self) -> dict:
@@ -103,15 +107,15 @@ class Solution:
         k, L_rad), m_kg, Cartesian state (x_km..., vx_kmps...; M-MME2000), u_r, u_t, u_n,
         alpha_deg, beta_deg (NaN while coasting), thrust acceleration (km/s^2, M-MME2000).
         """
-        arcs, coast = self.flight
+        burn, coast = self.flight.burn, self.flight.coast
         prob = self.problem
         u_fn = steering_function(self.raw)
         _, bounds = control_function(self.raw)
         tb = np.linspace(bounds[0], bounds[-1], n_burn)
-        xb = np.column_stack([_arc_eval(arcs, bounds, t) for t in tb])[:7]
+        xb = burn(tb)[:7]
         ub = np.column_stack([u_fn(t, xb[:, i]) for i, t in enumerate(tb)])
         tc = np.linspace(coast.t[0], coast.t[-1], n_coast)[1:]
-        xc = coast.sol(tc)
+        xc = coast(tc)
         t = np.concatenate([tb, tc])
         x = np.column_stack([xb, xc])
         u = np.column_stack([ub, np.full((3, tc.size), np.nan)])
@@ -126,7 +130,6 @@ class Solution:
             "vz_kmps": v[2], "u_r": u[0], "u_t": u[1], "u_n": u[2],
             "alpha_deg": alpha, "beta_deg": beta})
         # thrust acceleration in M-MME2000 (km/s^2): T/m (u_r i_r + u_t i_t + u_n i_n)
-        from lunarcap.physics.dynamics import rtn_from_mee
         ir, it, i_n = (np.array(a) for a in rtn_from_mee(x[3], x[4], x[5]))
         acc = prob.model.thrust_N * 1e-3 / x[6]
         for j, ax in enumerate("xyz"):
@@ -141,9 +144,12 @@ class Solution:
         return pd.DataFrame([d])
 
 
-def _arc_eval(arcs, bounds, t):
-    j = int(np.clip(np.searchsorted(bounds, t, side="right") - 1, 0, len(arcs) - 1))
-    return arcs[j].sol(t)
+def _period_h(tv: dict) -> float:
+    """Kepler period (h) of an orbit summary, inf for an open orbit."""
+    if tv["e"] >= 1:
+        return float("inf")
+    a = 0.5 * (tv["rp_km"] + tv["ra_km"])
+    return float(2 * np.pi * np.sqrt(a ** 3 / C.MU_MOON) / 3600.0)
 
 
 def _plain(obj):

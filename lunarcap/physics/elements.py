@@ -123,11 +123,6 @@ def rv_from_coe(a, e, i, raan, argp, nu, mu):
     return np.array(r, dtype=float), np.array(v, dtype=float)
 
 
-def coe_from_rv(r, v, mu):
-    """Classical elements (a, e, i, raan, argp, nu) from a Cartesian state."""
-    return coe_from_mee(*mee_from_rv(r, v, mu))
-
-
 # --------------------------------------------------------------------------- Eq. (18)
 def eccentricity(f, g):
     """Eccentricity from MEE, e = sqrt(f^2 + g^2)."""
@@ -175,6 +170,12 @@ def flight_path_angle(p, f, g, L):
     return xp.atan2(radial_factor(f, g, L), q)
 
 
+def speed_from_mee(p, f, g, L, mu):
+    """Speed |v| (km/s for p in km) from MEE: v^2 = mu/p (1 + e^2 + 2 e cos(nu))."""
+    xp = ops(p, f, g, L)
+    return xp.sqrt(mu / p * (1 + f ** 2 + g ** 2 + 2 * (f * xp.cos(L) + g * xp.sin(L))))
+
+
 def semi_major_axis_from_period(period_s, mu):
     """Semi-major axis (km) of an ellipse of the given period (s)."""
     if np.any(np.asarray(period_s) <= 0):
@@ -194,3 +195,23 @@ def period(p, f, g, mu):
 def vis_viva_speed(r, a, mu):
     """Speed (km/s) at radius r (km) on an orbit of semi-major axis a (km; a < 0 hyperbola)."""
     return np.sqrt(mu * (2.0 / r - 1.0 / a))
+
+
+def orbit_summary(x, mu) -> dict:
+    """Radius, speed and shape of a numeric MEE state (p km, f, g, h, k, L rad, ...).
+
+    Returns
+    -------
+    dict
+        ``rp_km`` and ``ra_km`` (inf for e >= 1), ``inc_deg``, ``gamma_deg``, ``e``,
+        ``p_km``, ``v_kmps``, ``r_km``.
+    """
+    p, f, g, h, k, L = (float(v) for v in x[:6])
+    e = float(eccentricity(f, g))
+    r, _ = rv_from_mee(p, f, g, h, k, L, mu)
+    return {"rp_km": float(perilune_radius(p, f, g)),
+            "ra_km": p / (1 - e) if e < 1 else float("inf"),
+            "inc_deg": float(np.degrees(inclination(h, k))),
+            "gamma_deg": float(np.degrees(flight_path_angle(p, f, g, L))),
+            "e": e, "p_km": p, "v_kmps": float(speed_from_mee(p, f, g, L, mu)),
+            "r_km": float(np.linalg.norm(r))}

@@ -2,9 +2,9 @@
 
 ``lunarcap bench`` (or ``python -m lunarcap bench``) prints, per case, the wall time of
 the whole solve (guess, IPOPT, verification), IPOPT's iterations and the verification
-residuals, then medians and the total. Caching is off: every case is computed.
-The LOI 2 and 3 cases start from the paper's best earlier burns (Table B1), as in
-the paper.
+residuals, then medians and the total. Caching is off: every case is computed, through the
+paper's capture plans (:func:`lunarcap.mission.plan.paper_plan`). The LOI 2 and 3 cases
+start from the paper's best earlier burns (Table B1), as in the paper.
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ def run(dynamics: str = "full", out=print, cases=None) -> list[dict]:
     os.environ["LUNARCAP_NO_CACHE"] = "1"
     from lunarcap.repro import cache
     cache.memory.location = None  # make sure nothing is read from disk
-    from lunarcap.runs.chain import solve_case
+    from lunarcap.runs.chain import paper_case
 
     cases = cases or paper_cases()
     rows = []
@@ -41,7 +41,7 @@ def run(dynamics: str = "full", out=print, cases=None) -> list[dict]:
     out(f"{'case':<28} {'wall s':>7} {'it':>4} {'dV m/s':>9} {'dV diff m/s':>11} "
         f"{'rp err m':>9} {'i err deg':>9} {'gam err deg':>11}")
     for thrust, isp, loi, start, prev in cases:
-        sol = solve_case.uncached(thrust, isp, loi, start, prev, dynamics)
+        sol = paper_case(thrust, isp, loi, start, prev, dynamics)
         s = sol.summary()
         v = s["verification"]
         row = {"thrust_N": thrust, "isp_s": isp, "loi": loi, "start_min": start,

@@ -1,203 +1,261 @@
-"""The paper's capture chain: LOI problems built from the scenario, solved and cached.
+"""A capture plan's burns, solved in order, verified and cached.
 
-LOI n ignites ``start`` minutes from the nominal perilune epoch of its orbit
-(:attr:`lunarcap.mission.arrival.Mission.perilune_epochs_s`) and coasts to the next one. Its
-initial state is the arrival perilune state (LOI 1) or the previous LOI's verified
-end-of-coast state (LOI 2, 3), propagated backward to the ignition epoch in the same
-dynamics (the paper's chain, Song 2011 Sec. 3.1-3.2). Mass carries through the chain.
+Burn i ignites ``start_min`` from the nominal perilune epoch before it and coasts to the
+next one (:attr:`lunarcap.mission.plan.CapturePlan.nominal_perilunes_s`). Its initial
+state is the arrival perilune state (burn 1) or the previous burn's verified end-of-coast
+state, propagated backward to the ignition epoch in the same dynamics (the paper's chain,
+Song 2011 Sec. 3.1-3.2). Mass carries through the chain.
 
-:func:`solve_case` is cached on disk (joblib, keyed by its arguments and the code
-version), so a chain reuses its earlier links and a rerun costs nothing.
+:func:`solve_burn` is cached on disk (joblib, keyed by the plan's prefix up to that burn,
+its name blanked, and the numerical code's version), so a chain reuses its earlier burns
+and a rerun costs nothing. :func:`impulsive_limit` gives each burn's impulsive delta-V in
+the same dynamics from the same pre-burn orbit, against which :class:`PlanResult`
+measures the finite-burn loss.
 """
 
 from __future__ import annotations
 
 import sys
+from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
-from lunarcap.repro.cache import cached
-from lunarcap.physics.dynamics import Model
-from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
 from lunarcap.errors import InputError
-from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine
-from lunarcap.optim.nlp import LOIProblem
-from lunarcap.physics.propagate import propagate
-from lunarcap.mission.arrival import ArrivalSpec, Mission, check_loi, check_start
-from lunarcap.optim.solve import solve_loi
-
-#: Song 2011's impulsive delta-Vs (m/s), Table B1 (from Song et al. 2009c).
-PAPER_IMPULSIVE_DV_MPS = (353.272, 254.034, 245.363)
-
-_MISSIONS: dict = {}
-
-
-def mission_for(arrival: ArrivalSpec = ArrivalSpec(), ephemeris: str | None = None) -> Mission:
-    """The (memoised) Mission of an arrival spec and ephemeris file (None: DE405)."""
-    key = (arrival, ephemeris)
-    if key not in _MISSIONS:
-        eph = default_ephemeris() if ephemeris is None else Ephemeris(ephemeris)
-        _MISSIONS[key] = Mission(arrival.build(eph), eph)
-    return _MISSIONS[key]
-
-
-def loi_problem(mission: Mission, loi: int, thrust_N: float, isp_s: float, start_min,
-                x_perilune, dynamics: str = "full", dv_impulsive_mps: float | None = None,
-                start_bounds_min: tuple | None = None, steering: str = "optimal") -> LOIProblem:
-    """The LOIProblem of LOI ``loi`` igniting ``start_min`` from its nominal perilune.
-
-    ``x_perilune`` is the state (p, f, g, h, k, L, m) at that nominal perilune epoch.
-    """
-    loi = check_loi(loi)
-    check_engine(thrust_N, isp_s)
-    model = Model(mode=dynamics, thrust_N=thrust_N, isp_s=isp_s, fit=mission.fit)
-    t_peri = mission.perilune_epochs_s[loi - 1]
-    if dv_impulsive_mps is None:
-        dv_impulsive_mps = PAPER_IMPULSIVE_DV_MPS[loi - 1]
-    free = isinstance(start_min, str)
-    if free:
-        if start_min != "free":
-            raise InputError(f"start must be a number of minutes or 'free', got {start_min!r}")
-        # guess: ignite half the Eq. (19) duration before perilune (the paper's rule);
-        # bounds: +-2 Eq. (19) durations around perilune
-        t19 = burn_duration_estimate_s(x_perilune[6], dv_impulsive_mps, thrust_N, isp_s) / 60.0
-        guess_min = -0.5 * t19
-        bounds = start_bounds_min or (max(-2.0 * t19, -120.0), min(2.0 * t19, 120.0))
-    else:
-        guess_min = check_start(start_min)
-        bounds = (guess_min, guess_min)
-    t_ign = t_peri + 60.0 * guess_min
-    x0 = propagate(model, t_peri, x_perilune, t_ign).final
-    return LOIProblem(x0, t_ign, mission.perilune_epochs_s[loi], model,
-                      circular=(loi == 3), dv_impulsive_mps=dv_impulsive_mps, loi=loi,
-                      start_min=guess_min, t_perilune_s=t_peri, free_start=free,
-                      x_ref=np.asarray(x_perilune, float), t_ref_s=t_peri,
-                      start_bounds_min=bounds, steering=steering)
+from lunarcap.mission.arrival import Arrival, ArrivalSpec
+from lunarcap.mission.plan import CapturePlan, paper_plan, plan_ephemeris
+from lunarcap.optim.problem import burn_fit, burn_problem
+from lunarcap.optim.solution import Solution
+from lunarcap.optim.solve import solve_burn as solve_burn_problem
+from lunarcap.physics.epochs import calendar_from_seconds
+from lunarcap.repro.cache import cached
 
 
 def _log(msg: str) -> None:
     print(msg, file=sys.stderr, flush=True)
 
 
+@lru_cache(maxsize=32)
+def arrival_for(arrival: ArrivalSpec, ephemeris: str | None = None) -> Arrival:
+    """The reconstructed arrival state of an arrival spec (memoised)."""
+    return arrival.build(plan_ephemeris(ephemeris))
+
+
+def perilune_state(plan: CapturePlan, i: int, verbose: bool = False) -> np.ndarray:
+    """State (p, f, g, h, k, L, m) at the nominal perilune before burn ``i`` (0-based)."""
+    if i == 0:  # the arrival state carries the plan's mass
+        return arrival_for(plan.arrival, plan.ephemeris).state
+    return solve_burn(plan.key(i), verbose=verbose).end_state
+
+
+def _burn_label(plan: CapturePlan, i: int) -> str:
+    b = plan.burns[i]
+    start = "free" if b.free_start else f"{b.start_min:g} min"
+    return (f"burn {i + 1} of {plan.n_burns} ({b.describe()}), {plan.engine.thrust_N:g} N / "
+            f"{plan.engine.isp_s:g} s, start {start}, {plan.dynamics}"
+            + ("" if b.steering == "optimal" else f", {b.steering} steering"))
+
+
 @cached(ignore=["verbose"])
-def solve_case(thrust_N: float, isp_s: float, loi: int, start_min: float,
-               previous_starts: tuple = (), dynamics: str = "full",
-               arrival: ArrivalSpec = ArrivalSpec(), ephemeris: str | None = None,
-               verbose: bool = False, steering: str = "optimal"):
-    """Solve (or fetch from the cache) one LOI of the chain.
+def solve_burn(plan: CapturePlan, verbose: bool = False) -> Solution:
+    """Solve (or fetch from the cache) the last burn of ``plan``.
 
-    Parameters
-    ----------
-    thrust_N, isp_s : engine (N, s)
-    loi : 1, 2 or 3
-    start_min : ignition offset from the nominal perilune, min (negative: before), or
-        "free" to optimise it
-    previous_starts : ignition offsets of the earlier LOIs of the chain, min
-        (``()`` for LOI 1, ``(s1,)`` for LOI 2, ``(s1, s2)`` for LOI 3)
-    dynamics : "full", "j2" or "two-body"
-    arrival : ArrivalSpec
-    ephemeris : path of an SPK file, or None for DE405
-    steering : "optimal" (the paper's), "inertial" (fixed inertial direction, optimised) or
-        "antivelocity" (thrust opposite the velocity); applies to this LOI only, the
-        earlier LOIs of the chain are the optimal ones
+    Pass ``plan.key(n)`` to solve burn ``n`` of a plan: the prefix of the plan up to that
+    burn, name blanked (what the solution depends on). Earlier burns are solved or fetched
+    first; their verified end state starts this one.
 
-    Returns
-    -------
-    Solution
+    Raises
+    ------
+    SolveError
+        If no mesh gives a converged, verified solution.
     """
-    loi = check_loi(loi)
-    previous_starts = tuple(s if s == "free" else float(s) for s in previous_starts)
-    if len(previous_starts) != loi - 1:
-        raise InputError(f"LOI {loi} needs the ignition offsets of the {loi - 1} earlier LOI(s), "
-                         f"got {previous_starts}")
-    mission, x_peri = _previous_state(thrust_N, isp_s, loi, previous_starts, dynamics, arrival,
-                                      ephemeris, verbose)
-    prob = loi_problem(mission, loi, thrust_N, isp_s, start_min, x_peri, dynamics,
-                       steering=steering)
+    i = plan.n_burns - 1
+    x_peri = perilune_state(plan, i, verbose)
+    prob = burn_problem(plan, i, x_peri, plan_ephemeris(plan.ephemeris))
     if verbose:
-        _log(f"LOI {loi}, {thrust_N:g} N / {isp_s:g} s, start {start_min} min, {dynamics}:")
-    sol = solve_loi(prob, progress=_log if verbose else None)
+        _log(f"{_burn_label(plan, i)}:")
+    sol = solve_burn_problem(prob, progress=_log if verbose else None)
     if verbose:
         s = sol.summary()
-        _log(f"  -> {s['burn_duration_min']:.2f} min, {s['delta_v_mps']:.3f} m/s "
-             f"({s['loss_percent']:+.2f} %), {s['solve_wall_s']:.2f} s")
+        _log(f"  -> start {s['start_min']:+.3f} min, {s['burn_duration_min']:.2f} min, "
+             f"{s['delta_v_mps']:.3f} m/s, {s['solve_wall_s']:.2f} s")
     return sol
 
 
-def solve_sequence(thrust_N: float, isp_s: float, starts=(-10.0, -6.0, -5.0), **kw) -> list:
-    """The three LOIs of one engine at the given ignition offsets (min), in chain order."""
-    starts = tuple(s if s == "free" else float(s) for s in starts)
-    if len(starts) != 3:
-        raise InputError(f"a capture sequence needs three ignition offsets, got {starts}")
-    return [solve_case(thrust_N, isp_s, i + 1, starts[i], starts[:i], **kw) for i in range(3)]
+def solve_plan(plan: CapturePlan, verbose: bool = False, use_cache: bool = True) -> list:
+    """Every burn of a plan in order (a list of Solution)."""
+    out = []
+    for n in range(1, plan.n_burns + 1):
+        fn = solve_burn if use_cache else solve_burn.uncached
+        out.append(fn(plan.key(n), verbose=verbose))
+    return out
 
 
-def sweep(thrust_N: float, isp_s: float, loi: int, starts, previous_starts=(), **kw) -> list:
-    """Solutions of one LOI for several ignition offsets (the paper's Tables 1-5)."""
-    starts = [check_start(s) for s in starts]
-    if not starts:
-        raise InputError("an ignition-time sweep needs at least one start offset")
-    return [solve_case(thrust_N, isp_s, loi, s, tuple(previous_starts), **kw) for s in starts]
-
-
-def _previous_state(thrust_N, isp_s, loi, previous_starts, dynamics, arrival, ephemeris, verbose):
-    """State at the nominal perilune preceding LOI ``loi`` in the finite-burn chain."""
-    mission = mission_for(arrival, ephemeris)
-    if loi == 1:  # the arrival state carries the spec's mass
-        return mission, mission.arrival.state
-    prev = solve_case(thrust_N, isp_s, loi - 1, previous_starts[-1], tuple(previous_starts[:-1]),
-                      dynamics, arrival, ephemeris, verbose)
-    return mission, prev.end_state
-
-
-#: Burn durations (s) of the two high-thrust solves of :func:`solve_impulsive_case`.
+#: Burn durations (s) of the two high-thrust solves of :func:`impulsive_limit`.
 IMPULSIVE_LIMIT_DURATIONS_S = (4.0, 2.0)
 
 
 @cached(ignore=["verbose"])
-def solve_impulsive_case(thrust_N: float, isp_s: float, loi: int, previous_starts: tuple = (),
-                         dynamics: str = "full", arrival: ArrivalSpec = ArrivalSpec(),
-                         ephemeris: str | None = None, verbose: bool = False) -> dict:
-    """Impulsive LOI in the same dynamics, from the same pre-burn orbit as the finite chain.
+def impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
+    """Impulsive delta-V of the last burn of ``plan`` in the same dynamics and pre-burn orbit.
 
     One impulse, free epoch (within +-10 min of the nominal perilune) and direction, the
-    same terminal conditions and objective (Eq. 9). It is computed as the limit of finite
-    burns: the free-start problem is solved with a thrust giving a 4 s burn; a 2 s burn
-    centred on the same epoch is then solved; their delta-Vs differ from the impulsive
-    one by a loss proportional to the duration squared, and Richardson extrapolation,
-    dV_imp = (4 dV(2 s) - dV(4 s)) / 3, removes that term. Both solves are verified.
+    same target and objective (Eq. 9), computed as the limit of finite burns: the
+    free-start problem is solved with a thrust giving a 4 s burn (sized from the plan's
+    two-body impulse), once on each side of the perilune, keeping the lower objective;
+    a 2 s burn centred on the same epoch is then solved; their
+    delta-Vs differ from the impulsive one by a loss proportional to the duration
+    squared, and Richardson extrapolation, dV_imp = (4 dV(2 s) - dV(4 s)) / 3, removes
+    that term. Both solves are verified. Pass ``plan.key(n)`` for burn ``n``.
 
     Note: the objective dV + v_perilune is nearly flat along the impulse epoch (a later
     impulse needs more dV and leaves a slower perilune), so local optima a few seconds
     apart can differ by ~0.2 m/s in dV while their objectives agree to ~0.003 m/s; the
-    sum over the chain is the well-conditioned quantity.
+    sum over the chain and the objective are the well-conditioned quantities.
 
     Returns
     -------
-    dict with delta_v_mps (extrapolated), the two finite-limit delta-Vs, impulse epoch
-    offset (min) and end speed (km/s).
+    dict with delta_v_mps (extrapolated), objective_mps (likewise), the two finite-limit
+    delta-Vs, the impulse's epoch offset (min), end speed (km/s) and the verdicts.
     """
-    loi = check_loi(loi)
-    mission, x_peri = _previous_state(thrust_N, isp_s, loi, tuple(previous_starts), dynamics,
-                                      arrival, ephemeris, verbose)
-    dv_guess = PAPER_IMPULSIVE_DV_MPS[loi - 1]
+    i = plan.n_burns - 1
+    x_peri = perilune_state(plan, i, verbose)
+    eph = plan_ephemeris(plan.ephemeris)
+    dv_guess = plan.impulsive()[i].delta_v_mps
     d_long, d_short = IMPULSIVE_LIMIT_DURATIONS_S
     big = x_peri[6] * dv_guess / d_long  # N: m * dV / t
-    prob = loi_problem(mission, loi, big, isp_s, "free", x_peri, dynamics,
-                       start_bounds_min=(-10.0, 10.0))
-    s_long = solve_loi(prob, progress=_log if verbose else None)
+    progress = _log if verbose else None
+    # The objective is nearly flat along the impulse epoch and has a local optimum on each
+    # side of the perilune (a few seconds before and after, differing by ~0.2 m/s in
+    # delta-V and ~0.003 m/s in J): solve on each side and keep the lower objective.
+    centre = -d_long / 120.0  # ignition (min) of a 4 s burn centred on the perilune
+    fit = burn_fit(plan, i, eph)
+    sides = []
+    for bounds, guess in (((-10.0, centre), centre - 0.1), ((centre, 10.0), centre + 0.1)):
+        prob = burn_problem(plan, i, x_peri, eph, start_min="free", thrust_N=big,
+                            start_bounds_min=bounds, guess_start_min=guess, fit=fit)
+        sides.append(solve_burn_problem(prob, progress=progress))
+    s_long = min(sides, key=lambda s: s.raw.objective_kmps)
     # the short burn is centred on the same epoch, so both lie on one t^2 curve
     centre_min = s_long.problem.start_min + s_long.raw.t1_s / 120.0
-    big2 = big * d_long / d_short
     t_short_min = s_long.raw.t1_s * d_short / d_long / 60.0
-    prob2 = loi_problem(mission, loi, big2, isp_s, centre_min - t_short_min / 2, x_peri, dynamics)
-    s_short = solve_loi(prob2, progress=_log if verbose else None)
+    prob2 = burn_problem(plan, i, x_peri, eph, start_min=centre_min - t_short_min / 2,
+                         thrust_N=big * d_long / d_short, fit=fit)
+    s_short = solve_burn_problem(prob2, progress=progress)
     dv4, dv2 = s_long.delta_v_mps, s_short.delta_v_mps
-    sm = s_short.summary()
-    return {"loi": loi, "delta_v_mps": (4 * dv2 - dv4) / 3,
+    return {"burn": i + 1, "delta_v_mps": (4 * dv2 - dv4) / 3,
             "delta_v_long_mps": dv4, "delta_v_short_mps": dv2,
             "burn_long_s": s_long.raw.t1_s, "burn_short_s": s_short.raw.t1_s,
-            "impulse_offset_min": centre_min, "v_end_kmps": sm["v_end_kmps"],
-            "objective_mps": (4 * s_short.raw.objective_kmps - s_long.raw.objective_kmps) / 3 * 1e3,
-            "m_before_kg": float(x_peri[6]), "dynamics": dynamics,
-            "verification_passed": bool(s_long.verification.passed and s_short.verification.passed)}
+            "impulse_offset_min": centre_min,
+            "v_end_kmps": s_short.summary()["v_end_kmps"],
+            "objective_mps": (4 * s_short.raw.objective_kmps - s_long.raw.objective_kmps) / 3
+            * 1e3,
+            "m_before_kg": float(x_peri[6]), "dynamics": plan.dynamics,
+            "verification_passed": bool(s_long.verification.passed
+                                        and s_short.verification.passed)}
+
+
+@dataclass
+class BurnResult:
+    """One verified burn of a plan and its impulsive limit in the same dynamics."""
+
+    solution: Solution
+    impulsive: dict | None = None
+
+    def row(self) -> dict:
+        """Flat row: the solution's summary, the impulsive limit and the loss (units in keys)."""
+        s = self.solution.summary()
+        v = s.pop("verification")
+        s.pop("u_inertial")
+        row = dict(s)
+        imp = None if self.impulsive is None else self.impulsive["delta_v_mps"]
+        row["impulsive_delta_v_mps"] = imp
+        row["loss_mps"] = None if imp is None else s["delta_v_mps"] - imp
+        row["loss_percent"] = None if imp is None else 100 * (s["delta_v_mps"] - imp) / imp
+        row["objective_loss_mps"] = (None if imp is None else
+                                     s["objective_mps"] - self.impulsive["objective_mps"])
+        row["impulsive_verified"] = (None if self.impulsive is None
+                                     else self.impulsive["verification_passed"])
+        row.update({f"verification_{k}": x for k, x in v.items()})
+        return row
+
+
+@dataclass
+class PlanResult:
+    """Every burn of a plan, solved and verified, with totals."""
+
+    plan: CapturePlan
+    burns: list
+
+    def table(self):
+        """One row per burn (pandas DataFrame, units in the column names)."""
+        import pandas as pd
+
+        return pd.DataFrame([b.row() for b in self.burns])
+
+    def totals(self) -> dict:
+        """Totals of the chain: delta-V, impulsive, loss, fuel, burn time, final orbit."""
+        rows = [b.row() for b in self.burns]
+        dv = sum(r["delta_v_mps"] for r in rows)
+        imps = [r["impulsive_delta_v_mps"] for r in rows]
+        imp = None if any(x is None for x in imps) else sum(imps)
+        last = rows[-1]
+        t = self.plan.nominal_perilunes_s
+        return {"total_delta_v_mps": dv, "total_impulsive_delta_v_mps": imp,
+                "total_loss_mps": None if imp is None else dv - imp,
+                "total_loss_percent": None if imp is None else 100 * (dv - imp) / imp,
+                "total_fuel_kg": self.plan.arrival.mass_kg - last["m_end_kg"],
+                "total_burn_duration_min": sum(r["burn_duration_min"] for r in rows),
+                "final_mass_kg": last["m_end_kg"],
+                "final_rp_km": last["rp_end_km"], "final_ra_km": last["ra_end_km"],
+                "final_inc_deg": last["inc_end_deg"],
+                "final_perilune_epoch": calendar_from_seconds(t[-1]),
+                "time_to_final_orbit_h": (t[-1] - t[0]) / 3600.0,
+                "all_verified": all(r["verification_passed"] for r in rows)
+                and all(r["impulsive_verified"] is not False for r in rows)}
+
+    def to_dict(self) -> dict:
+        """JSON-ready: the plan, each burn's row, the totals."""
+        return {"plan": self.plan.to_dict(), "burns": [b.row() for b in self.burns],
+                "totals": self.totals()}
+
+
+def plan_result(plan: CapturePlan, impulsive: bool = True, verbose: bool = False,
+                use_cache: bool = True, on_burn=None) -> PlanResult:
+    """Solve every burn of ``plan`` (and its impulsive limit) in order.
+
+    ``on_burn(BurnResult)`` is called as each burn completes, so a caller can print what
+    is done even if a later burn fails.
+    """
+    burns = []
+    for n in range(1, plan.n_burns + 1):
+        key = plan.key(n)
+        sol = (solve_burn if use_cache else solve_burn.uncached)(key, verbose=verbose)
+        imp = None
+        if impulsive:
+            imp = (impulsive_limit if use_cache else impulsive_limit.uncached)(
+                key, verbose=verbose)
+        burns.append(BurnResult(sol, imp))
+        if on_burn is not None:
+            on_burn(burns[-1])
+    return PlanResult(plan, burns)
+
+
+# ---------------------------------------------------------------------- the paper's cases
+def paper_case(thrust_N: float, isp_s: float, burn: int, start_min,
+               previous_starts: tuple = (), dynamics: str = "full",
+               steering: str = "optimal", verbose: bool = False) -> Solution:
+    """Burn ``burn`` (1-3) of the paper's capture (:func:`lunarcap.mission.plan.paper_plan`).
+
+    The earlier burns ignite at ``previous_starts`` (min, or "free"); this one at
+    ``start_min`` with ``steering``. Cached like every burn.
+    """
+    plan = paper_plan(thrust_N, isp_s, dynamics=dynamics)
+    previous_starts = tuple(previous_starts)
+    if not 1 <= burn <= plan.n_burns or len(previous_starts) != burn - 1:
+        raise InputError(f"burn {burn} of the paper's {plan.n_burns} needs the ignition "
+                         f"offsets of the {burn - 1} earlier burn(s), got {previous_starts}")
+    for j, s in enumerate((*previous_starts, start_min)):
+        plan = plan.with_start(j, s)
+    plan = plan.with_steering(burn - 1, steering)
+    return solve_burn(plan.key(burn), verbose=verbose)

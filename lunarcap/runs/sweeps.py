@@ -1,7 +1,8 @@
-"""Tables of results beside the paper's printed values (pandas; no plotting, no file I/O).
+"""Sweeps of the paper's capture plans, beside the paper's printed values (pandas).
 
-Each function solves (or fetches from the cache) what it needs through
-:mod:`lunarcap.runs.chain` and returns a DataFrame whose column names carry units.
+Each function solves (or fetches from the cache) what it needs through the paper's capture
+plans (:func:`lunarcap.mission.plan.paper_plan`, :mod:`lunarcap.runs.chain`) and returns a
+DataFrame whose column names carry units. No plotting, no file I/O.
 """
 
 from __future__ import annotations
@@ -9,11 +10,16 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from lunarcap.mission.plan import paper_plan
+from lunarcap.paper.printed import (
+    PAPER_BEST_STARTS_MIN,
+    PAPER_IMPULSIVE_DV_MPS,
+    PAPER_STARTS_MIN,
+    paper_best,
+    paper_table,
+)
 from lunarcap.physics import constants as C
-from lunarcap.paper.printed import paper_best, paper_table
-from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN
-from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
-from lunarcap.runs.chain import solve_case, solve_impulsive_case
+from lunarcap.runs.chain import impulsive_limit, paper_case
 
 
 def _paper_row(thrust_N, loi, start):
@@ -25,17 +31,27 @@ def _paper_row(thrust_N, loi, start):
     return None if hit.empty else hit.iloc[0]
 
 
-def default_previous(thrust_N: float, loi: int, isp_s: float | None = None) -> tuple:
-    """Ignition offsets of the LOIs before ``loi``.
+def default_previous(thrust_N: float, loi: int, isp_s: float) -> tuple:
+    """Ignition offsets of the burns before ``loi`` in the paper's plan for this engine.
 
-    The paper's best (Table B1) for its engines; for any other engine (or another Isp)
-    the free-ignition optima of the earlier LOIs (``"free"``).
+    The paper's best (Table B1) for its engines; for any other engine the free-ignition
+    optima of the earlier burns (``"free"``), as :func:`lunarcap.mission.plan.paper_plan`.
     """
-    engines = dict(C.PAPER_ENGINES)
-    T = float(thrust_N)
-    if T in PAPER_BEST_STARTS_MIN and (isp_s is None or float(isp_s) == engines[T]):
-        return tuple(PAPER_BEST_STARTS_MIN[T][:loi - 1])
-    return ("free",) * (loi - 1)
+    return tuple(b.start_min for b in paper_plan(thrust_N, isp_s).burns[:loi - 1])
+
+
+def _paper_loss_percent(dv_mps: float, loi: int) -> float:
+    """Delta-V above the paper's impulsive value of that LOI, in % of it (as Tables 1-5)."""
+    imp = PAPER_IMPULSIVE_DV_MPS[loi - 1]
+    return 100.0 * (dv_mps - imp) / imp
+
+
+def paper_impulsive_case(thrust_N, isp_s, loi, previous_starts=(), dynamics="full") -> dict:
+    """The impulsive limit (same dynamics) of burn ``loi`` of the paper's plan."""
+    plan = paper_plan(thrust_N, isp_s, dynamics=dynamics)
+    for j, s in enumerate(previous_starts):
+        plan = plan.with_start(j, s)
+    return impulsive_limit(plan.key(loi))
 
 
 def sweep_table(thrust_N: float, isp_s: float, loi: int, starts, previous_starts=None,
@@ -50,7 +66,7 @@ def sweep_table(thrust_N: float, isp_s: float, loi: int, starts, previous_starts
         previous_starts = default_previous(thrust_N, loi, isp_s)
     rows = []
     for s in starts:
-        sol = solve_case(thrust_N, isp_s, loi, s, tuple(previous_starts), dynamics,
+        sol = paper_case(thrust_N, isp_s, loi, s, tuple(previous_starts), dynamics,
                          verbose=verbose, **kw)
         sm = sol.summary()
         p = _paper_row(thrust_N, loi, sm["start_min"]) if s != "free" else None
@@ -62,7 +78,7 @@ def sweep_table(thrust_N: float, isp_s: float, loi: int, starts, previous_starts
             "paper_delta_v_mps": np.nan if p is None else p.delta_v_mps,
             "delta_v_mps": sm["delta_v_mps"],
             "paper_loss_percent": np.nan if p is None else p.diff_percent,
-            "loss_percent": sm["loss_percent"],
+            "loss_percent": _paper_loss_percent(sm["delta_v_mps"], loi),
             "eq19_duration_min": sm["eq19_duration_min"],
             "m_start_kg": sm["m_start_kg"], "m_end_kg": sm["m_end_kg"],
             "verified": ver["passed"], "rp_error_m": ver["rp_error_m"],
@@ -101,7 +117,7 @@ def sequence_table(thrust_N: float, isp_s: float, starts=None, dynamics: str = "
     rows = []
     for i, s in enumerate(starts):
         loi = i + 1
-        sol = solve_case(thrust_N, isp_s, loi, s, starts[:i], dynamics, verbose=verbose, **kw)
+        sol = paper_case(thrust_N, isp_s, loi, s, starts[:i], dynamics, verbose=verbose, **kw)
         sm = sol.summary()
         try:
             pb = paper_best(thrust_N, loi)
@@ -114,14 +130,14 @@ def sequence_table(thrust_N: float, isp_s: float, starts=None, dynamics: str = "
                "delta_v_mps": sm["delta_v_mps"],
                "paper_delta_v_mps": np.nan if pb is None else pb["delta_v_mps"],
                "paper_impulsive_delta_v_mps": PAPER_IMPULSIVE_DV_MPS[i],
-               "loss_mps": sm["loss_mps"], "loss_percent": sm["loss_percent"],
+               "loss_mps": sm["delta_v_mps"] - PAPER_IMPULSIVE_DV_MPS[i],
+               "loss_percent": _paper_loss_percent(sm["delta_v_mps"], loi),
                "paper_loss_percent": np.nan if pb is None else pb["diff_percent"],
                "m_start_kg": sm["m_start_kg"], "m_end_kg": sm["m_end_kg"],
                "fuel_kg": sm["fuel_kg"], "v_end_kmps": sm["v_end_kmps"],
                "verified": sm["verification"]["passed"]}
         if with_impulsive_model:
-            imp = solve_impulsive_case(thrust_N, isp_s, loi, starts[:i], dynamics,
-                                       verbose=verbose, **kw)
+            imp = paper_impulsive_case(thrust_N, isp_s, loi, starts[:i], dynamics)
             row["model_impulsive_delta_v_mps"] = imp["delta_v_mps"]
             row["model_loss_mps"] = sm["delta_v_mps"] - imp["delta_v_mps"]
             row["model_loss_percent"] = 100 * row["model_loss_mps"] / imp["delta_v_mps"]
@@ -159,7 +175,7 @@ def verification_table(solutions) -> pd.DataFrame:
     for sol in solutions:
         s = sol.summary()
         v = s["verification"]
-        rows.append({"thrust_N": s["thrust_N"], "isp_s": s["isp_s"], "loi": s["loi"],
+        rows.append({"thrust_N": s["thrust_N"], "isp_s": s["isp_s"], "loi": s["burn"],
                      "start_min": s["start_min"], "dynamics": s["dynamics"], "mesh": s["mesh"],
                      "ipopt_status": s["ipopt_status"], "iterations": s["ipopt_iterations"],
                      "delta_v_mps": s["delta_v_mps"],
@@ -185,17 +201,18 @@ def free_vs_grid_table(thrust_N: float, isp_s: float, dynamics: str = "full",
     rows = []
     for loi in (1, 2, 3):
         prev_free = ("free",) * (loi - 1)
-        free = solve_case(thrust_N, isp_s, loi, "free", prev_free, dynamics, verbose=verbose)
+        free = paper_case(thrust_N, isp_s, loi, "free", prev_free, dynamics, verbose=verbose)
         fs = free.summary()
         row = {"loi": loi, "free_start_min": fs["start_min"],
                "free_burn_duration_min": fs["burn_duration_min"],
                "free_delta_v_mps": fs["delta_v_mps"], "free_objective_mps": fs["objective_mps"],
-               "free_loss_percent": fs["loss_percent"], "eq19_half_duration_min":
+               "free_loss_percent": _paper_loss_percent(fs["delta_v_mps"], loi),
+               "eq19_half_duration_min":
                0.5 * fs["eq19_duration_min"], "free_verified": fs["verification"]["passed"]}
         if grid_starts is not None:
             # the grid point on the same pre-burn orbit as the free optimum
-            starts = [s for s in _paper_starts(thrust_N, loi)]
-            grid = [solve_case(thrust_N, isp_s, loi, s, prev_free, dynamics, verbose=verbose)
+            starts = PAPER_STARTS_MIN[(float(thrust_N), loi)]
+            grid = [paper_case(thrust_N, isp_s, loi, s, prev_free, dynamics, verbose=verbose)
                     for s in starts]
             best = min(grid, key=lambda s: s.raw.objective_kmps)
             gs = best.summary()
@@ -207,11 +224,6 @@ def free_vs_grid_table(thrust_N: float, isp_s: float, dynamics: str = "full",
     df = pd.DataFrame(rows)
     df.attrs.update({"thrust_N": thrust_N, "isp_s": isp_s, "dynamics": dynamics})
     return df
-
-
-def _paper_starts(thrust_N, loi):
-    from lunarcap.paper.printed import PAPER_STARTS_MIN
-    return PAPER_STARTS_MIN[(float(thrust_N), loi)]
 
 
 def steering_table(thrust_N: float, isp_s: float, dynamics: str = "full",
@@ -229,7 +241,7 @@ def steering_table(thrust_N: float, isp_s: float, dynamics: str = "full",
         prev = ("free",) * (loi - 1)
         ref = None
         for law in ("optimal", "inertial", "antivelocity"):
-            sol = solve_case(thrust_N, isp_s, loi, "free", prev, dynamics, verbose=verbose,
+            sol = paper_case(thrust_N, isp_s, loi, "free", prev, dynamics, verbose=verbose,
                              steering=law)
             s = sol.summary()
             v = s["verification"]

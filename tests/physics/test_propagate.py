@@ -11,20 +11,19 @@ from lunarcap.physics import constants as C
 from lunarcap.physics import dynamics as dyn
 from lunarcap.physics import elements as el
 from lunarcap.physics import propagate as prop
-from lunarcap.mission import arrival as scenario
 from lunarcap.errors import InputError
 
 MU = C.MU_MOON
 
 
 @pytest.fixture(scope="module")
-def arrival():
-    return scenario.arrival_state()
+def arrival(paper_arrival):
+    return paper_arrival
 
 
 @pytest.fixture(scope="module")
-def fit(arrival):
-    return scenario.Mission(arrival).fit
+def fit(mission_fit):
+    return mission_fit
 
 
 def _cartesian(model, t0, x0_mee, t1, u_rtn=(0.0, 0.0, 0.0)):

@@ -14,15 +14,14 @@ from lunarcap.physics import constants as C
 from lunarcap.physics import dynamics as dyn
 from lunarcap.physics import elements as el
 from lunarcap.physics import frames
-from lunarcap.mission import arrival as scenario
 from lunarcap.errors import InputError
 
 MU, RM, J2 = C.MU_MOON, C.R_MOON, C.J2_MOON
 
 
 @pytest.fixture(scope="module")
-def fit():
-    return scenario.Mission(scenario.arrival_state()).fit
+def fit(mission_fit):
+    return mission_fit
 
 
 def _random_states(rng, n):

@@ -185,3 +185,10 @@ def test_tables_are_fresh_copies():
     df.loc[0, "delta_v_mps"] = -1.0
     assert P.paper_table(150, 1).loc[0, "delta_v_mps"] == 413.496
     assert isinstance(P.paper_table_b1(), pd.DataFrame)
+
+
+def test_paper_start_tables_are_consistent():
+    # every best start of Table B1 is one of the starts tried in Tables 1-5
+    for thrust, best in P.PAPER_BEST_STARTS_MIN.items():
+        for loi, start in enumerate(best, 1):
+            assert start in P.PAPER_STARTS_MIN[(thrust, loi)]

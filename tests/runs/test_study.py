@@ -21,7 +21,7 @@ from lunarcap.runs import study
 from lunarcap.errors import InputError, SolveError
 from lunarcap.physics.rocket import burn_duration_estimate_s
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 # ------------------------------------------------------------------ a stub engine task
 CALLS = []

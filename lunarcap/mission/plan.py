@@ -1,0 +1,657 @@
+"""Capture plans: a lunar capture described as data, validated once, solved by name.
+
+A plan (a YAML file, or a :class:`CapturePlan` built in Python) says where the
+spacecraft arrives, with which engine, in which dynamics, and which burns capture it::
+
+    name: song2011-150N
+    arrival:
+      epoch: "2017-02-20 03:41:26 TDB"   # first perilune, TDB
+      perilune_altitude_km: 100
+      inclination_deg: 90
+      impulsive_loi1_mps: 353.272         # or v_inf_kmps: 0.91837
+      hemisphere: north                   # optional (north | south)
+      mass_kg: 524.895
+    engine: {thrust_N: 150, isp_s: 200}
+    dynamics: full                        # full | j2 | two-body
+    burns:                                # any number >= 1, in order
+      - {target_period_h: 12.235, start_min: -10}
+      - {target_period_h: 3.525, start_min: -6}
+      - {target: circular, start_min: -5, coast_min: 117.848}
+
+Burns
+-----
+Each burn ignites ``start_min`` minutes from the nominal perilune of the orbit it starts
+on (negative: before; ``free``: optimised) and is followed by a coast to the next nominal
+perilune, where the target must hold (:mod:`lunarcap.mission.targets`):
+
+* ``target_period_h`` (or ``target_apolune_altitude_km``): an ellipse with the plan's
+  perilune radius and inclination; its period fixes the coast (next nominal perilune =
+  this one + the period, Song 2011 Sec. 2.2), and reaching perilune at that epoch with
+  that radius is what makes the orbit have that period.
+* ``target: circular``: the circle at the perilune radius, last burn only; the coast after
+  it lasts ``coast_min`` (default one period of the circle).
+
+Optional keys per burn: ``steering`` (optimal | inertial | antivelocity) and
+``start_bounds_min: [lo, hi]`` (the window of a free ignition; default +-2 Eq. (19)
+durations around perilune, within +-120 min and half the orbit before the burn).
+
+Nominal perilune epochs are the arrival epoch plus the coasts; with them the arrival
+epoch and every coast must lie inside the ephemeris. Every error names the field.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from lunarcap.errors import InputError
+from lunarcap.mission.arrival import ArrivalSpec
+from lunarcap.mission.impulsive import (
+    PAPER_DV_LOI1_MPS,
+    ImpulsiveBurn,
+    impulsive_chain,
+    v_inf_from_loi1,
+)
+from lunarcap.mission.targets import CIRCULAR, PERILUNE, Target
+from lunarcap.physics import constants as C
+from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
+from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
+
+#: Packaged plans (``<name>.yaml``), selectable by name.
+PLAN_DIR = Path(__file__).resolve().parent / "plans"
+
+DYNAMICS = ("full", "j2", "two-body")
+STEERING = ("optimal", "inertial", "antivelocity")
+HEMISPHERES = ("north", "south")
+
+#: Largest |ignition offset| from a nominal perilune, min.
+MAX_START_MIN = 120.0
+#: Margin of the ephemeris window around the plan's first and last perilune, s.
+EPHEMERIS_MARGIN_S = 6 * 3600.0
+#: Shortest burn the transcription resolves, s (an engine that would finish faster is
+#: reported as too strong rather than handed to the optimiser).
+MIN_BURN_S = 0.5
+#: A burn may last at most this fraction of the coast it starts (Eq. (19) estimate).
+MAX_BURN_FRACTION = 0.5
+
+_TOP_KEYS = {"name", "description", "arrival", "engine", "dynamics", "burns", "ephemeris"}
+_ARRIVAL_KEYS = {"epoch", "perilune_altitude_km", "inclination_deg", "v_inf_kmps",
+                 "impulsive_loi1_mps", "hemisphere", "approach_dir", "mass_kg"}
+_ENGINE_KEYS = {"thrust_N", "isp_s"}
+_BURN_KEYS = {"target", "target_period_h", "target_apolune_altitude_km", "start_min",
+              "coast_min", "steering", "start_bounds_min"}
+
+
+class PlanError(InputError):
+    """A capture plan is malformed or physically impossible (the message names the field)."""
+
+
+def _err(where: str, what: str) -> PlanError:
+    return PlanError(f"{where}: {what}")
+
+
+def _number(where: str, value, unit: str, positive: bool = True) -> float:
+    """A finite float (positive unless ``positive`` is False), else PlanError."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise _err(where, f"must be a number of {unit}, got {value!r}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise _err(where, f"must be a finite number of {unit}, got {value!r}")
+    if positive and v <= 0:
+        raise _err(where, f"must be positive ({unit}), got {value!r}")
+    return v
+
+
+def _keys(where: str, d, known: set, required: set) -> None:
+    if not isinstance(d, dict):
+        raise _err(where, f"must be a mapping of keys to values, got {type(d).__name__}")
+    unknown = sorted(set(d) - known)
+    if unknown:
+        raise _err(f"{where}.{unknown[0]}" if where else unknown[0],
+                   f"unknown key (known: {', '.join(sorted(known))})")
+    missing = sorted(required - set(d))
+    if missing:
+        raise _err(f"{where}.{missing[0]}" if where else missing[0], "missing")
+
+
+@dataclass(frozen=True)
+class Engine:
+    """Constant-thrust engine: thrust (N) and specific impulse (s)."""
+
+    thrust_N: float
+    isp_s: float
+
+    @property
+    def exhaust_speed_mps(self) -> float:
+        """g0 Isp, m/s."""
+        return C.G0_MPS2 * self.isp_s
+
+
+@dataclass(frozen=True)
+class Burn:
+    """One capture burn and the orbit its coast must reach.
+
+    Attributes
+    ----------
+    target : {"perilune", "circular"}
+    period_s : float or None
+        Period of the ellipse reached (perilune targets), s.
+    start_min : float or "free"
+        Ignition offset from the nominal perilune of the orbit it starts on, min.
+    coast_s : float or None
+        Coast after a circular burn, s (None: one period of the circle).
+    apolune_altitude_km : float or None
+        The apolune altitude the period was derived from, if the plan gave one.
+    steering : {"optimal", "inertial", "antivelocity"}
+    start_bounds_min : (lo, hi) or None
+        Window of a free ignition, min from the nominal perilune.
+    """
+
+    target: str = PERILUNE
+    period_s: float | None = None
+    start_min: float | str = "free"
+    coast_s: float | None = None
+    apolune_altitude_km: float | None = None
+    steering: str = "optimal"
+    start_bounds_min: tuple | None = None
+
+    @property
+    def free_start(self) -> bool:
+        """True if the ignition epoch is optimised."""
+        return self.start_min == "free"
+
+    def describe(self) -> str:
+        """A few words on the target: 'ellipse, 12.235 h' or 'circle'."""
+        if self.target == CIRCULAR:
+            return "circle"
+        if self.apolune_altitude_km is not None:
+            return f"ellipse, apolune altitude {self.apolune_altitude_km:g} km"
+        return f"ellipse, {self.period_s / 3600:.6g} h"
+
+
+@dataclass(frozen=True)
+class CapturePlan:
+    """A capture: arrival, engine, dynamics and burns (validated on construction).
+
+    Build one with :func:`load_plan` (a file or a packaged name) or :meth:`from_dict`;
+    derive variants with :meth:`with_engine`, :meth:`with_starts`, :meth:`with_dynamics`.
+    """
+
+    name: str
+    arrival: ArrivalSpec
+    engine: Engine
+    burns: tuple
+    dynamics: str = "full"
+    ephemeris: str | None = None
+    impulsive_loi1_mps: float | None = None
+    description: str = field(default="", compare=False)
+
+    # ------------------------------------------------------------------ validation
+    def __post_init__(self):
+        object.__setattr__(self, "burns", tuple(self.burns))
+        _validate_engine(self.engine)
+        _validate_arrival(self.arrival)
+        if self.dynamics not in DYNAMICS:
+            raise _err("dynamics", f"must be one of {', '.join(DYNAMICS)}, got {self.dynamics!r}")
+        if not self.burns:
+            raise _err("burns", "a plan needs at least one burn")
+        rp = self.perilune_radius_km
+        period_before = math.inf
+        for i, b in enumerate(self.burns):
+            _validate_burn(f"burns[{i}]", b, rp, period_before, last=i == len(self.burns) - 1)
+            period_before = b.period_s if b.target == PERILUNE else _circle_period_s(rp)
+        if self.impulsive_loi1_mps is not None or self.arrival.v_inf_kmps is None:
+            # v_inf from an impulsive first burn (default: the paper's 353.272 m/s)
+            dv = PAPER_DV_LOI1_MPS if self.impulsive_loi1_mps is None else \
+                _number("arrival.impulsive_loi1_mps", self.impulsive_loi1_mps, "m/s")
+            first = self.burns[0]
+            period = first.period_s if first.target == PERILUNE else _circle_period_s(rp)
+            try:
+                vinf = v_inf_from_loi1(dv, rp, period)
+            except InputError as exc:
+                raise _err("arrival.impulsive_loi1_mps", str(exc)) from None
+            object.__setattr__(self, "arrival", replace(self.arrival, v_inf_kmps=vinf))
+        self._check_ephemeris()
+        self._check_engine_fits()
+
+    def _check_ephemeris(self) -> None:
+        eph = plan_ephemeris(self.ephemeris)
+        t = self.nominal_perilunes_s
+        a, b = eph.span_s
+        if t[0] - EPHEMERIS_MARGIN_S < a or t[-1] + EPHEMERIS_MARGIN_S > b:
+            raise _err("arrival.epoch",
+                       f"the capture from {calendar_from_seconds(t[0], 0)} to "
+                       f"{calendar_from_seconds(t[-1], 0)} (with 6 h margins) is outside the "
+                       f"ephemeris {eph.name}, which covers {calendar_from_seconds(a, 0)} to "
+                       f"{calendar_from_seconds(b, 0)}")
+
+    def _check_engine_fits(self) -> None:
+        for i, ib in enumerate(self.impulsive()):
+            t19 = ib.eq19_duration_min * 60.0
+            coast = self.nominal_perilunes_s[i + 1] - self.nominal_perilunes_s[i]
+            before = self.nominal_perilunes_s[i] - self.nominal_perilunes_s[i - 1] if i else coast
+            if t19 < MIN_BURN_S:
+                raise _err("engine.thrust_N",
+                           f"{self.engine.thrust_N:g} N is too strong: burn {i + 1} "
+                           f"({ib.delta_v_mps:.1f} m/s) would last {t19:.2g} s (Eq. 19), "
+                           f"below the {MIN_BURN_S:g} s the transcription resolves; for an "
+                           f"impulse, see the impulsive chain (lunarcap impulsive)")
+            if t19 > MAX_BURN_FRACTION * min(coast, before):
+                raise _err("engine.thrust_N",
+                           f"{self.engine.thrust_N:g} N is too weak: burn {i + 1} "
+                           f"({ib.delta_v_mps:.1f} m/s) would last {t19 / 60:.1f} min "
+                           f"(Eq. 19), more than half the {min(coast, before) / 60:.1f} min "
+                           f"orbit around it")
+
+    # ------------------------------------------------------------------ derived numbers
+    @property
+    def perilune_radius_km(self) -> float:
+        """Radius of every perilune and of the final circle, km."""
+        return self.arrival.perilune_radius_km
+
+    @property
+    def n_burns(self) -> int:
+        """Number of burns."""
+        return len(self.burns)
+
+    @property
+    def targets(self) -> tuple:
+        """The :class:`~lunarcap.mission.targets.Target` of each burn."""
+        return tuple(Target(b.target, self.perilune_radius_km, self.arrival.inclination_deg)
+                     for b in self.burns)
+
+    def coast_s(self, i: int) -> float:
+        """Time from the nominal perilune before burn ``i`` (0-based) to the next, s."""
+        b = self.burns[i]
+        if b.target == PERILUNE:
+            return b.period_s
+        return b.coast_s if b.coast_s is not None else _circle_period_s(self.perilune_radius_km)
+
+    @property
+    def nominal_perilunes_s(self) -> tuple:
+        """Nominal perilune epochs (TDB s past J2000): arrival, then after each coast."""
+        t = [seconds_from_calendar(self.arrival.epoch)]
+        for i in range(self.n_burns):
+            t.append(t[-1] + self.coast_s(i))
+        return tuple(t)
+
+    def impulsive(self, eq19_masses_kg=None) -> list[ImpulsiveBurn]:
+        """The two-body impulsive chain of this plan (tangential perilune impulses)."""
+        periods = [b.period_s if b.target == PERILUNE else None for b in self.burns]
+        return impulsive_chain(self.perilune_radius_km, self.arrival.v_inf_kmps, periods,
+                               self.engine.thrust_N, self.engine.isp_s, self.arrival.mass_kg,
+                               eq19_masses_kg=eq19_masses_kg)
+
+    # ------------------------------------------------------------------ variants
+    def with_engine(self, thrust_N: float, isp_s: float, name: str | None = None
+                    ) -> "CapturePlan":
+        """The same plan with another engine."""
+        return replace(self, engine=Engine(float(thrust_N), float(isp_s)),
+                       name=name or f"{self.name} ({thrust_N:g} N / {isp_s:g} s)")
+
+    def with_dynamics(self, dynamics: str) -> "CapturePlan":
+        """The same plan in other dynamics."""
+        return replace(self, dynamics=dynamics)
+
+    def with_start(self, i: int, start_min) -> "CapturePlan":
+        """The same plan with burn ``i`` (0-based) igniting at ``start_min`` (or 'free')."""
+        self._index(i)
+        burns = list(self.burns)
+        burns[i] = replace(burns[i], start_min=_start_value(f"burns[{i}].start_min", start_min))
+        return replace(self, burns=tuple(burns))
+
+    def with_starts(self, starts) -> "CapturePlan":
+        """The same plan with every burn's ignition offset replaced (one per burn)."""
+        starts = list(starts)
+        if len(starts) != self.n_burns:
+            raise _err("burns", f"{self.n_burns} ignition offsets expected (one per burn), "
+                                f"got {len(starts)}")
+        plan = self
+        for i, s in enumerate(starts):
+            plan = plan.with_start(i, s)
+        return plan
+
+    def with_steering(self, i: int, steering: str) -> "CapturePlan":
+        """The same plan with burn ``i`` (0-based) flown with another steering law."""
+        self._index(i)
+        burns = list(self.burns)
+        burns[i] = replace(burns[i], steering=steering)
+        return replace(self, burns=tuple(burns))
+
+    def truncated(self, n: int) -> "CapturePlan":
+        """The plan's first ``n`` burns (a prefix: what burn n depends on)."""
+        if not 1 <= n <= self.n_burns:
+            raise _err("burns", f"a prefix of 1 to {self.n_burns} burns, got {n}")
+        return replace(self, burns=self.burns[:n])
+
+    def key(self, n: int | None = None) -> "CapturePlan":
+        """What a solution of burn ``n`` (1-based; default the last) depends on.
+
+        The plan truncated to its first ``n`` burns, with the name and description blanked,
+        so equal physics share one cache entry whatever the plans are called.
+        """
+        plan = self.truncated(self.n_burns if n is None else n)
+        return replace(plan, name="", description="")
+
+    def _index(self, i: int) -> None:
+        if not isinstance(i, (int, np.integer)) or not 0 <= i < self.n_burns:
+            raise _err("burns", f"this plan has burns 1 to {self.n_burns}; "
+                                f"burn {i + 1 if isinstance(i, int) else i} does not exist")
+
+    # ------------------------------------------------------------------ (de)serialisation
+    @classmethod
+    def from_dict(cls, d: dict, base_dir: str | os.PathLike | None = None,
+                  default_name: str = "") -> "CapturePlan":
+        """A plan from the mapping of a YAML file (every key checked; PlanError names it).
+
+        ``base_dir`` resolves a relative ``ephemeris`` path (the plan file's directory).
+        """
+        _keys("", d, _TOP_KEYS, {"arrival", "engine", "burns"})
+        name = d.get("name", default_name)
+        if not isinstance(name, str) or not name.strip():
+            raise _err("name", f"must be a non-empty text, got {name!r}")
+        a = d["arrival"]
+        _keys("arrival", a, _ARRIVAL_KEYS,
+              {"epoch", "perilune_altitude_km", "inclination_deg", "mass_kg"})
+        if ("v_inf_kmps" in a) == ("impulsive_loi1_mps" in a):
+            raise _err("arrival.v_inf_kmps", "give exactly one of v_inf_kmps and "
+                                             "impulsive_loi1_mps")
+        epoch = a["epoch"]
+        if not isinstance(epoch, str):
+            raise _err("arrival.epoch", f"must be a text like '2017-02-20 03:41:26 TDB', "
+                                        f"got {epoch!r}")
+        try:
+            seconds_from_calendar(epoch)
+        except InputError as exc:
+            raise _err("arrival.epoch", str(exc)) from None
+        approach = a.get("approach_dir")
+        if approach is not None:
+            if not isinstance(approach, (list, tuple)) or len(approach) != 3:
+                raise _err("arrival.approach_dir", f"must be a list of three numbers "
+                                                   f"(M-MME2000), got {approach!r}")
+            approach = tuple(_number(f"arrival.approach_dir[{j}]", x, "", positive=False)
+                             for j, x in enumerate(approach))
+        arrival = ArrivalSpec(
+            epoch=epoch,
+            perilune_altitude_km=_number("arrival.perilune_altitude_km",
+                                         a["perilune_altitude_km"], "km", positive=False),
+            inclination_deg=_number("arrival.inclination_deg", a["inclination_deg"], "deg",
+                                    positive=False),
+            mass_kg=_number("arrival.mass_kg", a["mass_kg"], "kg"),
+            v_inf_kmps=(_number("arrival.v_inf_kmps", a["v_inf_kmps"], "km/s")
+                        if "v_inf_kmps" in a else None),
+            hemisphere=a.get("hemisphere", "north"),
+            approach_dir=approach)
+        e = d["engine"]
+        _keys("engine", e, _ENGINE_KEYS, _ENGINE_KEYS)
+        engine = Engine(_number("engine.thrust_N", e["thrust_N"], "N"),
+                        _number("engine.isp_s", e["isp_s"], "s"))
+        burns_in = d["burns"]
+        if not isinstance(burns_in, list) or not burns_in:
+            raise _err("burns", "must be a list of at least one burn")
+        burns = tuple(_burn_from_dict(f"burns[{i}]", b, arrival.perilune_altitude_km)
+                      for i, b in enumerate(burns_in))
+        eph = d.get("ephemeris")
+        if eph is not None:
+            if not isinstance(eph, str):
+                raise _err("ephemeris", f"must be the path of an SPK file, got {eph!r}")
+            p = Path(eph).expanduser()
+            if not p.is_absolute() and base_dir is not None:
+                p = Path(base_dir) / p
+            eph = str(p.resolve())
+        desc = d.get("description", "")
+        if not isinstance(desc, str):
+            raise _err("description", f"must be a text, got {desc!r}")
+        return cls(name=name.strip(), arrival=arrival, engine=engine, burns=burns,
+                   dynamics=d.get("dynamics", "full"), ephemeris=eph,
+                   impulsive_loi1_mps=(_number("arrival.impulsive_loi1_mps",
+                                               a["impulsive_loi1_mps"], "m/s")
+                                       if "impulsive_loi1_mps" in a else None),
+                   description=desc.strip())
+
+    def to_dict(self) -> dict:
+        """The plan as a mapping with the YAML file's keys (round-trips :meth:`from_dict`)."""
+        a = self.arrival
+        arrival = {"epoch": a.epoch, "perilune_altitude_km": a.perilune_altitude_km,
+                   "inclination_deg": a.inclination_deg}
+        if self.impulsive_loi1_mps is not None:
+            arrival["impulsive_loi1_mps"] = self.impulsive_loi1_mps
+        else:
+            arrival["v_inf_kmps"] = a.v_inf_kmps
+        arrival["hemisphere"] = a.hemisphere
+        if a.approach_dir is not None:
+            arrival["approach_dir"] = list(a.approach_dir)
+        arrival["mass_kg"] = a.mass_kg
+        burns = []
+        for b in self.burns:
+            row = {}
+            if b.target == CIRCULAR:
+                row["target"] = CIRCULAR
+                if b.coast_s is not None:
+                    row["coast_min"] = b.coast_s / 60.0
+            elif b.apolune_altitude_km is not None:
+                row["target_apolune_altitude_km"] = b.apolune_altitude_km
+            else:
+                row["target_period_h"] = b.period_s / 3600.0
+            row["start_min"] = b.start_min
+            if b.steering != "optimal":
+                row["steering"] = b.steering
+            if b.start_bounds_min is not None:
+                row["start_bounds_min"] = list(b.start_bounds_min)
+            burns.append(row)
+        out = {"name": self.name}
+        if self.description:
+            out["description"] = self.description
+        out.update(arrival=arrival, engine={"thrust_N": self.engine.thrust_N,
+                                            "isp_s": self.engine.isp_s},
+                   dynamics=self.dynamics, burns=burns)
+        if self.ephemeris is not None:
+            out["ephemeris"] = self.ephemeris
+        return out
+
+    def to_yaml(self) -> str:
+        """YAML text of :meth:`to_dict`."""
+        import yaml
+
+        return yaml.safe_dump(self.to_dict(), sort_keys=False, default_flow_style=None)
+
+
+# ---------------------------------------------------------------------- helpers
+def _circle_period_s(r_km: float, mu: float = C.MU_MOON) -> float:
+    return 2 * math.pi * math.sqrt(r_km ** 3 / mu)
+
+
+def _period_from_apolune_s(rp_km: float, ra_km: float, mu: float = C.MU_MOON) -> float:
+    a = 0.5 * (rp_km + ra_km)
+    return 2 * math.pi * math.sqrt(a ** 3 / mu)
+
+
+def _start_value(where: str, value):
+    if value == "free":
+        return "free"
+    v = _number(where, value, "min", positive=False)
+    if abs(v) > MAX_START_MIN:
+        raise _err(where, f"{v:g} min is more than {MAX_START_MIN:g} min from perilune")
+    return v
+
+
+def _burn_from_dict(where: str, b, altitude_km: float) -> Burn:
+    _keys(where, b, _BURN_KEYS, {"start_min"})
+    given = [k for k in ("target_period_h", "target_apolune_altitude_km") if k in b]
+    kind = b.get("target", PERILUNE if given else None)
+    if kind not in (PERILUNE, CIRCULAR):
+        raise _err(f"{where}.target", f"must be 'circular' or 'perilune' (or give "
+                                      f"target_period_h / target_apolune_altitude_km), got "
+                                      f"{kind!r}")
+    period = apo = coast = None
+    if kind == CIRCULAR:
+        if given:
+            raise _err(f"{where}.{given[0]}", "a circular target takes no period or apolune")
+        if "coast_min" in b:
+            coast = _number(f"{where}.coast_min", b["coast_min"], "min") * 60.0
+    else:
+        if len(given) != 1:
+            raise _err(f"{where}.target_period_h", "give exactly one of target_period_h and "
+                                                   "target_apolune_altitude_km")
+        if "coast_min" in b:
+            raise _err(f"{where}.coast_min", "only a circular target takes coast_min (an "
+                                             "ellipse's coast lasts its period)")
+        if given[0] == "target_period_h":
+            period = _number(f"{where}.target_period_h", b["target_period_h"], "h") * 3600.0
+        else:
+            apo = _number(f"{where}.target_apolune_altitude_km",
+                          b["target_apolune_altitude_km"], "km")
+            if apo <= altitude_km:
+                raise _err(f"{where}.target_apolune_altitude_km",
+                           f"{apo:g} km is not above the perilune altitude {altitude_km:g} km")
+            period = _period_from_apolune_s(C.R_MOON + altitude_km, C.R_MOON + apo)
+    steering = b.get("steering", "optimal")
+    bounds = b.get("start_bounds_min")
+    if bounds is not None:
+        if not isinstance(bounds, (list, tuple)) or len(bounds) != 2:
+            raise _err(f"{where}.start_bounds_min", f"must be [lo, hi] in minutes, got "
+                                                    f"{bounds!r}")
+        bounds = tuple(_start_value(f"{where}.start_bounds_min[{j}]", x)
+                       for j, x in enumerate(bounds))
+        if "free" in bounds or not bounds[0] < bounds[1]:
+            raise _err(f"{where}.start_bounds_min", f"must be two numbers lo < hi, got "
+                                                    f"{list(bounds)!r}")
+    return Burn(target=kind, period_s=period,
+                start_min=_start_value(f"{where}.start_min", b["start_min"]),
+                coast_s=coast, apolune_altitude_km=apo, steering=steering,
+                start_bounds_min=bounds)
+
+
+def _validate_engine(e: Engine) -> None:
+    _number("engine.thrust_N", e.thrust_N, "N")
+    _number("engine.isp_s", e.isp_s, "s")
+
+
+def _validate_arrival(a: ArrivalSpec) -> None:
+    alt = _number("arrival.perilune_altitude_km", a.perilune_altitude_km, "km", positive=False)
+    if alt <= 0:
+        raise _err("arrival.perilune_altitude_km",
+                   f"{alt:g} km puts the perilune at or below the lunar surface "
+                   f"(radius {C.R_MOON} km): the altitude must be positive")
+    inc = _number("arrival.inclination_deg", a.inclination_deg, "deg", positive=False)
+    if not 0.0 < inc < 180.0:
+        raise _err("arrival.inclination_deg", f"must lie strictly between 0 and 180 deg, "
+                                              f"got {inc:g}")
+    _number("arrival.mass_kg", a.mass_kg, "kg")
+    if a.v_inf_kmps is not None:
+        _number("arrival.v_inf_kmps", a.v_inf_kmps, "km/s")
+    if a.hemisphere not in HEMISPHERES:
+        raise _err("arrival.hemisphere", f"must be north or south, got {a.hemisphere!r}")
+    if a.approach_dir is not None and not np.linalg.norm(a.approach_dir) > 0:
+        raise _err("arrival.approach_dir", "must be a non-zero vector")
+
+
+def _validate_burn(where: str, b: Burn, rp_km: float, period_before_s: float,
+                   last: bool) -> None:
+    if b.target not in (PERILUNE, CIRCULAR):
+        raise _err(f"{where}.target", f"must be 'perilune' or 'circular', got {b.target!r}")
+    if b.steering not in STEERING:
+        raise _err(f"{where}.steering", f"must be one of {', '.join(STEERING)}, "
+                                        f"got {b.steering!r}")
+    _start_value(f"{where}.start_min", b.start_min)
+    circle = _circle_period_s(rp_km)
+    if b.target == CIRCULAR:
+        if not last:
+            raise _err(f"{where}.target", "a circular target must be the last burn (a burn "
+                                          "after it has nothing to lower)")
+        if b.coast_s is not None:
+            _number(f"{where}.coast_min", b.coast_s / 60.0, "min")
+        period_after = circle
+    else:
+        key = ("target_apolune_altitude_km" if b.apolune_altitude_km is not None
+               else "target_period_h")
+        p = _number(f"{where}.{key}", b.period_s, "s")
+        if p <= circle:
+            raise _err(f"{where}.{key}",
+                       f"a period of {p / 3600:.4g} h is not longer than the circular orbit's "
+                       f"at the perilune radius {rp_km:g} km ({circle / 3600:.4g} h): no "
+                       f"ellipse has that perilune and period")
+        period_after = p
+    if not period_after < period_before_s:
+        raise _err(f"{where}.target_period_h" if b.target == PERILUNE else f"{where}.target",
+                   f"the orbit reached ({period_after / 3600:.4g} h) is not shorter than the "
+                   f"orbit before ({period_before_s / 3600:.4g} h): each capture burn must "
+                   f"lower the orbit")
+    if not b.free_start and math.isfinite(period_before_s) and \
+            abs(b.start_min) * 60.0 > 0.4 * period_before_s:
+        raise _err(f"{where}.start_min",
+                   f"{b.start_min:g} min from perilune is more than 0.4 of the "
+                   f"{period_before_s / 60:.1f} min orbit it starts on")
+
+
+@lru_cache(maxsize=8)
+def plan_ephemeris(path: str | None) -> Ephemeris:
+    """The ephemeris of a plan's ``ephemeris`` field (None: DE405), loaded once."""
+    return default_ephemeris() if path is None else Ephemeris(path)
+
+
+# ---------------------------------------------------------------------- files and names
+def available_plans() -> list[str]:
+    """Names of the packaged plans (``lunarcap plan NAME``)."""
+    return sorted(p.stem for p in PLAN_DIR.glob("*.yaml"))
+
+
+def load_plan(source: str | os.PathLike) -> CapturePlan:
+    """A plan from a YAML file or a packaged name (see :func:`available_plans`).
+
+    Raises
+    ------
+    PlanError
+        Unreadable or malformed file (the message names the file and the field).
+    """
+    import yaml
+
+    path = Path(source).expanduser()
+    if not path.is_file():
+        packaged = PLAN_DIR / f"{source}.yaml"
+        if isinstance(source, str) and os.sep not in source and packaged.is_file():
+            path = packaged
+        else:
+            raise PlanError(f"plan {source}: no such file, and not a packaged plan "
+                            f"({', '.join(available_plans())})")
+    try:
+        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as exc:
+        raise PlanError(f"plan {path}: cannot read it: {exc}") from None
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        at = f" (line {mark.line + 1}, column {mark.column + 1})" if mark else ""
+        raise PlanError(f"plan {path}: not valid YAML{at}: "
+                        f"{getattr(exc, 'problem', None) or exc}") from None
+    try:
+        return CapturePlan.from_dict(data if data is not None else {}, base_dir=path.parent,
+                                     default_name=path.stem)
+    except InputError as exc:
+        raise PlanError(f"plan {path.name}: {exc}") from None
+
+
+def paper_plan(thrust_N: float = 150.0, isp_s: float = 200.0, starts=None,
+               dynamics: str = "full") -> CapturePlan:
+    """Song 2011's capture with any engine.
+
+    For the paper's engines (150 N / 200 s, 300 N / 250 s, 450 N / 300 s) the packaged
+    plan with its best ignition offsets (Table B1); for any other engine the 150 N plan
+    with that engine and free ignition (``starts`` overrides either).
+    """
+    engines = {(150.0, 200.0): "song2011-150N", (300.0, 250.0): "song2011-300N",
+               (450.0, 300.0): "song2011-450N"}
+    key = (float(thrust_N), float(isp_s))
+    if key in engines:
+        plan = load_plan(engines[key])
+    else:
+        base = load_plan("song2011-150N")
+        plan = base.with_engine(thrust_N, isp_s, name=f"song2011-{thrust_N:g}N-{isp_s:g}s")
+        plan = plan.with_starts(["free"] * plan.n_burns)
+    if starts is not None:
+        plan = plan.with_starts(starts)
+    return plan if dynamics == plan.dynamics else plan.with_dynamics(dynamics)

@@ -1,0 +1,167 @@
+"""All burns of a capture plan in one NLP (beyond the paper).
+
+The paper optimises one burn at a time with the proxy objective Eq. (9) (burn delta-V +
+perilune speed at the end of the coast) and a grid of ignition times. Here the plan's N
+burns, their free ignition times and the linked coasts form one NLP whose objective is the
+total delta-V of the capture. It is the single-burn leg
+(:func:`~lunarcap.optim.transcription.add_leg`) composed N times: leg k starts where leg
+k-1 ends, at the nominal perilune epoch, and meets the same target conditions as in the
+single-burn NLP (perilune radius, inclination and gamma = 0 on the perilune branch; the
+circle), so the comparison isolates what the one-burn-at-a-time approach loses.
+
+The joint optimum is verified leg by leg exactly like a single burn: each leg's steering
+is flown from the previous leg's *verified* end state.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from functools import lru_cache
+
+import casadi as ca
+import numpy as np
+
+from lunarcap.errors import SolveError
+from lunarcap.mission.plan import CapturePlan
+from lunarcap.optim.collocation import LU, N_X, TU, Mesh, state_scale
+from lunarcap.optim.guess import Guess
+from lunarcap.optim.nlp import (
+    RawSolution,
+    control_function,
+    initial_point,
+    leg_bounds,
+    leg_solution,
+)
+from lunarcap.optim.problem import burn_problem
+from lunarcap.optim.solution import Solution
+from lunarcap.optim.transcription import NLPBuilder, add_leg, dynamics_params
+from lunarcap.optim.verify import verify
+from lunarcap.physics.elements import speed_from_mee
+
+
+@dataclass
+class JointNLP:
+    """A compiled all-burns NLP and its legs."""
+
+    compiled: object
+    legs: list
+
+
+@lru_cache(maxsize=None)
+def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full") -> JointNLP:
+    """The NLP of N legs (one per target kind), each with a free ignition, linked end to start.
+
+    Parameters (by name): ``x_start`` (the state at the first nominal perilune, physical),
+    ``t_ref`` (the N+1 nominal perilune epochs), and per leg ``leg<k>.dynamics``,
+    ``leg<k>.mesh_burn``, ``leg<k>.mesh_coast``, ``leg<k>.target``.
+    """
+    nb, nc = mesh.n_burn, mesh.n_coast
+    n = len(target_kinds)
+    nlp = NLPBuilder()
+    P_x0 = nlp.param("x_start", N_X)
+    P_tref = nlp.param("t_ref", n + 1)
+    S = ca.vertcat(LU, 1, 1, 1, 1, 1, P_x0[6])
+    x_start, J, legs = P_x0 / S, 0, []
+    for k, kind in enumerate(target_kinds):
+        pre = f"leg{k}."
+        leg = add_leg(nlp, pre, mesh, kind, x_start, P_tref[k], P_tref[k + 1],
+                      dynamics_params(nlp, pre + "dynamics"), nlp.param(pre + "mesh_burn", nb + 1),
+                      nlp.param(pre + "mesh_coast", nc + 1), nlp.param(pre + "target", 2), S,
+                      mode, free_start=True)
+        legs.append(leg)
+        x_start = leg.xf
+        J = J + leg.dv
+    name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{mode}".replace("-", "_")
+    return JointNLP(nlp.compile(J, name), legs)
+
+
+@dataclass
+class JointResult:
+    """The joint optimum, verified leg by leg."""
+
+    legs: list            # verified Solutions, one per burn
+    ipopt_status: str
+    iterations: int
+    solve_s: float
+
+    @property
+    def total_delta_v_mps(self) -> float:
+        """Sum of the burns' delta-V, m/s."""
+        return sum(s.delta_v_mps for s in self.legs)
+
+
+def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 16, 5)
+                ) -> JointResult:
+    """Solve all burns of ``plan`` as one NLP, warm-started from a one-at-a-time chain.
+
+    Parameters
+    ----------
+    plan : CapturePlan
+    sequential : list of Solution
+        The plan's burns solved one at a time with free ignition (the warm start).
+    eph : Ephemeris
+    mesh : Mesh
+
+    Raises
+    ------
+    SolveError
+        If IPOPT fails or a leg fails verification.
+    """
+    kinds = tuple(t.kind for t in plan.targets)
+    nlp = build_joint_nlp(mesh, kinds, plan.dynamics)
+    lay = nlp.compiled.layout
+    S = state_scale(sequential[0].problem.x_ref[6])
+    w0 = np.zeros(lay.nv)
+    lbx, ubx, lbg, ubg = lay.bounds()
+    params = {"x_start": sequential[0].problem.x_ref, "t_ref": plan.nominal_perilunes_s}
+    meshes = []
+    for k, sol in enumerate(sequential):
+        prob, raw = sol.problem, sol.raw
+        pre = f"leg{k}."
+        mb = np.linspace(0, 1, mesh.n_burn + 1)
+        mc = raw.mesh_coast if len(raw.mesh_coast) == mesh.n_coast + 1 else \
+            np.linspace(0, 1, mesh.n_coast + 1)
+        meshes.append((mb, mc))
+        u_of_t, _ = control_function(raw)
+        warm = Guess(raw.t1_s, u_of_t, sol.flight.burn, sol.flight.coast)
+        initial_point(lay, pre, prob, mesh, warm, w0, mb, mc, S)
+        leg_bounds(lay, pre, prob, lbx, ubx, lbg, ubg)
+        params.update({pre + "dynamics": prob.model.params(), pre + "mesh_burn": mb,
+                       pre + "mesh_coast": mc, pre + "target": prob.target.values(LU)})
+    t0 = time.perf_counter()
+    res = nlp.compiled.solver(x0=w0, p=lay.params(**params), lbx=lbx, ubx=ubx, lbg=lbg,
+                              ubg=ubg)
+    solve_s = time.perf_counter() - t0
+    stats = nlp.compiled.solver.stats()
+    if not stats["success"]:
+        raise SolveError(f"all-burns NLP of plan {plan.name!r}: IPOPT "
+                         f"{stats['return_status']}", status=stats["return_status"])
+    w = np.asarray(res["x"]).ravel()
+    legs, x_peri = [], sequential[0].problem.x_ref
+    t_ref = plan.nominal_perilunes_s
+    for k, sol in enumerate(sequential):
+        pre = f"leg{k}."
+        t_ign = t_ref[k] + float(lay.get(w, pre + "ts")[0]) * TU
+        # the leg as a fixed-ignition problem from the previous leg's verified end state
+        prob = burn_problem(plan, k, x_peri, eph, start_min=(t_ign - t_ref[k]) / 60.0,
+                            fit=sol.problem.model.fit)
+        mb, mc = meshes[k]
+        fixed = leg_solution(lay, pre, w, prob, mesh, mb, mc, S)
+        xf = fixed["x_coast"][:, -1]
+        dv = prob.model.exhaust_speed_kmps * np.log(fixed["x_burn"][6, 0] /
+                                                    fixed["x_burn"][6, -1])
+        J_leg = dv + float(speed_from_mee(xf[0], xf[1], xf[2], xf[5], prob.model.mu))
+        raw = RawSolution(mesh=mesh, mesh_burn=mb, mesh_coast=mc, objective_kmps=J_leg,
+                          status=stats["return_status"], success=True,
+                          iterations=int(stats["iter_count"]), solve_s=solve_s,
+                          build_s=nlp.compiled.build_s, max_defect=float("nan"), **fixed)
+        ver, flight = verify(raw, return_flight=True)
+        if not ver.passed:
+            raise SolveError(f"all-burns NLP of plan {plan.name!r}: leg {k + 1} failed "
+                             "verification: " + "; ".join(ver.failures()),
+                             status="verification failed", details=ver.to_dict())
+        legs.append(Solution(raw, ver, flight, [], solve_s, sol.raw.t1_s))
+        x_peri = flight.end_state
+    return JointResult(legs, stats["return_status"], int(stats["iter_count"]), solve_s)
+

@@ -1,0 +1,218 @@
+"""One burn's optimal-control problem, apart from how it is transcribed (Song 2011, Sec. 2.2).
+
+Phase 1 burns for a free duration ``t1`` (0 < t1 <= t1_max, Eq. 10) with a free unit thrust
+direction ``u = (u_r, u_t, u_n)`` (bounds +-1.01, |u| = 1, Eqs. 12-13); phase 2 coasts
+to a fixed epoch (the next nominal perilune); states (MEE and mass) are continuous across
+the phases (Eq. 16). The objective is J = Delta-V of the burn + speed at the end of phase 2
+(Eq. 9). At the end of phase 2 the burn's :class:`~lunarcap.mission.targets.Target`
+holds (Eqs. 17-18). With a free start, a coast from the nominal perilune to the ignition
+precedes the burn and the ignition epoch is optimised too.
+
+:func:`burn_problem` builds the problem of burn ``i`` of a capture plan from the state at
+the nominal perilune before it; :mod:`lunarcap.optim.nlp` transcribes it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from lunarcap.errors import InputError
+from lunarcap.mission.plan import MAX_START_MIN, CapturePlan
+from lunarcap.mission.targets import Target
+from lunarcap.physics._ops import ops
+from lunarcap.physics.dynamics import Model, rtn_from_mee
+from lunarcap.physics.ephemeris import ChebyshevFit
+from lunarcap.physics.propagate import propagate
+from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine
+
+#: Steering laws: the optimal time-varying direction (the paper's), a direction fixed in
+#: inertial space (optimised), and thrust opposite the velocity.
+STEERING_LAWS = ("optimal", "inertial", "antivelocity")
+
+#: Margin of a burn's ephemeris fit around its pre-ignition coast, burn and coast, s.
+FIT_MARGIN_S = 6 * 3600.0
+
+
+@dataclass
+class BurnProblem:
+    """One burn: initial state, engine and dynamics, epochs, target, steering.
+
+    Attributes
+    ----------
+    x0 : ndarray (7,)
+        (p km, f, g, h, k, L rad, m kg) at ignition (with ``free_start``: at the guessed
+        ignition).
+    t_ign_s, t_end_s : float
+        Ignition epoch and end of the coast, TDB s past J2000.
+    model : Model
+        Dynamics (mode, engine thrust and Isp, ephemeris fit).
+    target : Target
+        What must hold at ``t_end_s``.
+    dv_impulsive_mps : float
+        The two-body impulsive delta-V of this burn: sizes the Eq. (19) duration that
+        seeds the guess and bounds the burn.
+    index : int
+        Burn number in its plan (1-based).
+    start_min : float
+        Ignition, min from ``t_perilune_s`` (the guess, with ``free_start``).
+    t_perilune_s : float
+        Nominal perilune epoch the ignition is counted from.
+    free_start : bool
+        The ignition epoch is a decision variable in ``start_bounds_min``; ``x_ref`` at
+        ``t_ref_s`` is the known state the pre-ignition coast starts from.
+    steering : {"optimal", "inertial", "antivelocity"}
+    """
+
+    x0: np.ndarray
+    t_ign_s: float
+    t_end_s: float
+    model: Model
+    target: Target
+    dv_impulsive_mps: float
+    index: int = 1
+    start_min: float = float("nan")
+    t_perilune_s: float = float("nan")
+    free_start: bool = False
+    x_ref: np.ndarray | None = None
+    t_ref_s: float = float("nan")
+    start_bounds_min: tuple = (-60.0, 30.0)
+    steering: str = "optimal"
+    t1_max_s: float | None = None
+
+    def __post_init__(self):
+        self.x0 = np.asarray(self.x0, float)
+        check_engine(self.model.thrust_N, self.model.isp_s, self.x0[6])
+        if not self.t_end_s > self.t_ign_s:
+            raise InputError("the coast must end after ignition (t_end > t_ign)")
+        if self.steering not in STEERING_LAWS:
+            raise InputError(f"steering must be one of {STEERING_LAWS}, got {self.steering!r}")
+
+    @property
+    def circular(self) -> bool:
+        """True if the target is the circular kind."""
+        return self.target.circular
+
+    @property
+    def released_targets(self) -> frozenset:
+        """Terminal conditions a closed-form steering law cannot meet and therefore leaves free.
+
+        Thrust opposite the velocity is in-plane and has only the ignition time and the
+        duration free: it keeps the perilune timing (gamma = 0 at the end epoch; for a
+        circle f = g = 0) and releases the inclination and the perilune radius (the radius,
+        for a circle). A fixed inertial direction (two more parameters) meets every target
+        except, for a circle, its radius. What is released is reported, not gated.
+        """
+        if self.steering == "antivelocity":
+            return frozenset({"inc", "p"}) if self.circular else frozenset({"inc", "rp"})
+        if self.steering == "inertial" and self.circular:
+            return frozenset({"p"})
+        return frozenset()
+
+    @property
+    def eq19_duration_s(self) -> float:
+        """Eq. (19) burn-duration estimate from the impulsive delta-V, s."""
+        return burn_duration_estimate_s(self.x0[6], self.dv_impulsive_mps,
+                                        self.model.thrust_N, self.model.isp_s)
+
+    @property
+    def burn_bounds_s(self) -> tuple:
+        """(lower, upper) bounds of the burn duration, s (Eq. 10)."""
+        t19 = self.eq19_duration_s
+        hi = self.t1_max_s or min(3.0 * t19, 0.9 * (self.t_end_s - self.t_ign_s))
+        return min(1.0, 0.5 * t19), hi
+
+
+def steering_law_expr(steering: str, X, u_in=None):
+    """RTN thrust directions (3, N) of a closed-form steering law at states X (7, N).
+
+    Generic over numpy and CasADi. "antivelocity": u = -(v_r, v_t, 0)/|v| with
+    v_r ~ f sin L - g cos L, v_t ~ 1 + f cos L + g sin L (the common factor sqrt(mu/p)
+    cancels); "inertial": u = Q(h, k, L) u_in, the fixed inertial unit vector u_in expressed
+    in the local RTN frame (Eq. A5).
+    """
+    import casadi as ca
+
+    f, g, h, k, L = X[1, :], X[2, :], X[3, :], X[4, :], X[5, :]
+    xp = ops(X)
+    if steering == "antivelocity":
+        vr = f * xp.sin(L) - g * xp.cos(L)
+        vt = 1 + f * xp.cos(L) + g * xp.sin(L)
+        n = xp.sqrt(vr * vr + vt * vt)
+        rows = [-vr / n, -vt / n, 0 * n]
+    elif steering == "inertial":
+        ir, it, i_n = rtn_from_mee(h, k, L)
+        rows = [sum(a[i] * u_in[i] for i in range(3)) for a in (ir, it, i_n)]
+    else:
+        raise InputError(f"no closed-form steering law {steering!r}")
+    return ca.vertcat(*rows) if xp.casadi else np.vstack(rows)
+
+
+def anti_velocity_u(x) -> np.ndarray:
+    """Unit RTN direction opposite the velocity for one MEE state x (the guess steering)."""
+    return steering_law_expr("antivelocity", np.asarray(x, float).reshape(-1, 1))[:, 0]
+
+
+def burn_fit(plan: CapturePlan, i: int, eph) -> ChebyshevFit:
+    """The Earth/Sun ephemeris fit for burn ``i`` (0-based): its orbit and coast, +-6 h."""
+    t = plan.nominal_perilunes_s
+    return ChebyshevFit.fit(eph, t[i] - FIT_MARGIN_S, t[i + 1] + FIT_MARGIN_S)
+
+
+def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
+                 thrust_N: float | None = None, start_bounds_min: tuple | None = None,
+                 fit: ChebyshevFit | None = None, guess_start_min: float | None = None
+                 ) -> BurnProblem:
+    """The problem of burn ``i`` (0-based) of ``plan`` from the state at its perilune.
+
+    Parameters
+    ----------
+    plan : CapturePlan
+    i : int
+        Burn index (0-based).
+    x_perilune : (7,)
+        State (p, f, g, h, k, L, m) at the nominal perilune epoch before the burn (the
+        arrival state, or the previous burn's verified end state).
+    eph : Ephemeris
+    start_min : float or "free", optional
+        Overrides the plan's ignition offset (the impulsive-limit solves use this).
+    thrust_N : float, optional
+        Overrides the plan's thrust (the impulsive-limit solves use a huge one).
+    start_bounds_min : (lo, hi), optional
+        Window of a free ignition, min (default: the plan's, else +-2 Eq. (19) durations,
+        within +-120 min and 0.4 of the orbit before the burn).
+    fit : ChebyshevFit, optional
+        Reuse a fit (default :func:`burn_fit`).
+    guess_start_min : float, optional
+        Where a free ignition's guess ignites, min (default: half the Eq. (19) duration
+        before perilune, the paper's rule; inside the bounds).
+    """
+    burn = plan.burns[i]
+    thrust = plan.engine.thrust_N if thrust_N is None else float(thrust_N)
+    start = burn.start_min if start_min is None else start_min
+    t = plan.nominal_perilunes_s
+    t_peri = t[i]
+    model = Model(mode=plan.dynamics, thrust_N=thrust, isp_s=plan.engine.isp_s,
+                  fit=fit or burn_fit(plan, i, eph))
+    dv_imp = plan.impulsive()[i].delta_v_mps
+    x_perilune = np.asarray(x_perilune, float)
+    free = start == "free"
+    if free:
+        t19 = burn_duration_estimate_s(x_perilune[6], dv_imp, thrust, plan.engine.isp_s) / 60
+        guess_min = -0.5 * t19 if guess_start_min is None else float(guess_start_min)
+        bounds = start_bounds_min or burn.start_bounds_min
+        if bounds is None:
+            lim = MAX_START_MIN if i == 0 else min(MAX_START_MIN, 0.4 * (t[i] - t[i - 1]) / 60)
+            bounds = (max(-2.0 * t19, -lim), min(2.0 * t19, lim))
+        if not bounds[0] <= guess_min <= bounds[1]:
+            guess_min = 0.5 * (bounds[0] + bounds[1])
+    else:
+        guess_min = float(start)
+        bounds = (guess_min, guess_min)
+    t_ign = t_peri + 60.0 * guess_min
+    x0 = propagate(model, t_peri, x_perilune, t_ign).final
+    return BurnProblem(x0, t_ign, t[i + 1], model, plan.targets[i], dv_imp, index=i + 1,
+                       start_min=guess_min, t_perilune_s=t_peri, free_start=free,
+                       x_ref=x_perilune, t_ref_s=t_peri, start_bounds_min=tuple(bounds),
+                       steering=burn.steering)

@@ -1,0 +1,185 @@
+"""Tests of lunarcap.mission.plan: capture plans as data, their derived numbers and validation.
+
+No optimisation here: the solves of plans are in tests/runs/test_plans.py.
+"""
+
+import copy
+import math
+from datetime import timedelta
+
+import numpy as np
+import pytest
+import yaml
+
+from lunarcap.mission.plan import (
+    CapturePlan,
+    PlanError,
+    available_plans,
+    load_plan,
+    paper_plan,
+)
+from lunarcap.physics import constants as C
+from lunarcap.physics.epochs import seconds_from_calendar
+
+MU = C.MU_MOON
+RP = C.R_MOON + 100.0
+
+
+@pytest.fixture(scope="module")
+def base():
+    return load_plan("song2011-150N").to_dict()
+
+
+def test_packaged_plans_are_the_papers():
+    assert available_plans() == ["song2011-150N", "song2011-300N", "song2011-450N"]
+    starts = {"song2011-150N": (-10.0, -6.0, -5.0), "song2011-300N": (-4.0, -3.0, -2.0),
+              "song2011-450N": (-3.0, -2.0, -2.0)}   # Table B1
+    engines = {"song2011-150N": (150.0, 200.0), "song2011-300N": (300.0, 250.0),
+               "song2011-450N": (450.0, 300.0)}
+    for name in available_plans():
+        p = load_plan(name)
+        assert tuple(b.start_min for b in p.burns) == starts[name]
+        assert (p.engine.thrust_N, p.engine.isp_s) == engines[name]
+        assert [t.kind for t in p.targets] == ["perilune", "perilune", "circular"]
+        assert p.arrival.mass_kg == 524.895 and p.dynamics == "full"
+
+
+def test_nominal_perilune_epochs_match_paper():
+    # Song 2011 Sec. 3.2.1 prints its 2nd and 3rd perilune epochs: 20-Feb-2017 15:55:33 and
+    # 19:27:05 TDB. Ours are the arrival epoch plus the nominal periods 12.235 h and 3.525 h.
+    # The paper's optimised orbits have periods of "about" these; 5 s (1e-4 of 12.235 h)
+    # bounds that, while a wrong period or a unit slip would miss by minutes.
+    t = load_plan("song2011-150N").nominal_perilunes_s
+    t0 = seconds_from_calendar("20-Feb-2017 03:41:26 (TDB)")
+    assert t[0] == t0
+    assert t[1] == pytest.approx(seconds_from_calendar("20-Feb-2017 15:55:33 (TDB)"), abs=5.0)
+    assert t[2] == pytest.approx(seconds_from_calendar("20-Feb-2017 19:27:05 (TDB)"), abs=5.0)
+    total = timedelta(hours=12.235) + timedelta(hours=3.525) + timedelta(minutes=117.848)
+    assert t[3] - t0 == pytest.approx(total.total_seconds(), abs=1e-6)
+
+
+def test_v_inf_is_derived_from_the_impulsive_first_burn():
+    p = load_plan("song2011-150N")
+    assert p.arrival.v_inf_kmps == pytest.approx(0.91837, abs=1e-5)
+    imp = p.impulsive()
+    assert imp[0].delta_v_mps == pytest.approx(353.272, abs=1e-9)   # by construction
+    # energy of the hyperbola: v_p^2/2 - mu/r_p = v_inf^2/2
+    assert imp[0].v_before_kmps ** 2 / 2 - MU / RP == pytest.approx(
+        p.arrival.v_inf_kmps ** 2 / 2, rel=1e-12)
+    assert imp[-1].v_after_kmps == pytest.approx(math.sqrt(MU / RP), rel=1e-14)
+
+
+def test_round_trip_through_yaml(tmp_path, base):
+    p = load_plan("song2011-150N")
+    f = tmp_path / "copy.yaml"
+    f.write_text(p.to_yaml())
+    q = load_plan(f)
+    assert q == p
+    assert CapturePlan.from_dict(p.to_dict()) == p
+
+
+def test_apolune_altitude_target_gives_the_kepler_period(base):
+    d = copy.deepcopy(base)
+    d["burns"][0] = {"target_apolune_altitude_km": 3000.0, "start_min": "free"}
+    p = CapturePlan.from_dict(d)
+    a = (RP + C.R_MOON + 3000.0) / 2
+    assert p.burns[0].period_s == pytest.approx(2 * np.pi * np.sqrt(a ** 3 / MU), rel=1e-14)
+    assert p.nominal_perilunes_s[1] - p.nominal_perilunes_s[0] == pytest.approx(
+        p.burns[0].period_s, abs=1e-6)   # epochs past J2000 resolve ~1e-7 s
+    assert "apolune altitude 3000 km" in p.burns[0].describe()
+
+
+def test_variants_and_cache_key():
+    p = load_plan("song2011-150N")
+    q = p.with_start(1, "free").with_engine(220.0, 230.0)
+    assert q.burns[1].free_start and q.engine.thrust_N == 220.0
+    # the key of burn n is the plan's first n burns, named nothing: renaming shares it
+    k = p.key(2)
+    assert k.n_burns == 2 and k.name == ""
+    assert k == load_plan("song2011-150N").with_engine(150.0, 200.0, name="x").key(2)
+    assert p.key(1) == p.with_start(2, -3.0).key(1)      # later burns do not matter
+    assert p.key(3) != p.with_start(2, -3.0).key(3)
+
+
+def test_paper_plan_for_other_engines_ignites_free():
+    p = paper_plan(220.0, 230.0)
+    assert all(b.free_start for b in p.burns)
+    assert paper_plan(300.0, 250.0) == load_plan("song2011-300N")
+
+
+def _bad(base, path, value, delete=False):
+    d = copy.deepcopy(base)
+    node = d
+    for key in path[:-1]:
+        node = node[key]
+    if delete:
+        del node[path[-1]]
+    else:
+        node[path[-1]] = value
+    return d
+
+
+BAD = [
+    # (path, value or "DELETE", field named in the message, words of the reason)
+    (("arrival", "epoch"), "DELETE", "arrival.epoch", "missing"),
+    (("engine", "thrust"), 150, "engine.thrust", "unknown key"),
+    (("flavour",), "vanilla", "flavour", "unknown key"),
+    (("burns", 0, "target_periood_h"), 12.0, "burns[0].target_periood_h", "unknown key"),
+    (("engine", "thrust_N"), -150, "engine.thrust_N", "positive"),
+    (("engine", "isp_s"), float("nan"), "engine.isp_s", "finite"),
+    (("engine", "isp_s"), "fast", "engine.isp_s", "number"),
+    (("arrival", "mass_kg"), 0, "arrival.mass_kg", "positive"),
+    (("arrival", "perilune_altitude_km"), -10, "arrival.perilune_altitude_km", "surface"),
+    (("arrival", "inclination_deg"), 200, "arrival.inclination_deg", "between 0 and 180"),
+    (("arrival", "epoch"), "2300-01-01 00:00:00 TDB", "arrival.epoch", "outside the ephemeris"),
+    (("arrival", "epoch"), "yesterday", "arrival.epoch", "cannot read epoch"),
+    (("arrival", "hemisphere"), "east", "arrival.hemisphere", "north or south"),
+    (("burns", 1, "target_period_h"), 1.5, "burns[1].target_period_h", "circular orbit"),
+    (("burns", 1, "target_period_h"), 14.0, "burns[1].target_period_h", "not shorter"),
+    (("burns", 0, "start_min"), 500, "burns[0].start_min", "more than 120 min"),
+    (("burns", 0, "start_min"), "late", "burns[0].start_min", "number"),
+    (("burns", 2, "target"), "parabolic", "burns[2].target", "circular"),
+    (("burns",), [], "burns", "at least one burn"),
+    (("dynamics",), "n-body", "dynamics", "full, j2, two-body"),
+    (("engine", "thrust_N"), 1e9, "engine.thrust_N", "too strong"),
+    (("engine", "thrust_N"), 0.5, "engine.thrust_N", "too weak"),
+]
+
+
+@pytest.mark.parametrize("path,value,field,reason", BAD, ids=[b[2] + ":" + b[3] for b in BAD])
+def test_bad_plan_names_the_field(base, path, value, field, reason):
+    d = _bad(base, path, value, delete=value == "DELETE")
+    with pytest.raises(PlanError) as exc:
+        CapturePlan.from_dict(d)
+    msg = str(exc.value)
+    assert msg.startswith(field + ":"), msg
+    assert reason in msg, msg
+
+
+def test_circular_target_must_be_last_and_keys_are_exclusive(base):
+    d = copy.deepcopy(base)
+    d["burns"] = [{"target": "circular", "start_min": -5}, {"target_period_h": 3.0,
+                                                             "start_min": -5}]
+    with pytest.raises(PlanError, match=r"burns\[0\].target: a circular target must be the last"):
+        CapturePlan.from_dict(d)
+    d = copy.deepcopy(base)
+    d["arrival"]["v_inf_kmps"] = 0.9
+    with pytest.raises(PlanError, match="exactly one of v_inf_kmps and impulsive_loi1_mps"):
+        CapturePlan.from_dict(d)
+
+
+def test_load_plan_reports_files_and_yaml(tmp_path):
+    with pytest.raises(PlanError, match="no such file"):
+        load_plan(tmp_path / "missing.yaml")
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: x\narrival: [unclosed\n")
+    with pytest.raises(PlanError, match=r"bad.yaml: not valid YAML \(line"):
+        load_plan(bad)
+    empty = tmp_path / "empty.yaml"
+    empty.write_text("")
+    with pytest.raises(PlanError, match=r"empty.yaml: arrival: missing"):
+        load_plan(empty)
+    text = yaml.safe_dump({"x": 1})
+    (tmp_path / "other.yaml").write_text(text)
+    with pytest.raises(PlanError, match="other.yaml: x: unknown key"):
+        load_plan(tmp_path / "other.yaml")

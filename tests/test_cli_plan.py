@@ -1,0 +1,152 @@
+"""CLI tests of `lunarcap plan` and `lunarcap solve` (real solves in two-body for speed) and
+of how they answer bad input: exit 2 and one line naming the field.
+"""
+
+import json
+import math
+import subprocess
+import sys
+
+import pytest
+import yaml
+
+from lunarcap import cli
+from lunarcap.errors import SolveError
+from lunarcap.mission.plan import load_plan
+
+pytestmark = pytest.mark.slow
+
+REQUIRED = ["delta_v_mps", "impulsive_delta_v_mps", "loss_percent", "burn_duration_min",
+            "start_min", "m_start_kg", "m_end_kg", "v_end_kmps", "solve_wall_s"]
+
+
+def _run(*args):
+    return subprocess.run([sys.executable, "-m", "lunarcap", *args], capture_output=True,
+                          text=True, timeout=600)
+
+
+def _one_error_line(stderr: str) -> str:
+    lines = [ln for ln in stderr.splitlines() if "error:" in ln]
+    assert len(lines) == 1, stderr
+    assert "Traceback" not in stderr
+    return lines[0]
+
+
+@pytest.fixture
+def plan_file(tmp_path):
+    """A two-burn two-body plan: hyperbola -> 8 h ellipse -> 100 km circle, 450 N."""
+    d = load_plan("song2011-450N").to_dict()
+    d.update(name="two-burn-test", dynamics="two-body",
+             burns=[{"target_period_h": 8.0, "start_min": "free"},
+                    {"target": "circular", "start_min": "free"}])
+    f = tmp_path / "two.yaml"
+    f.write_text(yaml.safe_dump(d, sort_keys=False))
+    return f
+
+
+def test_solve_json_keys_and_physics():
+    r = _run("solve", "--thrust", "450", "--isp", "300", "--loi", "1", "--start", "-3",
+             "--dynamics", "two-body", "--json", "--quiet", "--no-cache")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    for k in REQUIRED:
+        assert k in d
+    for k in ("delta_v_mps", "rp_error_m", "inc_error_deg", "gamma_error_deg"):
+        assert k in d["verification"]
+    # the rocket equation ties the printed numbers together
+    dv = 300 * 9.80665 * math.log(d["m_start_kg"] / d["m_end_kg"])
+    assert abs(dv - d["delta_v_mps"]) < 1e-6
+    # two-body: the impulsive limit is the vis-viva 353.272 m/s, the finite burn costs more,
+    # by < 1 %
+    assert abs(d["impulsive_delta_v_mps"] - 353.272) < 0.01
+    assert 353.272 < d["delta_v_mps"] < 353.272 * 1.01
+    assert d["loss_mps"] == pytest.approx(d["delta_v_mps"] - d["impulsive_delta_v_mps"])
+    assert d["verification"]["passed"]
+
+
+def test_plan_json_totals_and_chain(plan_file):
+    r = _run("plan", str(plan_file), "--json", "--quiet")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["complete"] and len(d["burns"]) == 2 and d["plan"]["name"] == "two-burn-test"
+    tot = d["totals"]
+    assert tot["total_delta_v_mps"] == pytest.approx(sum(b["delta_v_mps"] for b in d["burns"]),
+                                                     rel=1e-15)
+    # mass carries through the chain, the loss is positive, the final orbit is the circle
+    a, b = d["burns"]
+    assert a["m_end_kg"] == pytest.approx(b["m_start_kg"], abs=1e-9)  # collocation vs flight
+    assert tot["total_loss_mps"] > 0
+    assert tot["final_rp_km"] == pytest.approx(1838.2, abs=0.01)
+    assert tot["final_ra_km"] == pytest.approx(1838.2, abs=0.01)
+    assert tot["all_verified"]
+
+
+def test_plan_text_prints_every_burn_and_totals(plan_file):
+    r = _run("plan", str(plan_file), "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert "ellipse, 8 h" in r.stdout and "circle" in r.stdout and "total: dV" in r.stdout
+
+
+def test_failed_solve_exits_3_and_keeps_what_was_done(monkeypatch, capsys, plan_file):
+    # burn 2 fails: burn 1's row is printed first, then one error line, exit 3
+    import lunarcap.runs.chain as chain
+    real = chain.solve_burn
+
+    def fail_second(key, verbose=False):
+        if key.n_burns == 2:
+            raise SolveError("burn 2 failed on every mesh: 8x16 LGR-5: IPOPT "
+                             "Infeasible_Problem_Detected", status="Infeasible_Problem_Detected")
+        return real(key, verbose=verbose)
+    monkeypatch.setattr(chain, "solve_burn", fail_second)
+    rc = cli.main(["plan", str(plan_file), "--quiet", "--no-impulsive"])
+    out, err = capsys.readouterr()
+    assert rc == 3
+    assert "ellipse, 8 h" in out and "total" not in out
+    assert "Infeasible_Problem_Detected" in _one_error_line(err)
+
+
+BAD_PLANS = [
+    # (mutation of the plan, field named, words of the reason)
+    (lambda d: d["engine"].update(thrust_N=-150), "engine.thrust_N", "positive"),
+    (lambda d: d["arrival"].pop("mass_kg"), "arrival.mass_kg", "missing"),
+    (lambda d: d.update(colour="red"), "colour", "unknown key"),
+    (lambda d: d["arrival"].update(perilune_altitude_km=-50), "arrival.perilune_altitude_km",
+     "surface"),
+    (lambda d: d["burns"][0].update(target_period_h=1.0), "burns[0].target_period_h",
+     "circular orbit"),
+    (lambda d: d["arrival"].update(epoch="2250-06-01 00:00:00 TDB"), "arrival.epoch",
+     "outside the ephemeris"),
+    (lambda d: d["engine"].update(thrust_N=1e9), "engine.thrust_N", "too strong"),
+    (lambda d: d["engine"].update(isp_s=float("inf")), "engine.isp_s", "finite"),
+]
+
+
+@pytest.mark.parametrize("mutate,field,reason", BAD_PLANS, ids=[b[1] for b in BAD_PLANS])
+def test_bad_plan_exits_2_with_one_line_naming_the_field(tmp_path, plan_file, mutate, field,
+                                                         reason):
+    d = yaml.safe_load(plan_file.read_text())
+    mutate(d)
+    f = tmp_path / "bad.yaml"
+    f.write_text(yaml.safe_dump(d, sort_keys=False))
+    r = _run("plan", str(f), "--quiet")
+    assert r.returncode == 2
+    line = _one_error_line(r.stderr)
+    assert line.startswith(f"lunarcap: error: plan bad.yaml: {field}: "), line
+    assert reason in line, line
+    assert r.stdout == ""
+
+
+@pytest.mark.parametrize("args,words", [
+    (["solve", "--burn", "4"], "has burns 1 to 3"),
+    (["solve", "--start", "abc"], "start offsets must be numbers"),
+    (["solve", "--thrust", "-1"], "thrust must be positive"),
+    (["solve", "--start", "500"], "more than 120 min"),
+    (["solve", "--thrust", "1e9"], "too strong"),
+    (["plan", "song2011-150N", "--starts", "-1,-2"], "3 ignition offsets expected"),
+    (["solve", "--loi", "2", "--previous-starts", "-1,-2"], "needs 1 offset(s)"),
+    (["plan", "no-such-plan"], "not a packaged plan"),
+])
+def test_bad_command_lines_exit_2_with_one_message(args, words):
+    r = _run(*args, "--quiet")
+    assert r.returncode == 2, r.stderr
+    assert words in _one_error_line(r.stderr)
