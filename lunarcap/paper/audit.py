@@ -1052,6 +1052,22 @@ _CHECKS = (_check_a, _check_b, _check_c, _check_d, _check_e, _check_f, _check_g,
            _check_i, _check_j, _check_k)
 
 
+#: Titles of the audit's groups of checks (:func:`lunarcap.paper.audit.audit_findings`).
+AUDIT_CHECK_TITLES = {
+    "a": "constants of Sec. 3.1",
+    "b": "the 'difference %' of Tables 1-5 and B1",
+    "c": "masses, propellant and burn durations vs the rocket equation",
+    "d": "the fuel-mass sentences of Sec. 3.2",
+    "e": "delta-V losses and their percentages",
+    "f": "burn-duration totals",
+    "g": "the period of the 100 km circular orbit",
+    "h": "the perilune epochs vs the periods",
+    "i": "Eq. (19) and its estimates",
+    "j": "half the Eq. (19) duration vs the best ignition time",
+    "k": "other checks (Fig. 4, two-body impulsive delta-Vs)",
+}
+
+
 def audit_findings() -> list[Finding]:
     """All consistency checks of Song 2011.
 

@@ -379,16 +379,15 @@ def solve_engine(thrust_N: float, isp_s: float, dynamics: str = "full") -> list[
     chain and is recorded (status "failed" with IPOPT's status); any other exception is
     recorded as "error". Never raises for a solver failure.
     """
-    import lunarcap.runs.chain as sequence
-    from lunarcap.repro.cache import code_version
     from lunarcap.errors import SolveError
+    from lunarcap.repro.cache import code_version
+    from lunarcap.runs.chain import paper_case
 
     t0 = time.perf_counter()
     summaries, failure = [], None
     for loi in (1, 2, 3):
         try:
-            sol = sequence.solve_case(thrust_N, isp_s, loi, "free", ("free",) * (loi - 1),
-                                      dynamics)
+            sol = paper_case(thrust_N, isp_s, loi, "free", ("free",) * (loi - 1), dynamics)
         except SolveError as exc:
             failure = {"loi": loi, "status": "failed", "ipopt_status": exc.status or "",
                        "error": str(exc)}
@@ -397,7 +396,11 @@ def solve_engine(thrust_N: float, isp_s: float, dynamics: str = "full") -> list[
             failure = {"loi": loi, "status": "error", "ipopt_status": "",
                        "error": f"{type(exc).__name__}: {exc}"}
             break
-        summaries.append(sol.summary())
+        s = sol.summary()
+        imp = PAPER_IMPULSIVE_DV_MPS[loi - 1]
+        s.update(impulsive_delta_v_mps=imp, loss_mps=s["delta_v_mps"] - imp,
+                 loss_percent=100.0 * (s["delta_v_mps"] - imp) / imp)
+        summaries.append(s)
     return engine_rows(thrust_N, isp_s, dynamics, summaries, failure,
                        task_wall_s=time.perf_counter() - t0,
                        worker=f"{socket.gethostname()}:{os.getpid()}",

@@ -8,7 +8,11 @@ import pytest
 
 from lunarcap.physics import constants as C
 from lunarcap.repro import paths
-from lunarcap.report import figures as plots
+import matplotlib.pyplot as plt
+
+from lunarcap.paper.audit import AUDIT_CHECK_TITLES
+from lunarcap.physics.frames import thrust_angles_deg, thrust_direction_rtn
+from lunarcap.report import display, figdata, figures, reproduction
 def _unit(rng, n):
     u = rng.normal(size=(3, n))
     return u / np.linalg.norm(u, axis=0)
@@ -18,7 +22,7 @@ def _unit(rng, n):
 def test_eq14_on_random_directions():
     rng = np.random.default_rng(14)
     u = _unit(rng, 500)
-    alpha, beta = plots.thrust_angles_deg(u)
+    alpha, beta = thrust_angles_deg(u)
     np.testing.assert_allclose(alpha, np.degrees(np.arctan2(u[0], u[1])) % 360, atol=1e-12)
     np.testing.assert_allclose(beta, np.degrees(np.arcsin(u[2])), atol=1e-12)
     assert ((alpha >= 0) & (alpha < 360)).all() and (np.abs(beta) <= 90).all()
@@ -33,7 +37,7 @@ def test_eq14_on_random_directions():
     ((0, 1, 1), 0.0, 45.0),     # not normalised: beta from u_n / |u|
 ])
 def test_eq14_special_directions(u, alpha, beta):
-    a, b = plots.thrust_angles_deg(u)
+    a, b = thrust_angles_deg(u)
     if alpha is not None:
         assert float(a) == pytest.approx(alpha, abs=1e-12)
     assert float(b) == pytest.approx(beta, abs=1e-12)
@@ -42,9 +46,9 @@ def test_eq14_special_directions(u, alpha, beta):
 def test_thrust_direction_inverts_eq14():
     rng = np.random.default_rng(1)
     for a, b in zip(rng.uniform(0, 360, 200), rng.uniform(-89.9, 89.9, 200)):
-        u = plots.thrust_direction_rtn(a, b)
+        u = thrust_direction_rtn(a, b)
         assert np.linalg.norm(u) == pytest.approx(1.0, abs=1e-14)
-        aa, bb = plots.thrust_angles_deg(u)
+        aa, bb = thrust_angles_deg(u)
         assert float(aa) == pytest.approx(a, abs=1e-9) and float(bb) == pytest.approx(b, abs=1e-9)
 
 
@@ -53,7 +57,7 @@ def test_eq14_agrees_with_the_solution_module():
     if not hasattr(sol, "thrust_angles_deg"):
         pytest.skip("lunarcap.optim.solution has no thrust_angles_deg")
     u = _unit(np.random.default_rng(3), 100)
-    for ours, theirs in zip(plots.thrust_angles_deg(u), sol.thrust_angles_deg(u)):
+    for ours, theirs in zip(thrust_angles_deg(u), sol.thrust_angles_deg(u)):
         np.testing.assert_allclose(ours, theirs, atol=1e-12)
 
 
@@ -61,7 +65,7 @@ def test_eq14_agrees_with_the_solution_module():
 @pytest.mark.parametrize("alpha, beta, nu", [(55.0, 30.0, -40.0), (180.0, 0.0, 0.0),
                                              (137.5, -10.0, 25.0), (300.0, 80.0, 170.0)])
 def test_fig1_geometry_is_consistent_with_eq14(alpha, beta, nu):
-    g = plots.fig1_geometry(alpha_deg=alpha, beta_deg=beta, true_anomaly_deg=nu)
+    g = figdata.fig1_geometry(alpha_deg=alpha, beta_deg=beta, true_anomaly_deg=nu)
     assert g.alpha_deg == pytest.approx(alpha % 360, abs=1e-9)
     assert g.beta_deg == pytest.approx(beta, abs=1e-9)
     q = g.rtn
@@ -84,40 +88,40 @@ def test_fig1_geometry_is_consistent_with_eq14(alpha, beta, nu):
 
 
 def test_fig1_orbit_and_flight_path_angle():
-    g0 = plots.fig1_geometry(true_anomaly_deg=0.0)
+    g0 = figdata.fig1_geometry(true_anomaly_deg=0.0)
     assert g0.flight_path_angle_deg == pytest.approx(0.0, abs=1e-9)      # v along i_t
     r = np.linalg.norm(g0.orbit_LU, axis=0) * C.LU_KM
     assert r.min() == pytest.approx(C.R_MOON + 100.0, rel=1e-9)          # 100 km perilune
-    g = plots.fig1_geometry(true_anomaly_deg=-40.0)
+    g = figdata.fig1_geometry(true_anomaly_deg=-40.0)
     assert g.flight_path_angle_deg < 0                                   # approaching perilune
     assert g.v_hat @ g.rtn[1] == pytest.approx(math.cos(math.radians(g.flight_path_angle_deg)))
 
 
 def test_fig1_accepts_a_direction_and_rejects_bad_ones():
-    g = plots.fig1_geometry(u_rtn=[0.0, -2.0, 0.0])
+    g = figdata.fig1_geometry(u_rtn=[0.0, -2.0, 0.0])
     assert g.alpha_deg == pytest.approx(180.0) and g.beta_deg == pytest.approx(0.0)
     for bad in ([0, 0, 0], [1, np.nan, 0], [1, 0]):
         with pytest.raises(ValueError):
-            plots.fig1_geometry(u_rtn=bad)
+            figdata.fig1_geometry(u_rtn=bad)
 
 
 def test_fig1_vectors_table():
-    t = plots.fig1_geometry().vectors_table()
+    t = figdata.fig1_geometry().vectors_table()
     assert list(t.columns) == ["vector", "x", "y", "z"] and len(t) == 7
     assert t[["x", "y", "z"]].notna().all().all()
 
 
 def test_plot_fig1_draws_both_panels():
-    fig = plots.plot_fig1_geometry(plots.fig1_geometry())
+    fig = figures.plot_fig1_geometry(figdata.fig1_geometry())
     assert len(fig.axes) == 2
     assert fig.axes[0].get_xlabel().endswith("(LU)") and fig.axes[0].get_ylabel() == "y (LU)"
-    plots.plt.close(fig)
+    plt.close(fig)
 
 
 # ------------------------------------------------------------------ tables and files
 def test_markdown_table_formatting():
     df = pd.DataFrame({"name": ["a|b", "c"], "v": [-0.0004, np.inf], "w": [np.nan, 2.0]})
-    md = plots.markdown_table(df, {"v": "+.2f", "w": ".1f"}).splitlines()
+    md = display.markdown_table(df, {"v": "+.2f", "w": ".1f"}).splitlines()
     assert md[0] == "| name | v | w |"
     assert md[1] == "|:---|---:|---:|"
     assert md[2] == "| a\\|b | 0.00 | — |"          # no "-0.00", NaN as a dash
@@ -130,14 +134,14 @@ def test_show_table_and_figure_write_files(tmp_path, monkeypatch):
     monkeypatch.setattr(paths, "TABLES", gen / "tables")
     monkeypatch.setattr(paths, "FIGURES", gen / "figures")
     df = pd.DataFrame({"dv_mps": [1.23456]})
-    md = plots.show_table(df, "t1", "Caption (m/s).", "notebooks/x.ipynb", {"a": 1},
+    md = display.show_table(df, "t1", "Caption (m/s).", "notebooks/x.ipynb", {"a": 1},
                           labels={"dv_mps": "ΔV (m/s)"}, display=False)
     assert (gen / "tables" / "t1.csv").read_text() == "dv_mps\n1.23456\n"
     assert ":::{table} Caption (m/s)." in md and ":name: tbl-t1" in md
     assert "| ΔV (m/s) |" in md and "| 1.235 |" in md
     assert "{download}`t1.csv <tables/t1.csv>`" in md and "`notebooks/x.ipynb` with a=1" in md
-    fig = plots.plot_fig1_geometry(plots.fig1_geometry())
-    md = plots.show_figure(fig, "f1", "A caption (deg).", "notebooks/x.ipynb", display=False)
+    fig = figures.plot_fig1_geometry(figdata.fig1_geometry())
+    md = display.show_figure(fig, "f1", "A caption (deg).", "notebooks/x.ipynb", display=False)
     for ext in ("png", "svg"):
         assert (gen / "figures" / f"f1.{ext}").stat().st_size > 1000
     assert ":::{figure} figures/f1.png" in md and ":name: fig-f1" in md
@@ -149,7 +153,7 @@ def test_orbit_plane_basis_is_right_handed_and_follows_the_pole():
     rng = np.random.default_rng(2)
     for _ in range(50):
         r, v = rng.normal(size=3) * 2000, rng.normal(size=3)
-        b = plots.orbit_plane_basis(r, v)
+        b = figdata.orbit_plane_basis(r, v)
         np.testing.assert_allclose(b @ b.T, np.eye(3), atol=1e-12)
         np.testing.assert_allclose(np.cross(b[0], b[1]), b[2], atol=1e-12)
         h = np.cross(r, v)
@@ -157,36 +161,38 @@ def test_orbit_plane_basis_is_right_handed_and_follows_the_pole():
         assert abs(b[:2] @ h).max() < 1e-9 * np.linalg.norm(h)   # e_x, e_y in the plane
         assert b[0][2] == pytest.approx(0.0, abs=1e-12)          # e_x on the equator
     # a polar orbit: e_y is the M-MME2000 z axis and the orbit turns counter-clockwise
-    b = plots.orbit_plane_basis([1838.2, 0, 0], [0.2, 0, 1.6])
+    b = figdata.orbit_plane_basis([1838.2, 0, 0], [0.2, 0, 1.6])
     np.testing.assert_allclose(b[1], [0, 0, 1], atol=1e-12)
     # equatorial orbit: falls back on the direction of r
-    b = plots.orbit_plane_basis([1838.2, 0, 0], [0, 1.6, 0])
+    b = figdata.orbit_plane_basis([1838.2, 0, 0], [0, 1.6, 0])
     np.testing.assert_allclose(b[1], [1, 0, 0], atol=1e-12)
     with pytest.raises(ValueError):
-        plots.orbit_plane_basis([1, 0, 0], [2, 0, 0])
+        figdata.orbit_plane_basis([1, 0, 0], [2, 0, 0])
 
 
 @pytest.fixture(scope="module")
 def capture():
-    """The paper's 150 N chain (-10, -6, -5 min): solved once, then from the disk cache."""
-    from lunarcap.runs import chain as sequence
-    sols = sequence.solve_sequence(150.0, 200.0, (-10.0, -6.0, -5.0))
-    mission = sequence.mission_for()
-    return sols, mission, plots.capture_geometry(sols, mission.arrival)
+    """The paper's 150 N plan (-10, -6, -5 min): solved once, then from the disk cache."""
+    from lunarcap.mission.plan import load_plan
+    from lunarcap.runs.chain import arrival_for, solve_plan
+
+    plan = load_plan("song2011-150N")
+    sols = solve_plan(plan)
+    return sols, plan, figdata.capture_geometry(sols, arrival_for(plan.arrival))
 
 
 @pytest.mark.slow
 def test_capture_geometry_burn_arcs_lie_near_the_100km_perilune(capture):
-    sols, mission, geo = capture
+    sols, plan, geo = capture
     rp = C.R_MOON + C.PERILUNE_ALTITUDE_KM
     burns = geo.select("burn")
-    assert [a.loi for a in burns] == [1, 2, 3]
+    assert [a.burn for a in burns] == [1, 2, 3]
     assert geo.max_out_of_plane_km < 10.0           # the chain stays in the arrival plane
     for a in burns:
         r = a.radius_km
         r_proj = np.linalg.norm(a.xy_LU, axis=0) * C.LU_KM
         np.testing.assert_allclose(r_proj, r, atol=0.05)     # projection keeps radii
-        assert abs(r.min() - rp) < 2.0, (a.loi, r.min())      # perilune at 100 km +- 2 km
+        assert abs(r.min() - rp) < 2.0, (a.burn, r.min())      # perilune at 100 km +- 2 km
         assert (r >= rp - 2.0).all() and r.max() < rp + 400.0
     # ignition before and cutoff after each pass's perilune, both within 60 deg of it
     t = geo.burns
@@ -199,7 +205,7 @@ def test_capture_geometry_burn_arcs_lie_near_the_100km_perilune(capture):
 
 @pytest.mark.slow
 def test_capture_geometry_arcs_join_up(capture):
-    sols, mission, geo = capture
+    sols, plan, geo = capture
     hyp = geo.select("hyperbola")[0]
     burns, coasts = geo.select("burn"), geo.select("coast")
     assert hyp.t_s[0] < hyp.t_s[-1] == pytest.approx(sols[0].problem.t_ign_s)
@@ -223,7 +229,7 @@ def test_capture_geometry_arcs_join_up(capture):
 @pytest.mark.slow
 def test_fig4_steering_data(capture):
     sols = capture[0]
-    d = plots.fig4_steering(sols[0])
+    d = figdata.fig4_steering(sols[0])
     s = sols[0].summary()
     assert d.m_kg[0] == pytest.approx(s["m_start_kg"], abs=1e-9)
     assert d.m_kg[-1] == pytest.approx(s["m_end_kg"], abs=1e-6)
@@ -239,8 +245,8 @@ def test_fig4_steering_data(capture):
 
 @pytest.mark.slow
 def test_fig5_thrust_opposes_velocity_through_the_burn(capture):
-    sols, mission, geo = capture
-    d = plots.fig5_vectors(sols[0], geo.basis)
+    sols, plan, geo = capture
+    d = figdata.fig5_vectors(sols[0], geo.basis)
     assert (d.angle_deg > 90).all()                           # "tend to de-accelerate"
     # the projected vectors keep the angle (the motion is nearly planar)
     cos2d = (d.v_xy_kmps * d.a_xy_mps2).sum(0) / (np.linalg.norm(d.v_xy_kmps, axis=0)
@@ -248,7 +254,7 @@ def test_fig5_thrust_opposes_velocity_through_the_burn(capture):
     assert (cos2d < 0).all()
     # thrust acceleration T/m, m/s^2, grows as the mass falls
     acc = np.linalg.norm(d.a_mps2, axis=0)
-    h = plots.fig4_steering(sols[0])
+    h = figdata.fig4_steering(sols[0])
     np.testing.assert_allclose(acc, 150.0 / h.m_kg, rtol=1e-9)
     assert d.arrows[0] == 0 and d.arrows[-1] == d.t_min.size - 1
     assert len(d.table()) == d.arrows.size
@@ -256,19 +262,19 @@ def test_fig5_thrust_opposes_velocity_through_the_burn(capture):
 
 @pytest.mark.slow
 def test_capture_figures_draw(capture):
-    sols, mission, geo = capture
-    figs = [(plots.plot_fig2_capture(geo), 1),
-            (plots.plot_fig3_burn_arcs(geo), 2),
-            (plots.plot_fig4_steering(plots.fig4_steering(sols[0]), (137.5, 215.3), 434.471,
+    sols, plan, geo = capture
+    figs = [(figures.plot_fig2_capture(geo), 1),
+            (figures.plot_fig3_burn_arcs(geo), 2),
+            (figures.plot_fig4_steering(figdata.fig4_steering(sols[0]), (137.5, 215.3), 434.471,
                                       19.51), 3),
-            (plots.plot_fig5_vectors(plots.fig5_vectors(sols[0], geo.basis), geo), 2)]
+            (figures.plot_fig5_vectors(figdata.fig5_vectors(sols[0], geo.basis), geo), 2)]
     for fig, n_axes in figs:
         assert len(fig.axes) == n_axes
         for ax in fig.axes:   # units on every axis (shared x axes: on the bottom one)
             assert "(" in ax.get_ylabel()
             assert "(" in ax.get_xlabel() or ax is not fig.axes[-1] and not ax.get_xlabel()
         assert "(" in fig.axes[-1].get_xlabel()
-        plots.plt.close(fig)
+        plt.close(fig)
 
 
 # ------------------------------------------------------------------ reproduction report
@@ -289,7 +295,7 @@ def _fake_sweep(thrust, loi, isp):
 def test_paper_tables_long_has_every_printed_number():
     from lunarcap.paper import printed as paper
     sweeps = {(150.0, n): _fake_sweep(150, n, 200.0) for n in (1, 2, 3)}
-    t = plots.paper_tables_long(sweeps, impulsive_dv_mps=[353.272, 254.0, 245.5])
+    t = reproduction.paper_tables_long(sweeps, impulsive_dv_mps=[353.272, 254.0, 245.5])
     n_rows = sum(len(paper.paper_table(150, n)) for n in (1, 2, 3))
     assert (t.source != "Table B1").sum() == 3 * n_rows + 3
     assert (t.source == "Table B1").sum() == 9 and t[t.source == "Table B1"].paper_best.all()
@@ -322,12 +328,12 @@ def _fake_chain(thrust, isp):
 def test_quote_equivalents_and_comparison():
     from lunarcap.paper import printed as paper
     chains = {t: _fake_chain(t, isp) for t, isp in C.PAPER_ENGINES}
-    ours = plots.quote_equivalents(
+    ours = reproduction.quote_equivalents(
         chains, impulsive_final_mass_kg={t: 340.0 for t, _ in C.PAPER_ENGINES},
         best_starts={(150.0, 1): -10.0, (150.0, 2): -6.0, (150.0, 3): -5.0},
         audit_values={"period/final": 117.868})
     assert set(ours) <= set(paper.QUOTES)
-    q = plots.quotes_comparison(ours)
+    q = reproduction.quotes_comparison(ours)
     assert len(q) == len(paper.QUOTES) and q.name.is_unique
     by = q.set_index("name")
     # signs of the ignition offsets follow the printed convention ("10" minutes before)
@@ -356,23 +362,23 @@ def test_epochs_comparison():
 
     t0 = seconds_from_calendar(C.ARRIVAL_EPOCH_TDB)
     ep = np.cumsum([t0, *C.CAPTURE_PERIODS_S])
-    t = plots.epochs_comparison(ep)
+    t = reproduction.epochs_comparison(ep)
     assert list(t.perilune) == [1, 2, 3]
     np.testing.assert_allclose(t.difference_s, [0.0, -1.0, -3.0], atol=1e-6)
     assert t.ours.iloc[0] == "2017-02-20 03:41:26 TDB"
 
 
 def test_short_where_and_check_titles():
-    assert plots.short_where("Sec. 3.2.1, para 2 ('As shown in Table 1...')") == \
+    assert reproduction.short_where("Sec. 3.2.1, para 2 ('As shown in Table 1...')") == \
         "Sec. 3.2.1, para 2"
     from lunarcap.paper import audit
-    assert set(audit.findings_table().check) <= set(plots.AUDIT_CHECK_TITLES)
+    assert set(audit.findings_table().check) <= set(AUDIT_CHECK_TITLES)
 
 
 def test_quotes_display_is_compact_and_keeps_every_row():
     chains = {t: _fake_chain(t, isp) for t, isp in C.PAPER_ENGINES}
-    q = plots.quotes_comparison(plots.quote_equivalents(chains))
-    d = plots.quotes_display(q, max_words=40)
+    q = reproduction.quotes_comparison(reproduction.quote_equivalents(chains))
+    d = reproduction.quotes_display(q, max_words=40)
     assert len(d) == len(q) and list(d.columns) == ["words", "printed", "ours",
                                                     "difference", "note"]
     assert (d.words.str.split(": ", n=1).str[1].str.len() <= 40).all()
@@ -388,7 +394,7 @@ def test_quotes_display_is_compact_and_keeps_every_row():
 def test_findings_display():
     from lunarcap.paper import audit
     t = audit.findings_table(only_inconsistent=True)
-    d = plots.findings_display(t)
+    d = reproduction.findings_display(t)
     assert len(d) == len(t) and list(d.columns) == ["finding", "printed", "computed",
                                                     "explanation"]
     row = d[t.id == "sun-gm"].iloc[0]

@@ -299,13 +299,13 @@ def test_solve_error_in_the_chain_is_recorded_with_ipopt_status(monkeypatch):
         def summary(self):
             return self._s
 
-    def fake_solve_case(thrust_N, isp_s, loi, start, previous, dynamics):
+    def fake_paper_case(thrust_N, isp_s, loi, start, previous, dynamics):
         assert start == "free" and previous == ("free",) * (loi - 1)
         if loi == 2:
             raise SolveError("LOI 2 failed on every mesh", status="Maximum_Iterations_Exceeded")
         return FakeSolution(_fake_summary(thrust_N, isp_s, loi))
 
-    monkeypatch.setattr(sequence, "solve_case", fake_solve_case)
+    monkeypatch.setattr(sequence, "paper_case", fake_paper_case)
     rows = {r["part"]: r for r in study.solve_engine(300.0, 250.0, "full")}
     assert rows["LOI1"]["status"] == "ok"
     assert rows["LOI2"]["status"] == "failed"

@@ -47,10 +47,12 @@ def _paper_chain(thrust_N):
 
 # ------------------------------------------------------------------ arithmetic (fast)
 def test_default_previous_is_the_papers_best_prefix():
-    assert tables.default_previous(150.0, 1) == ()
-    assert tables.default_previous(150.0, 2) == (-10.0,)
-    assert tables.default_previous(300.0, 3) == PAPER_BEST_STARTS_MIN[300.0][:2]
-    assert tables.default_previous(450, 3) == (-3.0, -2.0)
+    assert tables.default_previous(150.0, 1, 200.0) == ()
+    assert tables.default_previous(150.0, 2, 200.0) == (-10.0,)
+    assert tables.default_previous(300.0, 3, 250.0) == PAPER_BEST_STARTS_MIN[300.0][:2]
+    assert tables.default_previous(450, 3, 300) == (-3.0, -2.0)
+    # another engine (or another Isp): the earlier burns ignite at their free optima
+    assert tables.default_previous(450, 3, 250) == ("free", "free")
 
 
 def test_sequence_totals_arithmetic_on_a_synthetic_chain():
@@ -165,9 +167,9 @@ def test_sequence_table_and_totals_of_a_chain():
 
 @pytest.mark.slow
 def test_verification_table_one_row_per_solution():
-    from lunarcap.runs.chain import solve_case
+    from lunarcap.runs.chain import paper_case
 
-    sols = [solve_case(150.0, 200.0, 1, s, (), "two-body") for s in (-8.0, -10.0)]
+    sols = [paper_case(150.0, 200.0, 1, s, (), "two-body") for s in (-8.0, -10.0)]
     v = tables.verification_table(sols)
     _check_units(v.drop(columns=["ra_error_m"]))   # None for non-circular targets
     assert list(v.start_min) == [-8.0, -10.0]

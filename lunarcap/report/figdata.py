@@ -1,0 +1,575 @@
+"""Data behind the book's figures: computed (and tested) here, drawn by :mod:`.figures`.
+
+Each figure has a data function returning plain arrays in a dataclass; the drawing
+functions of :mod:`lunarcap.report.figures` only draw them. Trajectories are sampled from
+verified solutions (:class:`lunarcap.optim.solution.Solution`) and coasts propagated with
+:func:`lunarcap.physics.propagate.propagate`; each drawn arc keeps the
+:class:`~lunarcap.physics.propagate.Trajectory` it samples.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from lunarcap.physics import constants as C
+from lunarcap.physics.elements import rv_from_coe, rv_from_mee, semi_major_axis_from_period
+from lunarcap.physics.frames import rtn_basis, thrust_angles_deg, thrust_direction_rtn
+from lunarcap.physics.propagate import Trajectory, propagate
+
+
+# =============================================================================== Fig. 1
+@dataclass
+class Fig1Geometry:
+    """Data of Fig. 1: an orbit, the RTN frame at the spacecraft and the thrust angles.
+
+    The drawing frame is the orbit's perifocal frame (x to perilune, z along the
+    angular momentum), in lunar units (1 LU = R_Moon). Unit vectors are dimensionless.
+
+    Attributes
+    ----------
+    orbit_LU : ndarray, shape (3, N)
+        The orbit (one revolution, or the bound part for a hyperbola).
+    r_LU, v_hat : ndarray, shape (3,)
+        Spacecraft position (LU) and velocity direction.
+    rtn : ndarray, shape (3, 3)
+        Rows i_r, i_t, i_n in the drawing frame (Eq. A5, :func:`lunarcap.physics.frames.rtn_basis`).
+    u_rtn : ndarray, shape (3,)
+        Thrust direction in RTN.
+    u, u_plane : ndarray, shape (3,)
+        Thrust direction and its unit projection on the orbit plane, drawing frame.
+    alpha_deg, beta_deg : float
+        Angles recovered from ``u_rtn`` with Eq. (14).
+    flight_path_angle_deg : float
+        Angle between v and i_t (zero at perilune and apolune).
+    alpha_arc, beta_arc : ndarray, shape (3, M)
+        Unit-radius arcs from i_t to ``u_plane`` (alpha) and from ``u_plane`` to ``u`` (beta).
+    """
+
+    orbit_LU: np.ndarray
+    r_LU: np.ndarray
+    v_hat: np.ndarray
+    rtn: np.ndarray
+    u_rtn: np.ndarray
+    u: np.ndarray
+    u_plane: np.ndarray
+    alpha_deg: float
+    beta_deg: float
+    flight_path_angle_deg: float
+    alpha_arc: np.ndarray
+    beta_arc: np.ndarray
+
+    def vectors_table(self):
+        """The vectors of the figure as a DataFrame (name, x, y, z in the drawing frame)."""
+        import pandas as pd
+
+        rows = [("r (LU)", *self.r_LU), ("v/|v|", *self.v_hat), ("i_r", *self.rtn[0]),
+                ("i_t", *self.rtn[1]), ("i_n", *self.rtn[2]), ("u", *self.u),
+                ("u projected on orbit plane (unit)", *self.u_plane)]
+        return pd.DataFrame(rows, columns=["vector", "x", "y", "z"])
+
+
+def _arc(a: np.ndarray, b: np.ndarray, angle: float, n: int = 60) -> np.ndarray:
+    """Unit-radius arc from unit vector ``a`` through ``angle`` (rad) towards ``b`` (a.b = 0)."""
+    s = np.linspace(0.0, angle, n)
+    return np.outer(a, np.cos(s)) + np.outer(b, np.sin(s))
+
+
+def fig1_geometry(u_rtn=None, alpha_deg: float = 55.0, beta_deg: float = 30.0,
+                  true_anomaly_deg: float = -40.0,
+                  period_h: float = C.CAPTURE_PERIODS_S[0] / 3600,
+                  altitude_km: float = C.PERILUNE_ALTITUDE_KM,
+                  mu: float = C.MU_MOON) -> Fig1Geometry:
+    """Compute the data of Fig. 1 for a thrust direction on an example capture ellipse.
+
+    Parameters
+    ----------
+    u_rtn : array_like, shape (3,), optional
+        Thrust direction in RTN; by default from ``alpha_deg``, ``beta_deg``.
+    alpha_deg, beta_deg : float
+        Thrust angles (deg) used when ``u_rtn`` is not given.
+    true_anomaly_deg : float
+        Spacecraft position on the orbit, deg.
+    period_h : float
+        Orbit period, h (default: the paper's first capture ellipse, 12.235 h).
+    altitude_km : float
+        Perilune altitude, km.
+    mu : float
+        Gravitational parameter, km^3/s^2.
+
+    Returns
+    -------
+    Fig1Geometry
+    """
+    if u_rtn is None:
+        u_rtn = thrust_direction_rtn(alpha_deg, beta_deg)
+    u_rtn = np.asarray(u_rtn, dtype=float)
+    if u_rtn.shape != (3,) or not np.isfinite(u_rtn).all() or np.linalg.norm(u_rtn) == 0:
+        raise ValueError("u_rtn must be a finite non-zero 3-vector")
+    u_rtn = u_rtn / np.linalg.norm(u_rtn)
+    rp = C.R_MOON + altitude_km
+    a = semi_major_axis_from_period(period_h * 3600.0, mu)
+    e = 1.0 - rp / a
+    nu = math.radians(true_anomaly_deg)
+    r, v = rv_from_coe(a, e, 0.0, 0.0, 0.0, nu, mu)
+    r, v = np.asarray(r, float).ravel(), np.asarray(v, float).ravel()
+    q = rtn_basis(r, v)  # rows i_r, i_t, i_n
+    u = q.T @ u_rtn
+    u_inplane = u - (u @ q[2]) * q[2]
+    alpha, beta = thrust_angles_deg(u_rtn)
+    alpha, beta = float(alpha), float(beta)
+    nrm = np.linalg.norm(u_inplane)
+    u_plane = u_inplane / nrm if nrm > 1e-12 else q[1].copy()
+    alpha_arc = _arc(q[1], q[0], math.radians(alpha))
+    beta_arc = _arc(u_plane, q[2], math.radians(beta))
+    nus = np.linspace(-math.pi, math.pi, 361)
+    orbit = np.array([np.asarray(rv_from_coe(a, e, 0.0, 0.0, 0.0, th, mu)[0], float).ravel()
+                      for th in nus]).T / C.LU_KM
+    vhat = v / np.linalg.norm(v)
+    gamma = math.degrees(math.atan2(vhat @ q[0], vhat @ q[1]))
+    return Fig1Geometry(orbit, r / C.LU_KM, vhat, q, u_rtn, u, u_plane, alpha, beta, gamma,
+                        alpha_arc, beta_arc)
+
+
+# =============================================================================== Figs. 2-5
+def orbit_plane_basis(r_km, v_kmps) -> np.ndarray:
+    """Projection basis of the orbit plane through ``r`` and ``v`` (M-MME2000).
+
+    Rows ``e_x, e_y, e_n``: ``e_n`` along the angular momentum ``r x v``; ``e_y`` the
+    M-MME2000 z axis projected on the orbit plane (for the paper's polar orbit, the
+    z axis itself); ``e_x = e_y x e_n``, which for a polar orbit is the direction of the
+    ascending node on the M-MME2000 equator. The basis is right-handed, so the orbit
+    runs counter-clockwise in (x, y).
+
+    Parameters
+    ----------
+    r_km, v_kmps : array_like, shape (3,)
+        Position (km) and velocity (km/s), M-MME2000.
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+        Rows ``e_x, e_y, e_n`` (``xy = B[:2] @ r``).
+    """
+    r = np.asarray(r_km, float)
+    v = np.asarray(v_kmps, float)
+    h = np.cross(r, v)
+    if not np.isfinite(h).all() or np.linalg.norm(h) == 0:
+        raise ValueError("r and v must be finite and not parallel")
+    e_n = h / np.linalg.norm(h)
+    z = np.array([0.0, 0.0, 1.0])
+    e_y = z - (z @ e_n) * e_n
+    if np.linalg.norm(e_y) < 1e-9:   # equatorial orbit: use the direction of r instead
+        e_y = r - (r @ e_n) * e_n
+    e_y = e_y / np.linalg.norm(e_y)
+    e_x = np.cross(e_y, e_n)
+    return np.vstack([e_x, e_y, e_n])
+
+
+@dataclass
+class DrawnArc:
+    """One piece of the capture trajectory as drawn: a sampled Trajectory, projected.
+
+    Attributes
+    ----------
+    kind : str
+        "hyperbola" (arrival, up to the first ignition), "uncaptured" (the arrival
+        hyperbola continued without the first burn), "burn", "coast" (after a burn, up to
+        the next ignition) or "final" (the extra revolution after the last coast).
+    burn : int
+        The burn (1-based), or the burn a coast follows (0 for the hyperbola).
+    label : str
+        Legend text.
+    traj : Trajectory
+        The samples: epochs (TDB s past J2000) and MEE states.
+    xy_LU : ndarray, shape (2, N)
+        Position projected on the drawing plane (:func:`orbit_plane_basis`), LU.
+    out_of_plane_km : ndarray, shape (N,)
+        Distance from the drawing plane, km.
+    """
+
+    kind: str
+    burn: int
+    label: str
+    traj: Trajectory
+    xy_LU: np.ndarray
+    out_of_plane_km: np.ndarray
+
+    @property
+    def t_s(self) -> np.ndarray:
+        """Epochs, TDB s past J2000."""
+        return self.traj.t
+
+    @property
+    def r_km(self) -> np.ndarray:
+        """Position, M-MME2000, km, shape (3, N)."""
+        return np.array(rv_from_mee(*self.traj.x[:6], C.MU_MOON)[0], float)
+
+    @property
+    def radius_km(self) -> np.ndarray:
+        """Distance from the Moon's centre, km."""
+        return np.linalg.norm(self.r_km, axis=0)
+
+    @property
+    def angle_deg(self) -> np.ndarray:
+        """Polar angle in the drawing plane, deg (counter-clockwise from e_x)."""
+        return np.degrees(np.arctan2(self.xy_LU[1], self.xy_LU[0]))
+
+
+@dataclass
+class CaptureGeometry:
+    """Data of Figs. 2 and 3: the whole capture sequence projected on the orbit plane.
+
+    Attributes
+    ----------
+    basis : ndarray, shape (3, 3)
+        Rows e_x, e_y, e_n of the drawing plane in M-MME2000 (:func:`orbit_plane_basis`
+        of the arrival perilune state).
+    arcs : list of DrawnArc
+        In time order (the "uncaptured" arc last).
+    burns : pandas.DataFrame
+        One row per burn: ignition and cutoff epochs and polar angles, the pass's perilune
+        (the flown point of least radius within 30 min of the nominal perilune epoch) and
+        the angles of ignition and cutoff from it, the burn's radii.
+    hyperbola_hours : float
+        Length of the drawn arrival hyperbola before the arrival perilune, h.
+    """
+
+    basis: np.ndarray
+    arcs: list
+    burns: object
+    hyperbola_hours: float
+
+    def select(self, kind: str, burn: int | None = None) -> list:
+        """The arcs of one kind (and burn)."""
+        return [a for a in self.arcs if a.kind == kind and (burn is None or a.burn == burn)]
+
+    @property
+    def max_out_of_plane_km(self) -> float:
+        """Largest distance of any drawn point from the drawing plane, km."""
+        return float(max(np.abs(a.out_of_plane_km).max() for a in self.arcs))
+
+    def pass_profiles(self, window_s: float = 2400.0) -> list[dict]:
+        """Altitude against angle from each pass's perilune, around each burn (Fig. 3b).
+
+        Returns
+        -------
+        list of dict
+            One per (burn, flown arc) overlapping [ignition - window, cutoff + window]:
+            ``burn``, ``kind`` ("burn" or the coasting kinds), ``angle_deg`` (polar angle
+            in the orbit plane from that pass's perilune, wrapped to [-180, 180)),
+            ``altitude_km``.
+        """
+        flown = [a for a in self.arcs if a.kind in ("hyperbola", "coast", "burn", "final")]
+        out = []
+        for _, row in self.burns.iterrows():
+            t_lo, t_hi = row.ignition_s - window_s, row.cutoff_s + window_s
+            for a in flown:
+                m = (a.t_s >= t_lo) & (a.t_s <= t_hi)
+                if m.any():
+                    out.append({"burn": int(row.burn), "kind": a.kind,
+                                "angle_deg": _wrap180(a.angle_deg[m] - row.perilune_angle_deg),
+                                "altitude_km": a.radius_km[m] - C.R_MOON})
+        return out
+
+
+def _project(basis, r_km):
+    r = np.asarray(r_km, float)
+    return (basis[:2] @ r) / C.LU_KM, basis[2] @ r
+
+
+def _make_arc(basis, kind, burn, label, t, x):
+    """A DrawnArc of MEE states x (7, N) at epochs t."""
+    traj = Trajectory(np.asarray(t, float), np.asarray(x, float)[:7])
+    r = np.array(rv_from_mee(*traj.x[:6], C.MU_MOON)[0], float)
+    xy, oop = _project(basis, r)
+    return DrawnArc(kind, burn, label, traj, xy, oop)
+
+
+def _ordinal(n: int) -> str:
+    return f"{n}{'th' if 10 <= n % 100 <= 20 else {1: 'st', 2: 'nd', 3: 'rd'}.get(n % 10, 'th')}"
+
+
+def orbit_name(prob) -> str:
+    """Legend name of the orbit a burn reaches: '1st capture orbit (12.235 h)', ..."""
+    coast = prob.t_end_s - prob.t_perilune_s
+    if prob.target.circular:
+        return f"final circular orbit ({coast / 60:.6g} min)"
+    return f"{_ordinal(prob.index)} capture orbit ({coast / 3600:.6g} h)"
+
+
+def _dense_grid(t0, t1, n, edge_s=1800.0):
+    """Epochs from t0 to t1: n uniform plus n/2 within ``edge_s`` of each end (perilunes)."""
+    lo, hi = min(t0, t1), max(t0, t1)
+    parts = [np.linspace(lo, hi, n),
+             np.linspace(lo, min(lo + edge_s, hi), n // 2),
+             np.linspace(max(hi - edge_s, lo), hi, n // 2)]
+    return np.unique(np.concatenate(parts))
+
+
+def _wrap180(a):
+    return (np.asarray(a, float) + 180.0) % 360.0 - 180.0
+
+
+def capture_geometry(solutions, arrival, hyperbola_hours: float = 3.0,
+                     uncaptured_hours: float | None = None, n_coast: int = 3000,
+                     n_burn: int = 241, final_revolutions: float = 1.0,
+                     perilune_window_s: float = 1800.0) -> CaptureGeometry:
+    """Sample the capture sequence for Figs. 2 and 3.
+
+    Parameters
+    ----------
+    solutions : list of Solution
+        A plan's burns in order (:func:`lunarcap.runs.chain.solve_plan`).
+    arrival : lunarcap.mission.arrival.Arrival
+        The arrival perilune state; defines the drawing plane.
+    hyperbola_hours : float
+        The arrival hyperbola is drawn from this many hours before the arrival perilune
+        (propagated backward from it, coasting, in the first burn's dynamics) to the first
+        ignition.
+    uncaptured_hours : float, optional
+        Draw the hyperbola without the first burn, from its ignition to this many hours
+        after the arrival perilune (default ``hyperbola_hours``; 0 to leave it out).
+    n_coast, n_burn : int
+        Samples per coast (plus extra near its ends) and per burn.
+    final_revolutions : float
+        Revolutions of the final orbit propagated after the last coast (coasting), in
+        units of the last coast (for the paper: the final period 117.848 min).
+    perilune_window_s : float
+        Half-width of the window around each nominal perilune epoch in which the flown
+        perilune of a pass is looked for, s.
+
+    Returns
+    -------
+    CaptureGeometry
+    """
+    import pandas as pd
+
+    sols = list(solutions)
+    if not sols or [s.problem.index for s in sols] != list(range(1, len(sols) + 1)):
+        raise ValueError("solutions must be a plan's burns 1, 2, ... in order")
+    basis = orbit_plane_basis(arrival.r_km, arrival.v_kmps)
+    arcs = []
+    p1 = sols[0].problem
+    model = p1.model
+    t_peri = float(arrival.epoch_s)
+    # arrival hyperbola: backward from the arrival perilune, drawn up to LOI-1 ignition
+    t_start = t_peri - 3600.0 * float(hyperbola_hours)
+    if not t_start < p1.t_ign_s:
+        raise ValueError("hyperbola_hours must reach back before the first ignition")
+    x_peri = np.asarray(arrival.state, float)
+    t_back = np.linspace(p1.t_ign_s, t_start, 1500)
+    if p1.t_ign_s < t_peri:
+        tr = propagate(model, t_peri, x_peri, t_start, u=None, t_eval=t_back)
+        t_h, x_h = tr.t[::-1], tr.x[:, ::-1]
+    else:  # ignition at or after the arrival perilune
+        tr = propagate(model, t_peri, x_peri, t_start, u=None,
+                       t_eval=np.linspace(t_peri, t_start, 1500))
+        fw = propagate(model, t_peri, x_peri, p1.t_ign_s, u=None,
+                       t_eval=np.linspace(t_peri, p1.t_ign_s, 200)[1:])
+        t_h = np.concatenate([tr.t[::-1], fw.t])
+        x_h = np.column_stack([tr.x[:, ::-1], fw.x])
+    arcs.append(_make_arc(basis, "hyperbola", 0, "arrival hyperbola", t_h, x_h))
+    # burns and coasts
+    coasts_end = [s.problem.t_ign_s for s in sols[1:]] + [sols[-1].problem.t_end_s]
+    rows = []
+    for i, sol in enumerate(sols):
+        prob = sol.problem
+        k = prob.index
+        hist = sol.history(n_burn=n_burn, n_coast=2)
+        b = hist[hist.phase == "burn"]
+        xb = b[["p_km", "f", "g", "h", "k", "L_rad", "m_kg"]].to_numpy().T
+        arcs.append(_make_arc(basis, "burn", k, f"burn {k}", b.t_s.to_numpy(), xb))
+        t_cut = float(b.t_s.iloc[-1])
+        tc = _dense_grid(t_cut, coasts_end[i], n_coast)
+        arcs.append(_make_arc(basis, "coast", k, orbit_name(prob), tc, sol.flight.coast(tc)))
+    last = sols[-1]
+    if final_revolutions > 0 and last.problem.target.circular:
+        t0 = last.problem.t_end_s
+        t1 = t0 + final_revolutions * (t0 - last.problem.t_perilune_s)
+        tf = np.linspace(t0, t1, max(int(600 * final_revolutions), 50))
+        tr = propagate(last.problem.model, t0, last.end_state, t1, u=None, t_eval=tf)
+        arcs.append(_make_arc(basis, "final", last.problem.index,
+                              "final orbit, one more revolution", tr.t, tr.x))
+    hu = hyperbola_hours if uncaptured_hours is None else uncaptured_hours
+    if hu and hu > 0:
+        t1 = t_peri + 3600.0 * float(hu)
+        tu = np.linspace(p1.t_ign_s, t1, 1500)
+        tr = propagate(model, p1.t_ign_s, p1.x0, t1, u=None, t_eval=tu)
+        arcs.append(_make_arc(basis, "uncaptured", 0, "arrival hyperbola without burn 1",
+                              tr.t, tr.x))
+    flown = [a for a in arcs if a.kind != "uncaptured"]
+    t_all = np.concatenate([a.t_s for a in flown])
+    r_all = np.concatenate([a.r_km for a in flown], axis=1)
+    xy_all = np.concatenate([a.xy_LU for a in flown], axis=1)
+    for sol in sols:
+        prob = sol.problem
+        burn = [a for a in arcs if a.kind == "burn" and a.burn == prob.index][0]
+        near = np.abs(t_all - prob.t_perilune_s) <= perilune_window_s
+        rad = np.linalg.norm(r_all[:, near], axis=0)
+        j = int(np.argmin(rad))
+        t_p = float(t_all[near][j])
+        ang_p = float(np.degrees(np.arctan2(xy_all[1, near][j], xy_all[0, near][j])))
+        ang = burn.angle_deg
+        rows.append({
+            "burn": prob.index, "ignition_s": float(burn.t_s[0]), "cutoff_s": float(burn.t_s[-1]),
+            "burn_duration_min": float(burn.t_s[-1] - burn.t_s[0]) / 60.0,
+            "ignition_from_nominal_perilune_min": (burn.t_s[0] - prob.t_perilune_s) / 60.0,
+            "perilune_from_ignition_min": (t_p - burn.t_s[0]) / 60.0,
+            "perilune_radius_km": float(rad[j]),
+            "perilune_angle_deg": ang_p,
+            "ignition_angle_deg": float(ang[0]), "cutoff_angle_deg": float(ang[-1]),
+            "ignition_from_perilune_deg": float(_wrap180(ang[0] - ang_p)),
+            "cutoff_from_perilune_deg": float(_wrap180(ang[-1] - ang_p)),
+            "ignition_radius_km": float(burn.radius_km[0]),
+            "cutoff_radius_km": float(burn.radius_km[-1]),
+            "min_radius_km": float(burn.radius_km.min()),
+        })
+    burns = pd.DataFrame(rows)
+    burns["arc_asymmetry_deg"] = burns.cutoff_from_perilune_deg + burns.ignition_from_perilune_deg
+    return CaptureGeometry(basis, arcs, burns, float(hyperbola_hours))
+
+
+@dataclass
+class Fig4Steering:
+    """Data of Fig. 4: thrust angles and mass during one burn.
+
+    Attributes
+    ----------
+    t_min : ndarray, shape (N,)
+        Time from ignition, min.
+    alpha_deg, beta_deg : ndarray, shape (N,)
+        In-plane and out-of-plane thrust angles of Eq. (14), deg.
+    m_kg : ndarray, shape (N,)
+        Mass, kg.
+    perilune_min : float
+        Nominal perilune epoch of the pass, min from ignition.
+    burn : int
+    thrust_N, isp_s : float
+    """
+
+    t_min: np.ndarray
+    alpha_deg: np.ndarray
+    beta_deg: np.ndarray
+    m_kg: np.ndarray
+    perilune_min: float
+    burn: int
+    thrust_N: float
+    isp_s: float
+
+    @property
+    def burn_duration_min(self) -> float:
+        """Burn duration, min."""
+        return float(self.t_min[-1] - self.t_min[0])
+
+    def table(self):
+        """The data as a DataFrame (CSV-ready, units in the column names)."""
+        import pandas as pd
+
+        return pd.DataFrame({"min_from_ignition": self.t_min, "alpha_deg": self.alpha_deg,
+                             "beta_deg": self.beta_deg, "m_kg": self.m_kg})
+
+
+def fig4_steering(solution, n: int = 241) -> Fig4Steering:
+    """Thrust angles (Eq. (14)) and mass along the burn of a Solution (Fig. 4).
+
+    Parameters
+    ----------
+    solution : Solution
+    n : int
+        Samples over the burn.
+
+    Returns
+    -------
+    Fig4Steering
+    """
+    h = solution.history(n_burn=n, n_coast=2)
+    b = h[h.phase == "burn"]
+    prob = solution.problem
+    return Fig4Steering(b.min_from_ignition.to_numpy(), b.alpha_deg.to_numpy(),
+                        b.beta_deg.to_numpy(), b.m_kg.to_numpy(),
+                        (prob.t_perilune_s - prob.t_ign_s) / 60.0, int(prob.index),
+                        float(prob.model.thrust_N), float(prob.model.isp_s))
+
+
+@dataclass
+class Fig5Vectors:
+    """Data of Fig. 5: thrust acceleration and velocity along one burn arc.
+
+    Positions and vectors are projected on the drawing plane (rows e_x, e_y of
+    ``basis``, M-MME2000).
+
+    Attributes
+    ----------
+    t_min : ndarray, shape (N,)
+        Time from ignition, min.
+    xy_km : ndarray, shape (2, N)
+        Projected position, km.
+    v_xy_kmps : ndarray, shape (2, N)
+        Projected velocity, km/s.
+    a_xy_mps2 : ndarray, shape (2, N)
+        Projected thrust acceleration, m/s^2.
+    v_kmps, a_mps2 : ndarray, shape (3, N)
+        The full vectors (M-MME2000).
+    angle_deg : ndarray, shape (N,)
+        Angle between the thrust acceleration and the velocity (3-D), deg.
+    arrows : ndarray of int
+        Indices of the samples drawn as arrows.
+    basis : ndarray, shape (3, 3)
+    burn : int
+    """
+
+    t_min: np.ndarray
+    xy_km: np.ndarray
+    v_xy_kmps: np.ndarray
+    a_xy_mps2: np.ndarray
+    v_kmps: np.ndarray
+    a_mps2: np.ndarray
+    angle_deg: np.ndarray
+    arrows: np.ndarray
+    basis: np.ndarray
+    burn: int
+
+    def table(self):
+        """The arrows' data as a DataFrame (units in the column names)."""
+        import pandas as pd
+
+        i = self.arrows
+        return pd.DataFrame({"min_from_ignition": self.t_min[i], "x_km": self.xy_km[0, i],
+                             "y_km": self.xy_km[1, i], "vx_kmps": self.v_xy_kmps[0, i],
+                             "vy_kmps": self.v_xy_kmps[1, i],
+                             "ax_thrust_mps2": self.a_xy_mps2[0, i],
+                             "ay_thrust_mps2": self.a_xy_mps2[1, i],
+                             "angle_thrust_velocity_deg": self.angle_deg[i]})
+
+
+def fig5_vectors(solution, basis, n: int = 241, n_arrows: int = 9) -> Fig5Vectors:
+    """Thrust acceleration and velocity vectors along a burn, projected (Fig. 5).
+
+    Parameters
+    ----------
+    solution : Solution
+    basis : ndarray, shape (3, 3)
+        Drawing plane (:func:`orbit_plane_basis`; ``CaptureGeometry.basis``).
+    n : int
+        Samples over the burn.
+    n_arrows : int
+        Arrows drawn, evenly spaced in time from ignition to cutoff.
+
+    Returns
+    -------
+    Fig5Vectors
+    """
+    h = solution.history(n_burn=n, n_coast=2)
+    b = h[h.phase == "burn"]
+    r = b[["x_km", "y_km", "z_km"]].to_numpy().T
+    v = b[["vx_kmps", "vy_kmps", "vz_kmps"]].to_numpy().T
+    a = b[["ax_thrust_kmps2", "ay_thrust_kmps2", "az_thrust_kmps2"]].to_numpy().T * 1e3
+    cosang = (v * a).sum(axis=0) / (np.linalg.norm(v, axis=0) * np.linalg.norm(a, axis=0))
+    angle = np.degrees(np.arccos(np.clip(cosang, -1.0, 1.0)))
+    basis = np.asarray(basis, float)
+    arrows = np.unique(np.round(np.linspace(0, r.shape[1] - 1, n_arrows)).astype(int))
+    return Fig5Vectors(b.min_from_ignition.to_numpy(), basis[:2] @ r, basis[:2] @ v,
+                       basis[:2] @ a, v, a, angle, arrows, basis, int(solution.problem.index))
