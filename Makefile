@@ -1,9 +1,10 @@
 # lunarcap: the few verbs a newcomer needs.
-#   make test   - create .venv from the hashed lock if missing/stale, run the test suite
-#                 (unit + slow optimisation tests + papermill quick runs + quick book build)
+#   make test   - create .venv from the hashed lock if missing/stale, check the code (ruff,
+#                 the import contracts), run the test suite (unit + slow optimisation tests
+#                 + papermill quick runs + quick book build)
 #   make book   - create .venv likewise, execute every notebook of the manifest, build the HTML book
 #   make lock   - regenerate environment-lock.txt from pyproject.toml (needs network to PyPI)
-#   make lint   - ruff
+#   make lint   - ruff and the import-linter contracts of pyproject.toml
 SHELL := /bin/bash
 PYTHON ?= python3.11
 VENV := .venv
@@ -23,7 +24,7 @@ $(STAMP): environment-lock.txt pyproject.toml
 	$(PY) -m ipykernel install --sys-prefix --name python3 >/dev/null
 	touch $(STAMP)
 
-test: $(STAMP)
+test: lint
 	$(PY) -m pytest
 
 book: $(STAMP)
@@ -37,6 +38,7 @@ bench: $(STAMP)
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check lunarcap tests
+	$(VENV)/bin/lint-imports
 
 # The lock pins every package with its hashes for CPython 3.11 on Linux x86_64.
 lock:

@@ -13,10 +13,10 @@ from pathlib import Path
 import pytest
 
 from lunarcap import cli
-from lunarcap.mission import impulsive as imp
-from lunarcap.physics import rocket
 from lunarcap.errors import InputError, SolveError
+from lunarcap.mission import impulsive as imp
 from lunarcap.mission.plan import CapturePlan
+from lunarcap.physics import rocket
 
 ROOT = Path(__file__).resolve().parents[1]
 UNIT_SUFFIXES = ("_mps", "_kmps", "_kg", "_h", "_min", "_s", "_N")

@@ -5,7 +5,8 @@ altitude, 90 deg inclination in M-MME2000, mass 524.895 kg. The paper does not p
 the hyperbola's speed or orientation. We reconstruct them:
 
 * **Speed.** v_inf is chosen so that a tangential impulse at perilune into the 12.235 h
-  ellipse costs the paper's impulsive 353.272 m/s (:func:`lunarcap.mission.impulsive.v_inf_from_loi1`),
+  ellipse costs the paper's impulsive 353.272 m/s
+  (:func:`lunarcap.mission.impulsive.v_inf_from_loi1`),
   giving v_inf = 0.918 km/s.
 * **Direction.** The paper's transfer (Song et al. 2009c, 2010a) is a direct,
   Hohmann-like trans-lunar trajectory. Such a trajectory arrives near its geocentric
@@ -26,13 +27,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from lunarcap.errors import InputError
+from lunarcap.mission.impulsive import v_inf_from_loi1
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import mee_from_rv
 from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
 from lunarcap.physics.epochs import seconds_from_calendar
-from lunarcap.errors import InputError
-from lunarcap.mission.impulsive import v_inf_from_loi1
 from lunarcap.physics.rocket import check_engine, check_perilune_radius
+
 
 @dataclass(frozen=True)
 class ArrivalSpec:

@@ -8,14 +8,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from lunarcap.physics import constants as C
-from lunarcap.physics.elements import rv_from_mee
-from lunarcap.physics.epochs import calendar_from_seconds
-from lunarcap.physics.frames import thrust_angles_deg
 from lunarcap.optim.nlp import RawSolution, control_function, steering_function
 from lunarcap.optim.verify import Flight, Verification
+from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import rtn_from_mee
-from lunarcap.physics.elements import orbit_summary
+from lunarcap.physics.elements import orbit_summary, rv_from_mee
+from lunarcap.physics.epochs import calendar_from_seconds
+from lunarcap.physics.frames import thrust_angles_deg
 
 
 @dataclass

@@ -1,1 +1,1 @@
-"""Song et al. (2011): every number the paper prints (``printed``) and its consistency (``audit``)."""
+"""Song et al. (2011): every number the paper prints (``printed``), its consistency (``audit``)."""

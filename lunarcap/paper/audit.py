@@ -43,10 +43,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from lunarcap.physics import constants as C
-from lunarcap.paper import printed as P
-from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 from lunarcap.mission.impulsive import impulsive_sequence
+from lunarcap.paper import printed as P
+from lunarcap.physics import constants as C
+from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 
 __all__ = [
     "CONSISTENT",

@@ -678,7 +678,8 @@ def quote(name: str) -> Quote:
     try:
         return QUOTES[name]
     except KeyError:
-        raise InputError(f"no printed number called {name!r}; see lunarcap.paper.printed.QUOTES") from None
+        raise InputError(f"no printed number called {name!r}; "
+                         "see lunarcap.paper.printed.QUOTES") from None
 
 
 def quotes_table() -> pd.DataFrame:

@@ -23,11 +23,11 @@ from functools import lru_cache
 import casadi as ca
 import numpy as np
 
+from lunarcap.errors import InputError
 from lunarcap.physics import constants as C
 from lunarcap.physics._ops import ops
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.physics.ephemeris import ChebyshevFit, earth_sun_from_params
-from lunarcap.errors import InputError
 
 #: Layout of the numeric parameter vector of the dynamics Function.
 P_MU, P_R, P_J2, P_MUE, P_MUS, P_THRUST, P_VEX, P_KJ2, P_KE, P_KS = range(10)
@@ -69,7 +69,8 @@ class Model:
         if self.mode not in MODES:
             raise InputError(f"dynamics must be one of {sorted(MODES)}, got {self.mode!r}")
         if not np.isfinite(self.thrust_N) or self.thrust_N < 0:
-            raise InputError(f"thrust must be a non-negative number of newtons, got {self.thrust_N}")
+            raise InputError(f"thrust must be a non-negative number of newtons, "
+                             f"got {self.thrust_N}")
         if not np.isfinite(self.isp_s) or self.isp_s <= 0:
             raise InputError(f"specific impulse must be positive (s), got {self.isp_s}")
         if self.mode == "full" and self.fit is None:
@@ -194,7 +195,7 @@ def mee_rates(x, u, t, prm):
 
 @lru_cache(maxsize=None)
 def rhs_function(mode: str | None = None) -> ca.Function:
-    """CasADi Function ``f(x[7], u[3], t, prm[N_PARAM]) -> xdot[7]`` built once from :func:`mee_rates`.
+    """CasADi Function ``f(x[7], u[3], t, prm[N_PARAM]) -> xdot[7]`` from :func:`mee_rates`.
 
     With ``mode`` ("two-body", "j2", "full") the perturbation switches are built in as
     constants (the switch entries of ``prm`` are then ignored), so CasADi drops the terms

@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from lunarcap.physics._ops import ops
 from lunarcap.errors import InputError
+from lunarcap.physics._ops import ops
 
 
 # --------------------------------------------------------------------------- classical
@@ -149,13 +149,13 @@ def inclination(h, k):
 
 
 def radial_factor(f, g, L):
-    """f sin L - g cos L = e sin(nu): the radial velocity over sqrt(mu/p)."""
+    """F sin L - g cos L = e sin(nu): the radial velocity over sqrt(mu/p)."""
     xp = ops(f, g, L)
     return f * xp.sin(L) - g * xp.cos(L)
 
 
 def periapsis_factor(f, g, L):
-    """f cos L + g sin L = e cos(nu): positive at periapsis, negative at apoapsis."""
+    """F cos L + g sin L = e cos(nu): positive at periapsis, negative at apoapsis."""
     xp = ops(f, g, L)
     return f * xp.cos(L) + g * xp.sin(L)
 

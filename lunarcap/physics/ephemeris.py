@@ -20,8 +20,8 @@ from functools import cached_property
 
 import numpy as np
 
-from lunarcap.physics.epochs import calendar_from_seconds, jd_split_from_seconds, seconds_from_jd
 from lunarcap.errors import EphemerisRangeError, InputError
+from lunarcap.physics.epochs import calendar_from_seconds, jd_split_from_seconds, seconds_from_jd
 from lunarcap.physics.frames import C_ICRF_TO_MME
 
 __all__ = ["Ephemeris", "ChebyshevFit", "default_ephemeris", "chebyshev_eval"]
@@ -147,7 +147,8 @@ class Ephemeris:
         """Provenance record: name, path, SHA-256 and span."""
         a, b = self.span_s
         return {"ephemeris": self.name, "path": str(self.path), "sha256": self.sha256,
-                "first_epoch": calendar_from_seconds(a, 0), "last_epoch": calendar_from_seconds(b, 0)}
+                "first_epoch": calendar_from_seconds(a, 0),
+                "last_epoch": calendar_from_seconds(b, 0)}
 
 
 _DEFAULT: Ephemeris | None = None

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import re
 
-from lunarcap.physics.constants import DAY_S, JD_J2000
 from lunarcap.errors import InputError
+from lunarcap.physics.constants import DAY_S, JD_J2000
 
 _MONTHS = {m: i + 1 for i, m in enumerate(
     ["jan", "feb", "mar", "apr", "may", "jun", "jul", "aug", "sep", "oct", "nov", "dec"])}

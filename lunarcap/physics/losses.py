@@ -47,8 +47,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from lunarcap.physics import constants as C
 from lunarcap.errors import InputError
+from lunarcap.physics import constants as C
 
 #: Radius of every capture perilune, km (R_Moon + 100 km, Song 2011 Sec. 3.2.1).
 PERILUNE_RADIUS_KM = C.R_MOON + C.PERILUNE_ALTITUDE_KM

@@ -47,6 +47,7 @@ class Trajectory:
         return bool(self.pieces)
 
     def __call__(self, t):
+        """States at epochs ``t`` (s past J2000) from the dense output."""
         if not self.pieces:
             raise ValueError("this trajectory was propagated without dense output")
         scalar = np.ndim(t) == 0

@@ -2,7 +2,8 @@
 
 Usage::
 
-    python -m lunarcap.report.build build [--quick] [--jobs N] [--only NAME ...] [--force] [--no-build]
+    python -m lunarcap.report.build build [--quick] [--jobs N] [--only NAME ...] [--force]
+                                          [--no-build]
     python -m lunarcap.report.build check          # validate the manifest and the table of contents
 
 The manifest ``notebooks/manifest.yml`` has one entry per execution::
@@ -24,7 +25,8 @@ and cell, keeps the failed notebook as ``book/generated/<name>.failed.ipynb`` an
 leaves every other output intact.
 
 An entry is skipped when its stamp ``book/generated/<name>.stamp.json`` matches: same
-source notebook, parameters, quick flag, lunarcap source (:func:`lunarcap.repro.cache.code_version`),
+source notebook, parameters, quick flag, lunarcap source
+(:func:`lunarcap.repro.cache.code_version`),
 environment lock, title and dependency stamps, and its outputs exist. Expensive
 solutions are cached separately by :mod:`lunarcap.repro.cache`.
 
@@ -54,6 +56,7 @@ from pathlib import Path
 import yaml
 
 from lunarcap.repro import paths
+
 ENTRY_KEYS = {"name", "title", "notebook", "parameters", "quick_parameters", "depends_on",
               "outputs"}
 REQUIRED_KEYS = {"name", "title", "notebook"}

@@ -12,9 +12,9 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from lunarcap.repro import paths
 from lunarcap.report.figures import save_figure
 from lunarcap.report.provenance import source_note
+from lunarcap.repro import paths
 
 
 def markdown_table(df, floatfmt: str | dict = ".3f") -> str:

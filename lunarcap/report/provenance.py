@@ -23,7 +23,6 @@ import platform
 import subprocess
 
 from lunarcap import __version__
-
 from lunarcap.repro import paths
 from lunarcap.repro.cache import code_version
 

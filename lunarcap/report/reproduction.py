@@ -11,7 +11,6 @@ import numpy as np
 
 from lunarcap.physics import constants as C
 
-
 _TABLE_QUANTITIES = (
     ("burn duration", "min", "paper_burn_duration_min", "burn_duration_min"),
     ("delta-V", "m/s", "paper_delta_v_mps", "delta_v_mps"),

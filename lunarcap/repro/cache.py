@@ -4,8 +4,9 @@
 :func:`cached` wraps a function with it and adds two extra key parts:
 
 * :func:`code_version`, a SHA-256 of the lunarcap source files that compute results
-  (every ``lunarcap/*.py`` except the presentation modules in :data:`PRESENTATION_MODULES`),
-  so any edit of the physics, the transcription or the solver invalidates the cache;
+  (:data:`NUMERICAL_CODE`: physics, mission, optim, the chain), so any edit of the physics,
+  the transcription or the solver invalidates the cache, and an edit of the CLI or the
+  book does not;
 * a hash of the wrapped function's own source, for functions defined outside lunarcap
   (in a notebook or a test).
 
@@ -36,10 +37,16 @@ from pathlib import Path
 import joblib
 
 from lunarcap.repro import paths
-#: Modules that only present results; editing them does not invalidate cached solutions.
-PRESENTATION_MODULES = frozenset({"book.py", "plots.py", "provenance.py", "paths.py"})
 
-_PACKAGE_DIR = Path(__file__).resolve().parent
+#: What a cached result depends on: the numerical code (physics, the mission and its plan
+#: files, the optimiser), the error types, and the module of the cached chain solves.
+#: Editing anything else (the CLI's help, the book, a figure) keeps every cached solve.
+NUMERICAL_CODE = ("physics/", "mission/", "optim/", "errors.py", "runs/chain.py")
+
+#: Besides those, the book's stamps hash the presentation code (a figure depends on it).
+PRESENTATION_CODE = ("report/", "paper/", "runs/", "cli.py")
+
+_PACKAGE_DIR = Path(__file__).resolve().parents[1]
 
 
 def _enabled() -> bool:
@@ -50,28 +57,33 @@ def _enabled() -> bool:
 memory = joblib.Memory(location=str(paths.JOBLIB_CACHE) if _enabled() else None, verbose=0)
 
 
+def _selected(rel: str, prefixes) -> bool:
+    return any(rel == p or (p.endswith("/") and rel.startswith(p)) for p in prefixes)
+
+
 @functools.lru_cache(maxsize=None)
 def code_version(include_presentation: bool = False) -> str:
-    """SHA-256 (hex, 16 characters) of lunarcap's source files.
+    """SHA-256 (hex, 16 characters) of the lunarcap source a result depends on.
 
     Parameters
     ----------
     include_presentation : bool
-        Also hash :data:`PRESENTATION_MODULES` (the book uses this for its stamps,
-        since a figure depends on the plotting code).
+        Also hash :data:`PRESENTATION_CODE` (the book uses this for its stamps, since a
+        figure depends on the plotting code).
 
     Returns
     -------
     str
-        Hash over the relative path and content of every ``lunarcap/**/*.py`` file,
-        in sorted order. Computed once per process.
+        Hash over the relative path and content of every ``.py`` and ``.yaml`` file of
+        :data:`NUMERICAL_CODE` (and :data:`PRESENTATION_CODE`), in sorted order. Computed
+        once per process.
     """
+    prefixes = NUMERICAL_CODE + (PRESENTATION_CODE if include_presentation else ())
     h = hashlib.sha256()
-    for f in sorted(_PACKAGE_DIR.rglob("*.py")):
+    files = sorted(f for ext in ("*.py", "*.yaml") for f in _PACKAGE_DIR.rglob(ext))
+    for f in files:
         rel = f.relative_to(_PACKAGE_DIR).as_posix()
-        if "__pycache__" in rel:
-            continue
-        if not include_presentation and rel in PRESENTATION_MODULES:
+        if "__pycache__" in rel or not _selected(rel, prefixes):
             continue
         h.update(rel.encode())
         h.update(b"\0")

@@ -72,12 +72,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from lunarcap.physics import constants as C
-from lunarcap.repro import paths
 from lunarcap.errors import InputError
 from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
+from lunarcap.physics import constants as C
 from lunarcap.physics.losses import PERILUNE_RADIUS_KM, robbins_loss_mps
 from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine, rocket_mass_after
+from lunarcap.repro import paths
 
 #: Lunar surface gravity mu / R^2, m/s^2 (from :data:`lunarcap.physics.constants.MU_MOON` and
 #: :data:`lunarcap.physics.constants.R_MOON`, Song 2011's values).
@@ -310,7 +310,6 @@ def engine_rows(thrust_N: float, isp_s: float, dynamics: str, summaries: list,
     -------
     list of dict, keys :data:`COLUMNS`
     """
-
     base = {"thrust_N": float(thrust_N), "isp_s": float(isp_s), "dynamics": dynamics,
             "thrust_to_weight": thrust_to_weight(thrust_N),
             "thrust_to_lunar_weight": thrust_to_weight(thrust_N, g_mps2=G_MOON_MPS2),
@@ -859,7 +858,6 @@ def analytic_curves(thrusts_N, isp_s) -> pd.DataFrame:
     Columns: thrust_N, isp_s, thrust_to_weight, part, eq19_duration_min, loss_mps,
     loss_percent (closed form, :func:`lunarcap.physics.losses.capture_chain_estimate`).
     """
-
     rows = []
     for isp in parse_isp_list(list(isp_s)):
         for t in np.asarray(thrusts_N, dtype=float):

@@ -150,8 +150,10 @@ def sequence_table(thrust_N: float, isp_s: float, starts=None, dynamics: str = "
 
 
 def sequence_totals(df: pd.DataFrame, mass0_kg: float = C.ARRIVAL_MASS_KG) -> dict:
-    """Totals of a :func:`sequence_table`: delta-V, loss (m/s and % of the impulsive total),
-    the paper's way of quoting it (mean of the per-burn %), fuel, burn time, final mass.
+    """Totals of a :func:`sequence_table`: delta-V, loss, fuel, burn time, final mass.
+
+    The loss in m/s and in % of the impulsive total, and the paper's way of quoting it (the
+    mean of the per-burn percentages).
     """
     imp = df.paper_impulsive_delta_v_mps.sum()
     out = {"total_delta_v_mps": df.delta_v_mps.sum(), "total_impulsive_delta_v_mps": imp,

@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 from jplephem.ephem import Ephemeris as RawEphemeris
 
+from lunarcap.errors import EphemerisRangeError, InputError
+from lunarcap.mission import arrival as scenario
 from lunarcap.physics import constants as C
 from lunarcap.physics import elements as el
-from lunarcap.mission import arrival as scenario
-from lunarcap.errors import EphemerisRangeError, InputError
 from lunarcap.physics.frames import C_ICRF_TO_MME
 
 MU = C.MU_MOON

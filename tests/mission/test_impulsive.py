@@ -7,10 +7,10 @@ Paper values are from Song 2011, Tables 1-5 (impulsive delta-V 353.272, 254.034,
 import numpy as np
 import pytest
 
-from lunarcap.physics import constants as C
-from lunarcap.mission import impulsive as imp
-from lunarcap.physics import rocket
 from lunarcap.errors import InputError
+from lunarcap.mission import impulsive as imp
+from lunarcap.physics import constants as C
+from lunarcap.physics import rocket
 
 G0 = 9.80665  # m/s^2, exact by definition (CGPM 1901)
 PAPER_DV_MPS = (353.272, 254.034, 245.363)
@@ -84,7 +84,8 @@ def test_eq19_closed_form_and_small_burn_limit():
     m0, dv, T, isp = 500.0, 300.0, 300.0, 250.0
     t1 = rocket.burn_duration_estimate_s(m0, dv, T, isp)
     # burning for t1 at the flow T/(g0 Isp) consumes exactly the rocket-equation propellant
-    assert t1 * T / (G0 * isp) == pytest.approx(m0 - rocket.rocket_mass_after(m0, dv, isp), rel=1e-14)
+    assert t1 * T / (G0 * isp) == pytest.approx(m0 - rocket.rocket_mass_after(m0, dv, isp),
+                                                rel=1e-14)
     # small delta-V: impulse = momentum, t1 -> m0 dv / T (relative error dv / (2 g0 Isp))
     small = 0.5
     t_small = rocket.burn_duration_estimate_s(m0, small, T, isp)

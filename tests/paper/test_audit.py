@@ -10,8 +10,9 @@ import math
 import pytest
 
 from lunarcap.paper import audit as A
-from lunarcap.physics import constants as C
 from lunarcap.paper import printed as P
+from lunarcap.physics import constants as C
+
 G0 = 9.80665
 IMP = (353.272, 254.034, 245.363)
 

@@ -1,4 +1,4 @@
-"""Tests of lunarcap.paper.printed: Song 2011's printed numbers, complete and self-consistent in shape.
+"""Tests of lunarcap.paper.printed: Song 2011's printed numbers, complete and well formed.
 
 Song, Park, Kim, Lee & Sim (2011), J. Astron. Space Sci. 28(3) 203-216. Tables 1-5 and
 B1 are transcribed separately, so agreement between them is a real check of the
@@ -12,9 +12,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from lunarcap.physics import constants as C
-from lunarcap.paper import printed as P
 from lunarcap.errors import InputError
+from lunarcap.paper import printed as P
+from lunarcap.physics import constants as C
 
 PAPER_TXT = Path("/work/shared/paper/song2011_lunar_capture_finite_thrust.txt")
 CASES = [(t, n) for t in (150, 300, 450) for n in (1, 2, 3)]

@@ -10,11 +10,11 @@ import casadi as ca
 import numpy as np
 import pytest
 
+from lunarcap.errors import InputError
 from lunarcap.physics import constants as C
 from lunarcap.physics import dynamics as dyn
 from lunarcap.physics import elements as el
 from lunarcap.physics import frames
-from lunarcap.errors import InputError
 
 MU, RM, J2 = C.MU_MOON, C.R_MOON, C.J2_MOON
 

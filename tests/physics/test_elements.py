@@ -9,9 +9,9 @@ import casadi as ca
 import numpy as np
 import pytest
 
+from lunarcap.errors import InputError
 from lunarcap.physics import elements as el
 from lunarcap.physics.constants import MU_MOON, R_MOON
-from lunarcap.errors import InputError
 
 MU = MU_MOON
 #: Round trips through trigonometric functions and atan2 lose a few ulps per step;

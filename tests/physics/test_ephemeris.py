@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 from jplephem.ephem import Ephemeris as RawEphemeris
 
+from lunarcap.errors import EphemerisRangeError, InputError
 from lunarcap.physics import ephemeris
 from lunarcap.physics.constants import ARRIVAL_EPOCH_TDB
 from lunarcap.physics.epochs import seconds_from_calendar
-from lunarcap.errors import EphemerisRangeError, InputError
 from lunarcap.physics.frames import C_ICRF_TO_MME
 
 RAW = RawEphemeris(de405)

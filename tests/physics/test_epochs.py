@@ -9,9 +9,9 @@ from datetime import datetime, timedelta
 import numpy as np
 import pytest
 
+from lunarcap.errors import InputError
 from lunarcap.physics import epochs
 from lunarcap.physics.constants import ARRIVAL_EPOCH_TDB
-from lunarcap.errors import InputError
 
 J2000 = datetime(2000, 1, 1, 12, 0, 0)
 

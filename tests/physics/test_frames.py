@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from lunarcap.physics import frames
+
 # Double-precision round-off on unit vectors built from a few trigonometric calls and
 # cross products is a few 1e-16; 1e-14 leaves a margin and still catches any real error.
 TOL = 1e-14

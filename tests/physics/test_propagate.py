@@ -7,11 +7,11 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
+from lunarcap.errors import InputError
 from lunarcap.physics import constants as C
 from lunarcap.physics import dynamics as dyn
 from lunarcap.physics import elements as el
 from lunarcap.physics import propagate as prop
-from lunarcap.errors import InputError
 
 MU = C.MU_MOON
 

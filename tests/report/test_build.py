@@ -16,9 +16,8 @@ import pytest
 import yaml
 
 from lunarcap.report import build as book
-from lunarcap.repro import cache
-from lunarcap.repro import paths
 from lunarcap.report.build import ManifestError, validate_manifest
+from lunarcap.repro import cache, paths
 
 
 def _notebook(path: Path, params: str = "x = 1\nquick = False\noutput_name = 'n'",

@@ -2,17 +2,18 @@
 
 import math
 
+import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 import pytest
 
-from lunarcap.physics import constants as C
-from lunarcap.repro import paths
-import matplotlib.pyplot as plt
-
 from lunarcap.paper.audit import AUDIT_CHECK_TITLES
+from lunarcap.physics import constants as C
 from lunarcap.physics.frames import thrust_angles_deg, thrust_direction_rtn
 from lunarcap.report import display, figdata, figures, reproduction
+from lunarcap.repro import paths
+
+
 def _unit(rng, n):
     u = rng.normal(size=(3, n))
     return u / np.linalg.norm(u, axis=0)

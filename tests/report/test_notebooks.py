@@ -17,6 +17,7 @@ import pytest
 
 from lunarcap.report import build as book
 from lunarcap.repro import paths
+
 ENTRIES = book.load_manifest()
 
 

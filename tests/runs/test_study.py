@@ -15,11 +15,11 @@ import pandas as pd
 import pytest
 from scipy.integrate import solve_ivp
 
+from lunarcap.errors import InputError, SolveError
 from lunarcap.physics import constants as C
 from lunarcap.physics import losses as fbt
-from lunarcap.runs import study
-from lunarcap.errors import InputError, SolveError
 from lunarcap.physics.rocket import burn_duration_estimate_s
+from lunarcap.runs import study
 
 ROOT = Path(__file__).resolve().parents[2]
 

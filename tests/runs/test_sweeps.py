@@ -14,11 +14,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from lunarcap.physics import constants as C
 from lunarcap.paper import printed as paper
+from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_IMPULSIVE_DV_MPS
+from lunarcap.physics import constants as C
 from lunarcap.runs import sweeps as tables
-from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN
-from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
 
 #: Unit suffixes of numeric columns, and the numeric columns that are counts or flags.
 UNIT_SUFFIX = re.compile(r"_(min|mps|kmps|percent|kg|m|deg|s|N)$")
