@@ -56,7 +56,7 @@ def _display_markdown(text: str) -> None:
 
 def show_table(df, name: str, caption: str, notebook: str, parameters: dict | None = None,
                floatfmt: str | dict = ".3f", labels: dict | None = None, label: str | None = None,
-               display: bool = True) -> str:
+               display: bool = True, columns: list | None = None) -> str:
     """Write ``df`` to ``tables/<name>.csv`` and show it as a numbered MyST table.
 
     Parameters
@@ -80,6 +80,8 @@ def show_table(df, name: str, caption: str, notebook: str, parameters: dict | No
         Cross-reference label (default ``tbl-<name>``), for ``{numref}`` from other pages.
     display : bool
         Display the Markdown (default) or only return it.
+    columns : list, optional
+        Columns shown in the book (default all); the CSV keeps every column.
 
     Returns
     -------
@@ -87,6 +89,8 @@ def show_table(df, name: str, caption: str, notebook: str, parameters: dict | No
         The Markdown shown.
     """
     csv = paths.write_csv(df, name)
+    if columns is not None:
+        df = df[list(columns)]
     label = label or f"tbl-{name}"
     rel = paths.relative_to_page(csv)
     shown = df.rename(columns=labels or {})

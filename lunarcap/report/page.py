@@ -1,0 +1,131 @@
+"""A book page as data: its tables, figures, the numbers its prose quotes, notes, checks.
+
+A page module (:mod:`lunarcap.report.pages`) computes a :class:`Page` from parameters;
+the page's notebook only builds it and shows it, so what the book shows is computed (and
+tested) in the library, and a notebook is a parameters cell, a call, a few ``show``
+calls, prose and glue::
+
+    page = sweep.build(thrust_N=150.0, isp_s=200.0, loi=1, starts=[-10.0], ...)
+    page.header()          # provenance admonition
+    page.show("dv")        # a table: CSV written, numbered MyST table displayed
+    page.show("dv_plot")   # a figure: PNG + SVG written, MyST figure displayed
+    page.glue()            # the numbers and notes the prose quotes (myst-nb glue)
+    page.check()           # the headline assertions (the build fails if they fail)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from lunarcap.report import display as _display
+from lunarcap.report.labels import labels as _labels
+
+
+@dataclass
+class Table:
+    """A table of a page: the CSV content and how it is shown."""
+
+    df: object                # pandas.DataFrame, columns snake_case with unit suffixes
+    caption: str
+    columns: dict | None = None   # display header overrides (default labels.label)
+    floatfmt: dict | str = ".3f"
+    show_columns: list | None = None  # columns shown (default all; the CSV keeps all)
+    name: str | None = None           # output name suffix (default: the key)
+
+
+@dataclass
+class Figure:
+    """A figure of a page (a matplotlib Figure, closed once shown)."""
+
+    fig: object
+    caption: str
+    alt: str | None = None
+    width: str = "100%"
+    name: str | None = None           # output name suffix (default: the key)
+
+
+@dataclass
+class Page:
+    """What one book page shows (see the module docstring)."""
+
+    notebook: str
+    parameters: dict
+    output_name: str
+    quick: bool = False
+    solver: dict | None = None
+    ephemeris: object = None
+    items: dict = field(default_factory=dict)
+    values: dict = field(default_factory=dict)
+    notes: dict = field(default_factory=dict)
+    checks: list = field(default_factory=list)
+    data: dict = field(default_factory=dict)   # raw results, for readers of the notebook
+
+    # ------------------------------------------------------------------ building
+    def table(self, key: str, df, caption: str, columns: dict | None = None,
+              floatfmt: dict | str = ".3f", show_columns: list | None = None,
+              name: str | None = None) -> None:
+        """Add a table (written to ``tables/<output_name>_<name or key>.csv`` when shown)."""
+        self.items[key] = Table(df, caption, columns, floatfmt, show_columns, name)
+
+    def figure(self, key: str, fig, caption: str, alt: str | None = None,
+               width: str = "100%", name: str | None = None) -> None:
+        """Add a figure (``figures/<output_name>_<name or key>.png/.svg`` when shown)."""
+        self.items[key] = Figure(fig, caption, alt, width, name)
+
+    def value(self, name: str, v) -> None:
+        """A number (or short text) the page's prose quotes through glue."""
+        self.values[name] = v
+
+    def note(self, name: str, markdown: str) -> None:
+        """A MyST block the prose includes through ``{glue:md}``."""
+        self.notes[name] = markdown
+
+    def expect(self, what: str, ok: bool, detail: str = "") -> None:
+        """A headline check: :meth:`check` fails the page if it is False."""
+        self.checks.append((what, bool(ok), detail))
+
+    # ------------------------------------------------------------------ showing
+    def name_of(self, key: str) -> str:
+        """Output name of an item: ``<output_name>_<name or key>``."""
+        return f"{self.output_name}_{self.items[key].name or key}"
+
+    def header(self, display: bool = True) -> str:
+        """The provenance admonition of the page."""
+        from lunarcap.report import provenance
+
+        prov = provenance.collect(ephemeris=self.ephemeris, solver=self.solver)
+        text = provenance.render_markdown(prov, self.notebook, self.parameters, self.quick)
+        if display:
+            _display._display_markdown(text)
+        return text
+
+    def show(self, key: str, display: bool = True) -> str:
+        """Write one table or figure and display it (returns the MyST text)."""
+        item = self.items[key]
+        if isinstance(item, Table):
+            df = item.df
+            shown = item.show_columns or list(df.columns)
+            heads = _labels(shown, **(item.columns or {}))
+            return _display.show_table(df, self.name_of(key), item.caption, self.notebook,
+                                       self.parameters, floatfmt=item.floatfmt, labels=heads,
+                                       columns=shown, display=display)
+        return _display.show_figure(item.fig, self.name_of(key), item.caption, self.notebook,
+                                    self.parameters, alt=item.alt, width=item.width,
+                                    display=display)
+
+    def glue(self) -> None:
+        """Glue every value and note (for ``{glue:text}`` and ``{glue:md}`` in the prose)."""
+        from IPython.display import Markdown
+        from myst_nb import glue
+
+        for name, v in self.values.items():
+            glue(name, v, display=False)
+        for name, md in self.notes.items():
+            glue(name, Markdown(md), display=False)
+
+    def check(self) -> None:
+        """Raise AssertionError naming every failed headline check."""
+        failed = [f"{what}{': ' + detail if detail else ''}"
+                  for what, ok, detail in self.checks if not ok]
+        if failed:
+            raise AssertionError("; ".join(failed))

@@ -1,0 +1,47 @@
+"""The ignition-sweep page (lunarcap.report.pages.sweep), built in two-body dynamics."""
+
+import numpy as np
+import pytest
+
+from lunarcap.paper import printed as paper
+from lunarcap.report.labels import label
+from lunarcap.report.pages import sweep
+
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture(scope="module")
+def page():
+    return sweep.build(150.0, 200.0, 1, [-8.0, -10.0], None, "two-body", "t_sweep", True)
+
+
+def test_delta_v_table_sets_ours_beside_the_paper(page):
+    df = page.items["dv"].df
+    assert list(df.burn) == ["impulsive", "finite", "finite"]
+    fin = df[df.burn == "finite"]
+    printed = paper.paper_table(150.0, 1).set_index("start_min")
+    np.testing.assert_allclose(fin.paper_delta_v_mps,
+                               printed.loc[fin.start_min, "delta_v_mps"].to_numpy())
+    np.testing.assert_allclose(fin.delta_v_diff_mps, fin.delta_v_mps - fin.paper_delta_v_mps)
+    # loss against the paper's impulsive 353.272 m/s, as the paper's Tables 1-5
+    np.testing.assert_allclose(fin.loss_percent, 100 * (fin.delta_v_mps - 353.272) / 353.272)
+    assert (df.verified == "passed").all()
+    # the smallest delta-V is flagged (ours, and the paper's best -10 min is "both")
+    best = fin.loc[fin.delta_v_mps.idxmin()]
+    assert best.best in ("ours", "both")
+
+
+def test_values_and_checks(page):
+    v = page.values
+    assert v["n_cases"] == 2 and v["n_verified"] == 2
+    assert v["paper_best_delta_v_mps"] == 367.415
+    assert v["best_diff_mps"] == pytest.approx(v["best_delta_v_mps"] - 367.415)
+    page.check()  # two-body: the Table B1 comparison is not asserted, the rest is
+
+
+def test_every_shown_column_has_a_label_with_its_unit(page):
+    for key in ("dv", "duration"):
+        for c in page.items[key].df.columns:
+            lab = (page.items[key].columns or {}).get(c, label(c))
+            unit_suffix = c.endswith(("_mps", "_min", "_percent"))
+            assert ("(" in lab) == unit_suffix, (c, lab)
