@@ -74,8 +74,8 @@ def _start(text: str):
 def _add_plan_options(p: argparse.ArgumentParser, plan_positional: bool) -> None:
     if plan_positional:
         p.add_argument("plan", metavar="PLAN",
-                       help="a plan file (YAML) or the name of a packaged plan "
-                            "(song2011-150N, song2011-300N, song2011-450N)")
+                       help="a plan file (YAML) or the name of a packaged plan (list them "
+                            "with `lunarcap plans`)")
     else:
         p.add_argument("--plan", default=None, metavar="PLAN",
                        help="a plan file (YAML) or packaged plan name (default: the paper's "
@@ -160,13 +160,17 @@ def _fmt(v, spec: str, width: int) -> str:
     return f"{'—':>{width}}" if v is None else f"{v:{width}{spec}}"
 
 
+def _target_width(plan) -> int:
+    return max(6, *(len(b.describe()) for b in plan.burns))
+
+
 def _print_plan_header(plan) -> None:
     a = plan.arrival
     print(f"Plan {plan.name}: {plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} s, "
           f"{plan.dynamics} dynamics, {plan.n_burns} burn(s); arrival {a.epoch}, perilune "
           f"{a.perilune_altitude_km:g} km, inclination {a.inclination_deg:g} deg, "
           f"v_inf {a.v_inf_kmps:.5f} km/s, {a.mass_kg:g} kg")
-    print(f"{'burn':>4}  {'target':<22} {'ignition (TDB)':<27} {'start min':>9} "
+    print(f"{'burn':>4}  {'target':<{_target_width(plan)}} {'ignition (TDB)':<27} {'start min':>9} "
           f"{'dur min':>7} {'dV m/s':>9} {'imp m/s':>9} {'loss m/s':>8} {'loss %':>6} "
           f"{'m start kg':>10} {'m end kg':>9}  verification", flush=True)
 
@@ -180,7 +184,8 @@ def _print_burn_row(plan, r: dict) -> None:
     if r["verification_ra_error_m"] is not None:
         ver += f", ra {r['verification_ra_error_m']:.2g} m"
     ver += ")"
-    print(f"{r['burn']:>4}  {b.describe():<22} {r['ignition_epoch']:<27} {r['start_min']:9.3f} "
+    print(f"{r['burn']:>4}  {b.describe():<{_target_width(plan)}} {r['ignition_epoch']:<27} "
+          f"{r['start_min']:9.3f} "
           f"{r['burn_duration_min']:7.2f} {r['delta_v_mps']:9.3f} "
           f"{_fmt(r['impulsive_delta_v_mps'], '.3f', 9)} {_fmt(r['loss_mps'], '.3f', 8)} "
           f"{_fmt(r['loss_percent'], '.2f', 6)} {r['m_start_kg']:10.3f} {r['m_end_kg']:9.3f}  "

@@ -489,3 +489,323 @@ def plot_sweep_dv(sweep, printed=None, printed_label: str = "paper"):
     ax.grid(alpha=0.3)
     fig.legend(loc="outside lower center", ncols=2, fontsize=8, frameon=False)
     return fig
+
+
+# =============================================================================== trade study
+def _trade_axes(ax, newton_per_ratio: float):
+    """Log thrust-to-weight axis with the thrust (N) on a secondary top axis."""
+    ax.set_xscale("log")
+    top = ax.secondary_xaxis("top", functions=(lambda r: np.asarray(r) * newton_per_ratio,
+                                               lambda t: np.asarray(t) / newton_per_ratio))
+    top.set_xlabel("thrust (N)", fontsize=8)
+    top.tick_params(labelsize=8)
+    ax.grid(alpha=0.3, which="both")
+
+
+def _isp_colours(isp_s) -> dict:
+    cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    return {float(isp): cycle[k % len(cycle)] for k, isp in enumerate(isp_s)}
+
+
+def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict, floor_percent: dict,
+                          newton_per_ratio: float, ylim=(0.01, 40.0)):
+    """Loss (% of the impulsive delta-V, log) against thrust-to-weight, one panel per part.
+
+    Parameters
+    ----------
+    ok : DataFrame of the study's verified rows (``part``, ``isp_s``, ``thrust_to_weight``,
+        ``loss_percent``); rows with a loss <= 0 are not drawn (log axis)
+    theory : DataFrame of Robbins' estimate on a dense grid (same columns)
+    paper : DataFrame of the paper's engines (``thrust_N``, ``isp_s``, ``thrust_to_weight``,
+        ``part``, ``loss_percent``), drawn as stars
+    isp_s : the specific impulses (s), one colour each
+    part_titles : ``{part: panel title}``, in panel order (four panels, 2 x 2)
+    floor_percent : ``{part: loss (%)}`` below which the loss is not resolved (grey band)
+    newton_per_ratio : thrust (N) of a thrust-to-weight ratio of 1 (top axis)
+    ylim : loss axis limits, %
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    colours = _isp_colours(isp_s)
+    fig, axes = plt.subplots(2, 2, figsize=(10, 8), layout="constrained", sharex=True)
+    for ax, part in zip(axes.flat, part_titles):
+        for isp in isp_s:
+            d = ok[(ok.part == part) & (ok.isp_s == isp) & (ok.loss_percent > 0)]
+            d = d.sort_values("thrust_to_weight")
+            ax.plot(d.thrust_to_weight, d.loss_percent, "o-", ms=3, color=colours[float(isp)],
+                    label=f"optimal, Isp {isp:g} s")
+            th = theory[(theory.part == part) & (theory.isp_s == isp)]
+            ax.plot(th.thrust_to_weight, th.loss_percent, "--", color=colours[float(isp)],
+                    lw=1, label=f"Robbins (1966), Isp {isp:g} s")
+        for r in paper[paper.part == part].itertuples(index=False):
+            ax.plot(r.thrust_to_weight, r.loss_percent, marker="*", ms=13, ls="none",
+                    color=colours.get(float(r.isp_s), "black"), mec="black", mew=0.7)
+            ax.annotate(f"{r.thrust_N:g} N / {r.isp_s:g} s",
+                        (r.thrust_to_weight, r.loss_percent), xytext=(6, 3),
+                        textcoords="offset points", fontsize=7)
+        _trade_axes(ax, newton_per_ratio)
+        ax.set_yscale("log")
+        ax.set_ylim(*ylim)
+        ax.axhspan(ylim[0], floor_percent[part], color="0.88", zorder=0)
+        ax.text(0.02, 0.02, "not resolved (model offset)", transform=ax.transAxes,
+                fontsize=7, color="0.35", va="bottom")
+        ax.set_title(part_titles[part], fontsize=10)
+        ax.set_ylabel("loss (% of the paper's impulsive ΔV)")
+    for ax in axes[1]:
+        ax.set_xlabel("thrust-to-weight ratio T / (m₀ g₀)")
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    handles.append(plt.Line2D([], [], marker="*", ms=11, ls="none", color="0.6", mec="black"))
+    labels.append("paper, Table B1 (colour: its Isp)")
+    fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=8)
+    return fig
+
+
+def plot_trade_study_duration(ok, isp_s, part_titles: dict, newton_per_ratio: float):
+    """Optimal burn duration and ignition offset, each over the Eq. (19) duration.
+
+    Parameters
+    ----------
+    ok : DataFrame of the study's verified LOI rows (``part``, ``isp_s``,
+        ``thrust_to_weight``, ``burn_duration_min``, ``start_min``, ``eq19_duration_min``)
+    isp_s : the specific impulses (s), one colour each
+    part_titles : ``{part: column title}`` of the burns (three columns)
+    newton_per_ratio : thrust (N) of a thrust-to-weight ratio of 1 (top axis)
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    colours = _isp_colours(isp_s)
+    parts = list(part_titles)
+    fig, axes = plt.subplots(2, len(parts), figsize=(11, 6.5), layout="constrained",
+                             sharex=True, squeeze=False)
+    for j, part in enumerate(parts):
+        for isp in isp_s:
+            d = ok[(ok.part == part) & (ok.isp_s == isp)].sort_values("thrust_to_weight")
+            axes[0, j].plot(d.thrust_to_weight, d.burn_duration_min / d.eq19_duration_min,
+                            "o-", ms=3, color=colours[float(isp)], label=f"Isp {isp:g} s")
+            axes[1, j].plot(d.thrust_to_weight, d.start_min / d.eq19_duration_min, "o-",
+                            ms=3, color=colours[float(isp)], label=f"Isp {isp:g} s")
+        axes[0, j].axhline(1.0, color="0.4", ls="--", lw=1, label="Eq. (19)")
+        axes[1, j].axhline(-0.5, color="0.4", ls="--", lw=1,
+                           label="−½ Eq. (19) (paper's rule)")
+        axes[0, j].set_title(part_titles[part], fontsize=10)
+        for ax in axes[:, j]:
+            _trade_axes(ax, newton_per_ratio)
+        axes[1, j].set_xlabel("thrust-to-weight ratio T / (m₀ g₀)")
+    axes[0, 0].set_ylabel("optimal duration / Eq. (19)")
+    axes[1, 0].set_ylabel("ignition offset / Eq. (19) duration")
+    axes[0, 0].legend(fontsize=8)
+    axes[1, 0].legend(fontsize=8)
+    return fig
+
+
+# ======================================================== summary and verification pages
+def plot_summary_loss(chains: dict):
+    """Delta-V loss per LOI of each engine's best chain: the paper's and ours, two ways.
+
+    Parameters
+    ----------
+    chains : {engine label: DataFrame} from :func:`lunarcap.runs.sweeps.sequence_table`
+        (``loi``, ``paper_delta_v_mps``, ``paper_impulsive_delta_v_mps``, ``loss_mps``,
+        ``model_loss_mps``), one bar group per LOI, one panel per engine.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    n = len(chains)
+    fig, axes = plt.subplots(1, n, figsize=(2.4 * n + 1.0, 3.6), sharey=True,
+                             layout="constrained", squeeze=False)
+    w = 0.27
+    for ax, (name, s) in zip(axes[0], chains.items()):
+        x = np.arange(len(s))
+        ax.bar(x - w, s.paper_delta_v_mps - s.paper_impulsive_delta_v_mps, w, color="C1",
+               label="paper (Table B1)")
+        ax.bar(x, s.loss_mps, w, color="C0", label="ours vs the paper's impulsive ΔV")
+        ax.bar(x + w, s.model_loss_mps, w, color="C2", label="ours vs our impulsive ΔV")
+        ax.set_xticks(x, [f"LOI {k}" for k in s.loi])
+        ax.set_title(name, fontsize=10)
+        ax.grid(axis="y", alpha=0.3)
+    axes[0][0].set_ylabel("ΔV loss (m/s)")
+    fig.legend(*axes[0][0].get_legend_handles_labels(), loc="outside lower center",
+               ncols=3 if n >= 3 else 1, fontsize=8, frameon=False)
+    return fig
+
+
+def plot_mesh_convergence(mesh, tol_dv_mps: float, default_points: int):
+    """Delta-V change from the finest mesh against the number of collocation points.
+
+    Parameters
+    ----------
+    mesh : DataFrame with ``case``, ``collocation_points``, ``delta_v_change_vs_finest_mps``
+        and ``accepted`` (bool: passed the gate), one row per case and mesh; the finest
+        mesh of each case (change exactly 0) is the reference and is not drawn
+    tol_dv_mps : the delta-V gate (m/s), drawn dotted
+    default_points : collocation points of the default mesh, drawn dashed
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, ax = plt.subplots(figsize=(6.4, 4.6), layout="constrained")
+    for k, (case, g) in enumerate(mesh.groupby("case", sort=False)):
+        g = g[g.delta_v_change_vs_finest_mps != 0]
+        y = g.delta_v_change_vs_finest_mps.abs().clip(lower=1e-12)
+        ok = g.accepted.astype(bool)
+        ax.plot(g.collocation_points, y, "-", color=f"C{k}", lw=1)
+        if ok.any():
+            ax.plot(g.collocation_points[ok], y[ok], "o", color=f"C{k}",
+                    label=f"{case}, accepted")
+        if (~ok).any():
+            ax.plot(g.collocation_points[~ok], y[~ok], "x", color=f"C{k}", ms=8,
+                    label=f"{case}, rejected by the gate")
+    ax.axhline(tol_dv_mps, color="0.4", ls=":", lw=1, label="ΔV gate (m/s)")
+    ax.axvline(default_points, color="0.4", ls="--", lw=1, label="default mesh")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xticks([20, 30, 50, 100, 200, 300], ["20", "30", "50", "100", "200", "300"])
+    ax.set_xticks([], minor=True)
+    ax.set_xlabel("collocation points")
+    ax.set_ylabel("|ΔV − ΔV on the finest mesh| (m/s)")
+    ax.grid(alpha=0.3, which="both")
+    fig.legend(loc="outside lower center", ncols=2, fontsize=7, frameon=False)
+    return fig
+
+
+# ======================================================== free-ignition page
+def plot_free_ignition_rule(rule):
+    """Optimal ignition against the Eq. (19)/2 rule (left) and the residual (right).
+
+    Parameters
+    ----------
+    rule : DataFrame from :func:`lunarcap.report.pages.free_ignition.rule_table`
+        (``engine``, ``burn``, ``rule_start_min``, ``free_start_min``, ``grid_start_min``,
+        ``eq19_duration_min``, ``start_minus_rule_min``; min).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    marks = {1: "o", 2: "s", 3: "^"}
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(9.6, 4.0), layout="constrained")
+    for k, engine in enumerate(dict.fromkeys(rule.engine)):
+        for r in rule[rule.engine == engine].itertuples():
+            m = marks.get(int(r.burn), "D")
+            ax.plot(r.rule_start_min, r.free_start_min, m, color=f"C{k}", ms=7)
+            if np.isfinite(r.grid_start_min):
+                ax.plot(r.rule_start_min, r.grid_start_min, m, color=f"C{k}", ms=9,
+                        mfc="none", alpha=0.7)
+            bx.plot(r.eq19_duration_min, r.start_minus_rule_min, m, color=f"C{k}", ms=7)
+        ax.plot([], [], "-", color=f"C{k}", lw=6, label=engine)
+    lo = np.nanmin([rule.rule_start_min.min(), rule.free_start_min.min(),
+                    rule.grid_start_min.min()]) - 0.7
+    ax.plot([lo, 0], [lo, 0], "k--", lw=0.8, label="optimal = −Eq. (19)/2")
+    for n in sorted(set(int(b) for b in rule.burn)):
+        ax.plot([], [], marks.get(n, "D"), color="0.4", label=f"burn {n}")
+    ax.plot([], [], "o", color="0.4", mfc="none", label="best grid point")
+    ax.set_xlabel("rule start, −Eq. (19) duration / 2 (min)")
+    ax.set_ylabel("ignition (min from the nominal perilune)")
+    ax.set_title("filled: free optimum; open: paper's best grid point", fontsize=9)
+    ax.legend(fontsize=7.5, loc="upper left")
+    ax.grid(alpha=0.3)
+    bx.axhline(0, color="k", lw=0.8)
+    bx.set_xlabel("Eq. (19) duration (min)")
+    bx.set_ylabel("optimal start − rule start (min)")
+    bx.set_title("negative: the optimum ignites earlier than the rule", fontsize=9)
+    bx.grid(alpha=0.3)
+    return fig
+
+
+# =============================================================================== steering laws
+def plot_steering_penalty(steer, engines: list, laws=("inertial", "antivelocity")):
+    """Delta-V and J penalties of simple steering laws per LOI, one column per engine.
+
+    Parameters
+    ----------
+    steer : DataFrame of :func:`lunarcap.runs.sweeps.steering_table` rows of every engine
+        (``engine``, ``loi``, ``steering``, ``delta_v_penalty_mps``,
+        ``objective_penalty_mps``, ``rp_miss_km``)
+    engines : engine labels (the ``engine`` column), one column of panels each, in order
+    laws : the laws drawn (bars side by side per LOI); an antivelocity bar whose perilune
+        radius is missed is labelled with the miss (km)
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    colours = {"inertial": "C0", "antivelocity": "C3"}
+    n = len(engines)
+    fig, axes = plt.subplots(2, n, figsize=(3.3 * n + 0.8, 5.6), sharex=True, squeeze=False,
+                             layout="constrained")
+    w = 0.72 / len(laws)
+    for j, eng in enumerate(engines):
+        sel = steer[steer.engine == eng]
+        for k, law in enumerate(laws):
+            s = sel[sel.steering == law].sort_values("loi")
+            off = (k - (len(laws) - 1) / 2) * w
+            c = colours.get(law, f"C{k + 4}")
+            axes[0][j].bar(s.loi + off, s.delta_v_penalty_mps, w, color=c, label=law)
+            axes[1][j].bar(s.loi + off, s.objective_penalty_mps, w, color=c, label=law)
+            if law == "antivelocity":
+                for r in s.itertuples():
+                    if r.rp_miss_km:
+                        axes[1][j].annotate(f"rp {r.rp_miss_km:+.1f} km",
+                                            (r.loi + off, r.objective_penalty_mps),
+                                            xytext=(0, 2), textcoords="offset points",
+                                            ha="center", va="bottom", fontsize=7)
+        axes[0][j].set_title(eng, fontsize=10)
+        for ax in axes[:, j]:
+            ax.axhline(0, color="k", lw=0.6)
+            ax.grid(axis="y", alpha=0.3)
+            ax.margins(y=0.15)
+        x = np.arange(1, 4)
+        axes[1][j].set_xticks(x, [f"LOI {i}" for i in x])
+    axes[0][0].set_ylabel("ΔV penalty (m/s)")
+    axes[1][0].set_ylabel("J penalty (m/s)")
+    axes[0][-1].legend(fontsize=8)
+    return fig
+
+
+# =============================================================================== other engines
+def plot_engine_loss(totals, loss_column: str, loss_label: str):
+    """Total loss and propellant of the capture against thrust, one marker per engine.
+
+    Parameters
+    ----------
+    totals : DataFrame, one row per engine (``thrust_N``, ``isp_s``, ``origin``: a name for
+        an engine cited by the paper, "paper's engine" for the paper's own,
+        ``total_fuel_kg`` and ``loss_column``)
+    loss_column : column of the loss drawn (m/s)
+    loss_label : y-axis label of the loss, naming its impulsive reference
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    isp_colours = {200.0: "C0", 250.0: "C1", 300.0: "C2"}
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(9.6, 3.8), layout="constrained")
+    for r in totals.sort_values("thrust_N").itertuples():
+        c = isp_colours.get(float(r.isp_s), "C7")
+        cited = r.origin != "paper's engine"
+        for a, y in ((ax, getattr(r, loss_column)), (bx, r.total_fuel_kg)):
+            a.plot(r.thrust_N, y, "D" if cited else "o", color=c, ms=8,
+                   mfc=c if cited else "white", mew=2)
+            a.annotate(r.origin if cited else f"{r.thrust_N:g} N", (r.thrust_N, y),
+                       xytext=(6, 4), textcoords="offset points", fontsize=8)
+    for isp, c in isp_colours.items():
+        if isp in set(totals.isp_s.astype(float)):
+            ax.plot([], [], "s", color=c, label=f"Isp {isp:g} s")
+    ax.plot([], [], "o", color="0.4", mfc="white", mew=2, label="paper's engines")
+    ax.plot([], [], "D", color="0.4", label="cited in Sec. 3.1")
+    ax.set_xlabel("thrust (N)")
+    ax.set_ylabel(loss_label)
+    ax.legend(fontsize=8)
+    bx.set_xlabel("thrust (N)")
+    bx.set_ylabel("propellant, LOI 1–3 (kg)")
+    for a in (ax, bx):
+        a.grid(alpha=0.3)
+        a.margins(x=0.2, y=0.12)
+    return fig

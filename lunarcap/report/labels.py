@@ -19,7 +19,7 @@ from __future__ import annotations
 #: Unit suffixes of column names and the unit shown (longest suffix first when matching).
 UNITS = {
     "_mps2": "m/s²", "_kmps2": "km/s²", "_kmps": "km/s", "_mps": "m/s", "_percent": "%",
-    "_min": "min", "_deg": "deg", "_kg": "kg", "_km": "km", "_m": "m", "_s": "s",
+    "_min": "min", "_deg": "deg", "_kg": "kg", "_km": "km", "_mm": "mm", "_m": "m", "_s": "s",
     "_h": "h", "_N": "N", "_LU": "LU",
 }
 

@@ -69,7 +69,14 @@ class Page:
 
     def figure(self, key: str, fig, caption: str, alt: str | None = None,
                width: str = "100%", name: str | None = None) -> None:
-        """Add a figure (``figures/<output_name>_<name or key>.png/.svg`` when shown)."""
+        """Add a figure (``figures/<output_name>_<name or key>.png/.svg`` when shown).
+
+        The figure is closed at once (it can still be saved), so the notebook's inline
+        backend does not display it a second time where the page is built.
+        """
+        import matplotlib.pyplot as plt
+
+        plt.close(fig)
         self.items[key] = Figure(fig, caption, alt, width, name)
 
     def value(self, name: str, v) -> None:

@@ -1,8 +1,8 @@
 """Tables of the reproduction report: every number Song 2011 prints beside ours.
 
-Pure functions of DataFrames and dicts the notebook computes with
-:mod:`lunarcap.runs.sweeps` and :mod:`lunarcap.runs.chain`; nothing here solves or
-integrates.
+Pure functions of DataFrames and dicts the page (:mod:`lunarcap.report.pages.reproduction_report`)
+computes with :mod:`lunarcap.runs.sweeps` and :mod:`lunarcap.runs.chain`; nothing here
+solves or integrates.
 """
 
 from __future__ import annotations
@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from lunarcap.physics import constants as C
+from lunarcap.physics.rocket import burn_duration_estimate_s
 
 _TABLE_QUANTITIES = (
     ("burn duration", "min", "paper_burn_duration_min", "burn_duration_min"),
@@ -91,6 +92,39 @@ def paper_tables_long(sweeps: dict, impulsive_dv_mps=None):
     return pd.DataFrame(rows)
 
 
+def paper_chain_rows(summaries) -> list[dict]:
+    """A chain's :meth:`Solution.summary` dicts with the losses and Eq. (19) of the paper.
+
+    The paper measures every loss against its impulsive delta-Vs (353.272, 254.034 and
+    245.363 m/s, from Song et al. 2009c) and estimates each burn's duration with Eq. (19)
+    from the same impulsive delta-V and the mass at ignition; so are ours here, for the
+    comparison with the numbers of its prose (:func:`quote_equivalents`).
+
+    Parameters
+    ----------
+    summaries : sequence of dict
+        ``Solution.summary()`` of burns 1, 2, 3 of one of the paper's plans.
+
+    Returns
+    -------
+    list of dict
+        Copies with ``loss_mps``, ``loss_percent`` (vs the paper's impulsive delta-V of
+        that burn) and ``eq19_duration_min`` (Eq. (19), corrected 19a, with the paper's
+        impulsive delta-V and our mass at ignition) set.
+    """
+    from lunarcap.paper import printed as P
+    out = []
+    for s in summaries:
+        imp = P.PAPER_IMPULSIVE_DV_MPS[int(s["burn"]) - 1]
+        row = dict(s)
+        row["loss_mps"] = s["delta_v_mps"] - imp
+        row["loss_percent"] = 100.0 * (s["delta_v_mps"] - imp) / imp
+        row["eq19_duration_min"] = burn_duration_estimate_s(
+            s["m_start_kg"], imp, s["thrust_N"], s["isp_s"]) / 60.0
+        out.append(row)
+    return out
+
+
 def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
                       best_starts: dict | None = None, fig4=None,
                       audit_values: dict | None = None) -> dict:
@@ -99,8 +133,9 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
     Parameters
     ----------
     chains : dict
-        ``{thrust_N: [summary_1, summary_2, summary_3]}``: :meth:`Solution.summary` of the
-        best chain of each engine (the paper's best ignition offsets).
+        ``{thrust_N: [row_1, row_2, row_3]}``: the best chain of each engine (the paper's
+        best ignition offsets), :meth:`Solution.summary` dicts with the paper's losses
+        and Eq. (19) set by :func:`paper_chain_rows`.
     impulsive_final_mass_kg : dict, optional
         ``{thrust_N: kg}``: mass after our impulsive sequence (same arrival mass and Isp).
     best_starts : dict, optional

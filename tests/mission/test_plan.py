@@ -31,17 +31,36 @@ def base():
 
 
 def test_packaged_plans_are_the_papers():
-    assert available_plans() == ["song2011-150N", "song2011-300N", "song2011-450N"]
+    papers = ["song2011-150N", "song2011-300N", "song2011-450N"]
+    assert set(papers) <= set(available_plans())
     starts = {"song2011-150N": (-10.0, -6.0, -5.0), "song2011-300N": (-4.0, -3.0, -2.0),
               "song2011-450N": (-3.0, -2.0, -2.0)}   # Table B1
     engines = {"song2011-150N": (150.0, 200.0), "song2011-300N": (300.0, 250.0),
                "song2011-450N": (450.0, 300.0)}
-    for name in available_plans():
+    for name in papers:
         p = load_plan(name)
         assert tuple(b.start_min for b in p.burns) == starts[name]
         assert (p.engine.thrust_N, p.engine.isp_s) == engines[name]
         assert [t.kind for t in p.targets] == ["perilune", "perilune", "circular"]
         assert p.arrival.mass_kg == 524.895 and p.dynamics == "full"
+
+
+def test_every_packaged_plan_loads():
+    # the paper's three and the examples that are not the paper's (lunarcap plans)
+    assert {"lro-like-5burn", "two-burn-8h"} <= set(available_plans())
+    for name in available_plans():
+        p = load_plan(name)
+        assert p.name == name and p.description and p.dynamics == "full"
+        assert p.targets[-1].kind == "circular"
+        assert CapturePlan.from_dict(p.to_dict()) == p
+    # two-burn-8h starts from exactly the paper's arrival (v_inf given, not derived)
+    assert load_plan("two-burn-8h").arrival == load_plan("song2011-150N").arrival
+    lro = load_plan("lro-like-5burn")
+    assert [b.apolune_altitude_km for b in lro.burns[:4]] == [3100.0, 2000.0, 1200.0, 600.0]
+    assert all(b.free_start for b in lro.burns)
+    # first perilune: mid-burn of LRO's 40 min LOI ending 10:26:26 UTC, TDB = UTC + 66.184 s
+    assert lro.nominal_perilunes_s[0] == pytest.approx(
+        seconds_from_calendar("2009-06-23 10:26:26 TDB") - 20 * 60 + 66.184, abs=1e-6)
 
 
 def test_nominal_perilune_epochs_match_paper():

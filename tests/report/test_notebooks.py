@@ -149,8 +149,27 @@ def test_source_notebook_has_no_outputs_and_one_parameters_cell(path):
     assert len(tagged) == 1, f"{path.name}: {len(tagged)} cells tagged 'parameters'"
     names, problems = book.notebook_parameters(path)
     assert not problems and {"quick", "output_name"} <= set(names)
-    assert f"notebooks/{path.name}" in "".join(c.source for c in nb.cells), \
-        f"{path.name} must name itself (NOTEBOOK = 'notebooks/{path.name}') for its provenance"
+
+
+@pytest.mark.parametrize("path", SOURCES, ids=[p.name for p in SOURCES])
+def test_source_notebook_is_glue_around_its_page_module(path):
+    # A notebook builds its page with a library module (lunarcap.report.pages.<page>) whose
+    # NOTEBOOK names this notebook (for the provenance); it defines no functions, draws
+    # nothing and assembles no tables itself, and its code is short.
+    import importlib
+    import re
+
+    nb = nbformat.read(str(path), as_version=4)
+    code = "\n".join(c.source for c in nb.cells if c.cell_type == "code")
+    mods = re.findall(r"from lunarcap\.report\.pages import (\w+)", code)
+    assert len(mods) == 1, f"{path.name}: builds its page with one lunarcap.report.pages module"
+    module = importlib.import_module(f"lunarcap.report.pages.{mods[0]}")
+    assert module.NOTEBOOK == f"notebooks/{path.name}"
+    for pattern in (r"^\s*def ", r"^\s*class ", r"matplotlib", r"\bplt\.", r"pd\.DataFrame\(",
+                    r"pd\.concat\("):
+        assert not re.search(pattern, code, re.M), f"{path.name}: {pattern!r} in a notebook"
+    lines = [ln for ln in code.splitlines() if ln.strip() and not ln.strip().startswith("#")]
+    assert len(lines) <= 40, f"{path.name}: {len(lines)} lines of code"
 
 
 def test_every_source_notebook_is_in_the_manifest():

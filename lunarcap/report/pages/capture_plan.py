@@ -1,0 +1,490 @@
+"""The capture-plan page (notebooks/capture_plan.ipynb): any plan, solved, verified, drawn.
+
+A capture plan (:mod:`lunarcap.mission.plan`: arrival, engine, dynamics, burns) is solved
+burn by burn with :func:`lunarcap.runs.chain.plan_result`, each burn beside its impulsive
+limit in the same dynamics from the same pre-burn orbit (the loss is the difference).
+:func:`build` shows the plan (its YAML and a table of its burns and targets), one row per
+burn (three tables shown; the first CSV has every column of each burn's row), the totals,
+and the whole capture in the orbit plane. Two kinds of plan get a comparison:
+
+* ``lro-like-5burn``, beside the published LRO figures (:data:`LRO`, sources S7 and S8 of
+  the real-missions page);
+* a plan that is not the paper's but starts from the paper's arrival (``two-burn-8h``),
+  beside the paper's three-burn capture with the same engine and free ignition.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from lunarcap.mission.plan import PLAN_DIR, CapturePlan, load_plan, paper_plan
+from lunarcap.optim.collocation import DEFAULT_MESHES
+from lunarcap.physics import constants as C
+from lunarcap.report import figdata, figures
+from lunarcap.report.page import Page
+from lunarcap.runs.chain import arrival_for, plan_result
+
+NOTEBOOK = "notebooks/capture_plan.ipynb"
+
+#: Published LRO figures (book page "Beside published lunar captures", sources S7 and S8).
+LRO = {"plan": "lro-like-5burn",
+       "loi_burn_min": 40.0,               # S7: "a 40-minute LOI burn"
+       "first_orbit_km": (220.0, 3100.0),  # S7: 220 km x 3,100 km (altitudes)
+       "launch_mass_kg": 1916.0,           # S8
+       "dry_mass_kg": 1018.0,              # S8
+       "fuel_kg": 898.0}                   # S8
+
+#: Tolerance of "the final orbit is the plan's circle" (perilune and apolune radius), km.
+FINAL_ORBIT_TOL_KM = 0.01
+
+
+def solver_description() -> dict:
+    """The solver settings named in the provenance block."""
+    meshes = " → ".join(f"{m.n_burn}×{m.n_coast} LGR-{m.degree}" for m in DEFAULT_MESHES)
+    return {"transcription": "Legendre-Gauss-Radau collocation", "NLP": "IPOPT (MUMPS)",
+            "meshes": meshes, "gate": "re-propagation, DOP853 rtol 1e-12",
+            "impulsive limit": "4 s and 2 s burns, Richardson-extrapolated"}
+
+
+def _load(plan) -> tuple:
+    """The plan and the text of its YAML file (None for a plan built in Python)."""
+    if isinstance(plan, CapturePlan):
+        return plan, None
+    p = load_plan(plan)
+    path = Path(plan).expanduser()
+    if not path.is_file():
+        path = PLAN_DIR / f"{plan}.yaml"
+    return p, path.read_text(encoding="utf-8")
+
+
+def _circle_period_s(r_km: float) -> float:
+    return 2 * math.pi * math.sqrt(r_km ** 3 / C.MU_MOON)
+
+
+def _apolune_altitude_km(period_s: float, rp_km: float) -> float:
+    """Two-body apolune altitude of the ellipse of perilune radius rp and this period, km."""
+    a = (C.MU_MOON * (period_s / (2 * math.pi)) ** 2) ** (1.0 / 3.0)
+    return 2 * a - rp_km - C.R_MOON
+
+
+def plan_table(plan: CapturePlan) -> pd.DataFrame:
+    """One row per burn of the plan as written: target, nominal orbit, ignition, Eq. (19).
+
+    Columns: burn, target, period_h and apolune_altitude_km (of the orbit reached,
+    two-body), ignition ("free" or the offset in min), two_body_delta_v_mps and
+    eq19_duration_min (the plan's two-body impulsive chain).
+    """
+    imp = plan.impulsive()
+    rp = plan.perilune_radius_km
+    rows = []
+    for i, b in enumerate(plan.burns):
+        period = b.period_s if b.target != "circular" else _circle_period_s(rp)
+        rows.append({
+            "burn": i + 1, "target": b.describe(), "period_h": period / 3600.0,
+            "apolune_altitude_km": _apolune_altitude_km(period, rp),
+            "ignition": "free" if b.free_start else f"{b.start_min:g} min",
+            "two_body_delta_v_mps": imp[i].delta_v_mps,
+            "eq19_duration_min": imp[i].eq19_duration_min})
+    return pd.DataFrame(rows)
+
+
+def burn_table(result) -> pd.DataFrame:
+    """Every column of each burn's row (:meth:`BurnResult.row`), the target described."""
+    df = result.table()
+    df.insert(1, "target_orbit", [b.describe() for b in result.plan.burns])
+    df["verified"] = np.where(df.verification_passed, "passed", "failed")
+    df["verification_released"] = df.verification_released.map(
+        lambda r: ", ".join(map(str, r)) if r else "")
+    return df
+
+
+def mass_table(burns: pd.DataFrame) -> pd.DataFrame:
+    """Burn, target, ignition epoch, masses before and after, propellant."""
+    return pd.DataFrame({"burn": burns.burn, "target": burns.target_orbit,
+                         "ignition_epoch": burns.ignition_epoch,
+                         "m_start_kg": burns.m_start_kg, "m_end_kg": burns.m_end_kg,
+                         "fuel_kg": burns.fuel_kg})
+
+
+def verification_table(burns: pd.DataFrame) -> pd.DataFrame:
+    """The gate's verdict and residuals of each burn (re-propagated − optimiser / target).
+
+    Radius errors in mm (the gate's tolerance is 10 m), the others in the row's units.
+    """
+    return pd.DataFrame({
+        "burn": burns.burn, "verified": burns.verified,
+        "delta_v_diff_mps": burns.verification_delta_v_diff_mps,
+        "rp_error_mm": 1e3 * burns.verification_rp_error_m,
+        "ra_error_mm": 1e3 * burns.verification_ra_error_m,
+        "inc_error_deg": burns.verification_inc_error_deg,
+        "gamma_error_deg": burns.verification_gamma_error_deg})
+
+
+#: Totals shown, in order: (key of :func:`totals_of`, words, unit).
+TOTALS = [
+    ("total_delta_v_mps", "total ΔV", "m/s"),
+    ("total_impulsive_delta_v_mps", "total impulsive ΔV (same dynamics)", "m/s"),
+    ("total_loss_mps", "total loss", "m/s"),
+    ("total_loss_percent", "total loss, in % of the impulsive total", "%"),
+    ("total_fuel_kg", "propellant", "kg"),
+    ("final_mass_kg", "mass in the final orbit", "kg"),
+    ("total_burn_duration_min", "burn time", "min"),
+    ("time_to_final_orbit_h", "time from the arrival perilune to the final orbit", "h"),
+    ("final_rp_altitude_km", "final orbit, perilune altitude", "km"),
+    ("final_ra_altitude_km", "final orbit, apolune altitude", "km"),
+    ("final_inc_deg", "final orbit, inclination", "deg"),
+]
+
+
+def totals_of(result) -> dict:
+    """:meth:`PlanResult.totals` with the final orbit's altitudes added (km)."""
+    tot = dict(result.totals())
+    tot["final_rp_altitude_km"] = tot["final_rp_km"] - C.R_MOON
+    tot["final_ra_altitude_km"] = tot["final_ra_km"] - C.R_MOON
+    return tot
+
+
+def totals_table(tot: dict) -> pd.DataFrame:
+    """The totals as rows: key, quantity, value, unit."""
+    return pd.DataFrame([{"key": k, "quantity": words, "value": float(tot[k]), "unit": unit}
+                         for k, words, unit in TOTALS])
+
+
+# ---------------------------------------------------------------------- comparisons
+def rocket_delta_v_mps(m0_kg: float, thrust_N: float, isp_s: float, duration_s: float) -> float:
+    """Delta-V of a constant-thrust burn of this duration (rocket equation), m/s."""
+    ve = C.G0_MPS2 * isp_s
+    return ve * math.log(m0_kg / (m0_kg - thrust_N / ve * duration_s))
+
+
+def lro_comparison(plan: CapturePlan, burns: pd.DataFrame, tot: dict) -> tuple:
+    """Our LRO-like capture beside the published LRO figures: (table, values, reading)."""
+    b1 = burns.iloc[0]
+    rp_alt = float(b1.rp_end_km) - C.R_MOON
+    ra_alt = float(b1.ra_end_km) - C.R_MOON
+    fuel, final_mass = float(tot["total_fuel_kg"]), float(tot["final_mass_kg"])
+    table = pd.DataFrame([
+        {"quantity": "first (LOI) burn duration", "published": LRO["loi_burn_min"],
+         "ours": float(b1.burn_duration_min), "unit": "min", "source": "S7"},
+        {"quantity": "first orbit, perilune altitude", "published": LRO["first_orbit_km"][0],
+         "ours": rp_alt, "unit": "km", "source": "S7"},
+        {"quantity": "first orbit, apolune altitude", "published": LRO["first_orbit_km"][1],
+         "ours": ra_alt, "unit": "km", "source": "S7"},
+        {"quantity": f"propellant (LRO: loaded; ours: the {plan.n_burns} burns)",
+         "published": LRO["fuel_kg"], "ours": fuel, "unit": "kg", "source": "S8"},
+        {"quantity": "mass (LRO: dry; ours: in the final orbit)",
+         "published": LRO["dry_mass_kg"], "ours": final_mass, "unit": "kg", "source": "S8"},
+    ])
+    m0, T, isp = plan.arrival.mass_kg, plan.engine.thrust_N, plan.engine.isp_s
+    dv40 = rocket_delta_v_mps(m0, T, isp, 60.0 * LRO["loi_burn_min"])
+    # the v_inf at which one tangential perilune impulse of dv40 reaches LRO's first orbit
+    rp = plan.perilune_radius_km
+    a1 = 0.5 * (rp + C.R_MOON + LRO["first_orbit_km"][1])
+    v_ell = math.sqrt(C.MU_MOON * (2 / rp - 1 / a1))
+    vinf40 = math.sqrt(max((v_ell + dv40 / 1e3) ** 2 - 2 * C.MU_MOON / rp, 0.0))
+    nominal_h = plan.burns[0].period_s / 3600.0
+    period_h = float(b1.period_end_h)
+    values = {"lro_burn_min": LRO["loi_burn_min"],
+              "lro_ours_burn_min": float(b1.burn_duration_min),
+              "lro_burn_diff_min": float(b1.burn_duration_min) - LRO["loi_burn_min"],
+              "lro_first_rp_alt_km": rp_alt, "lro_first_ra_alt_km": ra_alt,
+              "lro_fuel_kg": LRO["fuel_kg"], "lro_ours_fuel_kg": fuel,
+              "lro_fuel_left_kg": LRO["fuel_kg"] - fuel,
+              "lro_dv40_mps": dv40, "lro_vinf40_kmps": vinf40,
+              "lro_ours_dv1_mps": float(b1.delta_v_mps),
+              "lro_ours_imp1_mps": float(b1.impulsive_delta_v_mps)}
+    longer = "longer" if values["lro_burn_diff_min"] > 0 else "shorter"
+    if values["lro_fuel_left_kg"] > 0:
+        fuel_txt = (f"{values['lro_fuel_left_kg']:.0f} kg less than the 898 kg LRO carried "
+                    f"(S8) for its whole mission (the capture, the further lowering to its "
+                    f"mapping orbit, years of station-keeping); the {final_mass:,.0f} kg left "
+                    f"in the final orbit is above LRO's 1,018 kg dry mass.")
+    else:
+        fuel_txt = (f"{-values['lro_fuel_left_kg']:.0f} kg more than the 898 kg LRO carried "
+                    f"(S8): this model of LRO's capture is not the one LRO flew.")
+    reading = (
+        f"**Beside LRO (published figures).** Our first burn lasts "
+        f"{values['lro_ours_burn_min']:.1f} min at {m0:,.0f} kg, "
+        f"{abs(values['lro_burn_diff_min']):.1f} min {longer} than LRO's 40 min (S7). Forty "
+        f"minutes of a {T:g} N / {isp:g} s engine from {m0:,.0f} kg give {dv40:.0f} m/s "
+        f"(rocket equation); our burn needs {values['lro_ours_dv1_mps']:.0f} m/s, and even "
+        f"an impulse needs {values['lro_ours_imp1_mps']:.0f} m/s from the arrival we assumed "
+        f"(v_inf {plan.arrival.v_inf_kmps:.3f} km/s, the paper's). One impulse of "
+        f"{dv40:.0f} m/s would capture into 220 × 3,100 km from a v_inf of {vinf40:.2f} km/s. "
+        f"So LRO arrived slower than we assumed, or lighter than its launch mass, or with "
+        f"more thrust than \"about 320 N\": the sources consulted give neither its arrival "
+        f"speed, nor its mass at arrival, nor its LOI ΔV, so which is not known.\n\n"
+        f"Our first orbit is {rp_alt:.1f} × {ra_alt:,.1f} km (osculating, at the next "
+        f"perilune), not 220 × 3,100 km: the target is the perilune radius at the nominal "
+        f"epoch of the next perilune, one period of the 220 × 3,100 km ellipse "
+        f"({nominal_h:.3f} h) after the arrival perilune, but the "
+        f"{values['lro_ours_burn_min']:.0f} min burn moves the flown perilune, so the ellipse "
+        f"reached has a period of {period_h:.3f} h ({60 * (period_h - nominal_h):+.1f} min) "
+        f"and an apolune {abs(ra_alt - LRO['first_orbit_km'][1]):.0f} km "
+        f"{'lower' if ra_alt < LRO['first_orbit_km'][1] else 'higher'}. Our "
+        f"{plan.n_burns} burns use {fuel:.0f} kg of propellant, " + fuel_txt
+        + " LRO's four later burns also lowered its perilune (to a 30 × 216 km orbit, S7); "
+        "ours keep it at 220 km and end on the 220 km circle, through intermediate apolunes "
+        "of our choosing.")
+    return table, values, reading
+
+
+def paper_comparison(plan: CapturePlan, tot: dict) -> tuple:
+    """A plan beside the paper's three-burn capture (same arrival, engine, dynamics).
+
+    The paper's plan (:func:`lunarcap.mission.plan.paper_plan`) with free ignition for
+    every burn, solved with its impulsive limits like this one. Returns (table, values,
+    reading).
+    """
+    ref = paper_plan(plan.engine.thrust_N, plan.engine.isp_s, dynamics=plan.dynamics)
+    ref = ref.with_starts(["free"] * ref.n_burns)
+    rt = totals_of(plan_result(ref))
+    keys = ["total_delta_v_mps", "total_impulsive_delta_v_mps", "total_loss_mps",
+            "total_loss_percent", "total_fuel_kg", "time_to_final_orbit_h"]
+    ours = {k: float(tot[k]) for k in keys}
+    theirs = {k: float(rt[k]) for k in keys}
+    d = {k: ours[k] - theirs[k] for k in keys}
+    table = pd.DataFrame([
+        {"capture": f"this plan, {plan.n_burns} burns", **ours},
+        {"capture": "the paper's, 12.235 h → 3.525 h → circle", **theirs},
+        {"capture": "this plan − the paper's", **d},
+    ])
+    values = {"paper_total_delta_v_mps": theirs["total_delta_v_mps"],
+              "paper_total_loss_mps": theirs["total_loss_mps"],
+              "paper_time_to_final_orbit_h": theirs["time_to_final_orbit_h"],
+              "vs_paper_delta_v_mps": d["total_delta_v_mps"],
+              "vs_paper_loss_mps": d["total_loss_mps"],
+              "vs_paper_time_h": d["time_to_final_orbit_h"],
+              "vs_paper_fuel_kg": d["total_fuel_kg"]}
+    more = "more" if d["total_loss_mps"] > 0 else "less"
+    why = ("fewer, longer burns spend more of their thrust away from the perilune, where it "
+           "is most effective" if d["total_loss_mps"] > 0 else "its burns are shorter")
+    sooner = "sooner" if d["time_to_final_orbit_h"] < 0 else "later"
+    reading = (
+        f"**Beside the paper's three-burn capture** (the same arrival and engine, "
+        f"{plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} s, every ignition free, "
+        f"{plan.dynamics} dynamics). All the burns are tangential near a perilune of the same "
+        f"radius, so the impulsive totals agree to "
+        f"{abs(d['total_impulsive_delta_v_mps']):.2f} m/s: a chain of tangential perilune "
+        f"impulses costs the difference between the arrival and the final perilune speeds, "
+        f"whatever the orbits in between. What differs is the finite-burn loss: "
+        f"{ours['total_loss_mps']:.2f} m/s ({ours['total_loss_percent']:.2f} %) with "
+        f"{plan.n_burns} burns, {abs(d['total_loss_mps']):.2f} m/s {more} than the paper's "
+        f"{theirs['total_loss_mps']:.2f} m/s, because {why}. That costs "
+        f"{abs(d['total_fuel_kg']):.2f} kg of propellant "
+        f"{'more' if d['total_fuel_kg'] > 0 else 'less'}; the final orbit is reached "
+        f"{abs(d['time_to_final_orbit_h']):.2f} h {sooner} "
+        f"({ours['time_to_final_orbit_h']:.2f} h against "
+        f"{theirs['time_to_final_orbit_h']:.2f} h).")
+    return table, values, reading
+
+
+def _paper_reference(plan: CapturePlan) -> bool:
+    """True if the plan starts from the paper's arrival but is not the paper's sequence."""
+    paper = load_plan("song2011-150N")
+    same_arrival = plan.arrival == paper.arrival and plan.ephemeris == paper.ephemeris
+    same_burns = ([(b.target, b.period_s) for b in plan.burns]
+                  == [(b.target, b.period_s) for b in paper.burns])
+    return same_arrival and not same_burns
+
+
+def solutions(result) -> list:
+    """The Solutions of a PlanResult, in order."""
+    return [b.solution for b in result.burns]
+
+
+# ---------------------------------------------------------------------- the page
+def build(plan="lro-like-5burn", dynamics: str | None = None,
+          output_name: str = "capture_plan", quick: bool = False) -> Page:
+    """The page of one capture plan (see the module docstring).
+
+    Parameters
+    ----------
+    plan : str or CapturePlan
+        A packaged plan's name, a YAML file, or a plan.
+    dynamics : str, optional
+        None for the plan's own dynamics, else an override ("two-body" for quick runs).
+    output_name : str
+        Prefix of the CSV and figure files.
+    quick : bool
+        Set by quick (CI) runs; named in the provenance block.
+    """
+    p, yaml_text = _load(plan)
+    name, own = p.name, p.dynamics
+    if dynamics is not None and dynamics != p.dynamics:
+        p = p.with_dynamics(dynamics)
+    params = dict(plan=plan if isinstance(plan, str) else name, dynamics=dynamics)
+    page = Page(NOTEBOOK, params, output_name, quick, solver_description())
+    res = plan_result(p)
+    burns = burn_table(res)
+    tot = totals_of(res)
+    a, e = p.arrival, p.engine
+    case = (f"plan {name}: {e.thrust_N:g} N / Isp {e.isp_s:g} s, {a.mass_kg:,g} kg at "
+            f"arrival, {p.dynamics} dynamics")
+
+    # ---- the plan
+    text = yaml_text if yaml_text is not None else p.to_yaml()
+    over = ("" if p.dynamics == own else
+            f"\n\nSolved here in **{p.dynamics}** dynamics (overriding the plan's "
+            f"`dynamics: {own}`).")
+    page.note("plan_yaml", f"```yaml\n{text.rstrip()}\n```{over}")
+    page.table(
+        "plan", plan_table(p),
+        caption=(f"The burns of {case}; first perilune {a.epoch}, altitude "
+                 f"{a.perilune_altitude_km:g} km (every perilune and the final circle), "
+                 f"inclination {a.inclination_deg:g} deg, v_inf {a.v_inf_kmps:.5f} km/s. "
+                 "Period (h) and apolune altitude (km): the orbit each burn must reach "
+                 "(two-body; the apolune follows from the period and the perilune). "
+                 "Ignition: free (optimised) or min from the nominal perilune. Impulsive ΔV "
+                 "(m/s): the plan's two-body chain of tangential perilune impulses; Eq. (19) "
+                 "duration (min): the burn duration it implies (Song 2011 Eq. 19)."),
+        columns={"ignition": "ignition",
+                 "two_body_delta_v_mps": "impulsive ΔV, two-body (m/s)",
+                 "eq19_duration_min": "Eq. (19) duration (min)"},
+        floatfmt={"period_h": ".4f", "apolune_altitude_km": ",.1f",
+                  "two_body_delta_v_mps": ".3f", "eq19_duration_min": ".2f"})
+
+    # ---- each burn
+    page.table(
+        "burns", burns,
+        caption=(f"Each burn of {case}, solved and verified. Start: ignition, min from the "
+                 "nominal perilune (negative: before). Duration in min, ΔV in m/s. "
+                 "Impulsive ΔV: one impulse in the same dynamics from the same pre-burn orbit "
+                 "(the limit of 4 s and 2 s burns). Loss: ΔV − impulsive ΔV, in m/s and in % "
+                 "of the impulsive ΔV. The CSV has every column of each burn's row."),
+        show_columns=["burn", "start_min", "burn_duration_min", "delta_v_mps",
+                      "impulsive_delta_v_mps", "loss_mps", "loss_percent"],
+        floatfmt={"start_min": "+.3f", "burn_duration_min": ".2f", "delta_v_mps": ".3f",
+                  "impulsive_delta_v_mps": ".3f", "loss_mps": "+.3f", "loss_percent": "+.2f"})
+    page.table(
+        "masses", mass_table(burns),
+        caption=(f"Ignition epochs (TDB) and masses (kg) of each burn of {case}: before, "
+                 "after, and the propellant burned."),
+        floatfmt={"m_start_kg": ",.3f", "m_end_kg": ",.3f", "fuel_kg": ".3f"})
+    page.table(
+        "verification", verification_table(burns),
+        caption=("The re-propagation gate of each burn (see the {doc}`verification` page): "
+                 "the optimal steering re-propagated by DOP853 (rtol 1e-12). ΔV diff (m/s): "
+                 "re-propagated − optimiser. r_p error (mm): perilune radius at the next "
+                 "nominal perilune − the target's. r_a error (mm): apolune radius − the "
+                 "circle's (circular target only). i error (deg): inclination − the plan's. "
+                 "γ error (deg): flight-path angle at that epoch (ellipse targets only). "
+                 "Gate: 0.01 m/s, 10 m, 1e-4 deg; 0.000000 deg: below 5e-7 deg. '—': not a "
+                 "condition of that target."),
+        columns={"delta_v_diff_mps": "ΔV diff (m/s)", "verified": "gate"},
+        floatfmt={"delta_v_diff_mps": "+.6f", "rp_error_mm": "+.3f", "ra_error_mm": "+.3f",
+                  "inc_error_deg": "+.6f", "gamma_error_deg": "+.6f"})
+
+    # ---- totals and the figure
+    page.table(
+        "totals", totals_table(tot),
+        caption=(f"Totals of {case}. The impulsive total is the sum of each burn's impulsive "
+                 "limit in the same dynamics; the time to the final orbit runs from the "
+                 "arrival perilune to the perilune at which the last target is verified "
+                 f"({tot['final_perilune_epoch']}); the final orbit is osculating there."),
+        show_columns=["quantity", "value", "unit"], floatfmt={"value": ",.3f"})
+    geo = figdata.capture_geometry(solutions(res), arrival_for(p.arrival, p.ephemeris))
+    fig = figures.plot_fig2_capture(geo)
+    plt.close(fig)  # saved and shown by page.show, not by the notebook's build cell
+    page.figure(
+        "capture", fig,
+        caption=(f"The capture of {case}, in the plane of the arrival orbit (1 LU = 1 lunar "
+                 "radius, 1,738.2 km): the arrival hyperbola (from 3 h before the first "
+                 "perilune; dotted: flown on without the first burn), the finite burn arcs "
+                 "(thick), the orbit each burn reaches, and one more revolution of the final "
+                 "orbit."),
+        alt=f"The capture of plan {name} in the orbit plane", name="capture")
+
+    # ---- numbers for the prose
+    values = {"n_burns": p.n_burns, "total_delta_v_mps": tot["total_delta_v_mps"],
+              "total_impulsive_mps": tot["total_impulsive_delta_v_mps"],
+              "total_loss_mps": tot["total_loss_mps"],
+              "total_loss_percent": tot["total_loss_percent"],
+              "total_fuel_kg": tot["total_fuel_kg"], "final_mass_kg": tot["final_mass_kg"],
+              "total_burn_min": tot["total_burn_duration_min"],
+              "time_to_final_orbit_h": tot["time_to_final_orbit_h"],
+              "final_rp_alt_km": tot["final_rp_altitude_km"],
+              "final_ra_alt_km": tot["final_ra_altitude_km"],
+              "largest_loss_burn": int(burns.burn[burns.loss_mps.idxmax()]),
+              "largest_loss_mps": float(burns.loss_mps.max()),
+              "largest_loss_share_percent": 100 * float(burns.loss_mps.max())
+              / tot["total_loss_mps"],
+              "n_verified": int(burns.verification_passed.sum()),
+              "max_rp_error_m": float(burns.verification_rp_error_m.abs().max())}
+    neg = burns[burns.loss_mps < 0]
+    if len(neg):
+        items = ", ".join(f"burn {r.burn}: {r.loss_mps:+.3f} m/s, but "
+                          f"{r.objective_loss_mps:+.3f} m/s in the objective"
+                          for r in neg.itertuples())
+        burn_note = (
+            f"**A negative loss** ({items}). The impulsive reference minimises the same "
+            "objective as the finite burn (ΔV plus the perilune speed it leaves, Eq. 9), "
+            "which is nearly flat along the epoch of the impulse: optima a few seconds "
+            "apart trade ~0.1–0.2 m/s of ΔV against the perilune speed, so the ΔV loss of a "
+            "short burn is uncertain by that much (`lunarcap.runs.chain.impulsive_limit`); "
+            "the loss in the objective and the chain's total are the well-conditioned "
+            "numbers.")
+    else:
+        burn_note = "Every burn's loss is positive."
+    page.note("burn_notes", burn_note)
+
+    # ---- the comparison
+    vals = {}
+    if name == LRO["plan"]:
+        table, vals, reading = lro_comparison(p, burns, tot)
+        page.table(
+            "comparison", table, name="published",
+            caption=("Our LRO-like capture beside the published LRO figures (sources of "
+                     "the {doc}`real-missions page <real_missions>`: S7, LROC news, 23 June "
+                     "2009; S8, NASA's mission profile citing the launch press kit). Ours: "
+                     f"{case}; the first orbit osculating at its next perilune. Durations in "
+                     "min, altitudes in km, masses in kg."),
+            columns={"quantity": "quantity", "published": "LRO, published", "ours": "ours",
+                     "unit": "unit", "source": "source"},
+            floatfmt={"published": ",.1f", "ours": ",.1f"})
+        page.expect("the capture needs less propellant than LRO carried (S8)",
+                    vals["lro_fuel_left_kg"] > 0, f"{vals['lro_ours_fuel_kg']:.1f} kg")
+    elif _paper_reference(p):
+        table, vals, reading = paper_comparison(p, tot)
+        page.table(
+            "comparison", table, name="vs_paper",
+            caption=("This plan beside the paper's three-burn capture (12.235 h → 3.525 h → "
+                     "100 km circle) from the same arrival, with the same engine and "
+                     f"dynamics ({p.dynamics}), every ignition free (optimised). Total ΔV, "
+                     "impulsive total and loss in m/s (loss: total ΔV − the impulsive total "
+                     "in the same dynamics, also in %), propellant in kg, time from the "
+                     "arrival perilune to the final orbit in h."),
+            columns={"capture": "capture", "total_impulsive_delta_v_mps": "impulsive (m/s)",
+                     "total_loss_mps": "loss (m/s)", "total_loss_percent": "loss (%)",
+                     "time_to_final_orbit_h": "to final orbit (h)"},
+            floatfmt={"total_delta_v_mps": ".3f", "total_impulsive_delta_v_mps": ".3f",
+                      "total_loss_mps": ".3f", "total_loss_percent": ".2f",
+                      "total_fuel_kg": ".3f", "time_to_final_orbit_h": ".3f"})
+    else:
+        reading = ("Nothing to set this plan beside: it is neither the LRO-like plan nor a "
+                   "variant of the paper's capture from the paper's arrival.")
+    values.update(vals)
+    page.note("comparison", reading)
+    for k, v in values.items():
+        page.value(k, float(v))
+
+    # ---- headline checks: the book build fails if these fail
+    page.expect("every burn passes the verification gate",
+                bool(burns.verification_passed.all()),
+                str(burns.burn[~burns.verification_passed].tolist()))
+    page.expect("every impulsive limit passes the gate", bool(burns.impulsive_verified.all()))
+    page.expect("the total loss is positive", tot["total_loss_mps"] > 0,
+                f"{tot['total_loss_mps']:.3f} m/s")
+    if p.targets[-1].circular:
+        rp = p.perilune_radius_km
+        page.expect("the final orbit is the plan's circle",
+                    abs(tot["final_rp_km"] - rp) < FINAL_ORBIT_TOL_KM
+                    and abs(tot["final_ra_km"] - rp) < FINAL_ORBIT_TOL_KM,
+                    f"{tot['final_rp_km']:.4f} x {tot['final_ra_km']:.4f} km")
+    page.data.update(result=res, plan=p, totals=tot)
+    return page

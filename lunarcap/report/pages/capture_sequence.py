@@ -1,0 +1,318 @@
+"""The capture-sequence page (notebooks/capture_sequence.ipynb): the paper's Figs. 2-5.
+
+One complete capture with finite burns: the paper's plan for one engine, its burns
+igniting at given offsets (:func:`lunarcap.mission.plan.paper_plan`), solved in order
+(:func:`lunarcap.runs.chain.solve_plan`) and drawn from the verified solutions: the whole
+capture (Fig. 2), the burn arcs (Fig. 3), the thrust angles and mass of burn 1 (Fig. 4)
+and its thrust-acceleration and velocity vectors (Fig. 5). The data of the figures come
+from :mod:`lunarcap.report.figdata`, the drawing from :mod:`lunarcap.report.figures`.
+"""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from lunarcap.mission.plan import paper_plan
+from lunarcap.paper import audit
+from lunarcap.paper import printed as paper
+from lunarcap.physics import constants as C
+from lunarcap.report import figdata, figures
+from lunarcap.report.page import Page
+from lunarcap.report.pages.sweep import solver_description
+from lunarcap.repro import paths
+from lunarcap.runs import chain
+
+NOTEBOOK = "notebooks/capture_sequence.ipynb"
+
+#: The case Sec. 3.3 of the paper describes: engine (N, s) and ignition offsets (min).
+PAPER_ENGINE = (150.0, 200.0)
+PAPER_STARTS_MIN = (-10.0, -6.0, -5.0)
+
+
+class FigureDataPage(Page):
+    """A :class:`Page` whose figures may carry their data, written as a CSV when shown.
+
+    ``data["figure_csv"][key]`` (a DataFrame) is written to
+    ``tables/<output_name>_<key>.csv`` when figure ``key`` is shown; the caption links it
+    (:func:`data_link`).
+    """
+
+    def show(self, key: str, display: bool = True) -> str:
+        """Write the figure's data (if any), then the figure or table itself."""
+        df = self.data.get("figure_csv", {}).get(key)
+        if df is not None:
+            paths.write_csv(df, self.name_of(key))
+        return super().show(key, display)
+
+
+def detached(fig):
+    """``fig`` closed in pyplot (still drawable): no stray figure output in the build cell."""
+    plt.close(fig)
+    return fig
+
+
+def data_link(name: str) -> str:
+    """MyST download link to ``tables/<name>.csv`` (as written by :class:`FigureDataPage`)."""
+    return f"{{download}}`{name}.csv <{paths.relative_to_page(paths.table_path(name))}>`"
+
+
+def burns_table(geo, sols, paper_case: bool) -> pd.DataFrame:
+    """One row per burn: duration (ours, the paper's Table B1), delta-V, mass, geometry.
+
+    Columns: burn, burn_duration_min, paper_burn_duration_min (NaN unless the paper's
+    case), delta_v_mps, m_end_kg, perilune_from_ignition_min, ignition_from_perilune_deg,
+    cutoff_from_perilune_deg, verified ("passed" / "failed").
+    """
+    b = geo.burns
+    summ = [s.summary() for s in sols]
+    n = len(sols)
+    return pd.DataFrame({
+        "burn": b.burn.astype(int),
+        "burn_duration_min": b.burn_duration_min,
+        "paper_burn_duration_min": [paper.paper_best(150, k)["burn_duration_min"]
+                                    if paper_case else np.nan for k in range(1, n + 1)],
+        "delta_v_mps": [s["delta_v_mps"] for s in summ],
+        "m_end_kg": [s["m_end_kg"] for s in summ],
+        "perilune_from_ignition_min": b.perilune_from_ignition_min,
+        "ignition_from_perilune_deg": b.ignition_from_perilune_deg,
+        "cutoff_from_perilune_deg": b.cutoff_from_perilune_deg,
+        "verified": ["passed" if s["verification"]["passed"] else "failed" for s in summ],
+    })
+
+
+def _orbits_text(plan, geo) -> str:
+    """'blue: the 1st capture orbit (12.235 h); ...' for the caption of Fig. 2."""
+    colour = {"tab:blue": "blue", "tab:green": "green", "tab:purple": "purple",
+              "tab:olive": "olive", "tab:cyan": "cyan", "tab:pink": "pink"}
+    parts = []
+    for a in geo.select("coast"):
+        c = colour[figures.coast_colour(a.burn)]
+        if plan.burns[a.burn - 1].target == "circular":
+            parts.append(f"{c}: the final {plan.arrival.perilune_altitude_km:g} km circular "
+                         f"orbit ({plan.coast_s(a.burn - 1) / 60:.6g} min; its coast plus one "
+                         "more revolution)")
+        else:
+            parts.append(f"{c}: the {a.label}")
+    return "; ".join(parts)
+
+
+def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN,
+          dynamics: str = "full", output_name: str = "capture_sequence",
+          quick: bool = False) -> Page:
+    """The page of one capture sequence (see the module docstring)."""
+    params = dict(thrust_N=thrust_N, isp_s=isp_s, starts=list(starts), dynamics=dynamics)
+    page = FigureDataPage(NOTEBOOK, params, output_name, quick, solver_description())
+    plan = paper_plan(thrust_N, isp_s, starts=list(starts), dynamics=dynamics)
+    sols = chain.solve_plan(plan)
+    arrival = chain.arrival_for(plan.arrival, plan.ephemeris)
+    geo = figdata.capture_geometry(sols, arrival)
+    n = plan.n_burns
+    summ = [s.summary() for s in sols]
+    # Sec. 3.3 describes the 150 N / 200 s chain at the paper's best offsets only
+    paper_case = ((float(thrust_N), float(isp_s)) == PAPER_ENGINE
+                  and tuple(float(s) for s in starts) == PAPER_STARTS_MIN)
+    engine = f"{thrust_N:g} N / Isp {isp_s:g} s"
+    starts_txt = ", ".join(f"{s:g}" for s in starts)
+    burn_list = ", ".join(str(k) for k in range(1, n)) + f" and {n}"
+
+    # ------------------------------------------------------------------ the burns
+    table = burns_table(geo, sols, paper_case)
+    n_ok = int((table.verified == "passed").sum())
+    gate = (f"All {n} passed the re-propagation gate" if n_ok == n else
+            f"{n_ok} of {n} passed the re-propagation gate") + " (column verified of the CSV)."
+    page.table(
+        "burns", table,
+        caption=(f"The {n} finite burns of the capture sequence drawn below ({engine}, "
+                 f"{dynamics} dynamics, ignition {starts_txt} min from the nominal perilunes). "
+                 "Durations in min (the paper's from Table B1); delta-V in m/s; mass after "
+                 "the burn in kg. Perilune: the flown point of least radius within 30 min of "
+                 "the nominal perilune epoch, reached the given minutes after ignition; "
+                 "ignition and cutoff: the angle (deg) in the orbit plane from it to the "
+                 f"ignition and cutoff points (negative: before perilune). {gate}"),
+        columns={"paper_burn_duration_min": "paper (min)",
+                 "perilune_from_ignition_min": "perilune at (min)",
+                 "ignition_from_perilune_deg": "ignition (deg)",
+                 "cutoff_from_perilune_deg": "cutoff (deg)"},
+        floatfmt={"burn_duration_min": ".2f", "paper_burn_duration_min": ".2f",
+                  "delta_v_mps": ".3f", "m_end_kg": ".3f", "perilune_from_ignition_min": ".2f",
+                  "ignition_from_perilune_deg": "+.1f", "cutoff_from_perilune_deg": "+.1f"},
+        show_columns=["burn", "burn_duration_min", "paper_burn_duration_min", "delta_v_mps",
+                      "m_end_kg", "perilune_from_ignition_min", "ignition_from_perilune_deg",
+                      "cutoff_from_perilune_deg"])
+
+    # ------------------------------------------------------------------ Figs. 2 and 3
+    polar = " (polar)" if plan.arrival.inclination_deg == 90.0 else ""
+    projection = (f"Projection: on the plane of the arrival orbit{polar}, x′ along its ascending "
+                  "node on the M-MME2000 equator and z along the M-MME2000 pole; the drawn "
+                  f"trajectory leaves this plane by at most {geo.max_out_of_plane_km:.1f} km.")
+    durations = ", ".join(f"{d:.2f}" for d in table.burn_duration_min[:-1]) + \
+        f" and {table.burn_duration_min.iloc[-1]:.2f}"
+    page.figure(
+        "fig2", detached(figures.plot_fig2_capture(geo)),
+        caption=(f"The whole capture sequence with finite burns (Song et al. 2011, Fig. 2: "
+                 f"\"the example of a lunar capture trajectory using finite thrust with 150 N "
+                 f"and Isp of 200 seconds\"), here {engine}, ignition {starts_txt} min from "
+                 f"each perilune. Grey: the arrival hyperbola, from {geo.hyperbola_hours:g} h "
+                 "before the arrival perilune to burn 1 ignition (dotted: its continuation had "
+                 f"burn 1 not been performed); {_orbits_text(plan, geo)}; red: the finite-burn "
+                 f"arcs of burns {burn_list} (LOI {burn_list}; {durations} min). Coasts and burns "
+                 f"are the verified re-propagations of the solutions. {projection} Axes in "
+                 f"lunar units, 1 LU = R_Moon = {C.LU_KM:g} km; the grey disc is the Moon."),
+        alt=("The arrival hyperbola, the capture orbits and the final circular orbit around "
+             "the Moon, with the burn arcs near perilune in red"))
+    spans = ", ".join(f"burn {int(r.burn)} {r.ignition_from_perilune_deg:+.1f}° to "
+                      f"{r.cutoff_from_perilune_deg:+.1f}°" for r in table.itertuples())
+    page.figure(
+        "fig3", detached(figures.plot_fig3_burn_arcs(geo)),
+        caption=("The burn arcs (Song et al. 2011, Fig. 3: \"the zoomed view of Fig. 2, "
+                 "showing details of every finite burn arc\"). (a) The figure above zoomed on "
+                 f"burns {burn_list} (thick: burning; ● ignition, ■ cutoff; dashed: the "
+                 "direction of the first pass's perilune), same projection, axes in LU "
+                 f"(1 LU = {C.LU_KM:g} km). (b) The altitude of each perilune pass (km) "
+                 "against the angle in the orbit plane from that pass's perilune (deg; "
+                 "negative before perilune), which separates the arcs that overlap in (a); "
+                 f"dashed: coasting before and after. Spans: {spans}."),
+        alt="Zoom on the burn arcs near perilune, and their altitudes against the angle "
+            "from perilune")
+
+    # ------------------------------------------------------------------ Fig. 4
+    d4 = figdata.fig4_steering(sols[0])
+    p_alpha = (paper.quote("fig4_alpha_start_deg").value, paper.quote("fig4_alpha_end_deg").value)
+    p_mass1 = paper.quote("mass_after_loi1_150N_kg").value
+    p_burn1 = paper.quote("fig4_burn_loi1_150N_min").value
+    alpha_up = bool(np.all(np.diff(d4.alpha_deg) > 0))
+    t180 = (float(np.interp(180.0, d4.alpha_deg, d4.t_min))
+            if alpha_up and d4.alpha_deg[0] < 180.0 < d4.alpha_deg[-1] else float("nan"))
+    paper_txt = (f" (the paper: about {p_alpha[0]:g}° to {p_alpha[1]:g}° over {p_burn1:g} "
+                 "min, diamonds)" if paper_case else "")
+    mass_txt = (f" (diamond: the paper's {p_mass1:g} kg after LOI 1, Sec. 3.2.1)"
+                if paper_case else "")
+    cross = (f", crossing 180° (thrust against the tangential direction) {t180:.2f} min "
+             "after ignition" if np.isfinite(t180) else "")
+    page.data["figure_csv"] = {"fig4": d4.table()}
+    page.figure(
+        "fig4", detached(figures.plot_fig4_steering(d4, p_alpha if paper_case else None,
+                                                    p_mass1 if paper_case else None,
+                                                    p_burn1 if paper_case else None)),
+        caption=("Thrust steering angles and mass during burn 1, LOI 1 (Song et al. 2011, "
+                 "Fig. 4: \"in-plane angle (top), out-of-plane angle (middle) and mass "
+                 "(bottom)\", expressed in the spacecraft-centred RTN frame), "
+                 f"{engine}, against the time from ignition (min); dashed: the nominal "
+                 f"perilune, {d4.perilune_min:g} min after ignition. α (deg, Eq. (14a)) "
+                 f"{'increases' if alpha_up else 'goes'} from {d4.alpha_deg[0]:.1f}° to "
+                 f"{d4.alpha_deg[-1]:.1f}° over {d4.burn_duration_min:.2f} min{paper_txt}"
+                 f"{cross}; |β| (deg, Eq. (14b)) stays below "
+                 f"{np.abs(d4.beta_deg).max():.3f}°; the mass (kg) falls linearly from "
+                 f"{d4.m_kg[0]:.3f} to {d4.m_kg[-1]:.3f} kg{mass_txt}. "
+                 f"Data: {data_link(output_name + '_fig4')}."),
+        alt="Three stacked panels against time from burn 1 ignition: alpha rising from 137 to "
+            "215 degrees, beta near zero, and the mass falling")
+
+    # ------------------------------------------------------------------ Fig. 5
+    d5 = figdata.fig5_vectors(sols[0], geo.basis)
+    k = int(np.argmax(d5.angle_deg))
+    step = float(np.diff(d5.t_min[d5.arrows]).mean())
+    slows = bool((d5.angle_deg > 90.0).all())
+    page.data["figure_csv"]["fig5"] = d5.table()
+    page.figure(
+        "fig5", detached(figures.plot_fig5_vectors(d5, geo)),
+        caption=("Thrust-acceleration and velocity vectors along the burn 1 (LOI 1) arc "
+                 "(Song et al. 2011, Fig. 5: \"direction relations between the thrust "
+                 "acceleration vectors and the spacecraft's velocity vectors for the 1st LOI "
+                 f"maneuver\", reference frame M-MME2000), {engine}. (a) The vectors every "
+                 f"{step:.2f} min from ignition to cutoff, projected on the orbit plane: "
+                 "velocity (blue, km/s) and thrust acceleration T/m (red, m/s²), each drawn to "
+                 "its own scale given in the legend; position axes in km (M-MME2000, projected "
+                 "as in the figures above); grey disc: the Moon; grey: the arrival hyperbola; "
+                 "blue line: the 1st capture orbit. (b) The angle between the thrust "
+                 f"acceleration and the velocity (deg, 3-D): between {d5.angle_deg.min():.1f}° "
+                 f"and {d5.angle_deg.max():.1f}°"
+                 + (", always above 90°, so the thrust slows the spacecraft throughout"
+                    if slows else "")
+                 + f"; it is closest to anti-parallel {d5.t_min[k]:.2f} min after ignition. "
+                 f"Data of the arrows: {data_link(output_name + '_fig5')}."),
+        alt="Velocity and thrust-acceleration arrows along the burn 1 arc, and the angle "
+            "between them against time")
+
+    # ------------------------------------------------------------------ numbers for the prose
+    b = geo.burns
+    values = {}
+    for r in b.itertuples():
+        tag = f"burn{int(r.burn)}"
+        values.update({
+            f"duration_{tag}_min": r.burn_duration_min,
+            f"ign_from_peri_{tag}_deg": r.ignition_from_perilune_deg,
+            f"cut_from_peri_{tag}_deg": r.cutoff_from_perilune_deg,
+            f"peri_after_ign_{tag}_min": r.perilune_from_ignition_min,
+            f"before_peri_{tag}_percent": 100 * r.perilune_from_ignition_min / r.burn_duration_min})
+    last = b.iloc[-1]
+    audit_f = audit.findings_table().set_index("id")
+    values.update({
+        "total_burn_min": b.burn_duration_min.sum(),
+        "n_burn_intervals": geo.select("burn")[0].t_s.size - 1,
+        "last_rise_km": last.cutoff_radius_km - last.perilune_radius_km,
+        "out_of_plane_km": geo.max_out_of_plane_km,
+        # our delta-Vs against Table B1's (NaN unless the paper's case)
+        "dv_diff_max_abs_percent": max(
+            abs(100 * (sm["delta_v_mps"] / paper.paper_best(150, k + 1)["delta_v_mps"] - 1))
+            for k, sm in enumerate(summ)) if paper_case else np.nan,
+        "mass_final_kg": summ[-1]["m_end_kg"],
+        "period_1_h": plan.burns[0].period_s / 3600 if plan.burns[0].period_s else np.nan,
+        "period_2_h": (plan.burns[1].period_s / 3600
+                       if n > 1 and plan.burns[1].period_s else np.nan),
+        # Fig. 4
+        "alpha_start_deg": d4.alpha_deg[0], "alpha_end_deg": d4.alpha_deg[-1],
+        "alpha_180_min": t180, "beta_max_abs_deg": np.abs(d4.beta_deg).max(),
+        "mass_start_kg": d4.m_kg[0], "mass_end_burn1_kg": d4.m_kg[-1],
+        "perilune_min": d4.perilune_min,
+        "paper_alpha_start_deg": p_alpha[0], "paper_alpha_end_deg": p_alpha[1],
+        "paper_mass_start_kg": paper.quote("fig4_mass_start_kg").value,
+        "paper_mass_end_kg": paper.quote("fig4_mass_end_kg").value,
+        "paper_mass_after_loi1_kg": p_mass1,
+        "paper_mass_final_kg": paper.quote("mass_final_150N_kg").value,
+        "paper_burn_loi1_min": p_burn1,
+        "mass_diff_burn1_kg": d4.m_kg[-1] - p_mass1,
+        "mass_diff_final_kg": summ[-1]["m_end_kg"] - paper.quote("mass_final_150N_kg").value,
+        "implied_arrival_kg": audit_f.loc["mass/arrival-implied", "computed"],
+        "arrival_kg": summ[0]["m_start_kg"],
+        # Fig. 5
+        "angle_min_deg": d5.angle_deg.min(), "angle_max_deg": d5.angle_deg.max(),
+        "angle_max_min": d5.t_min[k], "angle_ignition_deg": d5.angle_deg[0],
+        "angle_cutoff_deg": d5.angle_deg[-1],
+        "accel_start_mps2": np.linalg.norm(d5.a_mps2[:, 0]),
+        "accel_end_mps2": np.linalg.norm(d5.a_mps2[:, -1]),
+    })
+    for name, v in values.items():
+        page.value(name, float(v))
+
+    # ------------------------------------------------------------------ headline checks
+    before = b.perilune_from_ignition_min
+    rate_before = -b.ignition_from_perilune_deg / before
+    rate_after = b.cutoff_from_perilune_deg / (b.burn_duration_min - before)
+    page.expect("every burn passes the verification gate", n_ok == n,
+                str(table[table.verified != "passed"].burn.tolist()))
+    page.expect("the chain stays within 10 km of the arrival orbit plane",
+                geo.max_out_of_plane_km < 10.0, f"{geo.max_out_of_plane_km:.2f} km")
+    page.expect("every burn arc straddles its perilune (ignition before, cutoff after)",
+                bool((b.ignition_from_perilune_deg < 0).all()
+                     and (b.cutoff_from_perilune_deg > 0).all()))
+    page.expect("every burn covers more angle per minute before its perilune than after",
+                bool((rate_before > rate_after).all()))
+    page.expect("alpha increases monotonically during burn 1", alpha_up)
+    page.expect("the thrust slows the spacecraft throughout burn 1", slows,
+                f"min angle {d5.angle_deg.min():.1f} deg")
+    page.expect("the thrust-velocity angle is smallest at an end of burn 1",
+                int(np.argmin(d5.angle_deg)) in (0, d5.angle_deg.size - 1))
+    if paper_case and dynamics == "full":
+        # measured: alpha 137.50 -> 215.44 deg, |beta| < 0.045 deg, 19.50 min
+        page.expect("alpha at ignition within 3 deg of the paper's 137.5",
+                    abs(d4.alpha_deg[0] - p_alpha[0]) < 3.0, f"{d4.alpha_deg[0]:.2f}")
+        page.expect("alpha at cutoff within 3 deg of the paper's 215.3",
+                    abs(d4.alpha_deg[-1] - p_alpha[1]) < 3.0, f"{d4.alpha_deg[-1]:.2f}")
+        page.expect("beta almost 0 (below 0.5 deg)", np.abs(d4.beta_deg).max() < 0.5)
+        page.expect("burn 1 lasts within 0.1 min of the paper's 19.51 min",
+                    abs(d4.burn_duration_min - p_burn1) < 0.1, f"{d4.burn_duration_min:.3f}")
+    page.data.update({"plan": plan, "solutions": sols, "geometry": geo, "fig4": d4, "fig5": d5})
+    return page

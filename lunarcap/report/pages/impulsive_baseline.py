@@ -1,0 +1,197 @@
+"""The impulsive-baseline page (notebooks/impulsive_baseline.ipynb): the two-body chain, Eq. (19).
+
+:func:`build` computes the paper's impulsive capture chain in the two-body model
+(:func:`lunarcap.mission.impulsive.impulsive_sequence`: tangential perilune impulses,
+vis-viva speeds, the arrival v_inf reconstructed from the paper's LOI-1 delta-V, the same
+chain as :meth:`lunarcap.mission.plan.CapturePlan.impulsive` of the paper's plans), sets
+it beside the impulsive delta-Vs the paper prints, and evaluates the burn-duration
+estimate of Eq. (19) with the masses named by ``eq19_masses``:
+
+* ``"paper"``: the masses the paper prints for its *finite-burn* chain (150 N / 200 s
+  only: 524.895 kg at arrival, 434.471 kg after LOI 1, 381.005 kg after LOI 2);
+* ``"impulsive"``: the masses of the impulsive chain itself (rocket equation).
+
+The note ``eq19_masses_note`` says, from the numbers, which masses reproduce the paper's
+printed estimates (18.82, 11.50 and 9.76 min) and why.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from lunarcap.mission.impulsive import impulsive_sequence, v_inf_from_loi1
+from lunarcap.paper import audit
+from lunarcap.paper import printed as paper
+from lunarcap.physics import constants as C
+from lunarcap.physics.rocket import burn_duration_estimate_s
+from lunarcap.report.page import Page
+
+NOTEBOOK = "notebooks/impulsive_baseline.ipynb"
+
+#: The finite-burn masses the paper prints (Sec. 3.2.1, 150 N / 200 s): at arrival, after
+#: LOI 1 and after LOI 2, i.e. at the ignition of LOI 1, 2 and 3.
+PAPER_MASS_QUOTES = ("arrival_mass_kg", "mass_after_loi1_150N_kg", "mass_after_loi2_150N_kg")
+
+#: Our Eq. (19) estimates must round to the paper's within this (min) with its masses.
+EQ19_TOLERANCE_MIN = 0.05
+
+
+def paper_eq19(thrust_N: float, isp_s: float):
+    """The paper's Eq. (19) estimates (min) and finite-chain masses (kg), or NaNs and None.
+
+    The paper prints both for its 150 N / 200 s engine only (Sec. 3.2.1).
+    """
+    if (float(thrust_N), float(isp_s)) != (150.0, 200.0):
+        return [np.nan] * 3, None
+    return ([paper.quote(f"eq19_loi{n}_150N_min").value for n in (1, 2, 3)],
+            [paper.quote(q).value for q in PAPER_MASS_QUOTES])
+
+
+def _masses_note(burns, chain, thrust_N, isp_s, printed_min) -> str:
+    """Which masses reproduce the paper's Eq. (19) estimates, from the numbers."""
+    fin = [paper.quote(q).value for q in PAPER_MASS_QUOTES]
+    imp = [b.m_before_kg for b in chain]
+    dv = [b.delta_v_mps for b in burns]
+    t_fin = [b.eq19_duration_min for b in impulsive_sequence(
+        thrust_N, isp_s, fin[0], eq19_masses_kg=fin)]
+    t_imp = [b.eq19_duration_min for b in chain]
+    # Eq. (19) is proportional to m0: the mass the printed LOI-1 estimate implies
+    m0_implied = fin[0] * printed_min[0] / t_fin[0]
+    arr = {f.id: f for f in audit.audit_findings()}["mass/arrival-implied"]
+    t_arr = t_fin[0] * arr.computed / fin[0]
+    t_pdv = [burn_duration_estimate_s(fin[n], paper.PAPER_IMPULSIVE_DV_MPS[n], thrust_N, isp_s) / 60
+             for n in (1, 2)]
+    return (
+        f"**Which masses reproduce the paper's estimates.** Eq. (19) is proportional to the "
+        f"mass at ignition $m_0$. The paper's finite-burn chain (Sec. 3.2.1) has "
+        f"{fin[0]:.3f}, {fin[1]:.3f} and {fin[2]:.3f} kg at the three ignitions; the "
+        f"impulsive chain above has {imp[0]:.3f}, {imp[1]:.3f} and {imp[2]:.3f} kg, "
+        f"{imp[1] - fin[1]:.3f} and {imp[2] - fin[2]:.3f} kg more at LOI 2 and LOI 3, "
+        f"because impulses spend less propellant than finite burns. With the finite-chain "
+        f"masses Eq. (19) gives {t_fin[1]:.2f} and {t_fin[2]:.2f} min for LOI 2 and LOI 3 "
+        f"(the paper prints {printed_min[1]:.2f} and {printed_min[2]:.2f} min; with the "
+        f"paper's impulsive delta-Vs instead of our {dv[1]:.3f} and {dv[2]:.3f} m/s: "
+        f"{t_pdv[0]:.2f} and {t_pdv[1]:.2f} min); with the impulsive-chain masses "
+        f"{t_imp[1]:.2f} and {t_imp[2]:.2f} min, {t_imp[1] - printed_min[1]:.2f} and "
+        f"{t_imp[2] - printed_min[2]:.2f} min more than printed. The paper therefore "
+        f"evaluated Eq. (19) for each burn with the mass its finite-burn chain had at that "
+        f"ignition. LOI 1 starts from the arrival mass in both chains: from the stated "
+        f"{fin[0]:.3f} kg Eq. (19) gives {t_fin[0]:.2f} min, "
+        f"{t_fin[0] - printed_min[0]:.2f} min above the printed {printed_min[0]:.2f} min, "
+        f"which implies $m_0$ = {m0_implied:.2f} kg. The paper's printed masses imply an "
+        f"arrival mass of {arr.computed:.3f} kg (the {{doc}}`reproduction report "
+        f"<reproduction_report>`, finding `{arr.id}`), from which Eq. (19) gives "
+        f"{t_arr:.2f} min: the paper's results were computed from a slightly smaller "
+        f"arrival mass than the one it states.")
+
+
+def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRIVAL_MASS_KG,
+          altitude_km: float = C.PERILUNE_ALTITUDE_KM, eq19_masses: str = "paper",
+          output_name: str = "impulsive_baseline", quick: bool = False) -> Page:
+    """The page of the impulsive baseline (see the module docstring).
+
+    Parameters
+    ----------
+    thrust_N, isp_s : float
+        Engine (N, s); the thrust enters Eq. (19) only.
+    mass_kg : float
+        Mass at the first perilune, kg.
+    altitude_km : float
+        Perilune altitude of every capture orbit, km.
+    eq19_masses : {"paper", "impulsive"}
+        Masses at ignition in Eq. (19): the paper's finite-burn chain (150 N / 200 s only)
+        or the impulsive chain's.
+    output_name : str
+        Prefix of the CSV files.
+    quick : bool
+        Recorded in the provenance only (nothing here is coarsened).
+    """
+    if eq19_masses not in ("paper", "impulsive"):
+        raise ValueError(f"eq19_masses must be 'paper' or 'impulsive', got {eq19_masses!r}")
+    printed_min, paper_masses = paper_eq19(thrust_N, isp_s)
+    if eq19_masses == "paper" and paper_masses is None:
+        raise ValueError("eq19_masses='paper': the paper prints its finite-burn masses only "
+                         "for 150 N / 200 s; use eq19_masses='impulsive'")
+    params = dict(thrust_N=thrust_N, isp_s=isp_s, mass_kg=mass_kg, altitude_km=altitude_km,
+                  eq19_masses=eq19_masses)
+    page = Page(NOTEBOOK, params, output_name, quick)
+    masses = paper_masses if eq19_masses == "paper" else None
+    rp_km = C.R_MOON + altitude_km
+    v_inf = v_inf_from_loi1(rp_km=rp_km)
+    chain = impulsive_sequence(thrust_N, isp_s, mass_kg, altitude_km)
+    burns = impulsive_sequence(thrust_N, isp_s, mass_kg, altitude_km, eq19_masses_kg=masses)
+    dv = np.array([b.delta_v_mps for b in burns])
+    paper_dv = np.array(paper.PAPER_IMPULSIVE_DV_MPS)
+
+    page.table(
+        "delta_v", pd.DataFrame({
+            "loi": [b.burn for b in burns],
+            "from_orbit": ["hyperbola" if np.isinf(b.period_before_h)
+                           else f"{b.period_before_h:.3f} h" for b in burns],
+            "to_orbit": [f"{b.period_after_h:.3f} h" for b in burns],
+            "delta_v_mps": dv, "paper_delta_v_mps": paper_dv, "difference_mps": dv - paper_dv,
+            "mass_after_kg": [b.m_after_kg for b in burns]}),
+        caption=(f"Impulsive capture sequence, two-body model, perilune altitude "
+                 f"{altitude_km:g} km, {mass_kg:g} kg at arrival, Isp {isp_s:g} s, beside the "
+                 "paper's values (Tables 1-5). Orbits are given by their periods (h); "
+                 "delta-V in m/s, ours − paper in m/s, mass after each impulse (rocket "
+                 "equation) in kg."),
+        columns={"delta_v_mps": "ΔV, ours (m/s)", "difference_mps": "ours − paper (m/s)"},
+        floatfmt={"delta_v_mps": ".3f", "paper_delta_v_mps": ".3f", "difference_mps": "+.3f",
+                  "mass_after_kg": ".3f"})
+    t19 = np.array([b.eq19_duration_min for b in burns])
+    page.table(
+        "eq19", pd.DataFrame({
+            "loi": [b.burn for b in burns], "delta_v_mps": dv,
+            "m0_kg": [b.m_before_kg for b in burns] if masses is None else masses,
+            "duration_min": t19, "paper_duration_min": printed_min,
+            "difference_min": t19 - np.array(printed_min)}),
+        caption=(f"Burn-duration estimates of Eq. (19) for a {thrust_N:g} N / {isp_s:g} s "
+                 "engine from the impulsive ΔV above (m/s), with m₀ (kg) the mass at ignition "
+                 + ("as printed in the paper's finite-burn chain (Sec. 3.2.1)"
+                    if masses is not None else "of the impulsive chain")
+                 + ", beside the paper's estimates (Sec. 3.2.1; printed for 150 N only); "
+                 "durations and ours − paper in min."),
+        columns={"duration_min": "duration, ours (min)",
+                 "paper_duration_min": "duration, paper (min)",
+                 "difference_min": "ours − paper (min)"},
+        floatfmt={"delta_v_mps": ".3f", "m0_kg": ".3f", "duration_min": ".2f",
+                  "paper_duration_min": ".2f", "difference_min": "+.2f"})
+
+    # numbers quoted in the prose here and on other pages (book/model.md, book/intro.md)
+    page.value("v_inf_kmps", float(v_inf))
+    page.value("rp_km", float(rp_km))
+    for n in (1, 2, 3):
+        page.value(f"dv_loi{n}_mps", float(dv[n - 1]))
+        page.value(f"paper_dv_loi{n}_mps", float(paper_dv[n - 1]))
+        page.value(f"dv_diff_loi{n}_mps", float(dv[n - 1] - paper_dv[n - 1]))
+        page.value(f"eq19_loi{n}_min", float(t19[n - 1]))
+        page.value(f"paper_eq19_loi{n}_min", float(printed_min[n - 1]))
+    page.value("dv_total_mps", float(dv.sum()))
+    page.value("paper_dv_total_mps", float(paper_dv.sum()))
+    page.value("mass_final_kg", float(burns[-1].m_after_kg))
+    paper_case = ((float(thrust_N), float(isp_s)) == (150.0, 200.0)
+                  and mass_kg == C.ARRIVAL_MASS_KG and altitude_km == C.PERILUNE_ALTITUDE_KM)
+    page.note("eq19_masses_note",
+              _masses_note(burns, chain, thrust_N, isp_s, printed_min) if paper_case else
+              "The paper prints its Eq. (19) estimates and its finite-burn masses only for "
+              f"its 150 N / 200 s engine from {C.ARRIVAL_MASS_KG:g} kg with "
+              f"{C.PERILUNE_ALTITUDE_KM:g} km perilunes: there is nothing to compare with "
+              "here.")
+
+    # headline checks: the book build fails if the reproduction drifts
+    if altitude_km == C.PERILUNE_ALTITUDE_KM:
+        page.expect("LOI 1 is the paper's 353.272 m/s (by construction)",
+                    abs(dv[0] - paper_dv[0]) < 1e-3, f"{dv[0]:.4f} m/s")
+        for n in (2, 3):
+            page.expect(f"LOI {n} within 0.25 m/s of the paper",
+                        abs(dv[n - 1] - paper_dv[n - 1]) < 0.25,
+                        f"{dv[n - 1] - paper_dv[n - 1]:+.3f} m/s")
+    if paper_case and eq19_masses == "paper":
+        for n in (1, 2, 3):
+            page.expect(f"Eq. (19) LOI {n} within {EQ19_TOLERANCE_MIN} min of the paper's",
+                        abs(t19[n - 1] - printed_min[n - 1]) < EQ19_TOLERANCE_MIN,
+                        f"{t19[n - 1]:.3f} vs {printed_min[n - 1]:.2f} min")
+    page.data["burns"] = burns
+    return page

@@ -1,0 +1,356 @@
+"""The other-engines page (notebooks/other_engines.ipynb): LRO- and SELENE-class engines.
+
+Song et al. (2011, Sec. 3.1) chose their three engines after those of LRO (about 320 N,
+Isp 200 s) and SELENE (about 500 N, Isp 300 s), which they did not analyse. :func:`build`
+flies the paper's capture plan (:func:`lunarcap.mission.plan.paper_plan`, the paper's
+spacecraft and orbits) with those engines and with the paper's own, every ignition free
+by default (:func:`lunarcap.runs.sweeps.sequence_table`).
+
+Two impulsive references, named wherever a loss is shown:
+
+* **vs paper**: delta-V above the paper's printed impulsive delta-V of each LOI (Table
+  B1: 353.272, 254.034, 245.363 m/s), the reference of the paper's Tables 1-5;
+* **vs ours** (``model_loss``): delta-V above our impulsive limit of the same burn, one
+  impulse in the same dynamics from the same pre-burn orbit
+  (:func:`lunarcap.runs.chain.impulsive_limit`, as :func:`lunarcap.runs.chain.plan_result`).
+
+The figure, and the numbers the prose quotes beside it (``plotted_*`` values), use "vs
+ours" when ``model_loss`` is on, else "vs paper"; the note ``loss_note`` says which and
+gives the other.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from lunarcap.mission.plan import paper_plan
+from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
+from lunarcap.physics.constants import ARRIVAL_MASS_KG
+from lunarcap.report import figures
+from lunarcap.report.page import Page
+from lunarcap.report.pages.sweep import solver_description
+from lunarcap.runs import chain, sweeps
+
+NOTEBOOK = "notebooks/other_engines.ipynb"
+
+#: Origin of the paper's own engines in the tables and the figure.
+PAPER_ENGINE = "paper's engine"
+
+#: Engines the prose quotes by thrust (glued values are NaN for an engine not built).
+PROSE_THRUSTS_N = (320.0, 500.0, 150.0, 300.0, 450.0)
+
+#: Display labels of the loss columns: each names its impulsive reference.
+LOSS_LABELS = {
+    "engine": "engine (thrust / Isp)",
+    "loss_mps": "loss vs paper (m/s)", "loss_percent": "loss vs paper (%)",
+    "model_impulsive_delta_v_mps": "impulsive ΔV, ours (m/s)",
+    "model_loss_mps": "loss vs ours (m/s)", "model_loss_percent": "loss vs ours (%)",
+    "total_loss_mps": "loss vs paper (m/s)", "total_loss_percent": "loss vs paper (%)",
+    "total_model_loss_mps": "loss vs ours (m/s)",
+    "total_model_loss_percent": "loss vs ours (%)",
+    "loi1_burn_duration_min": "LOI 1 burn (min)",
+}
+
+REF_PAPER = ("the paper's printed impulsive ΔV of each LOI (Table B1: "
+             + ", ".join(f"{x:.3f}" for x in PAPER_IMPULSIVE_DV_MPS) + " m/s)")
+REF_OURS = ("our impulsive limit of each burn (one impulse in the same dynamics from the same "
+            "pre-burn orbit)")
+
+
+def _start_text(starts) -> str:
+    return "free" if all(s == "free" for s in starts) else f"{list(starts)} min"
+
+
+def engine_rows(engines, engine_names, paper_engines):
+    """``[(thrust_N, isp_s, origin, label)]``: the cited engines, then the paper's not cited."""
+    if len(engine_names) != len(engines):
+        raise ValueError("engine_names needs one name per engine")
+    rows = [(float(t), float(i), str(n), f"{n}, {t:g} N / {i:g} s")
+            for (t, i), n in zip(engines, engine_names)]
+    cited = {(t, i) for t, i, _, _ in rows}
+    rows += [(float(t), float(i), PAPER_ENGINE, f"paper, {t:g} N / {i:g} s")
+             for t, i in paper_engines if (float(t), float(i)) not in cited]
+    return rows
+
+
+def build(engines=((320.0, 200.0), (500.0, 300.0)),
+          engine_names=("LRO-class", "SELENE-class"),
+          paper_engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)),
+          starts=("free", "free", "free"), dynamics: str = "full", model_loss: bool = True,
+          output_name: str = "other_engines", quick: bool = False) -> Page:
+    """The page of the engines cited in Sec. 3.1 (see the module docstring)."""
+    start_arg = tuple(s if s == "free" else float(s) for s in starts)
+    params = dict(engines=[list(e) for e in engines], engine_names=list(engine_names),
+                  paper_engines=[list(e) for e in paper_engines], starts=list(starts),
+                  dynamics=dynamics, model_loss=model_loss)
+    solver = solver_description()
+    solver["ignition"] = ("free (an NLP variable)" if _start_text(start_arg) == "free"
+                          else f"fixed {list(starts)} min")
+    page = Page(NOTEBOOK, params, output_name, quick, solver)
+    rows = engine_rows(engines, engine_names, paper_engines)
+    seqs, results = {}, {}
+    for t, i, _, lab in rows:
+        seqs[lab] = sweeps.sequence_table(t, i, start_arg, dynamics,
+                                          with_impulsive_model=model_loss)
+        if model_loss:  # the same chain and impulsive limits, as the plan's result
+            results[lab] = chain.plan_result(paper_plan(t, i, start_arg, dynamics))
+    ignition = _start_text(start_arg)
+
+    # ---- per burn: the cited engines
+    burns = pd.concat([seqs[lab].assign(engine=lab, origin=o, thrust_N=t, isp_s=i)
+                       for t, i, o, lab in rows if o != PAPER_ENGINE], ignore_index=True)
+    burns = burns.assign(verified=np.where(burns.verified, "yes", "no"))
+    cols = ["engine", "origin", "thrust_N", "isp_s", "loi", "start_min", "burn_duration_min",
+            "delta_v_mps", "fuel_kg", "m_end_kg", "verified", "paper_impulsive_delta_v_mps",
+            "loss_mps", "loss_percent"]
+    cols += ["model_impulsive_delta_v_mps", "model_loss_mps", "model_loss_percent"] \
+        if model_loss else []
+    burns = burns[cols]
+    case = (f"the paper's spacecraft ({ARRIVAL_MASS_KG:g} kg at the first perilune) and "
+            f"orbits, {dynamics} dynamics, ignition {ignition}")
+    page.table(
+        "burns", burns,
+        caption=("The capture sequence flown by the engines cited in Sec. 3.1 of the paper "
+                 f"(name, thrust / Isp), on {case}. Start: ignition, min from each nominal "
+                 "perilune; duration in min; ΔV in m/s; propellant and mass after the burn in "
+                 "kg; verified: passed the re-propagation gate. The losses of these burns are "
+                 "in the next table (and in this CSV)."),
+        columns=LOSS_LABELS | {"engine": "engine"},
+        floatfmt={"start_min": ".2f", "burn_duration_min": ".2f", "delta_v_mps": ".3f",
+                  "fuel_kg": ".3f", "m_end_kg": ".3f"},
+        show_columns=["engine", "loi", "start_min", "burn_duration_min", "delta_v_mps",
+                      "fuel_kg", "m_end_kg", "verified"])
+    loss_cols = ["engine", "loi", "paper_impulsive_delta_v_mps", "loss_mps", "loss_percent"]
+    loss_cols += ["model_impulsive_delta_v_mps", "model_loss_mps"] if model_loss else []
+    page.table(
+        "losses", burns[loss_cols + (["model_loss_percent"] if model_loss else [])],
+        caption=("Loss of each burn of the same captures against two impulsive references. "
+                 f"Vs paper: ΔV above {REF_PAPER}, in m/s and in % of it, as the paper's "
+                 "Tables 1–5"
+                 + (f"; vs ours: ΔV above {REF_OURS}, shown beside it, m/s (the CSV also "
+                    "gives it in %)" if model_loss else
+                    "; the loss against our own impulsive limit is not computed in this build")
+                 + "."),
+        columns=LOSS_LABELS | {"engine": "engine"},
+        floatfmt={"paper_impulsive_delta_v_mps": ".3f", "loss_mps": ".3f",
+                  "loss_percent": ".3f", "model_impulsive_delta_v_mps": ".3f",
+                  "model_loss_mps": ".3f", "model_loss_percent": ".3f"},
+        show_columns=loss_cols)
+
+    # ---- totals: every engine, sorted by thrust
+    trows = []
+    for t, i, o, lab in sorted(rows, key=lambda r: (r[0], r[1])):
+        x = sweeps.sequence_totals(seqs[lab])
+        row = {"engine": lab, "origin": o, "thrust_N": t, "isp_s": i,
+               "total_delta_v_mps": x["total_delta_v_mps"],
+               "total_impulsive_delta_v_mps": x["total_impulsive_delta_v_mps"],
+               "total_loss_mps": x["total_loss_mps"],
+               "total_loss_percent": x["total_loss_percent"]}
+        if model_loss:
+            row.update({k: x[k] for k in ("total_model_impulsive_delta_v_mps",
+                                          "total_model_loss_mps", "total_model_loss_percent")})
+        row.update({"total_fuel_kg": x["total_fuel_kg"],
+                    "total_burn_duration_min": x["total_burn_duration_min"],
+                    "loi1_burn_duration_min": float(seqs[lab].burn_duration_min.iloc[0]),
+                    "final_mass_kg": x["final_mass_kg"]})
+        trows.append(row)
+    totals = pd.DataFrame(trows)
+    paper_total = float(sum(PAPER_IMPULSIVE_DV_MPS))
+    shown = ["engine", "total_delta_v_mps", "total_loss_mps", "total_loss_percent"]
+    shown += ["total_model_loss_mps", "total_model_loss_percent"] if model_loss else []
+    page.table(
+        "totals", totals,
+        caption=(f"Totals of the capture sequence per engine (thrust / Isp), ignition "
+                 f"{ignition}: total ΔV of the three LOIs (m/s); loss vs paper: above the "
+                 f"paper's impulsive ΔVs, m/s and % of their total {paper_total:.3f} m/s"
+                 + ("; loss vs ours: above our impulsive limits in the same dynamics, m/s and "
+                    "% of their total" if model_loss else "")
+                 + ". Propellant, burn times and final mass: next table."),
+        columns=LOSS_LABELS,
+        floatfmt={"total_delta_v_mps": ".3f", "total_loss_mps": ".3f",
+                  "total_loss_percent": ".3f", "total_model_loss_mps": ".3f",
+                  "total_model_loss_percent": ".3f"},
+        show_columns=shown)
+    page.table(
+        "budget", totals[["engine", "total_fuel_kg", "total_burn_duration_min",
+                          "loi1_burn_duration_min", "final_mass_kg"]],
+        caption=(f"Propellant of LOI 1–3 (kg), burn time of the three LOIs and of LOI 1 (min) "
+                 f"and mass after LOI 3 (kg, from {ARRIVAL_MASS_KG:g} kg) per engine (thrust / "
+                 f"Isp), ignition {ignition}."),
+        columns=LOSS_LABELS | {"total_fuel_kg": "propellant (kg)",
+                               "total_burn_duration_min": "burn time (min)"},
+        floatfmt={"total_fuel_kg": ".3f", "total_burn_duration_min": ".2f",
+                  "loi1_burn_duration_min": ".2f", "final_mass_kg": ".3f"})
+
+    # ---- the figure: one loss, its reference named
+    loss_col = "total_model_loss_mps" if model_loss else "total_loss_mps"
+    pct_col = "total_model_loss_percent" if model_loss else "total_loss_percent"
+    ref_short = "our impulsive limits" if model_loss else "the paper's impulsive ΔVs"
+    page.figure(
+        "loss_figure",
+        figures.plot_engine_loss(totals, loss_col, f"total ΔV loss vs {ref_short} (m/s)"),
+        caption=("Total ΔV loss of the capture above "
+                 + (REF_OURS if model_loss else REF_PAPER)
+                 + " (m/s, left) and propellant of LOI 1–3 (kg, right), each plotted against "
+                 f"thrust (N), ignition {ignition}; colours: specific impulse; diamonds: the "
+                 "engines cited in Sec. 3.1, circles: the paper's."),
+        alt="Total delta-V loss and propellant against thrust for each engine", name="loss")
+
+    # ---- numbers for the prose
+    nan = float("nan")
+    by_thrust = {}
+    for r in totals.itertuples():
+        by_thrust.setdefault(float(r.thrust_N), r)
+    seq_by_thrust = {t: seqs[lab] for t, i, o, lab in reversed(rows)}
+    for thrust in PROSE_THRUSTS_N:
+        tag = f"{thrust:g}N"
+        r, s = by_thrust.get(thrust), seq_by_thrust.get(thrust)
+        page.value(f"plotted_loss_mps_{tag}", getattr(r, loss_col) if r else nan)
+        page.value(f"plotted_loss_percent_{tag}", getattr(r, pct_col) if r else nan)
+        page.value(f"total_paper_loss_mps_{tag}", r.total_loss_mps if r else nan)
+        page.value(f"total_paper_loss_percent_{tag}", r.total_loss_percent if r else nan)
+        for key in ("total_delta_v_mps", "total_fuel_kg", "total_burn_duration_min",
+                    "final_mass_kg"):
+            page.value(f"{key}_{tag}", float(getattr(r, key)) if r else nan)
+        for n in (1, 2, 3):
+            page.value(f"burn_loi{n}_{tag}_min",
+                       float(s.burn_duration_min.iloc[n - 1]) if s is not None else nan)
+            page.value(f"dv_loi{n}_{tag}_mps",
+                       float(s.delta_v_mps.iloc[n - 1]) if s is not None else nan)
+    # same Isp, twice the thrust: the LRO-class engine against the paper's 150 N (both 200 s)
+    lc = "model_loss_mps" if model_loss else "loss_mps"
+    a, b = seq_by_thrust.get(150.0), seq_by_thrust.get(320.0)
+    page.value("loss_ratio_150_320",
+               float(a[lc].iloc[0] / b[lc].iloc[0]) if a is not None and b is not None else nan)
+    page.value("duration_ratio_sq_150_320",
+               float((a.burn_duration_min.iloc[0] / b.burn_duration_min.iloc[0]) ** 2)
+               if a is not None and b is not None else nan)
+    page.note("placement", placement_note(totals, seqs, rows, loss_col, pct_col, ref_short))
+    page.note("loss_note", loss_note(totals, seqs, rows, model_loss, dynamics))
+
+    # ---- headline checks
+    ok_burns = all(s.verified.all() for s in seqs.values())
+    page.expect("every burn passes the verification gate", ok_burns)
+    page.expect("every loss vs paper is positive", bool((totals.total_loss_mps > 0).all()))
+    if model_loss:
+        page.expect("every impulsive limit passes the gate",
+                    all(res.totals()["all_verified"] for res in results.values()))
+        page.expect("every loss vs ours is positive",
+                    bool((totals.total_model_loss_mps > 0).all()))
+        # the plan's own result (runs.chain.plan_result) gives the same losses vs ours
+        diff = max(abs(res.totals()["total_loss_mps"]
+                       - float(totals[totals.engine == lab].total_model_loss_mps.iloc[0]))
+                   for lab, res in results.items())
+        page.expect("plan_result and sequence_table agree on the loss vs ours (1e-9 m/s)",
+                    diff < 1e-9, f"{diff:.3g} m/s")
+    ordered = totals.sort_values("thrust_N")
+    page.expect("the plotted loss falls as the thrust rises",
+                bool((np.diff(ordered[loss_col].to_numpy()) < 0).all()),
+                str(ordered[["thrust_N", loss_col]].values.tolist()))
+    if {300.0, 320.0, 450.0} <= set(by_thrust):
+        page.expect("LRO-class plotted loss between the paper's 450 N and 300 N",
+                    getattr(by_thrust[450.0], loss_col) < getattr(by_thrust[320.0], loss_col)
+                    < getattr(by_thrust[300.0], loss_col))
+    if 500.0 in by_thrust and len(totals) > 1:
+        page.expect("SELENE-class: the least plotted loss",
+                    getattr(by_thrust[500.0], loss_col) == totals[loss_col].min())
+    if {150.0, 300.0, 320.0} <= set(by_thrust):
+        f = {t: by_thrust[t].total_fuel_kg for t in (150.0, 300.0, 320.0)}
+        page.expect("LRO-class propellant nearer the 150 N / 200 s engine's than the 300 N's",
+                    abs(f[320.0] - f[150.0]) < abs(f[320.0] - f[300.0]), str(f))
+    if dynamics == "full" and ignition == "free":
+        if 320.0 in seq_by_thrust:  # measured: LOI 1 8.90 min, loss 4.30 (paper), 4.70 (ours)
+            s, r = seq_by_thrust[320.0], by_thrust[320.0]
+            page.expect("LRO-class LOI 1 burns 8.5-9.3 min",
+                        8.5 < s.burn_duration_min.iloc[0] < 9.3)
+            page.expect("LRO-class loss vs paper 3.5-5.0 m/s", 3.5 < r.total_loss_mps < 5.0,
+                        f"{r.total_loss_mps:.3f}")
+            if model_loss:
+                page.expect("LRO-class loss vs ours 4.0-5.4 m/s",
+                            4.0 < r.total_model_loss_mps < 5.4, f"{r.total_model_loss_mps:.3f}")
+        if 500.0 in seq_by_thrust:  # measured: LOI 1 5.84 min, loss 1.76 (paper), 2.16 (ours)
+            s, r = seq_by_thrust[500.0], by_thrust[500.0]
+            page.expect("SELENE-class LOI 1 burns 5.5-6.2 min",
+                        5.5 < s.burn_duration_min.iloc[0] < 6.2)
+            page.expect("SELENE-class loss vs paper 1.2-2.3 m/s", 1.2 < r.total_loss_mps < 2.3,
+                        f"{r.total_loss_mps:.3f}")
+            if model_loss:
+                page.expect("SELENE-class loss vs ours 1.6-2.8 m/s",
+                            1.6 < r.total_model_loss_mps < 2.8, f"{r.total_model_loss_mps:.3f}")
+    page.data.update({"sequences": seqs, "totals": totals, "plan_results": results})
+    return page
+
+
+def placement_note(totals: pd.DataFrame, seqs: dict, rows, loss_col: str, pct_col: str,
+                   ref_short: str) -> str:
+    """Where each cited engine's loss falls among the others (MyST paragraph).
+
+    The loss is the figure's (``loss_col``, against ``ref_short``).
+    """
+    paper = totals[totals.origin == PAPER_ENGINE].sort_values(loss_col)
+
+    def name(p):
+        return f"{p.thrust_N:g} N / {p.isp_s:g} s ({p[loss_col]:.2f} m/s)"
+
+    out = []
+    for _, _, o, lab in rows:
+        if o == PAPER_ENGINE:
+            continue
+        r = totals[totals.engine == lab].iloc[0]
+        s = seqs[lab]
+        loss = getattr(r, loss_col)
+        text = (f"The {o} engine ({r.thrust_N:g} N, {r.isp_s:g} s) loses {loss:.2f} m/s over "
+                f"the capture against {ref_short} ({getattr(r, pct_col):.2f} % of their total)")
+        below = paper[paper[loss_col] < loss]
+        above = paper[paper[loss_col] > loss]
+        if len(below) and len(above):
+            text += (f", between the paper's {name(above.iloc[0])} and "
+                     f"{name(below.iloc[-1])} engines")
+        elif len(above) and len(totals) > 1 and loss == totals[loss_col].min():
+            text += f", the least of the {len(totals)} engines"
+        elif len(above):
+            text += f", less than any of the paper's engines (least: {name(above.iloc[0])})"
+        elif len(below):
+            text += f", more than any of the paper's engines (most: {name(below.iloc[-1])})"
+        text += (f"; its LOI 1 burns {s.burn_duration_min.iloc[0]:.2f} min and the whole "
+                 f"sequence {s.burn_duration_min.sum():.2f} min.")
+        out.append(text)
+    return " ".join(out) or "No engine of Sec. 3.1 in this build."
+
+
+def loss_note(totals: pd.DataFrame, seqs: dict, rows, model_loss: bool, dynamics: str) -> str:
+    """Which impulsive reference the figure and the prose use, and the other one (MyST)."""
+    paper_total = float(sum(PAPER_IMPULSIVE_DV_MPS))
+    cited = [(o, lab) for _, _, o, lab in rows if o != PAPER_ENGINE]
+    if not model_loss:
+        return ("**Which impulsive reference.** These losses, and those drawn in the "
+                f"figure, are ΔV above {REF_PAPER}, {paper_total:.3f} m/s in total, the "
+                "reference of the paper's Tables 1–5. The loss against our own impulsive "
+                "limit in the same dynamics is not computed in this build (`model_loss` is "
+                "false).")
+    parts = []
+    for o, lab in cited:
+        r = totals[totals.engine == lab].iloc[0]
+        parts.append(
+            f"the {o} engine loses {r.total_model_loss_mps:.2f} m/s against its impulses "
+            f"(which total {r.total_model_impulsive_delta_v_mps:.3f} m/s) and "
+            f"{r.total_loss_mps:.2f} m/s ({r.total_loss_percent:.2f} %) against the paper's "
+            f"{paper_total:.3f} m/s")
+    lower = bool((totals.total_model_impulsive_delta_v_mps < paper_total).all())
+    higher = bool((totals.total_model_impulsive_delta_v_mps > paper_total).all())
+    compare = ("Our impulses need less ΔV than the paper's, so a loss against ours is the "
+               "larger" if lower else
+               "Our impulses need more ΔV than the paper's, so a loss against ours is the "
+               "smaller" if higher else "The two references differ")
+    return (
+        "**Which impulsive reference.** These losses, and those drawn in the figure, are "
+        f"ΔV above {REF_OURS}, in {dynamics} dynamics "
+        "(`lunarcap.runs.chain.impulsive_limit`): the finite-burn loss of our model against "
+        "our model. The paper measures its losses against its printed impulsive ΔVs "
+        f"(Table B1: {', '.join(f'{x:.3f}' for x in PAPER_IMPULSIVE_DV_MPS)} m/s), the "
+        f"'vs paper' columns above. {compare}: " + "; ".join(parts) + ". The impulse is the "
+        "one of least J (Eq. 9); J is nearly flat along the epoch of the impulse, and local "
+        "optima a few seconds apart can differ by about 0.2 m/s in ΔV while their J agree "
+        "within a few mm/s, so a ΔV loss against an impulse is defined to about 0.2 m/s per "
+        "burn.")

@@ -1,0 +1,314 @@
+"""The engine trade-study page (notebooks/trade_study.ipynb): loss against thrust-to-weight.
+
+:func:`build` runs (or resumes) the study of :mod:`lunarcap.runs.study` on Dask, one task
+per engine (the free-ignition chain LOI 1, 2, 3, verified), without a progress bar, and
+sets beside it Robbins' (1966) analytic estimate and Eq. (19), and the paper's three
+engines (Table B1).
+
+The loss is the study's: the optimal finite-burn delta-V minus the **paper's** impulsive
+delta-V of each LOI (Table B1: 353.272, 254.034, 245.363 m/s), in % of it, as in the
+paper's Tables 1-5 (not the loss against our model's own impulsive limit).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
+from lunarcap.report import figures
+from lunarcap.report.display import markdown_table
+from lunarcap.report.page import Page
+from lunarcap.repro import paths
+from lunarcap.runs import study
+
+NOTEBOOK = "notebooks/trade_study.ipynb"
+
+#: Panel titles of the parts of the chain (the study's ``part`` values), in panel order.
+PART_TITLES = {"LOI1": "LOI 1: hyperbola → 12.235 h", "LOI2": "LOI 2: 12.235 h → 3.525 h",
+               "LOI3": "LOI 3: 3.525 h → 100 km circle", "sequence": "whole sequence"}
+
+#: Loss axis of the loss figure, % of the impulsive delta-V (logarithmic).
+LOSS_AXIS_PERCENT = (0.01, 40.0)
+
+#: Points of the dense thrust grid of the analytic curves.
+DENSE_POINTS = 200
+
+#: Columns of the grid table's CSV, and those shown in the book (the CSV keeps all).
+GRID_COLUMNS = ["thrust_N", "isp_s", "thrust_to_weight", "loss_percent_loi1",
+                "loss_percent_loi2", "loss_percent_loi3", "loss_percent_sequence",
+                "loss_mps_sequence", "analytic_loss_percent_sequence", "burn_duration_min_loi1",
+                "eq19_duration_min_loi1", "status"]
+GRID_SHOWN = GRID_COLUMNS[:7] + ["analytic_loss_percent_sequence"]
+
+#: Columns of the runs table shown in the book (the CSV keeps all).
+RUNS_SHOWN = ["source", "started_utc", "workers", "computed", "reused", "wall_s",
+              "load_avg_1min"]
+
+LOSS_DEFINITION = ("Loss: optimal finite-burn ΔV minus the paper's impulsive ΔV of the LOI "
+                   "(Table B1: {imp} m/s; the sequence: their sum), in % of it, as in the "
+                   "paper's tables; not the loss against our model's own impulsive limit.")
+
+
+def _interp_log(x, xs, ys) -> float:
+    """Linear interpolation in log(x); NaN outside the data."""
+    xs, ys = np.asarray(xs, float), np.asarray(ys, float)
+    if len(xs) < 2 or not (xs.min() <= x <= xs.max()):
+        return np.nan
+    o = np.argsort(xs)
+    return float(np.interp(np.log(x), np.log(xs[o]), ys[o]))
+
+
+def paper_engines_table(ok: pd.DataFrame, paper: pd.DataFrame) -> pd.DataFrame:
+    """Loss at the paper's three engines: Table B1, ours interpolated, Robbins' estimate.
+
+    Columns: thrust_N, isp_s, part, paper_loss_percent (Table B1 as printed; the sequence:
+    summed losses over summed impulsive delta-Vs), optimal_loss_percent (our verified
+    optima of the same Isp, interpolated in log T/W; NaN when that Isp or thrust is not
+    in the grid), robbins_loss_percent.
+    """
+    rows = []
+    for r in paper.itertuples(index=False):
+        d = ok[(ok.part == r.part) & (ok.isp_s == r.isp_s)]
+        robbins = study.analytic_curves([r.thrust_N], [r.isp_s]).set_index("part")
+        rows.append({"thrust_N": r.thrust_N, "isp_s": r.isp_s, "part": r.part,
+                     "paper_loss_percent": r.loss_percent,
+                     "optimal_loss_percent": _interp_log(r.thrust_to_weight,
+                                                         d.thrust_to_weight, d.loss_percent),
+                     "robbins_loss_percent": float(robbins.loc[r.part, "loss_percent"])})
+    return pd.DataFrame(rows)
+
+
+def resolution_floor(ok: pd.DataFrame) -> dict:
+    """Per part, the |loss| (%) of the strongest engine: below it the loss is not resolved.
+
+    The loss is measured against the paper's impulsive delta-V, which differs from our
+    model's impulsive limit by about that much (model to model).
+    """
+    out = {}
+    for part in study.PARTS:
+        d = ok[(ok.part == part) & (ok.thrust_N == ok.thrust_N.max())] if len(ok) else ok
+        v = float(d.loss_percent.abs().max()) if len(d) else np.nan
+        out[part] = max(v, 1e-3) if np.isfinite(v) else 1e-3
+    return out
+
+
+def runs_table(result: study.StudyResult, timing_dir=None) -> pd.DataFrame:
+    """The runs recorded for the study's table, and the timing runs in ``timing_dir``.
+
+    Columns: source, started_utc, workers, engines, computed, reused, failed, wall_s,
+    cluster_start_s, load_avg_1min (at the start of the run), cache.
+    """
+    records = [dict(r, source=result.path.name) for r in study.read_runs(result.path)]
+    timing_dir = paths.CACHE / "study" / "timing" if timing_dir is None else timing_dir
+    for f in sorted(timing_dir.glob("*.runs.json")) if timing_dir.is_dir() else []:
+        stem = f.name.removesuffix(".runs.json")
+        records += [dict(r, source=f"timing/{stem}")
+                    for r in study.read_runs(f.with_name(stem + ".csv"))]
+    runs = pd.DataFrame([{
+        "source": r["source"], "started_utc": r["started_utc"], "workers": r["workers"],
+        "engines": r["engines"], "computed": r["computed"], "reused": r["reused"],
+        "failed": r.get("failed_computed", 0), "wall_s": r["wall_s"],
+        "cluster_start_s": r.get("cluster_start_s", np.nan),
+        "load_avg_1min": r.get("load_avg_1min_start", np.nan),
+        "cache": "empty or disabled" if "NO_CACHE" in r.get("cache", "") else r.get("cache", ""),
+    } for r in records])
+    if len(runs):
+        runs["cache"] = runs["cache"].str.replace(str(paths.ROOT) + "/", "", regex=False)
+    return runs
+
+
+def failures_note(result: study.StudyResult, n_engines: int) -> str:
+    """The engines whose chain failed (a Markdown table), or that none did."""
+    fails = result.failures
+    if fails.empty:
+        return (f"Every one of the {n_engines} engines was solved and verified for all "
+                "three LOIs.")
+    shown = fails[["thrust_N", "isp_s", "part", "status", "ipopt_status", "error"]].rename(
+        columns={"thrust_N": "thrust (N)", "isp_s": "Isp (s)", "part": "burn",
+                 "ipopt_status": "IPOPT status"})
+    return ("**Engines whose chain failed**: the LOI, its status and IPOPT's return status "
+            "(an LOI after a failed one is not run).\n\n"
+            + markdown_table(shown, {"thrust (N)": ".4g", "Isp (s)": ".0f"}))
+
+
+def _range_text(values, fmt: str = ".1f", unit: str = " %") -> str:
+    """``"a to b<unit>"`` of the smallest and largest value (one value if they agree)."""
+    v = [float(x) for x in values if np.isfinite(x)]
+    if not v:
+        return "—"
+    lo, hi = format(min(v), fmt), format(max(v), fmt)
+    return (lo if lo == hi else f"{lo} to {hi}") + unit
+
+
+def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
+          thrust_max_N: float = study.DEFAULT_THRUST_MAX_N, points: int = study.DEFAULT_POINTS,
+          isp_s=study.DEFAULT_ISP_S, workers: int = 2, dynamics: str = "full",
+          output_name: str = "trade_study", quick: bool = False, out=None, task=None,
+          processes: bool = True, timing_dir=None, lock_wait_s: float = 3600.0) -> Page:
+    """The trade-study page (see the module docstring).
+
+    Parameters
+    ----------
+    thrust_min_N, thrust_max_N, points, isp_s, dynamics : the grid (:class:`StudySpec`)
+    workers : local Dask worker processes
+    output_name, quick : the page's output name and whether it is a quick build
+    out : the study's CSV table (default :func:`lunarcap.runs.study.default_table_path`)
+    task, processes : passed to :func:`lunarcap.runs.study.run_study` (tests)
+    timing_dir : directory of the timing runs listed in the runs table
+        (default ``<cache>/study/timing``)
+    lock_wait_s : how long to wait for another run writing the same table, s
+    """
+    params = dict(thrust_min_N=thrust_min_N, thrust_max_N=thrust_max_N, points=points,
+                  isp_s=list(isp_s), workers=workers, dynamics=dynamics)
+    page = Page(NOTEBOOK, params, output_name, quick)
+    spec = study.StudySpec(thrust_min_N, thrust_max_N, points, tuple(isp_s), dynamics)
+    result = study.run_study(spec, out=out, workers=workers, progress=False,
+                             lock_wait_s=lock_wait_s, task=task, processes=processes)
+    table, wide, run = result.table, result.wide(), result.run
+    ok = table[table.status == "ok"]
+    loi_ok = ok[ok.part != "sequence"]
+    seq = ok[ok.part == "sequence"]
+    n_failed = int((wide.status != "ok").sum()) if len(wide) else 0
+    theory = study.analytic_curves(
+        np.geomspace(spec.thrust_min_N, spec.thrust_max_N, DENSE_POINTS), spec.isp_s)
+    paper = study.paper_points()
+    newton_per_ratio = float(study.thrust_from_weight_ratio(1.0))
+    imp_txt = ", ".join(f"{v:.3f}" for v in PAPER_IMPULSIVE_DV_MPS)
+    loss_def = LOSS_DEFINITION.format(imp=imp_txt)
+
+    # ------------------------------------------------------------------ figures and tables
+    floor = resolution_floor(ok)
+    page.figure(
+        "loss", figures.plot_trade_study_loss(ok, theory, paper, spec.isp_s, PART_TITLES,
+                                              floor, newton_per_ratio, LOSS_AXIS_PERCENT),
+        caption=("Finite-burn loss (% of the impulsive ΔV, logarithmic) of the optimal burns "
+                 "(free ignition, verified) against the initial thrust-to-weight ratio "
+                 "T/(m₀ g₀), m₀ = 524.895 kg, for each LOI and for the whole sequence, one "
+                 f"curve per Isp (thrust in N on the top axis); {dynamics} dynamics. "
+                 f"{loss_def} Dashed: Robbins' (1966) estimate (1/24)(ω_s t_b)² ΔV with t_b "
+                 "from Eq. (19). Stars: the paper's three engines with their Table B1 losses. "
+                 "The paper's impulsive ΔV differs from our model's impulsive limit by about "
+                 "the strongest engine's |loss| (grey band): losses inside the band are not "
+                 "resolved, and the small negative ones of the strongest engines (in the grid "
+                 "table) cannot be drawn on the logarithmic axis."),
+        alt="Finite-burn loss against thrust-to-weight ratio, per LOI and for the sequence")
+    at_paper = paper_engines_table(ok, paper)
+    page.table(
+        "paper_engines", at_paper,
+        caption=("Loss at the paper's three engines (% of the paper's impulsive ΔV): Table B1 "
+                 "as printed, our optimal loss interpolated (in log T/W) along the curve of "
+                 "the same Isp (— when that Isp or thrust is not in this grid), and Robbins' "
+                 "estimate. Thrust in N, Isp in s. " + loss_def),
+        columns={"part": "burn", "paper_loss_percent": "paper, Table B1 (%)",
+                 "optimal_loss_percent": "optimal (%)", "robbins_loss_percent": "Robbins (%)"},
+        floatfmt={"thrust_N": ".0f", "isp_s": ".0f", "paper_loss_percent": ".2f",
+                  "optimal_loss_percent": ".2f", "robbins_loss_percent": ".2f"})
+    page.figure(
+        "duration", figures.plot_trade_study_duration(
+            loi_ok, spec.isp_s, {p: PART_TITLES[p] for p in study.PARTS[:3]},
+            newton_per_ratio),
+        caption=("Top: optimal burn duration divided by the Eq. (19) estimate (from the "
+                 "two-body impulsive ΔV and the mass at ignition), against the thrust-to-weight "
+                 "ratio T/(m₀ g₀) (thrust in N on the top axis). Bottom: optimal ignition "
+                 "offset from the nominal perilune (negative: before) divided by the Eq. (19) "
+                 "duration; the paper's rule of thumb is to ignite half the estimated duration "
+                 "before perilune (−½). Both ratios are dimensionless."),
+        alt="Optimal burn duration and ignition offset over the Eq. (19) duration")
+    grid = wide.reindex(columns=GRID_COLUMNS)
+    page.table(
+        "grid", grid,
+        caption=("The grid: loss per LOI and for the sequence, and Robbins' estimate for the "
+                 "sequence, in % of the impulsive ΔV; thrust in N, Isp in s, T/(m₀ g₀) "
+                 f"dimensionless. {loss_def} The CSV adds the sequence's loss in m/s, LOI 1's "
+                 "optimal and Eq. (19) burn durations (min) and the status; the study's table "
+                 "in the cache directory holds every column (ignition offsets, masses, IPOPT "
+                 "status, verification)."),
+        columns={"loss_percent_loi1": "LOI 1 (%)", "loss_percent_loi2": "LOI 2 (%)",
+                 "loss_percent_loi3": "LOI 3 (%)", "loss_percent_sequence": "sequence (%)",
+                 "loss_mps_sequence": "sequence (m/s)",
+                 "analytic_loss_percent_sequence": "Robbins, sequence (%)",
+                 "burn_duration_min_loi1": "LOI 1 burn (min)",
+                 "eq19_duration_min_loi1": "LOI 1 Eq. (19) (min)", "status": "status"},
+        floatfmt={"thrust_N": ".4g", "isp_s": ".0f", "thrust_to_weight": ".4f",
+                  "loss_percent_loi1": ".3f", "loss_percent_loi2": ".3f",
+                  "loss_percent_loi3": ".3f", "loss_percent_sequence": ".3f",
+                  "loss_mps_sequence": ".2f", "analytic_loss_percent_sequence": ".3f",
+                  "burn_duration_min_loi1": ".2f", "eq19_duration_min_loi1": ".2f"},
+        show_columns=GRID_SHOWN)
+    page.table(
+        "runs", runs_table(result, timing_dir),
+        caption=("Runs of the study: the table the run wrote (or the timing run), its start "
+                 "(UTC), Dask workers (0: nothing to compute), engines solved and taken from "
+                 "the table, wall time including the start of the local cluster (s), and the "
+                 "machine's 1-minute load average when the run started (other work on the "
+                 "machine slows the study down). The CSV adds the engines of the grid, the "
+                 "failures, the cluster's start time (s) and the cache used."),
+        columns={"source": "table", "started_utc": "started (UTC)", "workers": "workers",
+                 "computed": "solved", "reused": "from the table", "wall_s": "wall time (s)",
+                 "load_avg_1min": "load (1 min)"},
+        floatfmt={"wall_s": ".1f", "cluster_start_s": ".1f", "load_avg_1min": ".1f"},
+        show_columns=RUNS_SHOWN)
+    page.note("failures", failures_note(result, len(wide)))
+
+    # ------------------------------------------------------------------ numbers for the prose
+    nan = float("nan")
+    lo = seq[seq.thrust_N == seq.thrust_N.min()]
+    hi = seq[seq.thrust_N == seq.thrust_N.max()]
+    diffs = at_paper.dropna(subset=["optimal_loss_percent"])
+    big = ok[(ok.part != "sequence") & (ok.loss_percent > 1.0)]
+    ratio = big.analytic_loss_mps / big.loss_mps
+    dur_ratio = loi_ok.burn_duration_min / loi_ok.eq19_duration_min
+    start_ratio = loi_ok.start_min / loi_ok.eq19_duration_min
+    values = {
+        "n_engines": len(wide), "n_thrusts": spec.points, "n_isp": len(spec.isp_s),
+        "thrust_min": spec.thrust_min_N, "thrust_max": spec.thrust_max_N,
+        "tw_min": study.thrust_to_weight(spec.thrust_min_N),
+        "tw_max": study.thrust_to_weight(spec.thrust_max_N),
+        "n_failed": n_failed, "wall_s": float(run["wall_s"]),
+        "n_computed": int(run["computed"]),
+        "seq_loss_high_max_abs": float(hi.loss_mps.abs().max()) if len(hi) else nan,
+        "paper_diff_max": float((diffs.optimal_loss_percent
+                                 - diffs.paper_loss_percent).abs().max()) if len(diffs) else nan,
+        "robbins_diff_max": float((diffs.robbins_loss_percent
+                                   - diffs.optimal_loss_percent).abs().max())
+        if len(diffs) else nan,
+        "dur_ratio_max": float(dur_ratio.max()) if len(loi_ok) else nan,
+        "start_ratio_min": float(-start_ratio.min()) if len(loi_ok) else nan,
+    }
+    for k, v in values.items():
+        page.value(k, v)
+    page.value("seq_loss_low_range", _range_text(lo.loss_percent))
+    page.value("robbins_ratio_range", _range_text(ratio, ".2f", ""))
+
+    # ------------------------------------------------------------------ headline checks
+    page.expect("every engine of the grid is in the table", len(wide) == len(spec.engines),
+                f"{len(wide)} of {len(spec.engines)}")
+    page.expect("known row statuses", set(table.status) <= set(study.STATUSES),
+                str(sorted(set(table.status) - set(study.STATUSES))))
+    page.expect("every failure carries a reason",
+                bool(((wide.status == "ok") | (wide.failed_part != "")).all()))
+    for isp in spec.isp_s:
+        s = seq[seq.isp_s == isp].sort_values("thrust_N")
+        if len(s) >= 2:
+            page.expect(f"Isp {isp:g} s: the weakest engine loses more than the strongest, "
+                        "and over 0.5 %",
+                        s.loss_percent.iloc[0] > s.loss_percent.iloc[-1]
+                        and s.loss_percent.iloc[0] > 0.5,
+                        f"{s.loss_percent.iloc[0]:.3f} % vs {s.loss_percent.iloc[-1]:.3f} %")
+    if len(spec.isp_s) > 1:  # the prose: at one thrust-to-weight a higher Isp loses more
+        by_t = seq.pivot_table(index="thrust_N", columns="isp_s", values="loss_percent")
+        lossy = by_t[by_t.min(axis=1) > 1.0]  # where the loss is resolved
+        page.expect("at one thrust, a higher Isp loses more (where the loss exceeds 1 %)",
+                    bool((lossy.diff(axis=1).iloc[:, 1:] > 0).all().all()))
+    page.expect("Robbins' estimate falls as the thrust grows",
+                bool(theory.groupby(["isp_s", "part"]).loss_percent
+                     .apply(lambda v: v.is_monotonic_decreasing).all()))
+    page.expect("the optimal duration is 0.97 to 2 times Eq. (19)",
+                bool(dur_ratio.between(0.97, 2.0).all()),
+                f"{dur_ratio.min():.3f} to {dur_ratio.max():.3f}" if len(dur_ratio) else "")
+    page.expect("the weakest engines ignite earlier than the paper's rule (−½ Eq. (19))",
+                not len(loi_ok) or values["start_ratio_min"] > 0.5,
+                f"{values['start_ratio_min']:.3f}")
+    page.data.update(result=result, wide=wide, ok=ok, theory=theory, paper=paper)
+    return page

@@ -1,0 +1,103 @@
+"""The capture-plan page (lunarcap.report.pages.capture_plan), built in two-body dynamics."""
+
+import math
+
+import numpy as np
+import pytest
+
+from lunarcap.physics import constants as C
+from lunarcap.report.labels import label
+from lunarcap.report.pages import capture_plan
+
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture(scope="module")
+def lro():
+    return capture_plan.build("lro-like-5burn", "two-body", "t_plan_lro", True)
+
+
+@pytest.fixture(scope="module")
+def two():
+    return capture_plan.build("two-burn-8h", "two-body", "t_plan_two", True)
+
+
+def _totals(page):
+    df = page.items["totals"].df
+    return dict(zip(df.key, df.value))
+
+
+@pytest.mark.parametrize("name", ["lro", "two"])
+def test_totals_are_the_sums_of_the_burns(name, request):
+    page = request.getfixturevalue(name)
+    burns = page.items["burns"].df
+    tot = _totals(page)
+    assert len(burns) == page.data["plan"].n_burns
+    assert tot["total_delta_v_mps"] == pytest.approx(burns.delta_v_mps.sum(), abs=1e-9)
+    assert tot["total_impulsive_delta_v_mps"] == pytest.approx(
+        burns.impulsive_delta_v_mps.sum(), abs=1e-9)
+    assert tot["total_loss_mps"] == pytest.approx(burns.loss_mps.sum(), abs=1e-9)
+    assert tot["total_burn_duration_min"] == pytest.approx(burns.burn_duration_min.sum())
+    # propellant: the rocket equation's mass drop, burn by burn, adds up to the total
+    assert tot["total_fuel_kg"] == pytest.approx(burns.fuel_kg.sum(), abs=1e-6)
+    np.testing.assert_allclose(burns.m_end_kg.to_numpy()[:-1], burns.m_start_kg.to_numpy()[1:])
+    np.testing.assert_allclose(burns.loss_mps, burns.delta_v_mps - burns.impulsive_delta_v_mps)
+    # a finite burn costs more than the impulse, in total; every burn passes the gate
+    assert tot["total_loss_mps"] > 0 and burns.loss_mps.iloc[0] > 0
+    assert (page.items["verification"].df.verified == "passed").all()
+    page.check()
+
+
+@pytest.mark.parametrize("name", ["lro", "two"])
+def test_final_orbit_is_the_plans_circle(name, request):
+    page = request.getfixturevalue(name)
+    plan = page.data["plan"]
+    tot = _totals(page)
+    alt = plan.arrival.perilune_altitude_km
+    assert tot["final_rp_altitude_km"] == pytest.approx(alt, abs=1e-3)
+    assert tot["final_ra_altitude_km"] == pytest.approx(alt, abs=1e-3)
+    assert tot["final_inc_deg"] == pytest.approx(plan.arrival.inclination_deg, abs=1e-6)
+    # the plan table's last orbit is the same circle (apolune = perilune altitude)
+    assert page.items["plan"].df.apolune_altitude_km.iloc[-1] == pytest.approx(alt)
+
+
+def test_lro_like_plan_beside_the_published_figures(lro):
+    plan = lro.data["plan"]
+    assert plan.n_burns == 5 and plan.arrival.mass_kg == 1916.0
+    assert (plan.engine.thrust_N, plan.engine.isp_s) == (320.0, 200.0)
+    # the plan's first target is LRO's first orbit, 220 x 3,100 km (two-body apolune)
+    assert lro.items["plan"].df.apolune_altitude_km.iloc[0] == pytest.approx(3100.0)
+    comp = lro.items["comparison"].df.set_index("quantity")
+    assert comp.published.iloc[0] == 40.0 and comp.published.iloc[3] == 898.0
+    burns = lro.items["burns"].df
+    assert comp.ours.iloc[0] == burns.burn_duration_min.iloc[0]
+    # 40 min of 320 N / 200 s from 1,916 kg: the rocket equation
+    mdot = 320.0 / (C.G0_MPS2 * 200.0)
+    dv40 = C.G0_MPS2 * 200.0 * math.log(1916.0 / (1916.0 - mdot * 2400.0))
+    assert lro.values["lro_dv40_mps"] == pytest.approx(dv40)
+    # ours burns longer than 40 min: our burn needs more delta-V than 40 min can give
+    assert burns.delta_v_mps.iloc[0] > dv40 and comp.ours.iloc[0] > 40.0
+    assert lro.values["lro_ours_fuel_kg"] < 898.0
+
+
+def test_two_burns_beside_the_papers_three(two):
+    comp = two.items["comparison"].df
+    ours, paper, diff = (comp.iloc[i] for i in range(3))
+    # every burn tangential at one perilune radius: the impulsive totals agree (the
+    # two-body chain: exactly), so the difference is the finite-burn loss
+    assert abs(diff.total_impulsive_delta_v_mps) < 0.5
+    assert diff.total_loss_mps > 0          # two longer burns lose more than three
+    assert ours.time_to_final_orbit_h == pytest.approx(8.0 + 117.848 / 60)
+    assert paper.time_to_final_orbit_h == pytest.approx(12.235 + 3.525 + 117.848 / 60)
+    np.testing.assert_allclose(diff.iloc[1:].astype(float),
+                               (ours.iloc[1:] - paper.iloc[1:]).astype(float))
+
+
+def test_every_shown_column_has_a_label_with_its_unit(lro):
+    for key in ("plan", "burns", "masses", "verification", "totals"):
+        item = lro.items[key]
+        for c in item.show_columns or item.df.columns:
+            lab = (item.columns or {}).get(c, label(c))
+            unit_suffix = c.endswith(("_mps", "_min", "_percent", "_kg", "_km", "_m", "_mm", "_deg",
+                                      "_h"))
+            assert ("(" in lab) == (unit_suffix or c == "ignition_epoch"), (c, lab)

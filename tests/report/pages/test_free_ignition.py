@@ -1,0 +1,79 @@
+"""The free-ignition page (lunarcap.report.pages.free_ignition), built in two-body."""
+
+import numpy as np
+import pytest
+
+from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS, PAPER_STARTS_MIN
+from lunarcap.physics import constants as C
+from lunarcap.report.labels import label
+from lunarcap.report.pages import free_ignition
+
+pytestmark = pytest.mark.slow
+
+T_N, ISP_S = 450.0, 300.0
+
+
+@pytest.fixture(scope="module")
+def page():
+    return free_ignition.build([[T_N, ISP_S]], "two-body", "t_free", True)
+
+
+def test_free_optimum_never_worse_than_the_grid_in_j(page):
+    g = page.items["gain"].df
+    assert list(g.burn) == [1, 2, 3] and (g.verified == "passed").all()
+    # the grid points are feasible points of the free problem: J cannot be lower there
+    assert (g.objective_gain_mps >= -1e-3).all()
+    np.testing.assert_allclose(g.delta_v_gain_mps, g.grid_delta_v_mps - g.free_delta_v_mps)
+    for r in g.itertuples():
+        assert r.grid_start_min in PAPER_STARTS_MIN[(T_N, r.burn)]
+    imp = np.array(PAPER_IMPULSIVE_DV_MPS)
+    np.testing.assert_allclose(g.free_loss_percent, 100 * (g.free_delta_v_mps - imp) / imp)
+
+
+def test_chain_totals_and_propellant(page):
+    c = page.items["chain"].df.iloc[0]
+    assert c.grid_starts == "-3, -2, -2" and c.verified == "passed"
+    assert c.delta_v_gain_mps == pytest.approx(c.grid_total_delta_v_mps
+                                               - c.free_total_delta_v_mps)
+    assert c.fuel_saved_kg == pytest.approx(c.free_final_mass_kg - c.grid_final_mass_kg)
+    # same arrival mass and engine: less delta-V leaves more mass
+    assert np.sign(c.fuel_saved_kg) == np.sign(c.delta_v_gain_mps)
+    legs = page.data["chain_legs"][T_N]
+    assert legs.sum() == pytest.approx(c.delta_v_gain_mps)
+
+
+def test_eq19_rule_rows(page):
+    r = page.items["rule"].df
+    g = page.items["gain"].df
+    np.testing.assert_allclose(r.rule_start_min, -r.eq19_duration_min / 2)
+    np.testing.assert_allclose(r.burn_midpoint_min,
+                               g.free_start_min + g.free_burn_duration_min / 2)
+    # Eq. (19) for burn 1: the arrival mass and the plan's two-body impulse (353.272 m/s)
+    ve = C.G0_MPS2 * ISP_S
+    t19 = C.ARRIVAL_MASS_KG * (1 - np.exp(-353.272 / ve)) * ve / T_N / 60
+    assert r.eq19_duration_min.iloc[0] == pytest.approx(t19, rel=1e-9)
+    # igniting at the rule instead of the optimum cannot lower J (1 mm/s)
+    assert (r.rule_objective_cost_mps >= -1e-3).all() and (r.verified == "passed").all()
+    assert (r.start_minus_rule_min < 0).all()  # the optimum ignites earlier
+    page.check()
+
+
+def test_notes_follow_the_data(page):
+    g = page.items["gain"].df
+    top = g.loc[g.objective_gain_mps.idxmax()]
+    assert f"{top.engine}, burn {top.burn}" in page.notes["largest_gain"]
+    neg = g[g.delta_v_gain_mps < 0]
+    for r in neg.itertuples():
+        assert f"{-r.delta_v_gain_mps:.3f} m/s for {r.engine}, burn {r.burn}" \
+            in page.notes["dv_excess"]
+    assert f"{page.values['max_abs_rule_diff_min']:.2f} min" in page.notes["rule"]
+
+
+def test_shown_tables_are_narrow_and_label_their_units(page):
+    for key in ("gain", "chain", "rule"):
+        t = page.items[key]
+        assert len(t.show_columns) <= 7
+        for c in t.show_columns:
+            lab = (t.columns or {}).get(c, label(c))
+            if c.endswith(("_mps", "_min", "_kg", "_percent")):
+                assert lab.endswith(("(m/s)", "(min)", "(kg)", "(%)")), (c, lab)

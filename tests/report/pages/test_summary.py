@@ -1,0 +1,81 @@
+"""The Table B1 and totals page (lunarcap.report.pages.summary), one engine in two-body."""
+
+import numpy as np
+import pytest
+
+from lunarcap.paper import printed as paper
+from lunarcap.physics.constants import ARRIVAL_MASS_KG
+from lunarcap.report.pages import summary
+
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture(scope="module")
+def page():
+    return summary.build([[450.0, 300.0]], None, "two-body", "t_summary", True)
+
+
+def test_b1_table_sets_ours_beside_table_b1(page):
+    df = page.items["b1"].df
+    b1 = paper.paper_table_b1()
+    b1 = b1[b1.thrust_N == 450]
+    assert list(df.loi) == [1, 2, 3] and (df.engine == "450 N / 300 s").all()
+    np.testing.assert_allclose(df.paper_delta_v_mps, b1.delta_v_mps)
+    np.testing.assert_allclose(df.start_min, b1.start_min)  # the paper's best offsets
+    np.testing.assert_allclose(df.delta_v_diff_mps, df.delta_v_mps - df.paper_delta_v_mps)
+    imp = np.array(paper.PAPER_IMPULSIVE_DV_MPS)
+    np.testing.assert_allclose(df.loss_percent, 100 * (df.delta_v_mps - imp) / imp)
+    assert (df.verified == "yes").all()
+    # a finite burn needs more than the paper's impulse, even in two-body dynamics
+    assert (df.delta_v_mps > imp).all()
+    assert len(page.items["b1"].show_columns) <= 7
+
+
+def test_mass_carries_through_the_chain(page):
+    d = page.items["duration"].df
+    np.testing.assert_allclose(d.fuel_kg.sum(), ARRIVAL_MASS_KG - d.m_end_kg.iloc[-1])
+    # the totals table: ours is the chain's final mass, and ours - printed is consistent
+    t = page.items["totals"].df.set_index("quantity")
+    final = t.loc["mass after LOI 3 (kg)"]
+    assert final.ours == pytest.approx(d.m_end_kg.iloc[-1])
+    assert final.paper_printed == "391.722"
+    assert final.ours_minus_printed == pytest.approx(final.ours - 391.722)
+    assert t.loc["propellant, LOI 1-3 (kg)"].ours == pytest.approx(d.fuel_kg.sum())
+
+
+def test_totals_apply_the_papers_arithmetic_to_table_b1(page):
+    t = page.items["totals"].df.set_index("quantity")
+    # Table B1 450 N: losses 2.277 + 0.353 + 0.543 m/s; per-burn 0.64, 0.14, 0.22 %
+    assert t.loc["ΔV loss, sum of the three LOIs (m/s)"].paper_from_table_b1 == \
+        pytest.approx(3.173)
+    mean = t.loc["loss, mean of the three per-burn % (the paper's way) (%)"]
+    assert mean.paper_from_table_b1 == pytest.approx(1.0 / 3.0)
+    assert mean.paper_printed == "0.33"  # the paper's total is that mean
+    share = t.loc["loss as a share of the total impulsive ΔV (%)"]
+    total_imp = sum(paper.PAPER_IMPULSIVE_DV_MPS)
+    assert share.paper_from_table_b1 == pytest.approx(100 * 3.173 / total_imp)
+
+
+def test_model_loss_total_row_sums_the_burns(page):
+    m = page.items["model_loss"].df
+    burns, total = m[m.loi != "total"], m[m.loi == "total"].iloc[0]
+    for col in ("paper_impulsive_delta_v_mps", "model_impulsive_delta_v_mps", "paper_loss_mps",
+                "loss_mps", "model_loss_mps"):
+        assert total[col] == pytest.approx(burns[col].sum())
+    seq = page.data["chains"]["450 N / 300 s"]
+    # against an impulse in the same dynamics the finite burn loses objective (Eq. 9)
+    assert (seq.objective_loss_mps > 0).all()
+    np.testing.assert_allclose(burns.model_loss_mps,
+                               seq.delta_v_mps - seq.model_impulsive_delta_v_mps)
+
+
+def test_values_notes_and_checks(page):
+    v = page.values
+    assert np.isnan(v["total_loss_mps_150N"])           # engines not run: NaN
+    assert v["b1_total_loss_mps_150N"] == pytest.approx(20.273)
+    assert v["paper_loss_total_150N_mps"] == 20.20
+    assert v["total_loss_mps_450N"] == pytest.approx(
+        page.items["totals"].df.ours.iloc[0])
+    assert "(450 N)" in page.notes["ours_percentages"]   # a subset names its engines
+    assert "Burn time" not in page.notes["differs"]       # the 300 N note needs 300 N
+    page.check()

@@ -1,0 +1,145 @@
+"""The trade-study page (lunarcap.report.pages.trade_study).
+
+A tiny real study (three thrusts, one Isp, two-body, one Dask worker, its table in a
+temporary directory) is marked slow; a stub per-engine task (``run_study``'s ``task``)
+checks the page's report of a failed engine without solving anything.
+"""
+
+import numpy as np
+import pytest
+
+from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS, paper_table_b1
+from lunarcap.physics import constants as C
+from lunarcap.report.labels import label
+from lunarcap.report.pages import trade_study
+from lunarcap.runs import study
+
+THRUSTS = (100.0, 316.2, 1000.0)  # StudySpec(100, 1000, 3): log-spaced, 4 digits
+
+
+@pytest.fixture(scope="module")
+def page(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("trade_study")
+    return trade_study.build(100.0, 1000.0, 3, [250.0], 1, "two-body", "t_trade", True,
+                             out=tmp / "study.csv", timing_dir=tmp / "no_timing")
+
+
+@pytest.mark.slow
+def test_the_study_solved_every_engine_once_and_records_the_run(page):
+    res = page.data["result"]
+    assert tuple(page.data["wide"].thrust_N) == THRUSTS
+    assert (res.table.status == "ok").all() and res.failures.empty
+    assert page.values["n_engines"] == 3 and page.values["n_failed"] == 0
+    runs = page.items["runs"].df
+    assert len(runs) == 1 and runs.engines.iloc[0] == 3
+    assert runs.computed.iloc[0] + runs.reused.iloc[0] == 3
+    assert "Every one of the 3 engines" in page.notes["failures"]
+
+
+@pytest.mark.slow
+def test_loss_is_measured_against_the_paper_impulsive_delta_v(page):
+    t = page.data["result"].table
+    for k, part in enumerate(study.PARTS[:3]):
+        r = t[t.part == part]
+        np.testing.assert_allclose(r.impulsive_delta_v_mps, PAPER_IMPULSIVE_DV_MPS[k])
+        np.testing.assert_allclose(r.loss_mps, r.delta_v_mps - PAPER_IMPULSIVE_DV_MPS[k])
+        np.testing.assert_allclose(r.loss_percent,
+                                   100 * r.loss_mps / PAPER_IMPULSIVE_DV_MPS[k])
+    # the sequence sums the three LOIs
+    loi = t[t.part != "sequence"].groupby("thrust_N").loss_mps.sum()
+    seq = t[t.part == "sequence"].set_index("thrust_N")
+    np.testing.assert_allclose(seq.loss_mps, loi.loc[seq.index])
+    np.testing.assert_allclose(seq.loss_percent,
+                               100 * seq.loss_mps / sum(PAPER_IMPULSIVE_DV_MPS))
+    # the definition is said where the numbers are shown
+    for key in ("loss", "grid", "paper_engines"):
+        assert "paper's impulsive ΔV" in page.items[key].caption
+        assert "not the loss against our model's own impulsive limit" in \
+            page.items[key].caption
+
+
+@pytest.mark.slow
+def test_physics_of_the_grid(page):
+    w = page.data["wide"]
+    # T/W = T / (m0 g0), m0 the arrival mass
+    np.testing.assert_allclose(w.thrust_to_weight, w.thrust_N / (C.ARRIVAL_MASS_KG * C.G0_MPS2))
+    # a weaker engine loses more, per LOI and for the sequence; 100 N loses over 0.5 %
+    for c in ("loss_percent_loi1", "loss_percent_loi2", "loss_percent_loi3",
+              "loss_percent_sequence"):
+        assert (np.diff(w[c]) < 0).all(), c
+    assert w.loss_percent_sequence.iloc[0] > 0.5
+    # the optimal burn is no shorter than Eq. (19) (less than 3 % shorter), longer when weak
+    ok = page.data["ok"]
+    ratio = (ok.burn_duration_min / ok.eq19_duration_min)[ok.part != "sequence"]
+    assert ratio.between(0.97, 2.0).all()
+    # Robbins' estimate in the grid is the closed form of the study
+    for r in w.itertuples():
+        est = study.capture_chain_estimate(r.thrust_N, r.isp_s)
+        imp = sum(e["impulsive_delta_v_mps"] for e in est)
+        assert r.analytic_loss_percent_sequence == pytest.approx(
+            100 * sum(e["loss_mps"] for e in est) / imp)
+    page.check()
+
+
+@pytest.mark.slow
+def test_paper_engines_table_is_table_b1_beside_ours(page):
+    df = page.items["paper_engines"].df
+    b1 = paper_table_b1()
+    lois = df[df.part != "sequence"]
+    for r in lois.itertuples():
+        printed = b1[(b1.thrust_N == r.thrust_N) & (b1.loi == int(r.part[-1]))]
+        assert r.paper_loss_percent == float(printed.diff_percent.iloc[0])
+    assert df[(df.thrust_N == 150.0) & (df.part == "LOI1")].paper_loss_percent.item() == 3.93
+    # only 300 N / 250 s lies on this grid (Isp 250 s, 100-1000 N): the others are blank
+    on_grid = df.optimal_loss_percent.notna()
+    assert set(df[on_grid].thrust_N) == {300.0}
+    assert (df[on_grid].optimal_loss_percent > 0).all()
+    assert page.values["paper_diff_max"] == pytest.approx(
+        (df[on_grid].optimal_loss_percent - df[on_grid].paper_loss_percent).abs().max())
+
+
+@pytest.mark.slow
+def test_shown_columns_have_labels_with_units_and_fit_the_page(page):
+    for key in ("paper_engines", "grid", "runs"):
+        item = page.items[key]
+        shown = item.show_columns or list(item.df.columns)
+        assert len(shown) <= 8, key
+        for c in shown:
+            lab = (item.columns or {}).get(c, label(c))
+            if c.endswith(("_N", "_s", "_mps", "_min", "_percent")):
+                assert "(" in lab, (key, c, lab)
+
+
+# ------------------------------------------------------------------ a failed engine (stub)
+def _summary(thrust_N, loi):
+    imp = PAPER_IMPULSIVE_DV_MPS[loi - 1]
+    loss = imp * 400.0 / thrust_N ** 2
+    eq19 = 60.0 / thrust_N
+    return {"start_min": -0.6 * eq19, "burn_duration_min": 1.01 * eq19,
+            "eq19_duration_min": eq19, "delta_v_mps": imp + loss,
+            "impulsive_delta_v_mps": imp, "loss_mps": loss, "loss_percent": 100 * loss / imp,
+            "m_start_kg": 500.0, "m_end_kg": 450.0, "fuel_kg": 50.0,
+            "ipopt_status": "Solve_Succeeded", "ipopt_iterations": 9, "mesh": "8x16 LGR-5",
+            "solve_wall_s": 0.1, "verification": {"passed": True}}
+
+
+def stub_engine(thrust_N, isp_s, dynamics):
+    """LOI 2 of the 200 N engine fails; every other engine is a smooth fake."""
+    if thrust_N == 200.0:
+        return study.engine_rows(thrust_N, isp_s, dynamics, [_summary(thrust_N, 1)], {
+            "loi": 2, "status": "failed", "ipopt_status": "Infeasible_Problem_Detected",
+            "error": "no mesh converged"})
+    return study.engine_rows(thrust_N, isp_s, dynamics,
+                             [_summary(thrust_N, n) for n in (1, 2, 3)])
+
+
+def test_a_failed_engine_is_listed_not_hidden(tmp_path):
+    p = trade_study.build(100.0, 400.0, 3, [250.0], 1, "two-body", "t_trade_stub", True,
+                          out=tmp_path / "stub.csv", task=stub_engine, processes=False,
+                          timing_dir=tmp_path)
+    assert p.values["n_failed"] == 1
+    note = p.notes["failures"]
+    assert "Infeasible_Problem_Detected" in note and "| 200 |" in note
+    assert "not run" in note  # LOI 3 after the failed LOI 2
+    assert p.items["grid"].df.status.tolist() == ["ok", "incomplete", "ok"]
+    p.check()  # a failure is reported, not an error of the page

@@ -1,0 +1,66 @@
+"""The verification page (lunarcap.report.pages.verification), two cases in two-body."""
+
+import numpy as np
+import pytest
+
+from lunarcap.optim import verify
+from lunarcap.report.pages import verification
+
+pytestmark = pytest.mark.slow
+
+CASES = [[450.0, 300.0, 1, -3.0, []], [450.0, 300.0, 2, -2.0, [-3.0]]]
+
+
+@pytest.fixture(scope="module")
+def page():
+    return verification.build(CASES, CASES[:1], [[3, 6, 4], [8, 16, 5]], "two-body", "t_ver",
+                              True)
+
+
+def test_every_case_passes_the_gate_with_margin(page):
+    ver = page.items["cases"].df
+    assert list(ver.case) == ["450 N, LOI 1, -3 min, B1", "450 N, LOI 2, -2 min, B1"]
+    assert (ver.passed == "yes").all()
+    assert (ver.verified_delta_v_diff_mps.abs() < verify.TOL_DV_MPS).all()
+    assert (ver.rp_error_m.abs() < verify.TOL_RP_M).all()
+    assert (ver.gamma_error_deg.abs() < verify.TOL_ANGLE_DEG).all()
+    assert ver.ra_error_m.isna().all()  # no circular target before LOI 3
+    assert len(page.items["cases"].show_columns) <= 7
+    assert "t_ver_cases_full.csv" in page.items["cases"].caption
+
+
+def test_gate_table_is_the_worst_of_each_column(page):
+    ver, gate = page.items["cases_full"].df, page.items["gate"].df.set_index("quantity")
+    r = gate.loc["|r_p − target|"]
+    assert r.worst == pytest.approx(ver.rp_error_m.abs().max())
+    assert r.gate_over_worst == pytest.approx(verify.TOL_RP_M / r.worst)
+    gated = gate[gate.gate.notna() & gate.worst.notna()]
+    assert (gated.worst < gated.gate).all()
+
+
+def test_impulsive_limit_is_the_richardson_extrapolation(page):
+    imp = page.items["impulsive"].df
+    np.testing.assert_allclose(imp.delta_v_mps,
+                               (4 * imp.delta_v_short_mps - imp.delta_v_long_mps) / 3)
+    np.testing.assert_allclose(imp.burn_short_s, imp.burn_long_s / 2, rtol=1e-6)
+    assert (imp.burn_long_s > 3.0).all() and (imp.burn_long_s < 5.0).all()
+    # a burn of seconds is nearly an impulse: the extrapolation is far below the gate
+    assert (imp.extrapolation_mps.abs() < 0.1 * verify.TOL_DV_MPS).all()
+    assert (imp.verified == "yes").all()
+    # and any finite burn of the engine needs more
+    fin = page.data["cases"].set_index("loi").delta_v_mps
+    assert (imp.set_index("loi").delta_v_mps < fin).all()
+
+
+def test_mesh_table(page):
+    m = page.items["mesh_full"].df
+    assert list(m.collocation_points) == [36, 120]
+    assert m.delta_v_change_vs_finest_mps.iloc[-1] == 0.0
+    np.testing.assert_allclose(m.delta_v_change_vs_finest_mps,
+                               m.delta_v_mps - m.delta_v_mps.iloc[-1])
+    assert m.mesh.iloc[-1] == "8×16 LGR-5 (default)"
+    assert ((m.accepted == "yes") == (m.outside_gate == "")).all()  # a reason per rejection
+    v = page.values
+    assert v["default_points"] == 120 and v["n_mesh_solves"] == 2
+    assert v["n_cases"] == 2 and v["n_passed"] == 2
+    page.check()
