@@ -80,8 +80,12 @@ class Page:
         self.items[key] = Figure(fig, caption, alt, width, name)
 
     def value(self, name: str, v) -> None:
-        """A number (or short text) the page's prose quotes through glue."""
-        self.values[name] = v
+        """A number (or short text) the page's prose quotes through glue.
+
+        NumPy scalars are stored as plain Python numbers: myst-nb's ``{glue:text}`` formats
+        those, while a NumPy 2 scalar would print as ``np.float64(...)``.
+        """
+        self.values[name] = v.item() if hasattr(v, "item") and not isinstance(v, str) else v
 
     def note(self, name: str, markdown: str) -> None:
         """A MyST block the prose includes through ``{glue:md}``."""

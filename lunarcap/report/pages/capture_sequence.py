@@ -10,7 +10,6 @@ from :mod:`lunarcap.report.figdata`, the drawing from :mod:`lunarcap.report.figu
 
 from __future__ import annotations
 
-import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
@@ -45,12 +44,6 @@ class FigureDataPage(Page):
         if df is not None:
             paths.write_csv(df, self.name_of(key))
         return super().show(key, display)
-
-
-def detached(fig):
-    """``fig`` closed in pyplot (still drawable): no stray figure output in the build cell."""
-    plt.close(fig)
-    return fig
 
 
 def data_link(name: str) -> str:
@@ -150,7 +143,7 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN
     durations = ", ".join(f"{d:.2f}" for d in table.burn_duration_min[:-1]) + \
         f" and {table.burn_duration_min.iloc[-1]:.2f}"
     page.figure(
-        "fig2", detached(figures.plot_fig2_capture(geo)),
+        "fig2", figures.plot_fig2_capture(geo),
         caption=(f"The whole capture sequence with finite burns (Song et al. 2011, Fig. 2: "
                  f"\"the example of a lunar capture trajectory using finite thrust with 150 N "
                  f"and Isp of 200 seconds\"), here {engine}, ignition {starts_txt} min from "
@@ -165,7 +158,7 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN
     spans = ", ".join(f"burn {int(r.burn)} {r.ignition_from_perilune_deg:+.1f}° to "
                       f"{r.cutoff_from_perilune_deg:+.1f}°" for r in table.itertuples())
     page.figure(
-        "fig3", detached(figures.plot_fig3_burn_arcs(geo)),
+        "fig3", figures.plot_fig3_burn_arcs(geo),
         caption=("The burn arcs (Song et al. 2011, Fig. 3: \"the zoomed view of Fig. 2, "
                  "showing details of every finite burn arc\"). (a) The figure above zoomed on "
                  f"burns {burn_list} (thick: burning; ● ignition, ■ cutoff; dashed: the "
@@ -193,9 +186,9 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN
              "after ignition" if np.isfinite(t180) else "")
     page.data["figure_csv"] = {"fig4": d4.table()}
     page.figure(
-        "fig4", detached(figures.plot_fig4_steering(d4, p_alpha if paper_case else None,
-                                                    p_mass1 if paper_case else None,
-                                                    p_burn1 if paper_case else None)),
+        "fig4", figures.plot_fig4_steering(d4, p_alpha if paper_case else None,
+                                           p_mass1 if paper_case else None,
+                                           p_burn1 if paper_case else None),
         caption=("Thrust steering angles and mass during burn 1, LOI 1 (Song et al. 2011, "
                  "Fig. 4: \"in-plane angle (top), out-of-plane angle (middle) and mass "
                  "(bottom)\", expressed in the spacecraft-centred RTN frame), "
@@ -217,7 +210,7 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN
     slows = bool((d5.angle_deg > 90.0).all())
     page.data["figure_csv"]["fig5"] = d5.table()
     page.figure(
-        "fig5", detached(figures.plot_fig5_vectors(d5, geo)),
+        "fig5", figures.plot_fig5_vectors(d5, geo),
         caption=("Thrust-acceleration and velocity vectors along the burn 1 (LOI 1) arc "
                  "(Song et al. 2011, Fig. 5: \"direction relations between the thrust "
                  "acceleration vectors and the spacecraft's velocity vectors for the 1st LOI "

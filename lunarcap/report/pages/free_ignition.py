@@ -12,7 +12,6 @@ free optimum spends more delta-V, what the chain gains) are written from the dat
 
 from __future__ import annotations
 
-import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
@@ -310,10 +309,8 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
                   "rule_objective_cost_mps": "+.4f"},
         show_columns=["engine", "burn", "rule_start_min", "free_start_min",
                       "start_minus_rule_min", "burn_midpoint_min", "rule_objective_cost_mps"])
-    fig = figures.plot_free_ignition_rule(rule)
-    plt.close(fig)  # drawn when shown, not as a stray output of the build cell
     page.figure(
-        "rule_figure", fig, name="eq19_rule",
+        "rule_figure", figures.plot_free_ignition_rule(rule), name="eq19_rule",
         caption=("Optimal ignition against half the Eq. (19) duration estimate, in min from "
                  "the nominal perilune (left; filled markers: the free optimum, open: the best "
                  "of the paper's grid on the same orbit; dashed: the rule exactly), and the "

@@ -125,8 +125,9 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
     loss_cols += ["model_impulsive_delta_v_mps", "model_loss_mps"] if model_loss else []
     page.table(
         "losses", burns[loss_cols + (["model_loss_percent"] if model_loss else [])],
-        caption=("Loss of each burn of the same captures against two impulsive references. "
-                 f"Vs paper: ΔV above {REF_PAPER}, in m/s and in % of it, as the paper's "
+        caption=("Loss of each burn of the same captures against "
+                 + ("two impulsive references. " if model_loss else "an impulsive reference. ")
+                 + f"Vs paper: ΔV above {REF_PAPER}, in m/s and in % of it, as the paper's "
                  "Tables 1–5"
                  + (f"; vs ours: ΔV above {REF_OURS}, shown beside it, m/s (the CSV also "
                     "gives it in %)" if model_loss else
@@ -190,11 +191,11 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
     page.figure(
         "loss_figure",
         figures.plot_engine_loss(totals, loss_col, f"total ΔV loss vs {ref_short} (m/s)"),
-        caption=("Total ΔV loss of the capture above "
+        caption=("Left: total ΔV loss of the capture (m/s) above "
                  + (REF_OURS if model_loss else REF_PAPER)
-                 + " (m/s, left) and propellant of LOI 1–3 (kg, right), each plotted against "
-                 f"thrust (N), ignition {ignition}; colours: specific impulse; diamonds: the "
-                 "engines cited in Sec. 3.1, circles: the paper's."),
+                 + f". Right: propellant of LOI 1–3 (kg). Both against thrust (N), ignition "
+                 f"{ignition}; colours: specific impulse; diamonds: the engines cited in Sec. "
+                 "3.1, circles: the paper's."),
         alt="Total delta-V loss and propellant against thrust for each engine", name="loss")
 
     # ---- numbers for the prose
@@ -206,10 +207,11 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
     for thrust in PROSE_THRUSTS_N:
         tag = f"{thrust:g}N"
         r, s = by_thrust.get(thrust), seq_by_thrust.get(thrust)
-        page.value(f"plotted_loss_mps_{tag}", getattr(r, loss_col) if r else nan)
-        page.value(f"plotted_loss_percent_{tag}", getattr(r, pct_col) if r else nan)
-        page.value(f"total_paper_loss_mps_{tag}", r.total_loss_mps if r else nan)
-        page.value(f"total_paper_loss_percent_{tag}", r.total_loss_percent if r else nan)
+        page.value(f"plotted_loss_mps_{tag}", float(getattr(r, loss_col)) if r else nan)
+        page.value(f"plotted_loss_percent_{tag}", float(getattr(r, pct_col)) if r else nan)
+        page.value(f"total_paper_loss_mps_{tag}", float(r.total_loss_mps) if r else nan)
+        page.value(f"total_paper_loss_percent_{tag}",
+                   float(r.total_loss_percent) if r else nan)
         for key in ("total_delta_v_mps", "total_fuel_kg", "total_burn_duration_min",
                     "final_mass_kg"):
             page.value(f"{key}_{tag}", float(getattr(r, key)) if r else nan)

@@ -1,0 +1,79 @@
+"""The other-engines page (lunarcap.report.pages.other_engines), two-body, one engine."""
+
+import numpy as np
+import pytest
+
+from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
+from lunarcap.physics.constants import ARRIVAL_MASS_KG, G0_MPS2
+from lunarcap.report.pages import other_engines
+
+pytestmark = pytest.mark.slow
+
+LRO = dict(engines=[[320.0, 200.0]], engine_names=["LRO-class"], paper_engines=[],
+           dynamics="two-body", quick=True)
+
+
+@pytest.fixture(scope="module")
+def page():
+    return other_engines.build(**LRO, model_loss=True, output_name="t_other")
+
+
+def test_burns_obey_the_rocket_equation_and_carry_the_mass(page):
+    b = page.items["burns"].df
+    m_before = np.r_[ARRIVAL_MASS_KG, b.m_end_kg.to_numpy()[:-1]]
+    np.testing.assert_allclose(m_before - b.fuel_kg, b.m_end_kg)
+    np.testing.assert_allclose(b.delta_v_mps, G0_MPS2 * 200.0 * np.log(m_before / b.m_end_kg),
+                               rtol=1e-6)
+    assert (b.verified == "yes").all()
+
+
+def test_each_loss_is_measured_against_its_named_reference(page):
+    b = page.items["burns"].df
+    np.testing.assert_allclose(b.loss_mps, b.delta_v_mps - np.array(PAPER_IMPULSIVE_DV_MPS))
+    np.testing.assert_allclose(b.model_loss_mps, b.delta_v_mps - b.model_impulsive_delta_v_mps)
+    # the plan's own result (runs.chain.plan_result) has the same impulses and losses
+    rows = page.data["plan_results"]["LRO-class, 320 N / 200 s"].table()
+    np.testing.assert_allclose(b.model_loss_mps, rows.loss_mps, atol=1e-9)
+    t = page.items["totals"].df.iloc[0]
+    # the two losses differ by exactly the difference of the two impulsive totals
+    assert t.total_model_loss_mps - t.total_loss_mps == pytest.approx(
+        sum(PAPER_IMPULSIVE_DV_MPS) - t.total_model_impulsive_delta_v_mps)
+    for key in ("losses", "totals"):
+        heads = page.items[key].columns
+        assert heads["loss_mps" if key == "losses" else "total_loss_mps"].startswith(
+            "loss vs paper")
+        assert heads["model_loss_mps" if key == "losses" else "total_model_loss_mps"] \
+            .startswith("loss vs ours")
+
+
+def _figure_loss(page):
+    ax = page.items["loss_figure"].fig.axes[0]
+    pts = [ln.get_ydata()[0] for ln in ax.lines if len(ln.get_ydata())]
+    assert len(pts) == 1
+    return pts[0], ax.get_ylabel()
+
+
+def test_prose_and_figure_quote_the_same_loss(page):
+    t = page.items["totals"].df.iloc[0]
+    y, ylabel = _figure_loss(page)
+    assert y == page.values["plotted_loss_mps_320N"] == t.total_model_loss_mps
+    assert "our impulsive limits" in ylabel
+    assert f"{t.total_model_loss_mps:.2f} m/s over the capture against our impulsive" \
+        in page.notes["placement"]
+    # the note gives the loss against the paper's reference too, named as such
+    assert f"{t.total_loss_mps:.2f} m/s ({t.total_loss_percent:.2f} %) against the paper's" \
+        in page.notes["loss_note"]
+    # plain floats: myst-nb's {glue:text} cannot format numpy scalars (np.float64(...))
+    assert all(type(v) is float for v in page.values.values())
+    page.check()
+
+
+def test_without_model_loss_the_paper_reference_is_plotted_and_named():
+    p = other_engines.build(**LRO, model_loss=False, output_name="t_other_paper")
+    t = p.items["totals"].df.iloc[0]
+    y, ylabel = _figure_loss(p)
+    assert y == p.values["plotted_loss_mps_320N"] == t.total_loss_mps
+    assert "paper's impulsive" in ylabel
+    assert "not computed in this build" in p.notes["loss_note"]
+    assert "model_loss_mps" not in p.items["burns"].df
+    p.check()
