@@ -37,9 +37,10 @@ from pathlib import Path
 
 from lunarcap.repro import paths
 
-#: What a cached result depends on: the numerical code (physics, the mission and its plan
-#: files, the optimiser), the error types, and the module of the cached chain solves.
-#: Editing anything else (the CLI's help, the book, a figure) keeps every cached solve.
+#: What a cached result depends on: the numerical code (physics, the mission, the
+#: optimiser), the error types, and the module of the cached chain solves. Editing anything
+#: else (the CLI's help, the book, a figure, a plan file: a plan's content is part of the
+#: key of each of its solves) keeps every cached solve.
 NUMERICAL_CODE = ("physics/", "mission/", "optim/", "errors.py", "runs/chain.py")
 
 #: Besides those, the book's stamps hash the presentation code (a figure depends on it).
@@ -89,13 +90,13 @@ def code_version(include_presentation: bool = False) -> str:
     Returns
     -------
     str
-        Hash over the relative path and content of every ``.py`` and ``.yaml`` file of
+        Hash over the relative path and content of every ``.py`` file of
         :data:`NUMERICAL_CODE` (and :data:`PRESENTATION_CODE`), in sorted order. Computed
         once per process.
     """
     prefixes = NUMERICAL_CODE + (PRESENTATION_CODE if include_presentation else ())
     h = hashlib.sha256()
-    files = sorted(f for ext in ("*.py", "*.yaml") for f in _PACKAGE_DIR.rglob(ext))
+    files = sorted(_PACKAGE_DIR.rglob("*.py"))
     for f in files:
         rel = f.relative_to(_PACKAGE_DIR).as_posix()
         if "__pycache__" in rel or not _selected(rel, prefixes):
