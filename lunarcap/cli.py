@@ -275,9 +275,12 @@ def cmd_solve(args) -> int:
 
 def cmd_bench(args) -> int:
     """Solve and verify all 37 paper cases uncached; print timings and residuals."""
-    from lunarcap.runs.bench import run
+    from lunarcap.runs.bench import run, warm_solves
 
-    rows = run(args.dynamics)
+    if args.warm:
+        rows = warm_solves(args.dynamics or "two-body", args.repeats)
+        return 0 if all(r["verified"] for r in rows) else 3
+    rows = run(args.dynamics or "full", reuse=not args.resolve_earlier)
     return 0 if all(r["verification_passed"] for r in rows) else 3
 
 
@@ -352,7 +355,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_plans)
 
     p = sub.add_parser("bench", help="solve and verify all 37 paper cases, print timings")
-    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default="full")
+    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default=None,
+                   help="dynamics (default: full; with --warm, two-body)")
+    p.add_argument("--warm", action="store_true",
+                   help="instead: warm verified solves of the dymos peer benchmark's cases")
+    p.add_argument("--repeats", type=int, default=5, help="warm solves per case (--warm)")
+    p.add_argument("--resolve-earlier", action="store_true",
+                   help="solve each case's earlier burns again (default: once per run)")
     p.set_defaults(func=cmd_bench)
 
     p = sub.add_parser("study", help="engine trade study: loss vs thrust-to-weight on Dask")

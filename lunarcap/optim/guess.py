@@ -15,6 +15,7 @@ import numpy as np
 from lunarcap.optim.problem import BurnProblem, anti_velocity_u
 from lunarcap.physics import constants as C
 from lunarcap.physics.propagate import Trajectory, propagate
+from lunarcap.physics.steering import law
 
 #: Tolerance of the guess propagations (the guess need not be exact: IPOPT corrects it).
 GUESS_RTOL = 1e-8
@@ -93,8 +94,8 @@ def guess_arcs(prob: BurnProblem, t1: float, coast: bool = True) -> Guess:
     """The anti-velocity burn of ``t1`` s from ``prob.x0`` and (optionally) the coast."""
     model = prob.model
     burn = propagate(model, prob.t_ign_s, prob.x0, None, duration_s=t1,
-                     u=lambda t, x: anti_velocity_u(x), rtol=GUESS_RTOL, atol=GUESS_ATOL,
-                     dense=True)
+                     u=law("antivelocity"), rtol=GUESS_RTOL, atol=GUESS_ATOL, dense=True,
+                     dense_points=120)
     u_of_t = lambda t: anti_velocity_u(burn(t))  # noqa: E731
     if not coast:
         return Guess(t1, u_of_t, burn, None)

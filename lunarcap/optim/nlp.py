@@ -38,6 +38,7 @@ from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import N_PARAM
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.physics.propagate import propagate
+from lunarcap.physics.steering import Steering, law, polynomial
 
 
 @dataclass
@@ -201,6 +202,16 @@ def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
                        solve_s=solve_s, build_s=nlp.compiled.build_s,
                        max_defect=float(np.max(np.abs(gval[defect]))),
                        **leg_solution(lay, "", w, prob, mesh, mb, mc, S))
+
+
+def interval_steering(raw: RawSolution, j: int) -> Steering:
+    """The steering flown over burn interval ``j``: the polynomial through its collocated
+    controls (optimal law), or the closed-form law with its parameters."""
+    if raw.prob.steering == "optimal":
+        c, _ = radau_matrices(raw.mesh.degree)
+        d = raw.mesh.degree
+        return polynomial(c, raw.u[:, j * d:(j + 1) * d])
+    return law(raw.prob.steering, raw.u_inertial)
 
 
 def steering_function(raw: RawSolution):

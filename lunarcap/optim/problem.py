@@ -22,10 +22,11 @@ from lunarcap.errors import InputError
 from lunarcap.mission.plan import MAX_START_MIN, CapturePlan
 from lunarcap.mission.targets import Target
 from lunarcap.physics._ops import ops
-from lunarcap.physics.dynamics import Model, rtn_from_mee
+from lunarcap.physics.dynamics import Model
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine
+from lunarcap.physics.steering import law, law_direction
 
 #: Steering laws: the optimal time-varying direction (the paper's), a direction fixed in
 #: inertial space (optimised), and thrust opposite the velocity.
@@ -127,31 +128,18 @@ class BurnProblem:
 def steering_law_expr(steering: str, X, u_in=None):
     """RTN thrust directions (3, N) of a closed-form steering law at states X (7, N).
 
-    Generic over numpy and CasADi. "antivelocity": u = -(v_r, v_t, 0)/|v| with
-    v_r ~ f sin L - g cos L, v_t ~ 1 + f cos L + g sin L (the common factor sqrt(mu/p)
-    cancels); "inertial": u = Q(h, k, L) u_in, the fixed inertial unit vector u_in expressed
-    in the local RTN frame (Eq. A5).
+    The law of :func:`lunarcap.physics.steering.law_direction` applied column-wise; generic
+    over numpy and CasADi (the NLP imposes it at the collocation points).
     """
     import casadi as ca
 
-    f, g, h, k, L = X[1, :], X[2, :], X[3, :], X[4, :], X[5, :]
-    xp = ops(X)
-    if steering == "antivelocity":
-        vr = f * xp.sin(L) - g * xp.cos(L)
-        vt = 1 + f * xp.cos(L) + g * xp.sin(L)
-        n = xp.sqrt(vr * vr + vt * vt)
-        rows = [-vr / n, -vt / n, 0 * n]
-    elif steering == "inertial":
-        ir, it, i_n = rtn_from_mee(h, k, L)
-        rows = [sum(a[i] * u_in[i] for i in range(3)) for a in (ir, it, i_n)]
-    else:
-        raise InputError(f"no closed-form steering law {steering!r}")
-    return ca.vertcat(*rows) if xp.casadi else np.vstack(rows)
+    rows = law_direction(steering, [X[i, :] for i in range(6)], u_in)
+    return ca.vertcat(*rows) if ops(X).casadi else np.vstack(rows)
 
 
 def anti_velocity_u(x) -> np.ndarray:
     """Unit RTN direction opposite the velocity for one MEE state x (the guess steering)."""
-    return steering_law_expr("antivelocity", np.asarray(x, float).reshape(-1, 1))[:, 0]
+    return law("antivelocity")(x)
 
 
 def burn_fit(plan: CapturePlan, i: int, eph) -> ChebyshevFit:

@@ -6,7 +6,6 @@ import json
 from dataclasses import dataclass, field
 
 import numpy as np
-import pandas as pd
 
 from lunarcap.optim.nlp import RawSolution, control_function, steering_function
 from lunarcap.optim.verify import Flight, Verification
@@ -99,13 +98,15 @@ class Solution:
         return json.dumps(self.to_dict(), **kw)
 
     # ------------------------------------------------------------------ histories
-    def history(self, n_burn: int = 121, n_coast: int = 400) -> pd.DataFrame:
+    def history(self, n_burn: int = 121, n_coast: int = 400):
         """Time histories of the verified flight.
 
         Columns: t_s (TDB s past J2000), minutes from ignition, phase, MEE (p_km, f, g, h,
         k, L_rad), m_kg, Cartesian state (x_km..., vx_kmps...; M-MME2000), u_r, u_t, u_n,
         alpha_deg, beta_deg (NaN while coasting), thrust acceleration (km/s^2, M-MME2000).
         """
+        import pandas as pd
+
         burn, coast = self.flight.burn, self.flight.coast
         prob = self.problem
         u_fn = steering_function(self.raw)
@@ -135,8 +136,10 @@ class Solution:
             df[f"a{ax}_thrust_kmps2"] = acc * (u[0] * ir[j] + u[1] * it[j] + u[2] * i_n[j])
         return df
 
-    def dataframe(self) -> pd.DataFrame:
+    def dataframe(self):
         """One-row summary DataFrame (verification flattened)."""
+        import pandas as pd
+
         d = self.summary()
         ver = d.pop("verification")
         d.update({f"verification_{k}": v for k, v in ver.items()})

@@ -2,15 +2,22 @@
 
 The optimal steering (Lagrange-interpolated from the collocation points of each mesh
 interval and normalised; or the closed-form law on the state) is flown from the initial
-state with scipy's adaptive DOP853 at rtol 1e-12, interval by interval through the burn,
-then the coast to the fixed end epoch. The verified delta-V is the quadrature of T/m along
+state with CVODES (adaptive Adams steps, rtol 1e-12; :mod:`lunarcap.physics.propagate`),
+interval by interval through the burn, then the coast to the fixed end epoch. The verified delta-V is the quadrature of T/m along
 that flight (Eq. 11). The target is checked with the **same** condition functions the
 NLPs impose (:meth:`lunarcap.mission.targets.Target.errors`), evaluated on the propagated
-final state. A solution is accepted only if all of these hold:
+final state. A solution is accepted only if all of these hold (the gate):
 
-* |delta-V(verified) - delta-V(collocation)| < 0.01 m/s and the objective likewise;
-* |r_p - target| < 10 m, |i - target| < 1e-4 deg, |gamma| < 1e-4 deg and the end on the
-  perilune branch (for a circular target: |r_p - target| and |r_a - target| < 10 m, i).
+* the end of the coast agrees with the collocation's: position within 50 m and speed
+  within 1 mm/s (measured on the 37 paper cases: at most 2.5 m and 0.06 mm/s), and the
+  objective J = delta-V + end speed (Eq. 9) within 0.01 m/s;
+* the target holds on the re-propagated state: |r_p - target| < 10 m, |i - target| <
+  1e-4 deg, |gamma| < 1e-4 deg and the end on the perilune branch (e cos(nu) >= 0); for a
+  circular target |r_p - target| and |r_a - target| < 10 m and the inclination.
+
+The verified delta-V (the quadrature of T/m along the flight) is reported but not gated:
+the mass flow does not depend on the state, so for the same burn duration it equals the
+rocket equation the collocation uses, whatever the trajectory.
 """
 
 from __future__ import annotations
@@ -19,14 +26,17 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from lunarcap.optim.nlp import RawSolution, control_function, steering_function
+from lunarcap.optim.nlp import RawSolution, interval_steering
 from lunarcap.physics.constants import MU_MOON
 from lunarcap.physics.elements import orbit_summary, rv_from_mee
 from lunarcap.physics.propagate import Trajectory, propagate
 
+#: Gate tolerances: objective (m/s), radii (m), angles (deg), end position (m), end speed (m/s).
 TOL_DV_MPS = 0.01
 TOL_RP_M = 10.0
 TOL_ANGLE_DEG = 1e-4
+TOL_POSITION_M = 50.0
+TOL_SPEED_MPS = 1e-3
 
 
 @dataclass
@@ -52,8 +62,8 @@ class Flight:
 class Verification:
     """Residuals of the re-propagated solution (m/s, m, deg) and the verdict."""
 
-    delta_v_mps: float           # verified delta-V (quadrature of T/m)
-    delta_v_diff_mps: float      # verified minus collocation
+    delta_v_mps: float           # verified delta-V (quadrature of T/m; not gated)
+    delta_v_diff_mps: float      # verified minus collocation (not gated, see the module)
     objective_diff_mps: float    # J(verified) - J(collocation), m/s
     rp_error_m: float
     ra_error_m: float | None     # circular targets only
@@ -64,6 +74,7 @@ class Verification:
     nfev: int
     released: tuple = ()          # targets the steering law leaves free (not gated)
     branch: float | None = None   # e cos(nu) at the end (>= 0: perilune branch)
+    end_speed_diff_mps: float = 0.0  # |v(propagated)| - |v(collocation)| at the end
 
     def to_dict(self) -> dict:
         """Plain dict."""
@@ -72,37 +83,41 @@ class Verification:
     def failures(self) -> list[str]:
         """Which gate conditions failed, with the numbers."""
         out = []
-        if abs(self.delta_v_diff_mps) >= TOL_DV_MPS:
-            out.append(f"delta-V differs by {self.delta_v_diff_mps:.4g} m/s")
-        if abs(self.objective_diff_mps) >= TOL_DV_MPS:
+        if not abs(self.final_position_diff_m) < TOL_POSITION_M:
+            out.append(f"end position differs by {self.final_position_diff_m:.4g} m")
+        if not abs(self.end_speed_diff_mps) < TOL_SPEED_MPS:
+            out.append(f"end speed differs by {self.end_speed_diff_mps:.3g} m/s")
+        if not abs(self.objective_diff_mps) < TOL_DV_MPS:
             out.append(f"objective differs by {self.objective_diff_mps:.4g} m/s")
-        if abs(self.rp_error_m) >= TOL_RP_M and not {"p", "rp"} & set(self.released):
+        if not abs(self.rp_error_m) < TOL_RP_M and not {"p", "rp"} & set(self.released):
             out.append(f"perilune radius off by {self.rp_error_m:.4g} m")
-        if self.ra_error_m is not None and abs(self.ra_error_m) >= TOL_RP_M and \
+        if self.ra_error_m is not None and not abs(self.ra_error_m) < TOL_RP_M and \
                 "p" not in self.released:
             out.append(f"apolune radius off by {self.ra_error_m:.4g} m")
-        if abs(self.inc_error_deg) >= TOL_ANGLE_DEG and "inc" not in self.released:
+        if not abs(self.inc_error_deg) < TOL_ANGLE_DEG and "inc" not in self.released:
             out.append(f"inclination off by {self.inc_error_deg:.3g} deg")
-        if self.gamma_error_deg is not None and abs(self.gamma_error_deg) >= TOL_ANGLE_DEG:
+        if self.gamma_error_deg is not None and not abs(self.gamma_error_deg) < TOL_ANGLE_DEG:
             out.append(f"flight-path angle off by {self.gamma_error_deg:.3g} deg")
-        if self.branch is not None and self.branch < 0:
+        if self.branch is not None and not self.branch >= 0:
             out.append(f"the coast ends at an apolune (e cos(nu) = {self.branch:.3g}), "
                        "not a perilune")
         return out
 
 
 def fly(raw: RawSolution) -> Flight:
-    """Re-propagate the solution's steering from its initial state (burn, then coast)."""
+    """Re-propagate the solution's steering from its initial state (burn, then coast).
+
+    The burn is flown interval by interval of the collocation mesh: within an interval the
+    steering is the interpolating polynomial of its collocated controls (or the
+    closed-form law on the state), which is smooth there and only there.
+    """
     prob = raw.prob
-    u_fn = steering_function(raw)
-    _, bounds = control_function(raw)
-    # interval by interval: the interpolated steering is smooth inside each interval only
     x, arcs = np.append(prob.x0, 0.0), []
     rel = raw.t1_s * raw.mesh_burn  # interval bounds in time since ignition (full precision)
-    for j in range(len(bounds) - 1):
-        arcs.append(propagate(prob.model, prob.t_ign_s + rel[j], x[:7], None, u=u_fn,
-                              dense=True, delta_v=True, dv0_kmps=x[7],
-                              duration_s=rel[j + 1] - rel[j]))
+    for j in range(len(rel) - 1):
+        arcs.append(propagate(prob.model, prob.t_ign_s + rel[j], x[:7], None,
+                              u=interval_steering(raw, j), dense=True, dense_points=24,
+                              delta_v=True, dv0_kmps=x[7], duration_s=rel[j + 1] - rel[j]))
         x = arcs[-1].final
     burn = Trajectory.join(arcs)
     coast = propagate(prob.model, prob.t_ign_s + raw.t1_s, x[:7], prob.t_end_s, u=None,
@@ -136,7 +151,7 @@ def verify(raw: RawSolution, return_flight: bool = False):
     v = Verification(flight.delta_v_mps, flight.delta_v_mps - raw.delta_v_mps, J_ver - J_col,
                      rp_err, ra_err, err["inc_error_deg"], err["gamma_error_deg"],
                      float(np.linalg.norm(r_prop - r_col) * 1e3), False, flight.nfev,
-                     tuple(sorted(released)), err["branch"])
+                     tuple(sorted(released)), err["branch"], (v_end - v_end_col) * 1e3)
     v.passed = not v.failures()
     return (v, flight) if return_flight else v
 
@@ -165,11 +180,17 @@ def mesh_convergence(prob, meshes, guess=None):
                "burn_duration_min": raw.t1_s / 60.0}
         if raw.success:
             v = verify(raw)
+            nan = float("nan")
             row.update({"verified_delta_v_diff_mps": v.delta_v_diff_mps,
                         "objective_diff_mps": v.objective_diff_mps,
-                        "rp_error_m": v.rp_error_m, "inc_error_deg": v.inc_error_deg,
-                        "gamma_error_deg": v.gamma_error_deg,
-                        "final_position_diff_m": v.final_position_diff_m, "passed": v.passed})
+                        "rp_error_m": v.rp_error_m,
+                        "ra_error_m": nan if v.ra_error_m is None else v.ra_error_m,
+                        "inc_error_deg": v.inc_error_deg,
+                        "gamma_error_deg": nan if v.gamma_error_deg is None
+                        else v.gamma_error_deg,
+                        "final_position_diff_m": v.final_position_diff_m,
+                        "end_speed_diff_mps": v.end_speed_diff_mps,
+                        "passed": v.passed, "failures": "; ".join(v.failures())})
         rows.append(row)
     df = pd.DataFrame(rows)
     df["delta_v_change_vs_finest_mps"] = df["delta_v_mps"] - df["delta_v_mps"].iloc[-1]

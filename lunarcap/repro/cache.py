@@ -1,6 +1,7 @@
 """Disk cache of expensive results, keyed by the code that produced them.
 
-:data:`memory` is a :class:`joblib.Memory` at ``.cache/joblib`` (see :mod:`lunarcap.repro.paths`).
+:func:`get_memory` is a :class:`joblib.Memory` at ``.cache/joblib`` (see
+:mod:`lunarcap.repro.paths`).
 :func:`cached` wraps a function with it and adds two extra key parts:
 
 * :func:`code_version`, a SHA-256 of the lunarcap source files that compute results
@@ -34,13 +35,12 @@ import os
 from collections import OrderedDict
 from pathlib import Path
 
-import joblib
-
 from lunarcap.repro import paths
 
-#: What a cached result depends on: the numerical code (physics, the mission and its plan
-#: files, the optimiser), the error types, and the module of the cached chain solves.
-#: Editing anything else (the CLI's help, the book, a figure) keeps every cached solve.
+#: What a cached result depends on: the numerical code (physics, the mission, the
+#: optimiser), the error types, and the module of the cached chain solves. Editing anything
+#: else (the CLI's help, the book, a figure, a plan file: a plan's content is part of the
+#: key of each of its solves) keeps every cached solve.
 NUMERICAL_CODE = ("physics/", "mission/", "optim/", "errors.py", "runs/chain.py")
 
 #: Besides those, the book's stamps hash the presentation code (a figure depends on it).
@@ -53,8 +53,24 @@ def _enabled() -> bool:
     return os.environ.get("LUNARCAP_NO_CACHE", "").strip().lower() in ("", "0", "false", "no")
 
 
-#: The joblib store (``location=None``, i.e. no caching, when ``LUNARCAP_NO_CACHE`` is set).
-memory = joblib.Memory(location=str(paths.JOBLIB_CACHE) if _enabled() else None, verbose=0)
+#: The joblib store, created on first use (joblib is imported only then): a process that
+#: caches nothing (``LUNARCAP_NO_CACHE=1``, ``--no-cache``) does not pay for it.
+memory = None
+
+
+def get_memory():
+    """The joblib Memory at :data:`lunarcap.repro.paths.JOBLIB_CACHE` (created once)."""
+    global memory
+    if memory is None:
+        import joblib
+
+        memory = joblib.Memory(location=str(paths.JOBLIB_CACHE), verbose=0)
+    return memory
+
+
+def location() -> str | None:
+    """Where results are cached, or None when caching is off (``LUNARCAP_NO_CACHE``)."""
+    return str(paths.JOBLIB_CACHE) if _enabled() else None
 
 
 def _selected(rel: str, prefixes) -> bool:
@@ -74,13 +90,13 @@ def code_version(include_presentation: bool = False) -> str:
     Returns
     -------
     str
-        Hash over the relative path and content of every ``.py`` and ``.yaml`` file of
+        Hash over the relative path and content of every ``.py`` file of
         :data:`NUMERICAL_CODE` (and :data:`PRESENTATION_CODE`), in sorted order. Computed
         once per process.
     """
     prefixes = NUMERICAL_CODE + (PRESENTATION_CODE if include_presentation else ())
     h = hashlib.sha256()
-    files = sorted(f for ext in ("*.py", "*.yaml") for f in _PACKAGE_DIR.rglob(ext))
+    files = sorted(_PACKAGE_DIR.rglob("*.py"))
     for f in files:
         rel = f.relative_to(_PACKAGE_DIR).as_posix()
         if "__pycache__" in rel or not _selected(rel, prefixes):
@@ -102,7 +118,9 @@ def _source_hash(func) -> str:
 
 
 def cached(func=None, *, ignore=()):
-    """Cache ``func`` on disk with :data:`memory`, keyed also by :func:`code_version`.
+    """Cache ``func`` on disk with :func:`get_memory`, keyed also by :func:`code_version`.
+
+    With ``LUNARCAP_NO_CACHE`` set (checked at each call), ``func`` is simply called.
 
     Usable as ``@cached`` or ``@cached(ignore=["verbose"])``.
 
@@ -117,7 +135,7 @@ def cached(func=None, *, ignore=()):
     -------
     callable
         Same signature as ``func``; attributes ``uncached`` (the original function),
-        ``memorized`` (the joblib object) and ``is_cached(*args, **kwargs)``.
+        and ``is_cached(*args, **kwargs)``.
     """
     if func is None:
         return functools.partial(cached, ignore=ignore)
@@ -139,7 +157,14 @@ def cached(func=None, *, ignore=()):
     _call.__module__ = func.__module__
     _call.__name__ = func.__name__
     _call.__qualname__ = func.__qualname__
-    memorized = memory.cache(_call, ignore=["ignored"])
+    made = {}
+
+    def memorized():
+        mem = get_memory()
+        if id(mem) not in made:
+            made.clear()
+            made[id(mem)] = mem.cache(_call, ignore=["ignored"])
+        return made[id(mem)]
 
     def _split(args, kwargs):
         bound = sig.bind(*args, **kwargs)
@@ -150,20 +175,21 @@ def cached(func=None, *, ignore=()):
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
-        return memorized(*_split(args, kwargs))
+        if not _enabled():
+            return func(*args, **kwargs)
+        return memorized()(*_split(args, kwargs))
 
     def is_cached(*args, **kwargs) -> bool:
         """True if a result for these arguments is already on disk."""
-        if memory.location is None:
+        if not _enabled():
             return False
-        return memorized.check_call_in_cache(*_split(args, kwargs))
+        return memorized().check_call_in_cache(*_split(args, kwargs))
 
     wrapper.uncached = func
-    wrapper.memorized = memorized
     wrapper.is_cached = is_cached
     return wrapper
 
 
 def clear() -> None:
     """Delete every cached result."""
-    memory.clear(warn=False)
+    get_memory().clear(warn=False)

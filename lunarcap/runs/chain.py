@@ -16,6 +16,7 @@ measures the finite-burn loss.
 from __future__ import annotations
 
 import sys
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -41,11 +42,36 @@ def arrival_for(arrival: ArrivalSpec, ephemeris: str | None = None) -> Arrival:
     return arrival.build(plan_ephemeris(ephemeris))
 
 
+#: In-process memo of earlier burns (see :func:`reuse_earlier_burns`), or None.
+_EARLIER: dict | None = None
+
+
+@contextmanager
+def reuse_earlier_burns():
+    """Within the block, a burn solved as an earlier link of a chain is solved once.
+
+    With the disk cache off (``LUNARCAP_NO_CACHE``), every burn of a chain would otherwise
+    be solved again for each later burn that starts from it; ``lunarcap bench`` uses this
+    to solve each distinct prefix of the paper's chains once per run, in memory.
+    """
+    global _EARLIER
+    _EARLIER = {}
+    try:
+        yield
+    finally:
+        _EARLIER = None
+
+
 def perilune_state(plan: CapturePlan, i: int, verbose: bool = False) -> np.ndarray:
     """State (p, f, g, h, k, L, m) at the nominal perilune before burn ``i`` (0-based)."""
     if i == 0:  # the arrival state carries the plan's mass
         return arrival_for(plan.arrival, plan.ephemeris).state
-    return solve_burn(plan.key(i), verbose=verbose).end_state
+    key = plan.key(i)
+    if _EARLIER is not None:
+        if key not in _EARLIER:
+            _EARLIER[key] = solve_burn(key, verbose=verbose).end_state
+        return _EARLIER[key]
+    return solve_burn(key, verbose=verbose).end_state
 
 
 def _burn_label(plan: CapturePlan, i: int) -> str:

@@ -606,7 +606,7 @@ def _loadavg() -> float | None:
 
 def _cache_description() -> str:
     from lunarcap.repro import cache
-    loc = cache.memory.location
+    loc = cache.location()
     return "disabled (LUNARCAP_NO_CACHE)" if loc is None else f"joblib at {loc}"
 
 
