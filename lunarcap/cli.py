@@ -256,8 +256,7 @@ def cmd_solve(args) -> int:
     sol = (solve_burn.uncached if args.no_cache else solve_burn)(key, verbose=verbose)
     imp = None
     if not args.no_impulsive:
-        imp = (impulsive_limit.uncached if args.no_cache else impulsive_limit)(
-            key, verbose=verbose)
+        imp = impulsive_limit(key, verbose=verbose, use_cache=not args.no_cache)
     r = BurnResult(sol, imp)
     if args.json:
         out = sol.to_dict()

@@ -76,19 +76,6 @@ def radau_matrices(d: int):
     return c[1:], D
 
 
-def lagrange_eval(nodes: np.ndarray, values: np.ndarray, x) -> np.ndarray:
-    """Evaluate the interpolating polynomial through (nodes, values[:, j]) at x."""
-    x = np.atleast_1d(np.asarray(x, float))
-    out = np.zeros((values.shape[0], x.size))
-    for j, xj in enumerate(nodes):
-        lj = np.ones_like(x)
-        for m, xm in enumerate(nodes):
-            if m != j:
-                lj *= (x - xm) / (xj - xm)
-        out += values[:, [j]] * lj
-    return out
-
-
 def taus(frac, c) -> np.ndarray:
     """Phase fractions of the collocation points of every interval (boundaries ``frac``)."""
     return np.concatenate([frac[j] + (frac[j + 1] - frac[j]) * c for j in range(len(frac) - 1)])

@@ -28,10 +28,10 @@ from lunarcap.optim.collocation import LU, N_X, TU, Mesh, state_scale
 from lunarcap.optim.guess import Guess
 from lunarcap.optim.nlp import (
     RawSolution,
-    control_function,
     initial_point,
     leg_bounds,
     leg_solution,
+    steering_function,
 )
 from lunarcap.optim.problem import burn_problem
 from lunarcap.optim.solution import Solution
@@ -123,8 +123,9 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         mc = raw.mesh_coast if len(raw.mesh_coast) == mesh.n_coast + 1 else \
             np.linspace(0, 1, mesh.n_coast + 1)
         meshes.append((mb, mc))
-        u_of_t, _ = control_function(raw)
-        warm = Guess(raw.t1_s, u_of_t, sol.flight.burn, sol.flight.coast)
+        u_fn, burn = steering_function(raw), sol.flight.burn
+        warm = Guess(raw.t1_s, lambda t, u_fn=u_fn, b=burn: u_fn(t, b(t)), burn,
+                     sol.flight.coast)
         initial_point(lay, pre, prob, mesh, warm, w0, mb, mc, S)
         leg_bounds(lay, pre, prob, lbx, ubx, lbg, ubg)
         params.update({pre + "dynamics": prob.model.params(), pre + "mesh_burn": mb,

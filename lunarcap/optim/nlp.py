@@ -25,14 +25,13 @@ from lunarcap.optim.collocation import (
     TU,
     VU,
     Mesh,
-    lagrange_eval,
     node_epochs,
     radau_matrices,
     state_scale,
     sundman_fractions,
 )
 from lunarcap.optim.guess import Guess
-from lunarcap.optim.problem import BurnProblem, steering_law_expr
+from lunarcap.optim.problem import BurnProblem
 from lunarcap.optim.transcription import CompiledNLP, Leg, NLPBuilder, add_leg
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import N_PARAM
@@ -205,8 +204,11 @@ def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
 
 
 def interval_steering(raw: RawSolution, j: int) -> Steering:
-    """The steering flown over burn interval ``j``: the polynomial through its collocated
-    controls (optimal law), or the closed-form law with its parameters."""
+    """The steering flown over burn interval ``j``.
+
+    The polynomial through its collocated controls (optimal law), or the closed-form law
+    with its parameters.
+    """
     if raw.prob.steering == "optimal":
         c, _ = radau_matrices(raw.mesh.degree)
         d = raw.mesh.degree
@@ -214,33 +216,23 @@ def interval_steering(raw: RawSolution, j: int) -> Steering:
     return law(raw.prob.steering, raw.u_inertial)
 
 
+def burn_bounds(raw: RawSolution) -> np.ndarray:
+    """Epochs of the burn's mesh-interval boundaries, s past J2000."""
+    return raw.prob.t_ign_s + raw.t1_s * raw.mesh_burn
+
+
 def steering_function(raw: RawSolution):
     """u(t, x): the solution's thrust direction in RTN at epoch t and state x.
 
-    For the optimal law, the collocated controls interpolated in time (``x`` unused); for
-    the closed-form laws, the law evaluated on the state (state feedback).
+    The steering of each mesh interval (:func:`interval_steering`: the polynomial through
+    the collocated controls, or the closed-form law on the state), evaluated numerically;
+    the same :class:`~lunarcap.physics.steering.Steering` the verification flies.
     """
-    steering = raw.prob.steering
-    if steering == "optimal":
-        u_of_t, _ = control_function(raw)
-        return lambda t, x: u_of_t(t)
-    u_in = raw.u_inertial
+    bounds = burn_bounds(raw)
+    pieces = [interval_steering(raw, j) for j in range(len(bounds) - 1)]
 
-    def law(t, x):
-        return steering_law_expr(steering, np.asarray(x, float)[:7, None], u_in)[:, 0]
-    return law
-
-
-def control_function(raw: RawSolution):
-    """u(t): the collocated steering interpolated per interval (Lagrange), normalised to unit."""
-    d = raw.mesh.degree
-    c, _ = radau_matrices(d)
-    nb = raw.mesh.n_burn
-    bounds = raw.prob.t_ign_s + raw.t1_s * raw.mesh_burn
-
-    def u_of_t(t):
-        j = int(np.clip(np.searchsorted(bounds, t, side="right") - 1, 0, nb - 1))
+    def u(t, x):
+        j = int(np.clip(np.searchsorted(bounds, t, side="right") - 1, 0, len(pieces) - 1))
         tau = (t - bounds[j]) / (bounds[j + 1] - bounds[j])
-        u = lagrange_eval(c, raw.u[:, j * d:(j + 1) * d], tau)[:, 0]
-        return u / np.linalg.norm(u)
-    return u_of_t, bounds
+        return pieces[j](x, tau)
+    return u

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from lunarcap.optim.nlp import RawSolution, control_function, steering_function
+from lunarcap.optim.nlp import RawSolution, burn_bounds, steering_function
 from lunarcap.optim.verify import Flight, Verification
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import rtn_from_mee
@@ -110,7 +110,7 @@ class Solution:
         burn, coast = self.flight.burn, self.flight.coast
         prob = self.problem
         u_fn = steering_function(self.raw)
-        _, bounds = control_function(self.raw)
+        bounds = burn_bounds(self.raw)
         tb = np.linspace(bounds[0], bounds[-1], n_burn)
         xb = burn(tb)[:7]
         ub = np.column_stack([u_fn(t, xb[:, i]) for i, t in enumerate(tb)])

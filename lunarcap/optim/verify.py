@@ -2,11 +2,12 @@
 
 The optimal steering (Lagrange-interpolated from the collocation points of each mesh
 interval and normalised; or the closed-form law on the state) is flown from the initial
-state with CVODES (adaptive Adams steps, rtol 1e-12; :mod:`lunarcap.physics.propagate`),
-interval by interval through the burn, then the coast to the fixed end epoch. The verified delta-V is the quadrature of T/m along
-that flight (Eq. 11). The target is checked with the **same** condition functions the
-NLPs impose (:meth:`lunarcap.mission.targets.Target.errors`), evaluated on the propagated
-final state. A solution is accepted only if all of these hold (the gate):
+state with CVODES (adaptive Adams steps, rtol 1e-13; :mod:`lunarcap.physics.propagate`),
+interval by interval through the burn, then the coast to the fixed end epoch: a method
+and an error control of its own, from the initial state alone. The target is checked
+with the **same** condition functions the NLPs impose
+(:meth:`lunarcap.mission.targets.Target.errors`), evaluated on the propagated final
+state. A solution is accepted only if all of these hold (the gate):
 
 * the end of the coast agrees with the collocation's: position within 50 m and speed
   within 1 mm/s (measured on the 37 paper cases: at most 2.5 m and 0.06 mm/s), and the

@@ -107,6 +107,7 @@ class Hermite:
         self.s, self.x, self.dx = s[order], np.asarray(x)[:, order], np.asarray(dx)[:, order]
 
     def __call__(self, q):
+        """Values at ``q`` (n, M)."""
         q = np.atleast_1d(np.asarray(q, float))
         j = np.clip(np.searchsorted(self.s, q, side="right") - 1, 0, len(self.s) - 2)
         s0, s1 = self.s[j], self.s[j + 1]

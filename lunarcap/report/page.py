@@ -21,6 +21,27 @@ from lunarcap.report import display as _display
 from lunarcap.report.labels import labels as _labels
 
 
+def solver_description(**extra) -> dict:
+    """The solver settings a page's provenance block names (one definition for all pages).
+
+    The transcription and meshes (:data:`lunarcap.optim.collocation.DEFAULT_MESHES`) and
+    the verification gate with its tolerances (:mod:`lunarcap.optim.verify`); ``extra``
+    entries are added or replace these.
+    """
+    from lunarcap.optim import verify as V
+    from lunarcap.optim.collocation import DEFAULT_MESHES
+
+    meshes = " → ".join(f"{m.n_burn}×{m.n_coast} LGR-{m.degree}" for m in DEFAULT_MESHES)
+    gate = (f"re-propagation with CVODES (Adams, rtol 1e-13) from the initial state; end "
+            f"position {V.TOL_POSITION_M:g} m, end speed {V.TOL_SPEED_MPS * 1e3:g} mm/s, "
+            f"objective {V.TOL_DV_MPS:g} m/s, r_p and r_a {V.TOL_RP_M:g} m, i and γ "
+            f"{V.TOL_ANGLE_DEG:g} deg, perilune branch")
+    out = {"transcription": "Legendre-Gauss-Radau collocation", "NLP": "IPOPT (MUMPS)",
+           "meshes": meshes, "gate": gate}
+    out.update(extra)
+    return out
+
+
 @dataclass
 class Table:
     """A table of a page: the CSV content and how it is shown."""

@@ -121,8 +121,19 @@ def solve_plan(plan: CapturePlan, verbose: bool = False, use_cache: bool = True)
 IMPULSIVE_LIMIT_DURATIONS_S = (4.0, 2.0)
 
 
+def impulsive_limit(plan: CapturePlan, verbose: bool = False, use_cache: bool = True) -> dict:
+    """Impulsive delta-V of the last burn of ``plan`` (see :func:`_impulsive_limit`).
+
+    The result depends on the orbit before the burn and its target, not on the burn's own
+    ignition offset or steering law: those are blanked from the cache key.
+    """
+    i = plan.n_burns - 1
+    key = plan.with_start(i, "free").with_steering(i, "optimal")
+    return (_impulsive_limit if use_cache else _impulsive_limit.uncached)(key, verbose=verbose)
+
+
 @cached(ignore=["verbose"])
-def impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
+def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     """Impulsive delta-V of the last burn of ``plan`` in the same dynamics and pre-burn orbit.
 
     One impulse, free epoch (within +-10 min of the nominal perilune) and direction, the
@@ -259,8 +270,7 @@ def plan_result(plan: CapturePlan, impulsive: bool = True, verbose: bool = False
         sol = (solve_burn if use_cache else solve_burn.uncached)(key, verbose=verbose)
         imp = None
         if impulsive:
-            imp = (impulsive_limit if use_cache else impulsive_limit.uncached)(
-                key, verbose=verbose)
+            imp = impulsive_limit(key, verbose=verbose, use_cache=use_cache)
         burns.append(BurnResult(sol, imp))
         if on_burn is not None:
             on_burn(burns[-1])

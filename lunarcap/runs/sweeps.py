@@ -185,7 +185,8 @@ def verification_table(solutions) -> pd.DataFrame:
                      "objective_diff_mps": v["objective_diff_mps"],
                      "rp_error_m": v["rp_error_m"], "ra_error_m": v["ra_error_m"],
                      "inc_error_deg": v["inc_error_deg"], "gamma_error_deg": v["gamma_error_deg"],
-                     "final_position_diff_m": v["final_position_diff_m"], "passed": v["passed"],
+                     "final_position_diff_m": v["final_position_diff_m"],
+                     "end_speed_diff_mps": v["end_speed_diff_mps"], "passed": v["passed"],
                      "solve_wall_s": s["solve_wall_s"]})
     return pd.DataFrame(rows)
 

@@ -18,8 +18,7 @@ from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.report import figdata, figures
-from lunarcap.report.page import Page
-from lunarcap.report.pages.sweep import solver_description
+from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.runs import chain
 

@@ -18,8 +18,7 @@ import pandas as pd
 from lunarcap.mission.plan import paper_plan
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_IMPULSIVE_DV_MPS, PAPER_STARTS_MIN
 from lunarcap.report import figures
-from lunarcap.report.page import Page
-from lunarcap.report.pages.sweep import solver_description
+from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import sweeps
 from lunarcap.runs.chain import paper_case
 

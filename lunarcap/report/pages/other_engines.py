@@ -28,8 +28,7 @@ from lunarcap.mission.plan import paper_plan
 from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
 from lunarcap.physics.constants import ARRIVAL_MASS_KG
 from lunarcap.report import figures
-from lunarcap.report.page import Page
-from lunarcap.report.pages.sweep import solver_description
+from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import chain, sweeps
 
 NOTEBOOK = "notebooks/other_engines.ipynb"

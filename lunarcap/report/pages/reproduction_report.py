@@ -22,13 +22,12 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.mission.plan import paper_plan
-from lunarcap.optim.collocation import DEFAULT_MESHES
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.report import figdata
 from lunarcap.report import reproduction as rep
-from lunarcap.report.page import Page
+from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.runs import sweeps as runs_sweeps
 from lunarcap.runs.chain import solve_plan
@@ -55,13 +54,6 @@ PROSE_QUOTES = ("loss_total_150N_mps", "loss_total_300N_mps", "loss_total_450N_m
 #: Quotes of the masses we compute (the gaps to the printed ones are discussed in (c)).
 MASS_QUOTES = ("mass_after_loi1_150N_kg", "mass_after_loi2_150N_kg", "mass_final_150N_kg",
                "mass_final_300N_kg", "mass_final_450N_kg")
-
-
-def solver_description() -> dict:
-    """The solver settings named in the provenance block."""
-    meshes = " → ".join(f"{m.n_burn}×{m.n_coast} LGR-{m.degree}" for m in DEFAULT_MESHES)
-    return {"transcription": "Legendre-Gauss-Radau collocation", "NLP": "IPOPT (MUMPS)",
-            "meshes": meshes, "gate": "re-propagation, DOP853 rtol 1e-12"}
 
 
 def _link(key_name: str) -> str:

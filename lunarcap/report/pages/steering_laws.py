@@ -14,8 +14,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.report import figures
-from lunarcap.report.page import Page
-from lunarcap.report.pages.sweep import solver_description
+from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import sweeps
 
 NOTEBOOK = "notebooks/steering_laws.ipynb"
@@ -64,7 +63,7 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
     solver.update({
         "ignition": "free (an NLP variable)",
         "steering": "optimal u(t); fixed inertial u (optimised); u = -v/|v| (state feedback)",
-        "gate": "re-propagation, DOP853 rtol 1e-12; released targets reported, not gated"})
+        "gate": solver["gate"] + "; released targets reported, not gated"})
     page = Page(NOTEBOOK, params, output_name, quick, solver)
     steer = steering_rows(engines, dynamics)
     table = steer.assign(verified=np.where(steer.verified, "yes", "no"))[[

@@ -20,8 +20,7 @@ from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics.constants import ARRIVAL_MASS_KG, G0_MPS2
 from lunarcap.report import figures
-from lunarcap.report.page import Page
-from lunarcap.report.pages.sweep import solver_description
+from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import sweeps
 
 NOTEBOOK = "notebooks/summary.ipynb"

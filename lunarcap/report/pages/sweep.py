@@ -14,24 +14,16 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from lunarcap.optim.collocation import DEFAULT_MESHES
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.report import figures
-from lunarcap.report.page import Page
+from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import sweeps
 
 NOTEBOOK = "notebooks/loi_sweep.ipynb"
 
 #: A row whose ours - paper differs from the median row by more than this (%) is discussed.
 OUTLIER_PERCENT = 0.25
-
-
-def solver_description() -> dict:
-    """The solver settings named in the provenance block."""
-    meshes = " → ".join(f"{m.n_burn}×{m.n_coast} LGR-{m.degree}" for m in DEFAULT_MESHES)
-    return {"transcription": "Legendre-Gauss-Radau collocation", "NLP": "IPOPT (MUMPS)",
-            "meshes": meshes, "gate": "re-propagation, DOP853 rtol 1e-12"}
 
 
 def _printed(thrust_N, loi):

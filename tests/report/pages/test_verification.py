@@ -21,7 +21,9 @@ def test_every_case_passes_the_gate_with_margin(page):
     ver = page.items["cases"].df
     assert list(ver.case) == ["450 N, LOI 1, -3 min, B1", "450 N, LOI 2, -2 min, B1"]
     assert (ver.passed == "yes").all()
-    assert (ver.verified_delta_v_diff_mps.abs() < verify.TOL_DV_MPS).all()
+    assert (ver.final_position_diff_m.abs() < verify.TOL_POSITION_M).all()
+    assert (ver.end_speed_diff_mps.abs() < verify.TOL_SPEED_MPS).all()
+    assert (ver.objective_diff_mps.abs() < verify.TOL_DV_MPS).all()
     assert (ver.rp_error_m.abs() < verify.TOL_RP_M).all()
     assert (ver.gamma_error_deg.abs() < verify.TOL_ANGLE_DEG).all()
     assert ver.ra_error_m.isna().all()  # no circular target before LOI 3
