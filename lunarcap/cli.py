@@ -234,7 +234,7 @@ def cmd_plan(args) -> int:
 
 def cmd_solve(args) -> int:
     """Solve one burn of a plan (its earlier burns are solved or fetched first)."""
-    from lunarcap.runs.chain import BurnResult, impulsive_limit, solve_burn
+    from lunarcap.runs.chain import BurnResult, impulsive_limit, prebuild_for, solve_burn
 
     plan = _plan_from_args(args)
     n = args.burn
@@ -253,6 +253,7 @@ def cmd_solve(args) -> int:
         plan = plan.with_steering(n - 1, args.steering)
     key = plan.key(n)
     verbose = not args.quiet
+    prebuild_for(key, [n], impulsive=not args.no_impulsive, use_cache=not args.no_cache)
     sol = (solve_burn.uncached if args.no_cache else solve_burn)(key, verbose=verbose)
     imp = None
     if not args.no_impulsive:

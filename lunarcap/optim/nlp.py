@@ -77,6 +77,23 @@ def build_burn_nlp(mesh: Mesh, target_kind: str, free_start: bool = False,
     return BurnNLP(nlp.compile(leg.dv + leg.v_end, name), leg)
 
 
+def prebuild(shapes, workers: int = 2) -> None:
+    """Build several NLP shapes at once, in threads (CasADi releases the GIL while it builds).
+
+    ``shapes``: iterable of (mesh, target kind, free start, steering, dynamics) tuples, the
+    arguments of :func:`build_burn_nlp`; each is built once per process, here or later.
+    """
+    from concurrent.futures import ThreadPoolExecutor
+
+    shapes = list(dict.fromkeys(shapes))
+    if len(shapes) < 2:
+        for shape in shapes:
+            build_burn_nlp(*shape)
+        return
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        list(pool.map(lambda shape: build_burn_nlp(*shape), shapes))
+
+
 @dataclass
 class RawSolution:
     """Collocation solution in physical units plus IPOPT's diagnostics."""

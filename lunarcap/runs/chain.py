@@ -257,6 +257,30 @@ class PlanResult:
                 "totals": self.totals()}
 
 
+def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
+                 use_cache: bool = True) -> None:
+    """Build at once (two threads) the NLP shapes that solving ``burns`` of ``plan`` needs.
+
+    ``burns``: 1-based burn numbers (default all). Burns (and impulsive limits) already in
+    the disk cache need no NLP and are left out.
+    """
+    from lunarcap.optim.collocation import DEFAULT_MESHES
+    from lunarcap.optim.nlp import prebuild
+
+    mesh, shapes = DEFAULT_MESHES[0], []
+    for n in (burns or range(1, plan.n_burns + 1)):
+        key, b = plan.key(n), plan.burns[n - 1]
+        kind = plan.targets[n - 1].kind
+        if not (use_cache and solve_burn.is_cached(key)):
+            shapes.append((mesh, kind, b.free_start, b.steering, plan.dynamics))
+        if impulsive:
+            ikey = key.with_start(n - 1, "free").with_steering(n - 1, "optimal")
+            if not (use_cache and _impulsive_limit.is_cached(ikey)):
+                shapes += [(mesh, kind, True, "optimal", plan.dynamics),
+                           (mesh, kind, False, "optimal", plan.dynamics)]
+    prebuild(shapes)
+
+
 def plan_result(plan: CapturePlan, impulsive: bool = True, verbose: bool = False,
                 use_cache: bool = True, on_burn=None) -> PlanResult:
     """Solve every burn of ``plan`` (and its impulsive limit) in order.
@@ -264,6 +288,7 @@ def plan_result(plan: CapturePlan, impulsive: bool = True, verbose: bool = False
     ``on_burn(BurnResult)`` is called as each burn completes, so a caller can print what
     is done even if a later burn fails.
     """
+    prebuild_for(plan, impulsive=impulsive, use_cache=use_cache)
     burns = []
     for n in range(1, plan.n_burns + 1):
         key = plan.key(n)
