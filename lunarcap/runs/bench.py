@@ -41,10 +41,9 @@ def run(dynamics: str = "full", out=print, cases=None, reuse: bool = True) -> li
     import contextlib
 
     os.environ["LUNARCAP_NO_CACHE"] = "1"  # nothing read from or written to disk
-    from lunarcap.runs.chain import paper_case, reuse_earlier_burns
-
     from lunarcap.optim.collocation import DEFAULT_MESHES
     from lunarcap.optim.nlp import prebuild
+    from lunarcap.runs.chain import paper_case, reuse_earlier_burns
 
     t0 = time.perf_counter()
     # the two NLP shapes of the paper's cases (ellipse and circle targets, fixed ignition),

@@ -257,6 +257,12 @@ class PlanResult:
                 "totals": self.totals()}
 
 
+def _in_cache(fn, *args) -> bool:
+    """True if a cached function holds a result for ``args`` (False for a plain function)."""
+    check = getattr(fn, "is_cached", None)
+    return bool(check and check(*args))
+
+
 def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
                  use_cache: bool = True) -> None:
     """Build at once (two threads) the NLP shapes that solving ``burns`` of ``plan`` needs.
@@ -271,11 +277,11 @@ def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
     for n in (burns or range(1, plan.n_burns + 1)):
         key, b = plan.key(n), plan.burns[n - 1]
         kind = plan.targets[n - 1].kind
-        if not (use_cache and solve_burn.is_cached(key)):
+        if not (use_cache and _in_cache(solve_burn, key)):
             shapes.append((mesh, kind, b.free_start, b.steering, plan.dynamics))
         if impulsive:
             ikey = key.with_start(n - 1, "free").with_steering(n - 1, "optimal")
-            if not (use_cache and _impulsive_limit.is_cached(ikey)):
+            if not (use_cache and _in_cache(_impulsive_limit, ikey)):
                 shapes += [(mesh, kind, True, "optimal", plan.dynamics),
                            (mesh, kind, False, "optimal", plan.dynamics)]
     prebuild(shapes)
