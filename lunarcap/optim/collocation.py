@@ -87,7 +87,8 @@ def node_epochs(t_start: float, duration: float, frac, d: int) -> np.ndarray:
     return t_start + duration * np.concatenate([[0.0], taus(frac, c)])
 
 
-def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode=None):
+def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode=None,
+                        thrust: bool = True):
     """LGR collocation defects of one phase (CasADi expressions).
 
     Parameters
@@ -100,9 +101,10 @@ def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode=Non
     n, d : intervals and LGR degree
     S : (7,) state scales (:func:`state_scale`)
     mode : dynamics mode built into the right-hand side (None: switches read from prm)
+    thrust : False for a coast (the right-hand side without its thrust terms)
     """
     c, D = radau_matrices(d)
-    f = rhs_function(mode)
+    f = rhs_function(mode, thrust)
     tau = ca.horzcat(*[mesh_frac[j] + (mesh_frac[j + 1] - mesh_frac[j]) * c[k]
                        for j in range(n) for k in range(d)])
     tpts = t_start + dur * tau

@@ -235,8 +235,8 @@ def add_leg(nlp: NLPBuilder, prefix: str, mesh: Mesh, target_kind: str, x_start,
     t_burn_end = t_ign + t1_s
     dur_c = t_end - t_burn_end
 
-    def defects(Xall, U, frac, t_start, dur, p, nint):
-        return collocation_defects(Xall, U, frac, t_start, dur, p, nint, d, S, mode)
+    def defects(Xall, U, frac, t_start, dur, p, nint, thrust=False):
+        return collocation_defects(Xall, U, frac, t_start, dur, p, nint, d, S, mode, thrust)
 
     if free_start:
         nlp.constrain(V_X0[:, 0] - x_start, n("start"))
@@ -245,7 +245,8 @@ def add_leg(nlp: NLPBuilder, prefix: str, mesh: Mesh, target_kind: str, x_start,
         nlp.constrain(V_Xb[:, 0] - V_X0[:, -1], n("link_pre"))
     else:
         nlp.constrain(V_Xb[:, 0] - x_start, n("start"))
-    nlp.constrain(defects(V_Xb, V_Ub, mesh_b, t_ign, t1_s, prm, nb), n("defect_burn"))
+    nlp.constrain(defects(V_Xb, V_Ub, mesh_b, t_ign, t1_s, prm, nb, thrust=True),
+                  n("defect_burn"))
     nlp.constrain(defects(ca.horzcat(V_Xb[:, -1], V_Xc), ca.DM.zeros(3, nc * d), mesh_c,
                           t_burn_end, dur_c, prm_coast, nc), n("defect_coast"))
     if steering == "optimal":

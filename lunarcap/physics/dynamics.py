@@ -194,13 +194,15 @@ def mee_rates(x, u, t, prm):
 
 
 @lru_cache(maxsize=None)
-def rhs_function(mode: str | None = None) -> ca.Function:
+def rhs_function(mode: str | None = None, thrust: bool = True) -> ca.Function:
     """CasADi Function ``f(x[7], u[3], t, prm[N_PARAM]) -> xdot[7]`` from :func:`mee_rates`.
 
     With ``mode`` ("two-body", "j2", "full") the perturbation switches are built in as
     constants (the switch entries of ``prm`` are then ignored), so CasADi drops the terms
     that are switched off: a smaller graph and cheaper derivatives. With ``mode=None``
-    the switches are read from ``prm``.
+    the switches are read from ``prm``. With ``thrust=False`` (a coast) the thrust is built
+    in as zero (``u`` and the thrust entry of ``prm`` are ignored): the same equations
+    without their thrust terms.
     """
     x = ca.SX.sym("x", 7)
     u = ca.SX.sym("u", 3)
@@ -211,10 +213,13 @@ def rhs_function(mode: str | None = None) -> ca.Function:
         if mode not in MODES:
             raise InputError(f"dynamics must be one of {sorted(MODES)}, got {mode!r}")
         plist[P_KJ2], plist[P_KE], plist[P_KS] = (ca.SX(v) for v in MODES[mode])
+    if not thrust:
+        plist[P_THRUST] = ca.SX(0.0)
     rates = mee_rates([x[i] for i in range(7)], [u[i] for i in range(3)], t, plist)
     if mode is not None and MODES[mode][1] == 0 and MODES[mode][2] == 0:
         rates = [ca.simplify(r) for r in rates]
-    return ca.Function(f"mee_rhs_{mode or 'switchable'}".replace("-", "_"), [x, u, t, prm],
+    name = f"mee_rhs_{mode or 'switchable'}{'' if thrust else '_coast'}".replace("-", "_")
+    return ca.Function(name, [x, u, t, prm],
                        [ca.vertcat(*rates)], ["x", "u", "t", "prm"], ["xdot"])
 
 

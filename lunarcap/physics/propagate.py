@@ -137,7 +137,7 @@ def _arc_rhs(mode: str, steering: Steering, quadrature: bool):
     scale = ca.vertcat(sp, 1, 1, 1, 1, 1, sm)
     x = y[:N_X] * scale
     u = steering.direction([x[i] for i in range(N_X)], tau, [ps[i] for i in range(n_s)])
-    xdot = rhs_function(mode)(x, ca.vertcat(*u), t0 + span * tau, prm)
+    xdot = rhs_function(mode, steering.thrusting)(x, ca.vertcat(*u), t0 + span * tau, prm)
     rates = [span * xdot / scale]
     if quadrature:  # delta-V of the thrust, int T/m dt (km/s): T in kN / m in kg
         rates.append(span * prm[P_THRUST] / x[6])
