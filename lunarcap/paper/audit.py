@@ -76,7 +76,6 @@ _G0 = C.G0_MPS2
 _THRUSTS = (150, 300, 450)
 _LOIS = (1, 2, 3)
 _IMP = P.PAPER_IMPULSIVE_DV_MPS
-_TABLE_HALF = {"burn_duration_min": 0.005, "delta_v_mps": 0.0005, "diff_percent": 0.005}
 
 
 @dataclass(frozen=True)

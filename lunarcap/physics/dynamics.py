@@ -82,11 +82,6 @@ class Model:
         """Effective exhaust speed g0 Isp, km/s."""
         return C.G0_KMPS2 * self.isp_s
 
-    def with_thrust(self, thrust_N: float) -> "Model":
-        """A copy with another thrust (0 for a coast)."""
-        return Model(self.mode, thrust_N, self.isp_s, self.fit, self.mu, self.radius, self.j2,
-                     self.mu_earth, self.mu_sun)
-
     def params(self, thrust_N: float | None = None) -> np.ndarray:
         """The numeric parameter vector (length N_PARAM) of :func:`rhs_function`."""
         T = self.thrust_N if thrust_N is None else thrust_N

@@ -59,7 +59,6 @@ MANIFEST = NOTEBOOKS / "manifest.yml"
 #: jupyter-book sources.
 BOOK = ROOT / "book"
 TOC = BOOK / "_toc.yml"
-BOOK_CONFIG = BOOK / "_config.yml"
 
 #: Everything the notebooks produce (git-ignored).
 GENERATED = BOOK / "generated"
