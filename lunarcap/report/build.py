@@ -34,7 +34,16 @@ The book is then built with ``jupyter-book build book -W -n --keep-going`` with
 execution off (``--all`` whenever the generated notebooks changed since the last
 build, because pages quoting glued numbers of other pages must be rewritten).
 
-Exit status: 0 success, 1 an entry or the book build failed, 2 invalid manifest or usage.
+Interrupting a run (Ctrl-C, or SIGINT/SIGTERM sent to the main process alone, as CI
+runners and ``timeout`` do) stops it within seconds: the workers ignore SIGINT and leave
+the decision to the main process, which asks each worker to stop (SIGTERM), kills every
+process below it that is left (the Jupyter kernels run in sessions of their own, so a
+terminal's Ctrl-C does not reach them), removes the temporary files of the interrupted
+executions and prints one line. Executed notebooks and their outputs are only ever moved
+into place complete, so ``book/generated`` keeps what earlier runs made.
+
+Exit status: 0 success, 1 an entry or the book build failed, 2 invalid manifest or usage,
+130 interrupted by SIGINT, 143 interrupted by SIGTERM.
 """
 
 from __future__ import annotations
@@ -42,14 +51,17 @@ from __future__ import annotations
 import argparse
 import ast
 import concurrent.futures as cf
+import contextlib
 import dataclasses
 import hashlib
 import json
 import multiprocessing
 import os
 import re
+import signal
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -437,6 +449,146 @@ def prepare_for_book(nb, title: str) -> None:
         cell.metadata["tags"] = tags
 
 
+# ====================================================================== interruption
+class Interrupted(Exception):
+    """The run was interrupted by a signal (SIGINT or SIGTERM)."""
+
+    def __init__(self, signum: int):
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+    @property
+    def exit_status(self) -> int:
+        """128 + the signal number, as a shell reports a process killed by it."""
+        return 128 + self.signum
+
+
+def _raise_interrupted(signum, frame):
+    raise Interrupted(signum)
+
+
+@contextlib.contextmanager
+def interruptible():
+    """Turn SIGINT and SIGTERM into :class:`Interrupted` in the main thread (else a no-op)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = {s: signal.signal(s, _raise_interrupted) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for s, h in old.items():
+            signal.signal(s, h)
+
+
+def _process_table() -> dict[int, tuple[int, int]]:
+    """``{pid: (parent pid, process group)}`` of every process, from ``/proc`` (Linux)."""
+    table = {}
+    for d in Path("/proc").glob("[0-9]*"):
+        try:
+            stat = (d / "stat").read_text()
+        except OSError:
+            continue
+        # fields after the command name, which is in parentheses and may contain spaces
+        fields = stat[stat.rindex(")") + 2:].split()
+        if fields[0] != "Z":  # zombies are gone already
+            table[int(d.name)] = (int(fields[1]), int(fields[2]))
+    return table
+
+
+def descendants(pid: int) -> list[int]:
+    """Every living process below ``pid`` (children first); empty where ``/proc`` is absent."""
+    table = _process_table()
+    children: dict[int, list[int]] = {}
+    for p, (ppid, _) in table.items():
+        children.setdefault(ppid, []).append(p)
+    out, todo = [], list(children.get(pid, []))
+    while todo:
+        p = todo.pop(0)
+        out.append(p)
+        todo += children.get(p, [])
+    return out
+
+
+def _kill_all(pids, sig=signal.SIGKILL) -> None:
+    """Send ``sig`` to each process and to the process group it leads (a kernel's session)."""
+    own_group = os.getpgrp()
+    table = _process_table()
+    for p in pids:
+        with contextlib.suppress(OSError):
+            if p in table and table[p][1] == p and p != own_group:
+                os.killpg(p, sig)
+            os.kill(p, sig)
+
+
+#: Temporary files of the execution running in this worker process (removed if stopped).
+_RUNNING_FILES: list[Path] = []
+
+
+def _worker_init() -> None:
+    """Worker set-up: SIGINT is the main process's business; SIGTERM stops the worker."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, _worker_stop)
+
+
+def _worker_stop(signum, frame) -> None:
+    """Kill this worker's kernel (and whatever it started), remove its temporary files, exit."""
+    _kill_all(descendants(os.getpid()))
+    for f in _RUNNING_FILES:
+        with contextlib.suppress(OSError):
+            f.unlink()
+    os._exit(128 + signum)
+
+
+def _alive(pid: int) -> bool:
+    table = _process_table()
+    if table:
+        return pid in table
+    try:
+        os.kill(pid, 0)
+    except OSError:
+        return False
+    return True
+
+
+def stop_workers(pool: cf.ProcessPoolExecutor, grace_s: float = 5.0) -> None:
+    """Stop every worker of ``pool`` and everything below it; return when all are gone.
+
+    Each worker gets SIGTERM (it kills its kernel and removes its temporary files); after
+    ``grace_s`` whatever is left below this process is killed.
+    """
+    workers = list(getattr(pool, "_processes", None) or {})
+    tree = set(descendants(os.getpid()))
+    for w in workers:
+        with contextlib.suppress(OSError):
+            os.kill(w, signal.SIGTERM)
+    deadline = time.monotonic() + grace_s
+    while time.monotonic() < deadline and any(_alive(w) for w in workers):
+        time.sleep(0.05)
+    left = [p for p in tree | set(descendants(os.getpid())) if _alive(p)]
+    _kill_all(left)
+    for w in workers:  # reap
+        with contextlib.suppress(OSError):
+            os.waitpid(w, os.WNOHANG)
+    pool.shutdown(wait=False, cancel_futures=True)
+
+
+def remove_temporaries(since: float) -> list[Path]:
+    """Remove temporary files below ``book/generated`` made since ``since`` (epoch s)."""
+    removed = []
+    if not paths.GENERATED.is_dir():
+        return removed
+    for f in paths.GENERATED.rglob(".*"):
+        name = f.name
+        if f.is_file() and (".tmp" in name or name.endswith(".stderr.log")):
+            with contextlib.suppress(OSError):
+                if f.stat().st_mtime >= since:
+                    f.unlink()
+                    removed.append(f)
+    return removed
+
+
+# ====================================================================== execution
 def execute_entry(entry: Entry, parameters: dict, stamp: dict, timeout: float | None) -> dict:
     """Run one entry with papermill (in a worker process). Returns a result dict, never raises."""
     paths.ensure_dirs()
@@ -445,6 +597,7 @@ def execute_entry(entry: Entry, parameters: dict, stamp: dict, timeout: float | 
     # The kernel inherits this process's stderr: send it (ipykernel's start-up chatter,
     # or a crash message) to a log, quoted in the error report if the run fails.
     errlog = paths.GENERATED / f".{entry.name}.stderr.log"
+    _RUNNING_FILES[:] = [tmp, errlog]
     saved = os.dup(2)
     with open(errlog, "w") as fh:
         os.dup2(fh.fileno(), 2)
@@ -453,6 +606,7 @@ def execute_entry(entry: Entry, parameters: dict, stamp: dict, timeout: float | 
     finally:
         os.dup2(saved, 2)
         os.close(saved)
+        _RUNNING_FILES.clear()
 
 
 def _stderr_tail(errlog: Path, n: int = 10) -> str:
@@ -529,7 +683,9 @@ def run_entries(entries: list[Entry], quick: bool = False, jobs: int = 2, force:
     running: dict[cf.Future, tuple[Entry, dict]] = {}
     failed: list[tuple[Entry, str]] = []
     ctx = multiprocessing.get_context("spawn")
-    with cf.ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
+    pool = cf.ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_worker_init)
+    started = time.time() - 1.0
+    try:
         while True:
             busy = {e.name for e, _ in running.values()}
             progressed = not failed
@@ -569,6 +725,13 @@ def run_entries(entries: list[Entry], quick: bool = False, jobs: int = 2, force:
                 else:
                     log(f"[{n_done}/{n_total}] {e.name} ... FAILED {res['seconds']:.1f} s")
                     failed.append((e, res["error"]))
+    except BaseException as exc:  # Interrupted, KeyboardInterrupt, or a bug here
+        if isinstance(exc, Interrupted):
+            exc.stopped = sorted(e.name for e, _ in running.values())
+        stop_workers(pool)
+        remove_temporaries(started)
+        raise
+    pool.shutdown(wait=True)
     if failed and todo:
         log(f"not run because of the failure: {sorted(todo)}")
     for e, err in failed:
@@ -666,13 +829,29 @@ def main(argv=None) -> int:
         return 2
     mode = "quick" if args.quick else "full"
     print(f"lunarcap.report.build: {len(chosen)} of {len(entries)} entries, {mode} parameters, "
-          f"up to {args.jobs} in parallel")
-    ok = run_entries(chosen, quick=args.quick, jobs=args.jobs, force=args.force,
-                     timeout=args.timeout)
-    if ok and not args.no_build:
-        ok = build_book(entries)
-        if ok:
-            print(f"book: {(paths.HTML / 'index.html')}")
+          f"up to {args.jobs} in parallel", flush=True)
+    stage = "notebooks"
+    try:
+        with interruptible():
+            ok = run_entries(chosen, quick=args.quick, jobs=args.jobs, force=args.force,
+                             timeout=args.timeout)
+            if ok and not args.no_build:
+                stage = "book"
+                ok = build_book(entries)
+                if ok:
+                    print(f"book: {(paths.HTML / 'index.html')}")
+    except Interrupted as exc:
+        if stage == "book":  # the next run rebuilds the whole book
+            (paths.BUILD / ".generated-digest").unlink(missing_ok=True)
+            what = "the jupyter-book build was stopped"
+        else:
+            stopped = getattr(exc, "stopped", [])
+            what = (f"stopped {len(stopped)} running notebook(s) ({', '.join(stopped)})"
+                    if stopped else "no notebook was running")
+        print(f"lunarcap.report.build: interrupted by {exc} after "
+              f"{time.perf_counter() - t0:.1f} s: {what}; completed outputs in book/generated "
+              "are kept, nothing half-written is left", file=sys.stderr, flush=True)
+        return exc.exit_status
     print(f"total {time.perf_counter() - t0:.1f} s")
     return 0 if ok else 1
 

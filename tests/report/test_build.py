@@ -325,3 +325,73 @@ def test_failed_entry_stops_the_run_and_keeps_other_outputs(tmp_path):
                           timeout=300)
     assert run2.returncode == 0, run2.stdout + run2.stderr
     assert "good ... up to date (skipped)" in run2.stdout
+
+
+def _sleeping_tree(root: Path) -> dict:
+    """A throw-away book whose two notebooks sleep (each also writes a CSV first)."""
+    nbdir = root / "notebooks"
+    nbdir.mkdir(parents=True)
+    (root / "book").mkdir()
+    (root / "book" / "intro.md").write_text("# Intro\n")
+    _notebook(nbdir / "slow.ipynb", body=textwrap.dedent("""
+        import time
+        import pandas as pd
+        from lunarcap.repro import paths
+        paths.write_csv(pd.DataFrame({"x": [x]}), output_name)
+        time.sleep(600)
+        """))
+    (nbdir / "manifest.yml").write_text(yaml.safe_dump({"entries": [
+        _entry("one", "slow.ipynb", parameters={"x": 1}, outputs=["tables/one.csv"]),
+        _entry("two", "slow.ipynb", parameters={"x": 2}, outputs=["tables/two.csv"]),
+    ]}))
+    (root / "book" / "_toc.yml").write_text(yaml.safe_dump({
+        "format": "jb-book", "root": "intro",
+        "chapters": [{"file": f"generated/{n}"} for n in ("one", "two")]}))
+    return dict(os.environ, LUNARCAP_ROOT=str(root), LUNARCAP_NO_CACHE="1")
+
+
+@pytest.mark.notebooks
+@pytest.mark.parametrize("sig", ["SIGINT", "SIGTERM"])
+def test_a_signal_to_the_main_process_alone_stops_everything(tmp_path, sig):
+    """SIGINT/SIGTERM sent to the main process only (as `timeout` or a CI runner does).
+
+    Within seconds: exit 128 + signal, one line saying so, no process left below it (the
+    kernels run in sessions of their own and would not get a terminal's signal), no
+    temporary file and no executed notebook of the interrupted entries.
+    """
+    import signal
+    import time
+
+    root = tmp_path / "tree"
+    env = _sleeping_tree(root)
+    gen = root / "book" / "generated"
+    proc = subprocess.Popen([sys.executable, "-m", "lunarcap.report.build", "build",
+                             "--no-build", "--jobs", "2"], env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120
+        # both kernels are running once both notebooks have written their CSV
+        while not ((gen / "tables" / "one.csv").exists() and (gen / "tables" / "two.csv").exists()):
+            assert proc.poll() is None, proc.communicate()
+            assert time.monotonic() < deadline, "the notebooks never started"
+            time.sleep(0.2)
+        below = book.descendants(proc.pid)
+        assert len(below) >= 4  # two workers, two kernels (at least)
+        t0 = time.monotonic()
+        proc.send_signal(getattr(signal, sig))
+        out, err = proc.communicate(timeout=30)
+        took = time.monotonic() - t0
+    finally:
+        if proc.poll() is None:
+            book._kill_all([proc.pid] + book.descendants(proc.pid))
+    assert proc.returncode == 128 + getattr(signal, sig), out + err
+    assert took < 15, took
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert len(lines) == 1 and f"interrupted by {sig}" in lines[0], err
+    assert "stopped 2 running notebook(s) (one, two)" in lines[0]
+    time.sleep(0.5)
+    left = [p for p in below if book._alive(p)]
+    assert not left, f"processes left behind: {left}"
+    assert not [f.name for f in gen.rglob(".*") if f.is_file()]
+    assert not (gen / "one.ipynb").exists() and not (gen / "two.ipynb").exists()
+    assert not (gen / "one.stamp.json").exists()
