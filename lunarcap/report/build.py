@@ -565,7 +565,12 @@ def stop_workers(pool: cf.ProcessPoolExecutor, grace_s: float = 5.0) -> None:
     deadline = time.monotonic() + grace_s
     while time.monotonic() < deadline and any(_alive(w) for w in workers):
         time.sleep(0.05)
-    left = [p for p in tree | set(descendants(os.getpid())) if _alive(p)]
+    # multiprocessing's resource tracker (a child of this process) must live on: the pool's
+    # shutdown unregisters its semaphores with it, and it exits with this process
+    from multiprocessing import resource_tracker
+
+    keep = {getattr(resource_tracker._resource_tracker, "_pid", None)}
+    left = [p for p in tree | set(descendants(os.getpid())) if p not in keep and _alive(p)]
     _kill_all(left)
     for w in workers:  # reap
         with contextlib.suppress(OSError):
