@@ -93,6 +93,9 @@ def _add_plan_options(p: argparse.ArgumentParser, plan_positional: bool) -> None
                    help="lunar hemisphere of the arrival perilune (overrides the plan's)")
     p.add_argument("--ephemeris", default=None, metavar="BSP",
                    help="SPK file (.bsp) instead of the plan's (default: the bundled DE405)")
+    p.add_argument("--lunar-pole", choices=["iau2009-j2000", "iau-constant"], default=None,
+                   help="the pole fixing M-MME2000: the IAU (2009) expression at J2000 "
+                        "(default) or its constant terms only (overrides the plan's)")
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
@@ -122,6 +125,8 @@ def _plan_from_args(args):
     if args.ephemeris is not None:
         from pathlib import Path
         plan = replace(plan, ephemeris=str(Path(args.ephemeris).expanduser().resolve()))
+    if args.lunar_pole is not None:
+        plan = plan.with_lunar_pole(args.lunar_pole)
     if getattr(args, "starts", None) is not None:
         plan = plan.with_starts(args.starts)
     return plan
@@ -169,7 +174,7 @@ def _print_plan_header(plan) -> None:
     print(f"Plan {plan.name}: {plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} s, "
           f"{plan.dynamics} dynamics, {plan.n_burns} burn(s); arrival {a.epoch}, perilune "
           f"{a.perilune_altitude_km:g} km, inclination {a.inclination_deg:g} deg, "
-          f"v_inf {a.v_inf_kmps:.5f} km/s, {a.mass_kg:g} kg")
+          f"v_inf {a.v_inf_kmps:.5f} km/s, {a.mass_kg:g} kg; M-MME2000 pole {plan.lunar_pole}")
     print(f"{'burn':>4}  {'target':<{_target_width(plan)}} {'ignition (TDB)':<27} {'start min':>9} "
           f"{'dur min':>7} {'dV m/s':>9} {'imp m/s':>9} {'loss m/s':>8} {'loss %':>6} "
           f"{'m start kg':>10} {'m end kg':>9}  verification", flush=True)

@@ -61,6 +61,7 @@ from lunarcap.mission.targets import CIRCULAR, PERILUNE, Target
 from lunarcap.physics import constants as C
 from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
+from lunarcap.physics.frames import DEFAULT_LUNAR_POLE, LUNAR_POLES
 
 #: Packaged plans (``<name>.yaml``), selectable by name.
 PLAN_DIR = Path(__file__).resolve().parent / "plans"
@@ -79,7 +80,8 @@ MIN_BURN_S = 0.5
 #: A burn may last at most this fraction of the coast it starts (Eq. (19) estimate).
 MAX_BURN_FRACTION = 0.5
 
-_TOP_KEYS = {"name", "description", "arrival", "engine", "dynamics", "burns", "ephemeris"}
+_TOP_KEYS = {"name", "description", "arrival", "engine", "dynamics", "burns", "ephemeris",
+             "lunar_pole"}
 _ARRIVAL_KEYS = {"epoch", "perilune_altitude_km", "inclination_deg", "v_inf_kmps",
                  "impulsive_loi1_mps", "hemisphere", "approach_dir", "mass_kg"}
 _ENGINE_KEYS = {"thrust_N", "isp_s"}
@@ -190,6 +192,7 @@ class CapturePlan:
     ephemeris: str | None = None
     impulsive_loi1_mps: float | None = None
     description: str = field(default="", compare=False)
+    lunar_pole: str = DEFAULT_LUNAR_POLE
 
     # ------------------------------------------------------------------ validation
     def __post_init__(self):
@@ -198,6 +201,9 @@ class CapturePlan:
         _validate_arrival(self.arrival)
         if self.dynamics not in DYNAMICS:
             raise _err("dynamics", f"must be one of {', '.join(DYNAMICS)}, got {self.dynamics!r}")
+        if self.lunar_pole not in LUNAR_POLES:
+            raise _err("lunar_pole", f"must be one of {', '.join(LUNAR_POLES)}, "
+                                     f"got {self.lunar_pole!r}")
         if not self.burns:
             raise _err("burns", "a plan needs at least one burn")
         rp = self.perilune_radius_km
@@ -220,7 +226,7 @@ class CapturePlan:
         self._check_engine_fits()
 
     def _check_ephemeris(self) -> None:
-        eph = plan_ephemeris(self.ephemeris)
+        eph = self.ephemeris_model()
         t = self.nominal_perilunes_s
         a, b = eph.span_s
         if t[0] - EPHEMERIS_MARGIN_S < a or t[-1] + EPHEMERIS_MARGIN_S > b:
@@ -329,6 +335,14 @@ class CapturePlan:
             raise _err("burns", f"a prefix of 1 to {self.n_burns} burns, got {n}")
         return replace(self, burns=self.burns[:n])
 
+    def with_lunar_pole(self, lunar_pole: str) -> "CapturePlan":
+        """The plan with another lunar pole fixing M-MME2000 (see physics.frames)."""
+        return replace(self, lunar_pole=lunar_pole)
+
+    def ephemeris_model(self) -> Ephemeris:
+        """The plan's ephemeris in its M-MME2000 (its ``ephemeris`` and ``lunar_pole``)."""
+        return plan_ephemeris(self.ephemeris, self.lunar_pole)
+
     def key(self, n: int | None = None) -> "CapturePlan":
         """What a solution of burn ``n`` (1-based; default the last) depends on.
 
@@ -409,6 +423,7 @@ class CapturePlan:
             raise _err("description", f"must be a text, got {desc!r}")
         return cls(name=name.strip(), arrival=arrival, engine=engine, burns=burns,
                    dynamics=d.get("dynamics", "full"), ephemeris=eph,
+                   lunar_pole=d.get("lunar_pole", DEFAULT_LUNAR_POLE),
                    impulsive_loi1_mps=(_number("arrival.impulsive_loi1_mps",
                                                a["impulsive_loi1_mps"], "m/s")
                                        if "impulsive_loi1_mps" in a else None),
@@ -452,6 +467,8 @@ class CapturePlan:
                    dynamics=self.dynamics, burns=burns)
         if self.ephemeris is not None:
             out["ephemeris"] = self.ephemeris
+        if self.lunar_pole != DEFAULT_LUNAR_POLE:
+            out["lunar_pole"] = self.lunar_pole
         return out
 
     def to_yaml(self) -> str:
@@ -590,9 +607,9 @@ def _validate_burn(where: str, b: Burn, rp_km: float, period_before_s: float,
 
 
 @lru_cache(maxsize=8)
-def plan_ephemeris(path: str | None) -> Ephemeris:
-    """The ephemeris of a plan's ``ephemeris`` field (None: DE405), loaded once."""
-    return default_ephemeris() if path is None else Ephemeris(path)
+def plan_ephemeris(path: str | None, lunar_pole: str = DEFAULT_LUNAR_POLE) -> Ephemeris:
+    """The ephemeris of a plan's ``ephemeris`` field (None: DE405) for a lunar pole, loaded once."""
+    return default_ephemeris(lunar_pole) if path is None else Ephemeris(path, lunar_pole)
 
 
 # ---------------------------------------------------------------------- files and names

@@ -45,11 +45,30 @@ DAY_S = 86400.0
 #: Julian date of the J2000.0 epoch, TDB.
 JD_J2000 = 2451545.0
 
-#: IAU orientation of the Moon's pole at J2000, constant terms, degrees
-#: (Archinal et al. 2011, Celest. Mech. Dyn. Astr. 109, 101, Table 2, Moon:
-#: alpha0 = 269.9949 deg, delta0 = 66.5392 deg). Defines the M-MME2000 z axis.
+#: IAU (2009) orientation of the Moon's pole, constant terms, degrees (Archinal et al.
+#: 2011, Celest. Mech. Dyn. Astr. 109, 101, Table 2, Moon: alpha0 = 269.9949 + 0.0031 T
+#: + sum a_k sin E_k, delta0 = 66.5392 + 0.0130 T + sum d_k cos E_k, T in Julian
+#: centuries, d in days past J2000 TDB). The constant terms alone are the centre of the
+#: pole's 18.6-year precession circle (0.02 deg from the ecliptic pole), not the pole
+#: at any epoch; :func:`lunarcap.physics.frames.moon_pole_radec_deg` evaluates the
+#: whole expression.
 MOON_POLE_RA_DEG = 269.9949
 MOON_POLE_DEC_DEG = 66.5392
+#: Secular rates of alpha0 and delta0, deg per Julian century (same source).
+MOON_POLE_RA_RATE_DEG = 0.0031
+MOON_POLE_DEC_RATE_DEG = 0.0130
+#: The arguments E1..E13 = phase + rate * d, degrees and degrees per day (same source,
+#: Table 2 footnote; E1 is the 18.6-year regression of the lunar node).
+MOON_E_PHASE_DEG = (125.045, 250.089, 260.008, 176.625, 357.529, 311.589, 134.963,
+                    276.617, 34.226, 15.134, 119.743, 239.961, 25.053)
+MOON_E_RATE_DEG_PER_DAY = (-0.0529921, -0.1059842, 13.0120009, 13.3407154, 0.9856003,
+                           26.4057084, 13.0649930, 0.3287146, 1.7484877, -0.1589763,
+                           0.0036096, 0.1643573, 12.9590088)
+#: Amplitudes of sin E_k in alpha0 and of cos E_k in delta0, degrees (same source).
+MOON_POLE_RA_AMPL_DEG = (-3.8787, -0.1204, 0.0700, -0.0172, 0.0, 0.0072, 0.0, 0.0, 0.0,
+                         -0.0052, 0.0, 0.0, 0.0043)
+MOON_POLE_DEC_AMPL_DEG = (1.5419, 0.0239, -0.0278, 0.0068, 0.0, -0.0029, 0.0009, 0.0, 0.0,
+                          0.0008, 0.0, 0.0, -0.0009)
 
 #: Target altitude of every capture orbit's perilune, km (Song 2011, Sec. 1 and 3.2).
 PERILUNE_ALTITUDE_KM = 100.0

@@ -22,7 +22,7 @@ import numpy as np
 
 from lunarcap.errors import EphemerisRangeError, InputError
 from lunarcap.physics.epochs import calendar_from_seconds, jd_split_from_seconds, seconds_from_jd
-from lunarcap.physics.frames import C_ICRF_TO_MME
+from lunarcap.physics.frames import DEFAULT_LUNAR_POLE, LUNAR_POLES, icrf_to_mme
 
 __all__ = ["Ephemeris", "ChebyshevFit", "default_ephemeris", "chebyshev_eval"]
 
@@ -37,9 +37,18 @@ class Ephemeris:
     source : str or None
         ``None`` for DE405 from the ``de405`` package, or the path of an SPK ``.bsp``
         file with segments (0,3), (0,10), (3,301) and (3,399).
+    lunar_pole : str
+        The lunar pole that fixes M-MME2000 (:data:`lunarcap.physics.frames.LUNAR_POLES`).
     """
 
-    def __init__(self, source: str | os.PathLike | None = None):
+    def __init__(self, source: str | os.PathLike | None = None,
+                 lunar_pole: str = DEFAULT_LUNAR_POLE):
+        if lunar_pole not in LUNAR_POLES:
+            raise InputError(f"lunar_pole must be one of {', '.join(LUNAR_POLES)}, "
+                             f"got {lunar_pole!r}")
+        self.lunar_pole = lunar_pole
+        #: Rotation ICRF -> M-MME2000 of this pole.
+        self.rotation = icrf_to_mme(lunar_pole)
         if source is None:
             import de405
             from jplephem.ephem import Ephemeris as _Eph
@@ -136,30 +145,30 @@ class Ephemeris:
         r_earth, r_sun : ndarray, shape (3, N)
         """
         moon, _, sun = self._icrf(t_s)
-        return C_ICRF_TO_MME @ (-moon), C_ICRF_TO_MME @ sun
+        return self.rotation @ (-moon), self.rotation @ sun
 
     def moon_geocentric_state(self, t_s):
         """The Moon's geocentric position (km) and velocity (km/s) in M-MME2000, shape (3, N)."""
         moon, moon_v, _ = self._icrf(t_s)
-        return C_ICRF_TO_MME @ moon, C_ICRF_TO_MME @ moon_v
+        return self.rotation @ moon, self.rotation @ moon_v
 
     def describe(self) -> dict:
         """Provenance record: name, path, SHA-256 and span."""
         a, b = self.span_s
-        return {"ephemeris": self.name, "path": str(self.path), "sha256": self.sha256,
+        return {"ephemeris": self.name, "lunar_pole": self.lunar_pole,
+                "path": str(self.path), "sha256": self.sha256,
                 "first_epoch": calendar_from_seconds(a, 0),
                 "last_epoch": calendar_from_seconds(b, 0)}
 
 
-_DEFAULT: Ephemeris | None = None
+_DEFAULT: dict[str, Ephemeris] = {}
 
 
-def default_ephemeris() -> Ephemeris:
-    """The process-wide DE405 ephemeris (loaded once)."""
-    global _DEFAULT
-    if _DEFAULT is None:
-        _DEFAULT = Ephemeris()
-    return _DEFAULT
+def default_ephemeris(lunar_pole: str = DEFAULT_LUNAR_POLE) -> Ephemeris:
+    """The process-wide DE405 ephemeris of a lunar pole choice (loaded once)."""
+    if lunar_pole not in _DEFAULT:
+        _DEFAULT[lunar_pole] = Ephemeris(None, lunar_pole)
+    return _DEFAULT[lunar_pole]
 
 
 def chebyshev_eval(coeffs, tau):

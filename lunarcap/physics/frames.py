@@ -1,28 +1,80 @@
 """Reference frames: ICRF/J2000 -> Moon-centred M-MME2000, and RTN unit vectors.
 
-M-MME2000 (Song et al. 2010b; Song 2011, Sec. 1): origin at the Moon's centre,
-z along the IAU lunar pole at J2000 (alpha0 = 269.9949 deg, delta0 = 66.5392 deg,
-Archinal et al. 2011), x along the IAU node of the lunar equator on the ICRF
-equator, x = z_ICRF x z_Moon / |z_ICRF x z_Moon|, y = z x x.
+M-MME2000 (Song et al. 2010b; Song 2011, Sec. 1: "Moon centered Moon mean equator and
+International Astronomical Union vector of J2000"): origin at the Moon's centre, z along
+the Moon's pole at the epoch J2000 from the IAU (2009) orientation model (Archinal et
+al. 2011, Table 2), x along the IAU vector, the ascending node of the lunar equator on
+the ICRF equator, x = z_ICRF x z_Moon / |z_ICRF x z_Moon|, y = z x x.
+
+The lunar pole (a frame property, chosen per plan with ``lunar_pole``, see
+:data:`LUNAR_POLES`):
+
+``iau2009-j2000`` (default)
+    The whole IAU expression evaluated at J2000, with its E1-E13 terms:
+    alpha0 = 266.8577 deg, delta0 = 65.6411 deg. This is the Moon's pole at the epoch
+    J2000, 1.57 deg from the ecliptic pole (by Cassini's laws the lunar equator keeps an
+    inclination of about 1.54 deg to the ecliptic), so the lunar J2 acts about the
+    Moon's axis and "90 deg inclination" is polar about it.
+``iau-constant``
+    Only the constant terms, alpha0 = 269.9949 deg, delta0 = 66.5392 deg: the centre of
+    the pole's 18.6-year precession circle, 0.02 deg from the ecliptic pole and 1.56 deg
+    from the pole at J2000. lunarcap used it before 2026-11; kept to show the effect.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from lunarcap.physics import constants as C
 from lunarcap.physics.constants import MOON_POLE_DEC_DEG, MOON_POLE_RA_DEG
+
+#: The lunar pole choices of :func:`moon_pole_radec_deg` (first: the default).
+LUNAR_POLES = ("iau2009-j2000", "iau-constant")
+DEFAULT_LUNAR_POLE = LUNAR_POLES[0]
+
+
+def moon_pole_radec_deg(pole: str = DEFAULT_LUNAR_POLE, jd_tdb: float = C.JD_J2000
+                        ) -> tuple[float, float]:
+    """Right ascension and declination of the lunar pole in ICRF, degrees.
+
+    Parameters
+    ----------
+    pole : {"iau2009-j2000", "iau-constant"}
+        The whole IAU (2009) expression (Archinal et al. 2011, Table 2) or its constant
+        terms only (see the module docstring).
+    jd_tdb : float
+        Epoch of the whole expression, Julian date TDB (M-MME2000: J2000).
+
+    Examples
+    --------
+    >>> [round(x, 4) for x in moon_pole_radec_deg()]
+    [266.8577, 65.6411]
+    >>> moon_pole_radec_deg("iau-constant")
+    (269.9949, 66.5392)
+    """
+    if pole == "iau-constant":
+        return MOON_POLE_RA_DEG, MOON_POLE_DEC_DEG
+    if pole != "iau2009-j2000":
+        raise ValueError(f"lunar pole must be one of {', '.join(LUNAR_POLES)}, got {pole!r}")
+    d = jd_tdb - C.JD_J2000
+    t = d / 36525.0
+    e = np.radians(np.asarray(C.MOON_E_PHASE_DEG) + np.asarray(C.MOON_E_RATE_DEG_PER_DAY) * d)
+    ra = MOON_POLE_RA_DEG + C.MOON_POLE_RA_RATE_DEG * t + float(
+        np.dot(C.MOON_POLE_RA_AMPL_DEG, np.sin(e)))
+    dec = MOON_POLE_DEC_DEG + C.MOON_POLE_DEC_RATE_DEG * t + float(
+        np.dot(C.MOON_POLE_DEC_AMPL_DEG, np.cos(e)))
+    return ra, dec
 
 
 def moon_pole_icrf(ra_deg: float = MOON_POLE_RA_DEG, dec_deg: float = MOON_POLE_DEC_DEG
                    ) -> np.ndarray:
-    """Unit vector of the lunar pole in ICRF from its right ascension and declination (deg)."""
+    """Unit vector of a pole in ICRF from its right ascension and declination (deg)."""
     a, d = np.radians(ra_deg), np.radians(dec_deg)
     return np.array([np.cos(d) * np.cos(a), np.cos(d) * np.sin(a), np.sin(d)])
 
 
-def icrf_to_mme2000(ra_deg: float = MOON_POLE_RA_DEG, dec_deg: float = MOON_POLE_DEC_DEG
-                    ) -> np.ndarray:
-    """Rotation matrix C such that ``x_mme = C @ x_icrf``.
+def icrf_to_mme2000(ra_deg: float, dec_deg: float) -> np.ndarray:
+    """Rotation matrix C such that ``x_mme = C @ x_icrf``, for a lunar pole (deg).
 
     Rows are the M-MME2000 axes expressed in ICRF. For a pole (alpha0, delta0) this
     equals R1(90 deg - delta0) R3(90 deg + alpha0).
@@ -34,8 +86,15 @@ def icrf_to_mme2000(ra_deg: float = MOON_POLE_RA_DEG, dec_deg: float = MOON_POLE
     return np.vstack([x, y, z])
 
 
-#: The constant rotation ICRF -> M-MME2000 used throughout.
-C_ICRF_TO_MME = icrf_to_mme2000()
+def icrf_to_mme(pole: str = DEFAULT_LUNAR_POLE) -> np.ndarray:
+    """The rotation ICRF -> M-MME2000 for a lunar pole choice (see :data:`LUNAR_POLES`)."""
+    return icrf_to_mme2000(*moon_pole_radec_deg(pole))
+
+
+def pole_angle_deg(pole_a: str, pole_b: str) -> float:
+    """Angle between two lunar pole choices, degrees."""
+    za, zb = (moon_pole_icrf(*moon_pole_radec_deg(p)) for p in (pole_a, pole_b))
+    return float(np.degrees(np.arccos(np.clip(za @ zb, -1.0, 1.0))))
 
 
 def rtn_basis(r, v, xp=np):

@@ -95,7 +95,7 @@ def warm_solves(dynamics: str = "two-body", repeats: int = 5, out=print,
     """
     import statistics as st
 
-    from lunarcap.mission.plan import paper_plan, plan_ephemeris
+    from lunarcap.mission.plan import paper_plan
     from lunarcap.optim.collocation import DEFAULT_MESHES
     from lunarcap.optim.guess import make_guess
     from lunarcap.optim.nlp import solve_nlp
@@ -108,8 +108,8 @@ def warm_solves(dynamics: str = "two-body", repeats: int = 5, out=print,
         f"{'total s':>8} {'it':>3} {'dV m/s':>10} gate")
     for thrust, isp, start in cases:
         plan = paper_plan(thrust, isp, dynamics=dynamics).with_start(0, start)
-        x = arrival_for(plan.arrival, plan.ephemeris).state
-        eph = plan_ephemeris(plan.ephemeris)
+        x = arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole).state
+        eph = plan.ephemeris_model()
         times = []
         for rep in range(repeats + 1):
             t0 = time.perf_counter()

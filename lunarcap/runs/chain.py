@@ -29,6 +29,7 @@ from lunarcap.optim.problem import burn_fit, burn_problem
 from lunarcap.optim.solution import Solution
 from lunarcap.optim.solve import solve_burn as solve_burn_problem
 from lunarcap.physics.epochs import calendar_from_seconds
+from lunarcap.physics.frames import DEFAULT_LUNAR_POLE
 from lunarcap.repro.cache import cached
 
 
@@ -37,9 +38,10 @@ def _log(msg: str) -> None:
 
 
 @lru_cache(maxsize=32)
-def arrival_for(arrival: ArrivalSpec, ephemeris: str | None = None) -> Arrival:
+def arrival_for(arrival: ArrivalSpec, ephemeris: str | None = None,
+                lunar_pole: str = DEFAULT_LUNAR_POLE) -> Arrival:
     """The reconstructed arrival state of an arrival spec (memoised)."""
-    return arrival.build(plan_ephemeris(ephemeris))
+    return arrival.build(plan_ephemeris(ephemeris, lunar_pole))
 
 
 #: In-process memo of earlier burns (see :func:`reuse_earlier_burns`), or None.
@@ -65,7 +67,7 @@ def reuse_earlier_burns():
 def perilune_state(plan: CapturePlan, i: int, verbose: bool = False) -> np.ndarray:
     """State (p, f, g, h, k, L, m) at the nominal perilune before burn ``i`` (0-based)."""
     if i == 0:  # the arrival state carries the plan's mass
-        return arrival_for(plan.arrival, plan.ephemeris).state
+        return arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole).state
     key = plan.key(i)
     if _EARLIER is not None:
         if key not in _EARLIER:
@@ -97,7 +99,7 @@ def solve_burn(plan: CapturePlan, verbose: bool = False) -> Solution:
     """
     i = plan.n_burns - 1
     x_peri = perilune_state(plan, i, verbose)
-    prob = burn_problem(plan, i, x_peri, plan_ephemeris(plan.ephemeris))
+    prob = burn_problem(plan, i, x_peri, plan.ephemeris_model())
     if verbose:
         _log(f"{_burn_label(plan, i)}:")
     sol = solve_burn_problem(prob, progress=_log if verbose else None)
@@ -157,7 +159,7 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     """
     i = plan.n_burns - 1
     x_peri = perilune_state(plan, i, verbose)
-    eph = plan_ephemeris(plan.ephemeris)
+    eph = plan.ephemeris_model()
     dv_guess = plan.impulsive()[i].delta_v_mps
     d_long, d_short = IMPULSIVE_LIMIT_DURATIONS_S
     big = x_peri[6] * dv_guess / d_long  # N: m * dV / t

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from lunarcap.mission.plan import CapturePlan, paper_plan, plan_ephemeris
+from lunarcap.mission.plan import CapturePlan, paper_plan
 from lunarcap.optim.collocation import Mesh
 from lunarcap.optim.joint import JointResult, solve_joint
 from lunarcap.repro.cache import cached
@@ -40,7 +40,7 @@ def solve_plan_jointly(plan: CapturePlan, mesh: Mesh = Mesh(8, 16, 5),
     """Solve ``plan`` (ignitions set free) as one NLP, warm-started burn by burn."""
     free = plan.with_starts(["free"] * plan.n_burns)
     seq = solve_plan(free, verbose=verbose)
-    return JointComparison(solve_joint(free, seq, plan_ephemeris(plan.ephemeris), mesh), seq)
+    return JointComparison(solve_joint(free, seq, plan.ephemeris_model(), mesh), seq)
 
 
 @cached

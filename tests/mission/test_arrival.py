@@ -1,7 +1,7 @@
 """Tests of lunarcap.mission.arrival: the reconstructed arrival hyperbola.
 
 Every property is computed here from the Cartesian state with elementary vector algebra;
-the Moon's velocity comes straight from jplephem (DE405), rotated with frames.C_ICRF_TO_MME.
+the Moon's velocity comes straight from jplephem (DE405), rotated with frames.icrf_to_mme().
 """
 
 from datetime import datetime
@@ -15,7 +15,9 @@ from lunarcap.errors import EphemerisRangeError, InputError
 from lunarcap.mission import arrival as scenario
 from lunarcap.physics import constants as C
 from lunarcap.physics import elements as el
-from lunarcap.physics.frames import C_ICRF_TO_MME
+from lunarcap.physics.frames import icrf_to_mme
+
+C_ICRF_TO_MME = icrf_to_mme()  # the default pole's rotation
 
 MU = C.MU_MOON
 RP = C.R_MOON + 100.0  # 1838.2 km

@@ -202,3 +202,28 @@ def test_load_plan_reports_files_and_yaml(tmp_path):
     (tmp_path / "other.yaml").write_text(text)
     with pytest.raises(PlanError, match="other.yaml: x: unknown key"):
         load_plan(tmp_path / "other.yaml")
+
+
+def test_lunar_pole_is_part_of_the_plan_and_validated():
+    from lunarcap.physics.frames import LUNAR_POLES
+
+    plan = load_plan("song2011-150N")
+    assert plan.lunar_pole == LUNAR_POLES[0] == "iau2009-j2000"
+    assert "lunar_pole" not in plan.to_dict()  # the default is not written out
+    other = plan.with_lunar_pole("iau-constant")
+    assert other.to_dict()["lunar_pole"] == "iau-constant"
+    assert CapturePlan.from_dict(other.to_dict()) == other
+    assert other.key(1) != plan.key(1)  # two poles never share a cached solve
+    # the Earth seen from the Moon differs by the rotation between the two frames
+    from lunarcap.physics.frames import icrf_to_mme
+
+    t = plan.nominal_perilunes_s[0]
+    e1 = plan.ephemeris_model().earth_sun(t)[0][:, 0]
+    e2 = other.ephemeris_model().earth_sun(t)[0][:, 0]
+    rot = icrf_to_mme("iau-constant") @ icrf_to_mme("iau2009-j2000").T
+    np.testing.assert_allclose(e2, rot @ e1, rtol=0, atol=1e-9 * np.linalg.norm(e1))
+    assert np.degrees(np.arccos(e1 @ e2 / np.linalg.norm(e1) ** 2)) > 1.0  # not the same frame
+    d = other.to_dict()
+    d["lunar_pole"] = "iau1994"
+    with pytest.raises(PlanError, match="lunar_pole: must be one of iau2009-j2000, iau-constant"):
+        CapturePlan.from_dict(d)

@@ -25,8 +25,8 @@ pytestmark = pytest.mark.slow
 
 def _burn1(plan, **kw):
     """The first burn's problem of a plan, from its arrival state."""
-    arrival = arrival_for(plan.arrival, plan.ephemeris)
-    return burn_problem(plan, 0, arrival.state, plan_ephemeris(plan.ephemeris), **kw)
+    arrival = arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole)
+    return burn_problem(plan, 0, arrival.state, plan.ephemeris_model(), **kw)
 
 
 @pytest.fixture(scope="module")
@@ -139,7 +139,7 @@ def test_circular_target_from_an_ellipse():
     # The paper plan's third burn from a 3.525 h ellipse's perilune state in the plane of
     # the arrival hyperbola (two-body, so the epoch does not matter).
     plan = paper_plan(450.0, 300.0, dynamics="two-body")
-    arr = arrival_for(plan.arrival, plan.ephemeris)
+    arr = arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole)
     rp = np.linalg.norm(arr.r_km)
     a = (C.MU_MOON * (3.525 * 3600 / (2 * np.pi)) ** 2) ** (1 / 3)
     v = arr.v_kmps / np.linalg.norm(arr.v_kmps) * np.sqrt(C.MU_MOON * (2 / rp - 1 / a))

@@ -2,7 +2,8 @@
 
 The reference values are computed here with ``jplephem.ephem.Ephemeris(de405)`` and the
 two-part Julian date, independently of lunarcap's wrapper; the only lunarcap piece
-used for them is the constant rotation ``frames.C_ICRF_TO_MME`` (tested in test_frames).
+used for them is the rotation ``frames.icrf_to_mme()`` of the default lunar pole
+(tested in test_frames).
 """
 
 import casadi as ca
@@ -15,7 +16,9 @@ from lunarcap.errors import EphemerisRangeError, InputError
 from lunarcap.physics import ephemeris
 from lunarcap.physics.constants import ARRIVAL_EPOCH_TDB
 from lunarcap.physics.epochs import seconds_from_calendar
-from lunarcap.physics.frames import C_ICRF_TO_MME
+from lunarcap.physics.frames import icrf_to_mme
+
+C_ICRF_TO_MME = icrf_to_mme()  # the default pole's rotation
 
 RAW = RawEphemeris(de405)
 T_ARRIVAL = seconds_from_calendar(ARRIVAL_EPOCH_TDB)

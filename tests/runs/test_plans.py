@@ -20,17 +20,24 @@ from lunarcap.runs.chain import plan_result, solve_plan
 
 pytestmark = pytest.mark.slow
 
-#: The best chains (m/s), full dynamics: Table B1's offsets, solved by lunarcap.
-CHAINS = {"song2011-150N": (366.615, 258.054, 247.984),
-          "song2011-300N": (357.265, 255.210, 246.476),
-          "song2011-450N": (354.759, 254.583, 245.670)}
+#: The best chains (m/s), full dynamics: Table B1's offsets, solved by lunarcap, for the
+#: default lunar pole (the IAU expression at J2000) and for the constant-term pole used
+#: before 2026-11 (whose numbers the earlier versions printed, unchanged).
+CHAINS = {("song2011-150N", "iau2009-j2000"): (366.659, 258.055, 247.976),
+          ("song2011-300N", "iau2009-j2000"): (357.311, 255.211, 246.468),
+          ("song2011-450N", "iau2009-j2000"): (354.805, 254.584, 245.662),
+          ("song2011-150N", "iau-constant"): (366.615, 258.054, 247.984),
+          ("song2011-300N", "iau-constant"): (357.265, 255.210, 246.476),
+          ("song2011-450N", "iau-constant"): (354.759, 254.583, 245.670)}
 
 
-@pytest.mark.parametrize("name", sorted(CHAINS))
-def test_paper_plans_reproduce_the_best_chains(name):
-    sols = solve_plan(load_plan(name))
+@pytest.mark.parametrize("name,pole", sorted(CHAINS))
+def test_paper_plans_reproduce_the_best_chains(name, pole):
+    sols = solve_plan(load_plan(name).with_lunar_pole(pole))
     assert all(s.verification.passed for s in sols)
-    np.testing.assert_allclose([s.delta_v_mps for s in sols], CHAINS[name], atol=0.01)
+    # 0.002 m/s: the printed values' rounding (0.0005) plus IPOPT's tolerance on the
+    # objective; the two poles differ by up to 0.046 m/s on these burns
+    np.testing.assert_allclose([s.delta_v_mps for s in sols], CHAINS[name, pole], atol=0.002)
 
 
 def _plan(burns, thrust_N, isp_s, dynamics="two-body", **arrival):

@@ -381,7 +381,8 @@ def build(plan="lro-like-5burn", dynamics: str | None = None,
                  "arrival perilune to the perilune at which the last target is verified "
                  f"({tot['final_perilune_epoch']}); the final orbit is osculating there."),
         show_columns=["quantity", "value", "unit"], floatfmt={"value": ",.3f"})
-    geo = figdata.capture_geometry(solutions(res), arrival_for(p.arrival, p.ephemeris))
+    arrival = arrival_for(p.arrival, p.ephemeris, p.lunar_pole)
+    geo = figdata.capture_geometry(solutions(res), arrival)
     fig = figures.plot_fig2_capture(geo)
     plt.close(fig)  # saved and shown by page.show, not by the notebook's build cell
     page.figure(

@@ -98,7 +98,7 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN
     page = FigureDataPage(NOTEBOOK, params, output_name, quick, solver_description())
     plan = paper_plan(thrust_N, isp_s, starts=list(starts), dynamics=dynamics)
     sols = chain.solve_plan(plan)
-    arrival = chain.arrival_for(plan.arrival, plan.ephemeris)
+    arrival = chain.arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole)
     geo = figdata.capture_geometry(sols, arrival)
     n = plan.n_burns
     summ = [s.summary() for s in sols]

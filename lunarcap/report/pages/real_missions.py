@@ -288,7 +288,7 @@ def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
     chains = {(t, i): sequence_table(t, i, ("free",) * 3, dynamics, with_impulsive_model=False)
               for t, i in engines}
     plan = paper_plan(*engines[0], dynamics=dynamics)
-    arrival = arrival_for(plan.arrival, plan.ephemeris)
+    arrival = arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole)
     arrival_speed = orbit_summary(arrival.state, C.MU_MOON)["v_kmps"]
     m0 = plan.arrival.mass_kg
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from lunarcap.mission.plan import paper_plan, plan_ephemeris
+from lunarcap.mission.plan import paper_plan
 from lunarcap.optim import verify
 from lunarcap.optim.collocation import DEFAULT_MESHES, Mesh
 from lunarcap.optim.problem import burn_problem
@@ -136,7 +136,7 @@ def mesh_study(thrust_N: float, isp_s: float, loi: int, start_min: float,
         plan = plan.with_start(j, s)
     plan = plan.key(loi)
     x_peri = perilune_state(plan, loi - 1)  # arrival state, or the previous verified burn's
-    prob = burn_problem(plan, loi - 1, x_peri, plan_ephemeris(plan.ephemeris))
+    prob = burn_problem(plan, loi - 1, x_peri, plan.ephemeris_model())
     return verify.mesh_convergence(prob, [Mesh(*m) for m in meshes])
 
 
