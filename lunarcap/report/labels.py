@@ -69,3 +69,8 @@ def label(column: str) -> str:
 def labels(columns, **overrides) -> dict:
     """``{column: label}`` for ``columns``, with per-table overrides."""
     return {c: overrides.get(c, label(c)) for c in columns}
+
+
+def engine_label(thrust_N: float, isp_s: float) -> str:
+    """An engine as the tables name it, e.g. ``engine_label(150, 200)`` is '150 N / 200 s'."""
+    return f"{thrust_N:g} N / {isp_s:g} s"

@@ -18,6 +18,7 @@ import pandas as pd
 from lunarcap.mission.plan import paper_plan
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_IMPULSIVE_DV_MPS, PAPER_STARTS_MIN
 from lunarcap.report import figures
+from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import sweeps
 from lunarcap.runs.chain import paper_case
@@ -33,10 +34,6 @@ RULE_GOOD_PERCENT = 10.0
 #: The engines the paper solves: thrust (N) -> Isp (s).
 PAPER_ENGINES = {150.0: 200.0, 300.0: 250.0, 450.0: 300.0}
 
-
-def engine_label(thrust_N: float, isp_s: float) -> str:
-    """'150 N / 200 s'."""
-    return f"{thrust_N:g} N / {isp_s:g} s"
 
 
 def gain_table(engines, dynamics: str) -> pd.DataFrame:

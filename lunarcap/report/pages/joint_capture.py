@@ -14,6 +14,7 @@ import inspect
 import numpy as np
 import pandas as pd
 
+from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page
 from lunarcap.runs import joint, sweeps
 
@@ -41,10 +42,6 @@ LEG_FORMATS = {"sequential_start_min": ".3f", "joint_start_min": ".3f",
                "sequential_delta_v_mps": ".4f", "joint_delta_v_mps": ".4f",
                "difference_mps": "+.4f"}
 
-
-def engine_label(thrust_N: float, isp_s: float) -> str:
-    """'450 N / 300 s'."""
-    return f"{thrust_N:g} N / {isp_s:g} s"
 
 
 def joint_mesh_label() -> str:

@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.report import figures
+from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import sweeps
 
@@ -33,10 +34,6 @@ TARGETS_SHOWN = ["engine", "loi", "steering", "released_targets", "rp_miss_km",
 #: The engines the prose quotes (glued values are NaN for an engine not built).
 PROSE_THRUSTS_N = (150.0, 300.0, 450.0)
 
-
-def engine_label(thrust_N: float, isp_s: float) -> str:
-    """'450 N / 300 s'."""
-    return f"{thrust_N:g} N / {isp_s:g} s"
 
 
 def steering_rows(engines, dynamics: str) -> pd.DataFrame:

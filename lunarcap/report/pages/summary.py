@@ -20,6 +20,7 @@ from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics.constants import ARRIVAL_MASS_KG, G0_MPS2
 from lunarcap.report import figures
+from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import sweeps
 
@@ -40,10 +41,6 @@ QUANTITIES = (
     ("mass after LOI 3", "kg", "final_mass_kg", "mass_final_{}N_kg"),
 )
 
-
-def engine_label(thrust_N: float, isp_s: float) -> str:
-    """'150 N / 200 s'."""
-    return f"{thrust_N:g} N / {isp_s:g} s"
 
 
 def _quote(name: str):
