@@ -507,7 +507,7 @@ def _isp_colours(isp_s) -> dict:
     return {float(isp): cycle[k % len(cycle)] for k, isp in enumerate(isp_s)}
 
 
-def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict, floor_percent: dict,
+def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict,
                           newton_per_ratio: float, ylim=(0.01, 40.0)):
     """Loss (% of the impulsive delta-V, log) against thrust-to-weight, one panel per part.
 
@@ -515,12 +515,12 @@ def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict, floor_per
     ----------
     ok : DataFrame of the study's verified rows (``part``, ``isp_s``, ``thrust_to_weight``,
         ``loss_percent``); rows with a loss <= 0 are not drawn (log axis)
-    theory : DataFrame of Robbins' estimate on a dense grid (same columns)
+    theory : DataFrame of Robbins' estimate on a dense grid (same columns), only where it
+        is to be drawn
     paper : DataFrame of the paper's engines (``thrust_N``, ``isp_s``, ``thrust_to_weight``,
         ``part``, ``loss_percent``), drawn as stars
     isp_s : the specific impulses (s), one colour each
     part_titles : ``{part: panel title}``, in panel order (four panels, 2 x 2)
-    floor_percent : ``{part: loss (%)}`` below which the loss is not resolved (grey band)
     newton_per_ratio : thrust (N) of a thrust-to-weight ratio of 1 (top axis)
     ylim : loss axis limits, %
 
@@ -548,11 +548,8 @@ def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict, floor_per
         _trade_axes(ax, newton_per_ratio)
         ax.set_yscale("log")
         ax.set_ylim(*ylim)
-        ax.axhspan(ylim[0], floor_percent[part], color="0.88", zorder=0)
-        ax.text(0.02, 0.02, "not resolved (model offset)", transform=ax.transAxes,
-                fontsize=7, color="0.35", va="bottom")
         ax.set_title(part_titles[part], fontsize=10)
-        ax.set_ylabel("loss (% of the paper's impulsive ΔV)")
+        ax.set_ylabel("loss (% of the impulsive ΔV)")
     for ax in axes[1]:
         ax.set_xlabel("thrust-to-weight ratio T / (m₀ g₀)")
     handles, labels = axes[0, 0].get_legend_handles_labels()

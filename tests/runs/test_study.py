@@ -33,7 +33,9 @@ def _fake_summary(thrust_N, isp_s, loi):
     eq19 = 60.0 / thrust_N
     return {"start_min": -eq19 / 2, "burn_duration_min": 1.01 * eq19, "eq19_duration_min": eq19,
             "delta_v_mps": imp + loss, "impulsive_delta_v_mps": imp, "loss_mps": loss,
-            "loss_percent": 100 * loss / imp, "m_start_kg": 500.0 - loi, "m_end_kg": 450.0 - loi,
+            "loss_percent": 100 * loss / imp, "delta_v_loss_mps": loss,
+            "delta_v_loss_percent": 100 * loss / imp, "impulsive_verified": True,
+            "m_start_kg": 500.0 - loi, "m_end_kg": 450.0 - loi,
             "fuel_kg": 50.0, "ipopt_status": "Solve_Succeeded", "ipopt_iterations": 9,
             "mesh": "8x16 LGR-5", "solve_wall_s": 0.1, "verification": {"passed": True}}
 
@@ -299,13 +301,21 @@ def test_solve_error_in_the_chain_is_recorded_with_ipopt_status(monkeypatch):
         def summary(self):
             return self._s
 
-    def fake_paper_case(thrust_N, isp_s, loi, start, previous, dynamics):
-        assert start == "free" and previous == ("free",) * (loi - 1)
+    def fake_solve_burn(key):
+        loi = key.n_burns
+        assert all(b.free_start for b in key.burns)  # the free-ignition chain
         if loi == 2:
             raise SolveError("LOI 2 failed on every mesh", status="Maximum_Iterations_Exceeded")
-        return FakeSolution(_fake_summary(thrust_N, isp_s, loi))
+        s = _fake_summary(key.engine.thrust_N, key.engine.isp_s, loi)
+        s["objective_mps"] = s["delta_v_mps"] + 2000.0
+        return FakeSolution(s)
 
-    monkeypatch.setattr(sequence, "paper_case", fake_paper_case)
+    def fake_impulsive_limit(key):
+        imp = study_imp(key.n_burns)
+        return {"delta_v_mps": imp, "objective_mps": imp + 2000.0, "verification_passed": True}
+
+    monkeypatch.setattr(sequence, "solve_burn", fake_solve_burn)
+    monkeypatch.setattr(sequence, "impulsive_limit", fake_impulsive_limit)
     rows = {r["part"]: r for r in study.solve_engine(300.0, 250.0, "full")}
     assert rows["LOI1"]["status"] == "ok"
     assert rows["LOI2"]["status"] == "failed"
@@ -432,3 +442,30 @@ def test_cli_small_two_body_study_and_resume(tmp_path):
     assert (table.loss_percent.abs() < 0.2).all()  # strong engines: near-impulsive
     res = subprocess.run(args, cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert res.returncode == 0 and "0 engine(s) computed, 2 taken from the table" in res.stdout
+
+
+@pytest.mark.slow
+def test_strong_engine_loses_little_and_never_more_than_robbins():
+    """The study's loss is measured against the impulsive limit in the same dynamics.
+
+    Two-body, 2000 N / 300 s (T/W 0.39): every burn's loss is positive (an impulse from the
+    same orbit does at least as well) and equals Robbins' closed-form leading term within
+    1 % (omega_s t_b <= 0.08 here, deep inside its expansion, where optimal steering gains
+    only at higher order) without exceeding it; for LOI 3, whose circle fixes the end speed,
+    the objective loss is the delta-V loss.
+    Against the paper's impulsive values LOI 2 would instead read 0.12 m/s too high (the
+    two-body LOI 2 impulse is 253.911 m/s, the paper prints 254.034): a model offset.
+    """
+    rows = {r["part"]: r for r in study.solve_engine(2000.0, 300.0, "two-body")}
+    assert all(r["status"] == "ok" and r["verified"] for r in rows.values())
+    for part in ("LOI1", "LOI2", "LOI3"):
+        r = rows[part]
+        ratio = r["loss_mps"] / r["analytic_loss_mps"]
+        assert 0.99 < ratio <= 1.0 + 1e-6, (part, r["loss_mps"], r["analytic_loss_mps"])
+        assert r["impulsive_delta_v_mps"] == pytest.approx(
+            {"LOI1": 353.272, "LOI2": 253.911, "LOI3": 245.178}[part], abs=2e-3)
+    assert rows["LOI3"]["loss_mps"] == pytest.approx(rows["LOI3"]["delta_v_loss_mps"], abs=1e-6)
+    seq = rows["sequence"]
+    assert seq["loss_mps"] == pytest.approx(sum(rows[p]["loss_mps"] for p in ("LOI1", "LOI2",
+                                                                            "LOI3")))
+    assert 0.99 * seq["analytic_loss_mps"] < seq["loss_mps"] <= seq["analytic_loss_mps"]

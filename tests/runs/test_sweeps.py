@@ -65,6 +65,7 @@ def test_sequence_totals_arithmetic_on_a_synthetic_chain():
     df["loss_mps"] = df.delta_v_mps - df.paper_impulsive_delta_v_mps
     df["loss_percent"] = 100 * df.loss_mps / df.paper_impulsive_delta_v_mps
     df["model_loss_mps"] = df.delta_v_mps - df.model_impulsive_delta_v_mps
+    df["objective_loss_mps"] = [7.5, 5.0, 5.0]
     t = tables.sequence_totals(df, mass0_kg=500.0)
     imp = sum(PAPER_IMPULSIVE_DV_MPS)
     assert t["total_delta_v_mps"] == pytest.approx(870.0)
@@ -79,6 +80,8 @@ def test_sequence_totals_arithmetic_on_a_synthetic_chain():
     assert t["total_model_loss_mps"] == pytest.approx(870.0 - 852.0)
     assert t["total_model_impulsive_delta_v_mps"] == pytest.approx(852.0)
     assert t["total_model_loss_percent"] == pytest.approx(100 * 18.0 / 852.0)
+    assert t["total_objective_loss_mps"] == pytest.approx(17.5)
+    assert t["total_objective_loss_percent"] == pytest.approx(100 * 17.5 / 852.0)
     # the two percentages differ: a mean of ratios is not the ratio of the sums
     assert t["mean_of_burn_loss_percent"] != pytest.approx(t["total_loss_percent"], abs=1e-3)
 

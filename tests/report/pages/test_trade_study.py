@@ -37,25 +37,33 @@ def test_the_study_solved_every_engine_once_and_records_the_run(page):
 
 
 @pytest.mark.slow
-def test_loss_is_measured_against_the_paper_impulsive_delta_v(page):
+def test_loss_is_measured_against_the_impulsive_limit_in_the_same_dynamics(page):
     t = page.data["result"].table
-    for k, part in enumerate(study.PARTS[:3]):
-        r = t[t.part == part]
-        np.testing.assert_allclose(r.impulsive_delta_v_mps, PAPER_IMPULSIVE_DV_MPS[k])
-        np.testing.assert_allclose(r.loss_mps, r.delta_v_mps - PAPER_IMPULSIVE_DV_MPS[k])
-        np.testing.assert_allclose(r.loss_percent,
-                                   100 * r.loss_mps / PAPER_IMPULSIVE_DV_MPS[k])
+    lois = t[t.part != "sequence"]
+    # two-body: LOI 1's impulse from the arrival hyperbola is the vis-viva one (2 mm/s);
+    # later burns start from the orbit the finite burn left (Eq. 9 trades delta-V against
+    # the end speed, so its energy differs by a little): within 0.1 m/s of vis-viva
+    two_body = {"LOI1": (353.272, 2e-3), "LOI2": (253.911, 0.1), "LOI3": (245.178, 0.1)}
+    for part, (imp, tol) in two_body.items():
+        np.testing.assert_allclose(t[t.part == part].impulsive_delta_v_mps, imp, atol=tol)
+    # the loss is positive, falls with the thrust, and the percentage is of the impulse
+    assert (lois.loss_mps > 0).all()
+    for part, g in lois.groupby("part"):
+        assert g.sort_values("thrust_N").loss_mps.is_monotonic_decreasing, part
+    np.testing.assert_allclose(lois.loss_percent, 100 * lois.loss_mps / lois.impulsive_delta_v_mps)
+    # LOI 3 ends on a circle: the end speed is fixed, so both loss definitions agree
+    l3 = t[t.part == "LOI3"]
+    np.testing.assert_allclose(l3.loss_mps, l3.delta_v_loss_mps, atol=1e-6)
     # the sequence sums the three LOIs
-    loi = t[t.part != "sequence"].groupby("thrust_N").loss_mps.sum()
+    loi = lois.groupby("thrust_N").loss_mps.sum()
     seq = t[t.part == "sequence"].set_index("thrust_N")
     np.testing.assert_allclose(seq.loss_mps, loi.loc[seq.index])
-    np.testing.assert_allclose(seq.loss_percent,
-                               100 * seq.loss_mps / sum(PAPER_IMPULSIVE_DV_MPS))
-    # the definition is said where the numbers are shown
+    np.testing.assert_allclose(seq.loss_percent, 100 * seq.loss_mps / seq.impulsive_delta_v_mps)
+    # the definition is said where the numbers are shown; no "not resolved" band any more
     for key in ("loss", "grid", "paper_engines"):
-        assert "paper's impulsive ΔV" in page.items[key].caption
-        assert "not the loss against our model's own impulsive limit" in \
-            page.items[key].caption
+        assert "impulsive limit" in page.items[key].caption
+        assert "not resolved" not in page.items[key].caption
+    assert page.values["loss_min_mps"] > 0
 
 
 @pytest.mark.slow
@@ -113,12 +121,14 @@ def test_shown_columns_have_labels_with_units_and_fit_the_page(page):
 # ------------------------------------------------------------------ a failed engine (stub)
 def _summary(thrust_N, loi):
     imp = PAPER_IMPULSIVE_DV_MPS[loi - 1]
-    loss = imp * 400.0 / thrust_N ** 2
+    # 90 % of Robbins' estimate: below it, as an optimal burn's loss must be (a page check)
+    loss = 0.9 * study.capture_chain_estimate(thrust_N, 250.0)[loi - 1]["loss_mps"]
     eq19 = 60.0 / thrust_N
     return {"start_min": -0.6 * eq19, "burn_duration_min": 1.01 * eq19,
             "eq19_duration_min": eq19, "delta_v_mps": imp + loss,
             "impulsive_delta_v_mps": imp, "loss_mps": loss, "loss_percent": 100 * loss / imp,
-            "m_start_kg": 500.0, "m_end_kg": 450.0, "fuel_kg": 50.0,
+            "delta_v_loss_mps": loss, "delta_v_loss_percent": 100 * loss / imp,
+            "impulsive_verified": True, "m_start_kg": 500.0, "m_end_kg": 450.0, "fuel_kg": 50.0,
             "ipopt_status": "Solve_Succeeded", "ipopt_iterations": 9, "mesh": "8x16 LGR-5",
             "solve_wall_s": 0.1, "verification": {"passed": True}}
 
