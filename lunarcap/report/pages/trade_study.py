@@ -30,7 +30,7 @@ PART_TITLES = {"LOI1": "LOI 1: hyperbola → 12.235 h", "LOI2": "LOI 2: 12.235 h
                "LOI3": "LOI 3: 3.525 h → 100 km circle", "sequence": "whole sequence"}
 
 #: Loss axis of the loss figure, % of the impulsive delta-V (logarithmic).
-LOSS_AXIS_PERCENT = (0.01, 40.0)
+LOSS_AXIS_PERCENT = (0.003, 40.0)
 
 #: Points of the dense thrust grid of the analytic curves.
 DENSE_POINTS = 200
