@@ -68,8 +68,9 @@ def plan_table(plan: CapturePlan) -> pd.DataFrame:
     """One row per burn of the plan as written: target, nominal orbit, ignition, Eq. (19).
 
     Columns: burn, target, period_h, period (text: h, or min below 3 h) and
-    apolune_altitude_km (of the orbit reached, two-body), ignition ("free" or the offset in min), two_body_delta_v_mps and
-    eq19_duration_min (the plan's two-body impulsive chain).
+    apolune_altitude_km (of the orbit reached, two-body), ignition ("free" or the offset
+    in min), two_body_delta_v_mps and eq19_duration_min (the plan's two-body impulsive
+    chain).
     """
     imp = plan.impulsive()
     rp = plan.perilune_radius_km
