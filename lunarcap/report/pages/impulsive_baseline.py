@@ -162,7 +162,7 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRI
         floatfmt={"delta_v_mps": ".3f", "m0_kg": ".3f", "duration_min": ".2f",
                   "paper_duration_min": ".2f", "difference_min": "+.2f"})
 
-    # numbers quoted in the prose here and on other pages (book/model.md, book/intro.md)
+    # numbers quoted in the prose here and on other pages (book/model.md, book/index.md)
     page.value("v_inf_kmps", float(v_inf))
     page.value("rp_km", float(rp_km))
     for n in (1, 2, 3):
@@ -171,6 +171,8 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRI
         page.value(f"dv_diff_loi{n}_mps", float(dv[n - 1] - paper_dv[n - 1]))
         page.value(f"eq19_loi{n}_min", float(t19[n - 1]))
         page.value(f"paper_eq19_loi{n}_min", float(printed_min[n - 1]))
+    for n, q in enumerate(PAPER_MASS_QUOTES, start=1):  # m0 of eq19_masses="paper"
+        page.value(f"paper_m0_loi{n}_kg", float(paper.quote(q).value))
     page.value("dv_total_mps", float(dv.sum()))
     page.value("paper_dv_total_mps", float(paper_dv.sum()))
     page.value("mass_final_kg", float(burns[-1].m_after_kg))

@@ -76,3 +76,10 @@ def test_other_engines():
     # Eq. (19) from the arrival mass with this engine's thrust and Isp
     assert p.values["eq19_loi1_min"] == pytest.approx(_eq19_min(524.895, 353.272, 300.0, 250.0))
     p.check()
+
+
+def test_glued_paper_masses_are_the_printed_ones(page):
+    # the rerun page quotes them to explain eq19_masses="paper"
+    got = [page.values[f"paper_m0_loi{n}_kg"] for n in (1, 2, 3)]
+    np.testing.assert_allclose(got, PRINTED_MASSES_KG)
+    np.testing.assert_allclose(page.items["eq19"].df.m0_kg, got)
