@@ -22,6 +22,16 @@ Tolerances
   the rocket equation, dV = g0 Isp ln(m0/mf), and the burn lasts (m0 - mf) g0 Isp / T.
   The paper does not state SOCS's tolerances; :data:`SOLVER_REL_TOL` (1e-4 of the
   computed value) is allowed on top of rounding for these relations.
+* **Print resolution of a compared duration.** A table row's burn duration is compared
+  with the duration recomputed from the same row's delta-V, and the audit states that
+  recomputation at the printed resolution (0.01 min, "printed 11.74 min, recomputed
+  11.73 min"). Two durations each known only to the printed digit cannot contradict
+  each other by less than one unit of that digit, so the rows allow half a unit for the
+  printed duration plus half a unit for the recomputed one
+  (:data:`DURATION_RESOLUTION_MIN`), on top of the propagated rounding of the row's
+  delta-V and start mass and the solver allowance. Table 2, -3 min (11.74 printed,
+  11.7301 recomputed: 0.0099 min, 0.85e-3 relative) is within this; Table 3, -3 min
+  (10.81 against 10.02 min) is not.
 
 g0 = 9.80665 m/s^2 (:data:`lunarcap.physics.constants.G0_MPS2`).
 
@@ -66,6 +76,9 @@ INCONSISTENT = "inconsistent"
 #: Relative allowance for the optimiser's discretisation error in relations between two
 #: of its outputs (masses, delta-Vs, burn durations); see the module docstring.
 SOLVER_REL_TOL = 1e-4
+
+#: One unit of the last printed digit of the paper's burn durations (Tables 1-5), min.
+DURATION_RESOLUTION_MIN = 0.01
 
 #: TCB-TDB rate, L_B = 1 - d(TDB)/d(TCB) (IAU 2006 Resolution B3). A gravitational
 #: parameter in TCB-compatible units is (1 + L_B) times its TDB-compatible value
@@ -369,15 +382,15 @@ def _check_a() -> list[Finding]:
     tcb = c * (1 + L_B)
     rel_tcb = 10 * p / tcb - 1
     tcb_note = (f"Ten times the printed value, {10 * p:,.1f}, equals the DE405 value in "
-                f"TCB-compatible units, GM (1 + L_B) = {tcb:,.1f} km^3/s^2 (relative "
+                f"TCB-compatible units, GM (1 + L_B) = {tcb:,.1f} km³/s² (relative "
                 f"difference {rel_tcb:.1e}), which is why the ratio is {ratio:.11f} and not "
                 "exactly 10: the printed number is the TCB-compatible GM with its decimal "
                 "point one place off." if abs(rel_tcb) < 1e-10 else
                 f"Ten times the printed value differs from GM (1 + L_B) by {rel_tcb:.1e}.")
     return [Finding(
         "sun-gm", "a", _where("mu_sun_km3s2"), "gravitational parameter of the Sun",
-        p, c, "km^3/s^2", _half("mu_sun_km3s2") + 0.5,
-        f"IAU 2009 / DE405 value 1.32712440018e11 km^3/s^2 (lunarcap.physics.constants.MU_SUN). "
+        p, c, "km³/s²", _half("mu_sun_km3s2") + 0.5,
+        f"IAU 2009 / DE405 value {c:,.0f} km³/s² (lunarcap.physics.constants.MU_SUN). "
         f"The printed value is {ratio:.9f} times too small. {tcb_note}",
         extra={"ratio_correct_over_printed": ratio, "tcb_value": tcb,
                "rel_diff_10x_printed_vs_tcb": rel_tcb})]
@@ -535,12 +548,24 @@ def _check_c() -> list[Finding]:
             for row in tab.itertuples():
                 x, u = _propagate(lambda m, dv: _burn_min(m, dv, t, isp[t]), (ms, hms),
                                   (row.delta_v_mps, 0.0005))
-                tol = 0.005 + u + SOLVER_REL_TOL * x
+                # half a unit of the printed duration + half a unit of the recomputed one
+                # at the printed resolution (see the module docstring)
+                tol = DURATION_RESOLUTION_MIN + u + SOLVER_REL_TOL * x
                 implied_T = _fuel(ms, row.delta_v_mps, isp[t]) * _ve(isp[t]) / (
                     row.burn_duration_min * 60)
                 implied_m = (_fuel_from_burn(t, row.burn_duration_min, isp[t])
                              / (1 - math.exp(-row.delta_v_mps / _ve(isp[t]))))
-                x0 = _burn_min(starts_printed_m0[t][n - 1], row.delta_v_mps, t, isp[t])
+                m_alt = starts_printed_m0[t][n - 1]
+                x0 = _burn_min(m_alt, row.delta_v_mps, t, isp[t])
+                if n == 1:
+                    alt = (f" Starting instead from the printed arrival mass {m0:.3f} kg "
+                           f"gives {x0:.3f} min.")
+                elif abs(m_alt - ms) < 1e-9:  # the start mass already is a printed mass
+                    alt = ""
+                else:
+                    alt = (f" Starting instead from the printed arrival mass {m0:.3f} kg, "
+                           f"taken through Table B1's delta-Vs of the earlier LOIs "
+                           f"({m_alt:.3f} kg at ignition), gives {x0:.3f} min.")
                 thrust_rows.setdefault((t, n), []).append(implied_T)
                 out.append(Finding(
                     f"burn/{t}N/LOI{n}/start{row.start_min}min", "c",
@@ -549,9 +574,10 @@ def _check_c() -> list[Finding]:
                     "row's delta-V", row.burn_duration_min, x, "min", tol,
                     f"Start mass {ms:.3f} kg ({src[t][n - 1]}); t = m0 [1 - exp(-dV/(g0 Isp))] "
                     f"g0 Isp / T = {x:.3f} min. The row implies a start mass of "
-                    f"{implied_m:.2f} kg or a thrust of {implied_T:.1f} N. Starting instead "
-                    f"from the printed arrival mass {m0:.3f} kg gives {x0:.3f} min.",
+                    f"{implied_m:.2f} kg or a thrust of {implied_T:.1f} N.{alt}",
+                    resolution=DURATION_RESOLUTION_MIN,
                     extra={"implied_thrust_N": implied_T, "implied_start_mass_kg": implied_m,
+                           "start_mass_from_printed_arrival_mass_kg": m_alt,
                            "duration_from_printed_arrival_mass_min": x0}))
     # the thrust implied by Table 4's LOI-1 rows
     vals = thrust_rows[(300, 1)]
@@ -841,7 +867,7 @@ def _check_g() -> list[Finding]:
         "period of the 100 km circular orbit", p, x, "min", _half("period_final_min") + u,
         f"2 pi sqrt(({R:.1f} + {h:.0f})^3 / {mu:.3f}) = {x:.4f} min. The printed period "
         f"implies a radius of {r_impl:.3f} km (altitude {r_impl - R:.3f} km) with the printed "
-        f"mu, or mu = {mu_impl:.2f} km^3/s^2 with the printed radius.",
+        f"mu, or mu = {mu_impl:.2f} km³/s² with the printed radius.",
         extra={"implied_radius_km": r_impl, "implied_mu_km3s2": mu_impl})]
     q = _qv("period_final_about_min")
     out.append(Finding(
@@ -1041,7 +1067,7 @@ def _check_k() -> list[Finding]:
             f"impulsive/LOI{n}-two-body", "k", "Tables 1-5 and B1, impulsive rows",
             f"impulsive LOI-{n} delta-V vs the two-body tangential impulse between the printed "
             "periods at 100 km perilune altitude", p, x, "m/s", 1e-3 * x,
-            f"Two-body (mu = 4902.800 km^3/s^2, r_p = 1838.2 km, v_inf fixed by LOI 1 = "
+            f"Two-body (mu = 4902.800 km³/s², r_p = 1838.2 km, v_inf fixed by LOI 1 = "
             f"353.272 m/s): {x:.3f} m/s. Tolerance 0.1 % allows for the N-body and J2 model of "
             "Song et al. (2009c), whence the impulsive values come."))
     return out

@@ -17,7 +17,7 @@ Tables 1-5 are :func:`paper_table`; Table B1 is :func:`paper_table_b1` and
 and :func:`quotes_table`); the three perilune epochs are :data:`PAPER_EPOCHS_TDB`.
 
 Units: minutes (min) for ignition offsets and burn durations, m/s for delta-V, per cent
-for differences, kg for masses, km and km^3/s^2 for the constants of Sec. 3.1.
+for differences, kg for masses, km and km³/s² for the constants of Sec. 3.1.
 Ignition offsets are minutes *before* perilune and carry the paper's '-' sign
 (Tables 1-3 print the zero offset as "-0"; it is stored as 0).
 
@@ -346,7 +346,7 @@ class Quote:
     printed : str
         The number exactly as printed (digits, commas and exponent), e.g. ``"434.471"``.
     unit : str
-        Unit of ``value`` ("kg", "m/s", "min", "h", "%", "km", "km^3/s^2", "N", "s",
+        Unit of ``value`` ("kg", "m/s", "min", "h", "%", "km", "km³/s²", "N", "s",
         "deg", "t" (metric tons) or "" for pure numbers).
     where : str
         Section and paragraph (counted in reading order within the section), or table,
@@ -433,11 +433,11 @@ QUOTES: dict[str, Quote] = _quotes(
      "of unit pointing thrust vector...')",
      "these bounds are given as -1.01 and 1.01 for lower and upper bound", False),
     # --- Sec. 3.1, para 1: constants
-    ("mu_moon_km3s2", "4,902.800", "km^3/s^2", _S31_1,
+    ("mu_moon_km3s2", "4,902.800", "km³/s²", _S31_1,
      "gravitational constant of the Moon is assumed to be about 4,902.800 km3/s2"),
-    ("mu_earth_km3s2", "398,600.441", "km^3/s^2", _S31_1, "for the Earth 398,600.441 km3/s2",
+    ("mu_earth_km3s2", "398,600.441", "km³/s²", _S31_1, "for the Earth 398,600.441 km3/s2",
      False),
-    ("mu_sun_km3s2", "13,271,244,207.6", "km^3/s^2", _S31_1,
+    ("mu_sun_km3s2", "13,271,244,207.6", "km³/s²", _S31_1,
      "for the Sun 13,271,244,207.6 km3/s2", False),
     ("r_moon_km", "1,738.2", "km", _S31_1, "radius of the Moon is assumed to be about 1,738.2 km"),
     ("j2_moon", "0.2027e-3", "", _S31_1,

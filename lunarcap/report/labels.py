@@ -74,3 +74,23 @@ def labels(columns, **overrides) -> dict:
 def engine_label(thrust_N: float, isp_s: float) -> str:
     """An engine as the tables name it, e.g. ``engine_label(150, 200)`` is '150 N / 200 s'."""
     return f"{thrust_N:g} N / {isp_s:g} s"
+
+
+#: Orbits with a period shorter than this are described in minutes (the paper's 117.848 min
+#: final orbit), longer ones in hours (12.235 h, 3.525 h), h.
+MINUTES_BELOW_H = 3.0
+
+
+def period_text(period_h: float, decimals: int = 3) -> str:
+    """An orbit's period as the paper writes it: hours, or minutes below 3 h.
+
+    Examples
+    --------
+    >>> period_text(12.235), period_text(117.86793 / 60), period_text(float("inf"))
+    ('12.235 h', '117.9 min', 'hyperbola')
+    """
+    if period_h == float("inf"):
+        return "hyperbola"
+    if period_h < MINUTES_BELOW_H:
+        return f"{60.0 * period_h:.1f} min"
+    return f"{period_h:.{decimals}f} h"

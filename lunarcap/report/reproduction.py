@@ -340,8 +340,8 @@ def epochs_comparison(perilune_epochs_s):
 def _fmt_decimals(v: float, decimals: int, sign: bool = False) -> str:
     if not np.isfinite(v):
         return "—"
-    if abs(v) >= 1e6:   # large numbers (gravitational parameters): 7 significant digits
-        return f"{v:{'+' if sign else ''}.7g}"
+    if abs(v) >= 1e6:   # large numbers (gravitational parameters): grouped, one decimal
+        decimals = 1
     text = f"{v:{'+' if sign else ''},.{max(0, decimals)}f}"
     if sign and text[1:].replace("0", "").replace(".", "").replace(",", "") == "":
         text = text[1:]  # no "+0.00" / "-0.00"
@@ -396,13 +396,16 @@ def findings_display(findings):
     -------
     pandas.DataFrame
         String columns ``finding`` (group letter and id, e.g. ``"a: sun-gm"``),
-        ``printed`` and ``computed`` (6 significant digits, with the unit) and
+        ``printed`` and ``computed`` (6 significant digits, or grouped digits with one
+        decimal from 10^6 up, with the unit) and
         ``explanation`` (where the number is printed, then how it was checked).
     """
     import pandas as pd
 
     def num(v, unit):
-        return f"{v:.6g}" + (f" {unit}" if unit else "")
+        # 6 significant digits; large numbers (gravitational parameters) grouped in full
+        text = f"{v:,.1f}" if abs(v) >= 1e6 else f"{v:.6g}"
+        return text + (f" {unit}" if unit else "")
 
     return pd.DataFrame({
         "finding": [f"{c}: {i}" for c, i in zip(findings.check, findings.id)],

@@ -174,6 +174,54 @@ def test_table4_loi1_rows_imply_350N(F):
         f"burn/300N/LOI1/start{s}min" for s in (0, -2, -4, -6)}
 
 
+def _burn_min(m0, dv, thrust, isp):
+    ve = G0 * isp
+    return m0 * (1 - math.exp(-dv / ve)) * ve / thrust / 60
+
+
+def test_duration_rows_allow_one_unit_of_the_printed_digit(F):
+    # Table 2, -3 min: 11.74 printed; 434.471 kg (printed after LOI 1) and 259.410 m/s give
+    # 11.7301 min. Half a unit (0.005 min) for the printed duration + half a unit for the
+    # recomputed one at the same resolution + the rounding of mass and delta-V (half units
+    # 0.0005 kg, 0.0005 m/s, propagated) + the solver allowance 1e-4.
+    f = F["burn/150N/LOI2/start-3min"]
+    m, dv, h = 434.471, 259.410, 0.0005
+    x = _burn_min(m, dv, 150, 200)
+    u = (abs(_burn_min(m + h, dv, 150, 200) - _burn_min(m - h, dv, 150, 200)) / 2
+         + abs(_burn_min(m, dv + h, 150, 200) - _burn_min(m, dv - h, 150, 200)) / 2)
+    assert f.computed == pytest.approx(x, abs=1e-12) and f.printed == 11.74
+    assert f.tolerance == pytest.approx(0.01 + u + 1e-4 * x, rel=1e-9)
+    assert f.verdict == A.CONSISTENT
+    # the other last-digit rows (one unit off, 6.49 vs 6.4994 and 4.23 vs 4.2404) likewise
+    for k in ("burn/450N/LOI1/start-3min", "burn/450N/LOI2/start-4min"):
+        assert 0.009 < abs(F[k].difference) < 0.0105 and F[k].verdict == A.CONSISTENT, k
+    # ... and every duration row stays flagged beyond that: the same rule in both directions
+    for k, f in F.items():
+        if k.startswith("burn/"):
+            assert (f.verdict == A.CONSISTENT) == (abs(f.difference) <= f.tolerance), k
+            base = 0.01 + 1e-4 * f.computed  # the rounding of the inputs adds < 0.2 mmin
+            assert base < f.tolerance < base + 2e-4, k
+    assert inconsistent_ids(F, "burn/") == {
+        "burn/150N/LOI3/start-3min", *(f"burn/300N/LOI1/start{s}min" for s in (0, -2, -4, -6))}
+
+
+def test_duration_rows_name_the_start_mass_they_compare_with(F):
+    # LOI 1: the printed arrival mass itself
+    f = F["burn/150N/LOI1/start-10min"]
+    assert "printed arrival mass 524.895 kg gives" in f.explanation
+    assert f"{_burn_min(524.895, 367.415, 150, 200):.3f} min." in f.explanation
+    # 150 N, LOI 2 and 3 start from a printed mass already: no second start mass
+    for k in ("burn/150N/LOI2/start-3min", "burn/150N/LOI3/start-5min"):
+        assert "arrival mass" not in F[k].explanation, k
+    # 300 N, LOI 2: the arrival mass through Table B1's LOI-1 delta-V, stated as such
+    f = F["burn/300N/LOI2/start-1min"]
+    b1 = P.paper_best(300, 1)["delta_v_mps"]
+    m1 = 524.895 * math.exp(-b1 / (G0 * 250))
+    row = P.paper_table(300, 2).set_index("start_min").loc[-1]
+    assert (f"taken through Table B1's delta-Vs of the earlier LOIs ({m1:.3f} kg at ignition), "
+            f"gives {_burn_min(m1, row.delta_v_mps, 300, 250):.3f} min.") in f.explanation
+
+
 def test_table3_minus3_duration_is_off(F):
     f = F["burn/150N/LOI3/start-3min"]
     m = 381.005

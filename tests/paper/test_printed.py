@@ -149,7 +149,7 @@ def test_every_quote_is_documented_and_contains_its_number():
     for q in P.QUOTES.values():
         assert q.printed in q.text, q.name
         assert q.where.startswith(("Sec.", "Abstract", "Table", "Fig.")), q.name
-        assert q.unit in {"kg", "m/s", "min", "h", "%", "km", "km^3/s^2", "N", "s", "deg", "t",
+        assert q.unit in {"kg", "m/s", "min", "h", "%", "km", "km³/s²", "N", "s", "deg", "t",
                           ""}, q.name
 
 

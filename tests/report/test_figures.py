@@ -389,7 +389,10 @@ def test_quotes_display_is_compact_and_keeps_every_row():
     assert row["words"].startswith("§3.2.1 ¶")
     none = d[q.ours.isna()]
     assert (none.ours == "—").all() and (none.difference == "—").all()
-    assert d[q.name == "mu_sun_km3s2"].ours.iloc[0] == "1.327124e+11"
+    # gravitational parameters: grouped digits, one decimal, no exponent
+    sun = d[q.name == "mu_sun_km3s2"].iloc[0]
+    assert sun.ours == "132,712,440,018.0" and sun.difference == "+119,441,195,810.4"
+    assert sun.printed == "13,271,244,207.6 km³/s²"
 
 
 def test_findings_display():
@@ -399,5 +402,6 @@ def test_findings_display():
     assert len(d) == len(t) and list(d.columns) == ["finding", "printed", "computed",
                                                     "explanation"]
     row = d[t.id == "sun-gm"].iloc[0]
-    assert row.finding == "a: sun-gm" and row.printed == "1.32712e+10 km^3/s^2"
+    assert row.finding == "a: sun-gm" and row.printed == "13,271,244,207.6 km³/s²"
+    assert row.computed == "132,712,440,018.0 km³/s²"
     assert row.explanation.startswith("Sec. 3.1, para 1. ")

@@ -25,6 +25,7 @@ import pandas as pd
 from lunarcap.mission.plan import PLAN_DIR, CapturePlan, load_plan, paper_plan
 from lunarcap.physics import constants as C
 from lunarcap.report import figdata, figures
+from lunarcap.report.labels import period_text
 from lunarcap.report.page import Page, solver_description
 from lunarcap.runs.chain import arrival_for, plan_result
 
@@ -66,9 +67,10 @@ def _apolune_altitude_km(period_s: float, rp_km: float) -> float:
 def plan_table(plan: CapturePlan) -> pd.DataFrame:
     """One row per burn of the plan as written: target, nominal orbit, ignition, Eq. (19).
 
-    Columns: burn, target, period_h and apolune_altitude_km (of the orbit reached,
-    two-body), ignition ("free" or the offset in min), two_body_delta_v_mps and
-    eq19_duration_min (the plan's two-body impulsive chain).
+    Columns: burn, target, period_h, period (text: h, or min below 3 h) and
+    apolune_altitude_km (of the orbit reached, two-body), ignition ("free" or the offset
+    in min), two_body_delta_v_mps and eq19_duration_min (the plan's two-body impulsive
+    chain).
     """
     imp = plan.impulsive()
     rp = plan.perilune_radius_km
@@ -77,6 +79,7 @@ def plan_table(plan: CapturePlan) -> pd.DataFrame:
         period = b.period_s if b.target != "circular" else _circle_period_s(rp)
         rows.append({
             "burn": i + 1, "target": b.describe(), "period_h": period / 3600.0,
+            "period": period_text(period / 3600.0, 4),
             "apolune_altitude_km": _apolune_altitude_km(period, rp),
             "ignition": "free" if b.free_start else f"{b.start_min:g} min",
             "two_body_delta_v_mps": imp[i].delta_v_mps,
@@ -330,7 +333,8 @@ def build(plan="lro-like-5burn", dynamics: str | None = None,
         caption=(f"The burns of {case}; first perilune {a.epoch}, altitude "
                  f"{a.perilune_altitude_km:g} km (every perilune and the final circle), "
                  f"inclination {a.inclination_deg:g} deg, v_inf {a.v_inf_kmps:.5f} km/s. "
-                 "Period (h) and apolune altitude (km): the orbit each burn must reach "
+                 "Period (h, or min below 3 h) and apolune altitude (km): the orbit each "
+                 "burn must reach "
                  "(two-body; the apolune follows from the period and the perilune). "
                  "Ignition: free (optimised) or min from the nominal perilune. Impulsive ΔV "
                  "(m/s): the plan's two-body chain of tangential perilune impulses; Eq. (19) "
@@ -338,8 +342,10 @@ def build(plan="lro-like-5burn", dynamics: str | None = None,
         columns={"ignition": "ignition",
                  "two_body_delta_v_mps": "impulsive ΔV, two-body (m/s)",
                  "eq19_duration_min": "Eq. (19) duration (min)"},
-        floatfmt={"period_h": ".4f", "apolune_altitude_km": ",.1f",
-                  "two_body_delta_v_mps": ".3f", "eq19_duration_min": ".2f"})
+        floatfmt={"apolune_altitude_km": ",.1f",
+                  "two_body_delta_v_mps": ".3f", "eq19_duration_min": ".2f"},
+        show_columns=["burn", "target", "period", "apolune_altitude_km", "ignition",
+                      "two_body_delta_v_mps", "eq19_duration_min"])
 
     # ---- each burn
     page.table(

@@ -25,6 +25,7 @@ from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.physics.rocket import burn_duration_estimate_s
+from lunarcap.report.labels import period_text
 from lunarcap.report.page import Page
 
 NOTEBOOK = "notebooks/impulsive_baseline.ipynb"
@@ -122,19 +123,21 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRI
     chain = impulsive_sequence(thrust_N, isp_s, mass_kg, altitude_km)
     burns = impulsive_sequence(thrust_N, isp_s, mass_kg, altitude_km, eq19_masses_kg=masses)
     dv = np.array([b.delta_v_mps for b in burns])
+    circle_kmps = float(np.sqrt(C.MU_MOON / rp_km))  # speed on the circle at the perilune
     paper_dv = np.array(paper.PAPER_IMPULSIVE_DV_MPS)
 
     page.table(
         "delta_v", pd.DataFrame({
             "loi": [b.burn for b in burns],
-            "from_orbit": ["hyperbola" if np.isinf(b.period_before_h)
-                           else f"{b.period_before_h:.3f} h" for b in burns],
-            "to_orbit": [f"{b.period_after_h:.3f} h" for b in burns],
+            "from_orbit": [period_text(b.period_before_h) for b in burns],
+            "to_orbit": [("circle, " if np.isclose(b.v_after_kmps, circle_kmps) else "")
+                         + period_text(b.period_after_h) for b in burns],
             "delta_v_mps": dv, "paper_delta_v_mps": paper_dv, "difference_mps": dv - paper_dv,
             "mass_after_kg": [b.m_after_kg for b in burns]}),
         caption=(f"Impulsive capture sequence, two-body model, perilune altitude "
                  f"{altitude_km:g} km, {mass_kg:g} kg at arrival, Isp {isp_s:g} s, beside the "
-                 "paper's values (Tables 1-5). Orbits are given by their periods (h); "
+                 "paper's values (Tables 1-5). Orbits are given by their periods (h, or min "
+                 "below 3 h as the paper writes the final orbit); "
                  "delta-V in m/s, ours − paper in m/s, mass after each impulse (rocket "
                  "equation) in kg."),
         columns={"delta_v_mps": "ΔV, ours (m/s)", "difference_mps": "ours − paper (m/s)"},
@@ -159,7 +162,7 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRI
         floatfmt={"delta_v_mps": ".3f", "m0_kg": ".3f", "duration_min": ".2f",
                   "paper_duration_min": ".2f", "difference_min": "+.2f"})
 
-    # numbers quoted in the prose here and on other pages (book/model.md, book/intro.md)
+    # numbers quoted in the prose here and on other pages (book/model.md, book/index.md)
     page.value("v_inf_kmps", float(v_inf))
     page.value("rp_km", float(rp_km))
     for n in (1, 2, 3):
@@ -168,6 +171,8 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRI
         page.value(f"dv_diff_loi{n}_mps", float(dv[n - 1] - paper_dv[n - 1]))
         page.value(f"eq19_loi{n}_min", float(t19[n - 1]))
         page.value(f"paper_eq19_loi{n}_min", float(printed_min[n - 1]))
+    for n, q in enumerate(PAPER_MASS_QUOTES, start=1):  # m0 of eq19_masses="paper"
+        page.value(f"paper_m0_loi{n}_kg", float(paper.quote(q).value))
     page.value("dv_total_mps", float(dv.sum()))
     page.value("paper_dv_total_mps", float(paper_dv.sum()))
     page.value("mass_final_kg", float(burns[-1].m_after_kg))

@@ -71,8 +71,8 @@ PUBLISHED = [
     # SELENE / Kaguya (JAXA), Oct 2007
     ("SELENE", "LOI 1 (4 Oct 2007, 06:20 JST): orbit", "101 × 11,741, period 16 h 42 min",
      "km altitude", "S9"),
-    ("SELENE", "lunar insertion manoeuvres", "six series, 100 km circular polar on 18 Oct",
-     "", "S11"),
+    ("SELENE", "LOI 1 → nominal 100 km circular polar orbit", "4 Oct → 19 Oct 2007", "",
+     "S11"),
     ("SELENE", "orbit after LOI 6 (18 Oct)", "80 × 123, period 1 h 58 min", "km altitude",
      "S10"),
     ("SELENE", "main orbiter mass", "2,914 (S12a) or 1,984.0 (S12b): sources disagree", "kg",
@@ -95,9 +95,13 @@ PUBLISHED = [
 
 #: The sources (MyST): key -> reference, address and what was taken from it.
 SOURCES = {
-    "S1": "China Space Report, \"Chang'e 1\" (mission page). "
-          "<https://chinaspacereport.com/spaceflight/change1/>. Gross mass 2,350 kg; a single "
-          "490 N orbit-manoeuvre thruster.",
+    "S1": "(a) China Aerospace Science and Technology Corporation (CASC, the builder), "
+          "\"Chang'e 1\". <http://english.spacechina.com/n16421/n17215/n17269/n19037/"
+          "c125365/content.html>. Based on the DFH-3 platform, weighs 2,350 kg; 200 km polar "
+          "circular orbit. (b) China Space Report, \"Chang'e 1\" (mission page, a secondary "
+          "source). <https://chinaspacereport.com/spaceflight/change1/>. A single 490 N "
+          "orbit-manoeuvre thruster: the engine's thrust was not found in a CNSA or CASC "
+          "source.",
     "S2": "Xinhua News Agency, \"China's first lunar probe enters moon's orbit\", 5 November "
           "2007, as published by china.org.cn. "
           "<http://china.org.cn/node_7040259/content_1230767.htm>. First braking started at "
@@ -128,23 +132,26 @@ SOURCES = {
           "citing the LRO/LCROSS launch press kit (NASA, June 2009). "
           "<http://solarsystem.nasa.gov/missions/profile.cfm?Sort=Target&Target=Moon&MCode=LRO"
           "&Display=ReadMore>. Launch mass 1,916 kg, dry mass 1,018 kg, fuel 898 kg.",
-    "S9": "JAXA, press release "
-          "\"月周回衛星「かぐや(SELENE)」の月周回軌道投入マヌーバ実施結果について\" (results of "
-          "the lunar orbit insertion manoeuvre of KAGUYA), 5 October 2007. "
+    "S9": "JAXA, press release (in Japanese) \"Getsu shūkai eisei 'Kaguya (SELENE)' no "
+          "getsu shūkai kidō tōnyū manūba jisshi kekka ni tsuite\" (On the results of the "
+          "lunar orbit insertion manoeuvre of the lunar orbiter KAGUYA (SELENE)), subtitle "
+          "\"Getsu shūkai kidō e no tōnyū o kakunin\" (Insertion into lunar orbit "
+          "confirmed), 5 October 2007. "
           "<https://www.jaxa.jp/press/2007/10/20071005_kaguya_j.html>. LOI1 at 06:20 JST on "
           "4 October 2007; apolune altitude 11,741 km, perilune altitude 101 km, period "
           "16 h 42 min.",
-    "S10": "RBB Today, \"「かぐや」クリティカルフェーズ終了! 月定常観測軌道へ\", 21 October 2007. "
+    "S10": "RBB Today (a Japanese news site; in Japanese), \"'Kaguya' kuritikaru fēzu "
+           "shūryō! Tsuki teijō kansoku kidō e\" ('Kaguya' critical phase over! On to the "
+           "regular lunar observation orbit), 21 October 2007. "
            "<https://s.rbbtoday.com/article/2007/10/21/45764.html>. LOI6 on 18 October from "
            "about 14:00, last firing ended about 19:00; orbit 80 × 123 km altitude, period "
-           "1 h 58 min.",
-    "S11": "E. Kamikawa, K. Tanaka, M. Matsuoka, K. Otani, T. Kato, H. Terada (NEC Aerospace "
-           "Systems) et al. (JAXA), \"Orbital Maneuver Plan and Operation Results of 'KAGUYA' "
-           "during Lunar Transfer Orbit and Lunar Orbit Insertion\" (abstract; year not given "
-           "there). <https://paperexplained.cn/articles/paper/detail/"
-           "e5d67fbf5e82d27566ed7579e3de5fd167a27146>. Six series of lunar insertion "
-           "manoeuvres; LOI1 on 3 October 2007; 100 km circular, 90° orbit on 18 October "
-           "2007.",
+           "1 h 58 min. A secondary report: these figures were not found in a JAXA source.",
+    "S11": "M. Kato, S. Sasaki, Y. Takizawa and the Kaguya project team (JAXA), \"The Kaguya "
+           "Mission Overview\", Space Science Reviews 154, 3–19 (2010), "
+           "doi:10.1007/s11214-010-9678-3. <https://link.springer.com/article/10.1007/"
+           "s11214-010-9678-3>. Abstract: inserted into a large elliptical lunar orbit on "
+           "4 October 2007; after the apolune was lowered, the nominal 100 km circular polar "
+           "observation orbit on 19 October.",
     "S12": "(a) Wikipedia, \"SELENE\", <https://en.wikipedia.org/wiki/SELENE>: main orbiter "
            "2,914 kg at launch. (b) NASA Solar System Exploration, \"KAGUYA: In Depth\", "
            "<https://solarsystem.nasa.gov/missions/kaguya/in-depth/>: spacecraft mass "
@@ -164,15 +171,16 @@ SOURCES = {
            "<https://www.msit.go.kr/eng/bbs/view.do?sCode=eng&mPid=2&mId=4&bbsSeqNo=42"
            "&nttSeqNo=765>. Third and last LOI on 26 December; orbit 104.1 × 119.9 km; 93 kg of "
            "fuel left of 260 kg.",
-    "S16": "Korea JoongAng Daily, \"Danuri enters target orbit around moon, early and in good "
-           "form\", December 2022, as published by dailyjoongang.ca. "
-           "<https://dailyjoongang.ca/danuri-enters-target-orbit-around-moon-early-and-in-good-"
-           "form/>. Three LOIs instead of the five planned (the 2nd and 3rd, and the 4th and "
-           "5th, combined).",
+    "S16": "Korea JoongAng Daily, \"Korean lunar orbiter Danuri successfully enters target "
+           "orbit\", 28 December 2022, citing MSIT and KARI. <https://koreajoongangdaily."
+           "joins.com/2022/12/28/business/tech/Korea-Danuri-Lunar-orbiter/"
+           "20221228105844332.html>. The target orbit reached through three LOIs instead of "
+           "the five initially scheduled.",
     "S17": "SciMyst, \"South Korean spacecraft will fly into the Moon's orbit\" (citing KBS), "
            "December 2022. <https://scimyst.com/south-korean-spacecraft-will-fly-into-the-"
            "moons-orbit-124782>. Planned LOI 1: thrusters fired for 13 minutes, from 8,000 to "
-           "7,500 km/h. A secondary press report.",
+           "7,500 km/h. A secondary press report; no KARI or MSIT statement of the burn's "
+           "duration was found.",
 }
 
 #: What was searched for and not found (the last entry of the source list).

@@ -327,12 +327,13 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
     values = {}
     for thrust, isp in PAPER_ENGINES:  # NaN for an engine not run (e.g. in a quick build)
         t, p, tag = totals.get(thrust, {}), paper_totals(thrust), f"{thrust:g}N"
-        for key in ("total_loss_mps", "total_loss_percent", "mean_of_burn_loss_percent",
-                    "total_fuel_kg", "total_burn_duration_min", "final_mass_kg",
-                    "total_model_loss_mps", "total_model_loss_percent"):
+        for key in ("total_delta_v_mps", "total_loss_mps", "total_loss_percent",
+                    "mean_of_burn_loss_percent", "total_fuel_kg", "total_burn_duration_min",
+                    "final_mass_kg", "total_model_loss_mps", "total_model_loss_percent",
+                    "total_model_impulsive_delta_v_mps"):
             values[f"{key}_{tag}"] = float(t.get(key, nan))
-        for key in ("total_loss_mps", "total_loss_percent", "mean_of_burn_loss_percent",
-                    "total_burn_duration_min"):
+        for key in ("total_delta_v_mps", "total_loss_mps", "total_loss_percent",
+                    "mean_of_burn_loss_percent", "total_burn_duration_min"):
             values[f"b1_{key}_{tag}"] = float(p[key])
         for q in ("loss_total_{}N_mps", "loss_total_{}N_percent", "fuel_finite_{}N_kg",
                   "fuel_impulsive_{}N_kg", "burn_total_{}N_min", "mass_final_{}N_kg"):

@@ -61,6 +61,25 @@ def _cases(cases) -> list:
             for t, i, n, s, p in cases]
 
 
+def fixed_point(v: float, sig: int = 2, sign: bool = False) -> str:
+    """``v`` in fixed-point notation with ``sig`` significant digits (no exponent).
+
+    Grouped thousands from 1000 up; "0" for zero and never a negative zero; "—" for NaN.
+
+    Examples
+    --------
+    >>> fixed_point(3.0e-9), fixed_point(-2.1e5, sign=True), fixed_point(-0.0, sign=True)
+    ('0.0000000030', '-210,000', '0')
+    """
+    if not np.isfinite(v):
+        return "—"
+    if v == 0:
+        return "0"
+    exponent = int(np.floor(np.log10(abs(v))))
+    digits = sig - 1 - exponent
+    return f"{round(v, digits):{'+' if sign else ''},.{max(0, digits)}f}"
+
+
 def _case_text(thrust_N, loi, start_min, with_engine: bool = True) -> str:
     return (f"{thrust_N:g} N, " if with_engine else "") + f"LOI {loi}, {start_min:g} min"
 
@@ -100,7 +119,8 @@ def gate_table(ver: pd.DataFrame) -> pd.DataFrame:
     rows = []
     for q, u, c, g in GATES:
         w, where = worst(ver, c)
-        rows.append({"quantity": q, "unit": u, "gate": g, "worst": w, "worst_case": where,
+        rows.append({"quantity": q, "unit": u, "gate": g, "worst": w,
+                     "worst_shown": fixed_point(w), "worst_case": where,
                      "gate_over_worst": g / w})
     return pd.DataFrame(rows)
 
@@ -145,7 +165,7 @@ def _outside_gate(r) -> str:
     if r.ipopt_status not in IPOPT_OK.values():
         return "IPOPT did not converge"
     out = ", ".join(
-        f"{name} {r[col]:+.1e} {unit}" for name, col, unit, tol in (
+        f"{name} {fixed_point(r[col], sign=True)} {unit}" for name, col, unit, tol in (
             ("end position", "final_position_diff_m", "m", verify.TOL_POSITION_M),
             ("end speed", "end_speed_diff_mps", "m/s", verify.TOL_SPEED_MPS),
             ("J", "objective_diff_mps", "m/s", verify.TOL_DV_MPS),
@@ -261,9 +281,12 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
                  "in the unit of its row, beside the acceptance gate (the re-flown ΔV is "
                  "reported, not gated: for the same burn duration it equals the rocket "
                  "equation whatever the trajectory), and the margin: gate ÷ worst."),
-        columns={"quantity": "quantity", "unit": "unit", "gate": "gate", "worst": "worst",
-                 "worst_case": "worst case", "gate_over_worst": "gate ÷ worst"},
-        floatfmt={"gate": "g", "worst": ".1e", "gate_over_worst": ",.0f"})
+        columns={"quantity": "quantity", "unit": "unit", "gate": "gate",
+                 "worst_shown": "worst", "worst_case": "worst case",
+                 "gate_over_worst": "gate ÷ worst"},
+        floatfmt={"gate": "g", "gate_over_worst": ",.0f"},
+        show_columns=["quantity", "unit", "gate", "worst_shown", "worst_case",
+                      "gate_over_worst"])
 
     # ---------------------------------------------------------------- impulsive limits
     imp = impulsive_table(case_list, dynamics)

@@ -101,3 +101,12 @@ def test_every_shown_column_has_a_label_with_its_unit(lro):
             unit_suffix = c.endswith(("_mps", "_min", "_percent", "_kg", "_km", "_m", "_mm", "_deg",
                                       "_h"))
             assert ("(" in lab) == (unit_suffix or c == "ignition_epoch"), (c, lab)
+
+
+def test_plan_periods_read_as_the_paper_writes_them(two):
+    plan = two.items["plan"].df
+    # hours for the ellipses, minutes for the final circle (2 pi sqrt(r^3/mu), r = 1838.2 km)
+    circle_min = 2 * np.pi * np.sqrt(1838.2 ** 3 / 4902.8) / 60
+    assert list(plan.period) == [f"{8.0:.4f} h", f"{circle_min:.1f} min"]
+    assert "period" in two.items["plan"].show_columns
+    assert "period_h" not in two.items["plan"].show_columns

@@ -35,6 +35,10 @@ def test_delta_v_table_against_the_paper_and_the_plan(page):
     plan = paper_plan(150.0, 200.0).impulsive()
     np.testing.assert_allclose(df.delta_v_mps, [b.delta_v_mps for b in plan])
     assert list(df.from_orbit) == ["hyperbola", "12.235 h", "3.525 h"]
+    # the final orbit in minutes, as the paper writes it: 2 pi sqrt(r^3 / mu) at 1838.2 km
+    final_min = 2 * np.pi * np.sqrt((C.R_MOON + 100.0) ** 3 / C.MU_MOON) / 60
+    assert list(df.to_orbit) == ["12.235 h", "3.525 h", f"circle, {final_min:.1f} min"]
+    assert list(df.to_orbit)[-1] == "circle, 117.9 min"
 
 
 def test_eq19_with_the_papers_finite_chain_masses_reproduces_its_estimates(page):
@@ -72,3 +76,10 @@ def test_other_engines():
     # Eq. (19) from the arrival mass with this engine's thrust and Isp
     assert p.values["eq19_loi1_min"] == pytest.approx(_eq19_min(524.895, 353.272, 300.0, 250.0))
     p.check()
+
+
+def test_glued_paper_masses_are_the_printed_ones(page):
+    # the rerun page quotes them to explain eq19_masses="paper"
+    got = [page.values[f"paper_m0_loi{n}_kg"] for n in (1, 2, 3)]
+    np.testing.assert_allclose(got, PRINTED_MASSES_KG)
+    np.testing.assert_allclose(page.items["eq19"].df.m0_kg, got)

@@ -116,3 +116,15 @@ def test_every_shown_column_has_a_label_with_its_unit(page):
             lab = (item.columns or {}).get(c, label(c))
             if c.endswith(("_mps", "_kmps", "_min")):
                 assert "(" in lab, (key, c, lab)
+
+
+def test_sources_render_without_a_cjk_font():
+    # titles in Japanese (or Chinese, Korean) render as boxes without a CJK font: each such
+    # source is given romanised, with an English translation, and says its language
+    md = rm.sources_markdown()
+    cjk = [ch for ch in md if 0x2E80 <= ord(ch) <= 0x9FFF or 0xAC00 <= ord(ch) <= 0xD7AF
+           or 0xFF00 <= ord(ch) <= 0xFFEF]
+    assert not cjk, "".join(cjk)
+    for k in ("S9", "S10"):
+        assert "in Japanese" in rm.SOURCES[k] and "Kaguya" in rm.SOURCES[k], k
+    assert "On the results of the lunar orbit insertion manoeuvre" in rm.SOURCES["S9"]

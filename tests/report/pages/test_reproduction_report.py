@@ -81,7 +81,7 @@ def test_epochs_and_audit(page):
     assert len(bad) == (ft.verdict == audit.INCONSISTENT).sum() == page.values["n_inconsistent"]
     groups = page.items["findings_by_group"].df
     assert groups.checks.sum() == len(ft) and groups.inconsistent.sum() == len(bad)
-    # book/intro.md formats these with :d
+    # book/index.md formats these with :d
     assert isinstance(page.values["n_findings"], int)
     assert isinstance(page.values["n_inconsistent"], int)
     assert page.values["arrival_implied_kg"] == pytest.approx(523.982, abs=1e-3)

@@ -79,3 +79,16 @@ def test_values_notes_and_checks(page):
     assert "(450 N)" in page.notes["ours_percentages"]   # a subset names its engines
     assert "Burn time" not in page.notes["differs"]       # the 300 N note needs 300 N
     page.check()
+
+
+def test_glued_totals_are_the_sums_of_the_chain(page):
+    # the index page quotes these: our total delta-V, the paper's (Table B1) and the losses
+    df = page.items["b1"].df
+    v = page.values
+    assert v["total_delta_v_mps_450N"] == pytest.approx(df.delta_v_mps.sum())
+    assert v["b1_total_delta_v_mps_450N"] == pytest.approx(355.549 + 254.387 + 245.906)
+    assert v["total_loss_mps_450N"] == pytest.approx(
+        v["total_delta_v_mps_450N"] - sum(paper.PAPER_IMPULSIVE_DV_MPS))
+    assert v["total_model_loss_mps_450N"] == pytest.approx(
+        v["total_delta_v_mps_450N"] - v["total_model_impulsive_delta_v_mps_450N"])
+    assert np.isnan(v["total_delta_v_mps_150N"])  # not run

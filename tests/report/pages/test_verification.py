@@ -66,3 +66,22 @@ def test_mesh_table(page):
     assert v["default_points"] == 120 and v["n_mesh_solves"] == 2
     assert v["n_cases"] == 2 and v["n_passed"] == 2
     page.check()
+
+
+def test_fixed_point_has_no_exponent_and_no_negative_zero():
+    fp = verification.fixed_point
+    assert fp(3.0e-9) == "0.0000000030" and fp(2.47) == "2.5" and fp(33699.2) == "34,000"
+    assert fp(-2.1e5, sign=True) == "-210,000" and fp(3.3e-4, sign=True) == "+0.00033"
+    assert fp(-0.0, sign=True) == "0" and fp(float("nan")) == "—"
+    for v in (1.234e-12, -9.99e-6, 0.0996, 12345.6):
+        text = fp(v)
+        assert "e" not in text and float(text.replace(",", "")) == pytest.approx(v, rel=0.05)
+
+
+def test_shown_gate_and_mesh_tables_are_fixed_point(page):
+    from lunarcap.report.display import markdown_table
+    for key in ("gate", "mesh"):
+        item = page.items[key]
+        df = item.df[item.show_columns] if item.show_columns else item.df
+        text = markdown_table(df, item.floatfmt)
+        assert "e-0" not in text and "e+0" not in text and "-0 " not in text, key
