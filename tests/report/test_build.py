@@ -288,13 +288,19 @@ def test_code_version_ignores_presentation_modules():
 
 
 # ------------------------------------------------------------------ executor (kernels)
-@pytest.mark.notebooks
-def test_failed_entry_stops_the_run_and_keeps_other_outputs(tmp_path):
-    root = tmp_path / "tree"
+def _book_tree(root: Path) -> Path:
+    """An empty book below ``root`` (notebooks/, book/intro.md); returns notebooks/."""
     nbdir = root / "notebooks"
     nbdir.mkdir(parents=True)
     (root / "book").mkdir()
     (root / "book" / "intro.md").write_text("# Intro\n")
+    return nbdir
+
+
+@pytest.mark.notebooks
+def test_failed_entry_stops_the_run_and_keeps_other_outputs(tmp_path):
+    root = tmp_path / "tree"
+    nbdir = _book_tree(root)
     _notebook(nbdir / "good.ipynb", body=textwrap.dedent("""
         import pandas as pd
         from lunarcap.repro import paths
@@ -329,10 +335,7 @@ def test_failed_entry_stops_the_run_and_keeps_other_outputs(tmp_path):
 
 def _sleeping_tree(root: Path) -> dict:
     """A throw-away book whose two notebooks sleep (each also writes a CSV first)."""
-    nbdir = root / "notebooks"
-    nbdir.mkdir(parents=True)
-    (root / "book").mkdir()
-    (root / "book" / "intro.md").write_text("# Intro\n")
+    nbdir = _book_tree(root)
     _notebook(nbdir / "slow.ipynb", body=textwrap.dedent("""
         import time
         import pandas as pd
