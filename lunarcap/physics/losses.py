@@ -15,28 +15,35 @@ on a perilune, :math:`r = r_p`).
 Sources
 -------
 * H. M. Robbins, "An analytical study of the impulsive approximation", AIAA Journal
-  4(8):1417-1423, 1966, doi:10.2514/3.3687 (the original; paywalled, **not read here**).
+  4(8):1417-1423, 1966, doi:10.2514/3.3687 (the original).
 * J. C. F. Confraria, "Finite burn losses in spacecraft maneuvers revisited", MSc thesis,
-  Instituto Superior Tecnico, Lisbon, 2020, Sec. 2.2, Eq. (2.17)-(2.18), which quotes
-  Robbins' expression, takes :math:`t_b` from the impulsive :math:`\Delta V`, Isp and
-  thrust-to-weight ratio, and finds it overestimates the losses of velocity-following
-  burns (by about 125 % near T/W0 = 0.1, less at higher T/W0).
+  Instituto Superior Tecnico, Lisbon, 2020, Sec. 2.2, Eq. (2.17)-(2.18), which, as
+  reported by the literature review below, quotes Robbins' expression, takes :math:`t_b`
+  from the impulsive :math:`\Delta V`, Isp and thrust-to-weight ratio, and finds it
+  overestimates the losses of velocity-following burns (by about 125 % near T/W0 = 0.1,
+  less at higher T/W0).
 
-What was actually read: the expression above and Confraria's description of it, in a
-public literature review quoting her thesis; neither the thesis nor Robbins' paper
-itself. Robbins' exact assumptions (constant thrust or constant acceleration, the
-choice of r, whether it is stated as a bound) are therefore not verified here.
+What was checked and what was not: Robbins' paper could not be obtained (AIAA's copy is
+paywalled; searches of public sources on 2026-11-24 found its citation but neither its
+text nor its abstract). The expression above is as Confraria quotes it, read in a public
+literature review that quotes her thesis; the thesis itself was not read either. Not
+verified, therefore: that this is Robbins' expression exactly, and his assumptions
+(constant thrust or constant acceleration, the choice of r, whether it is stated as a
+bound).
 
 What is verified here: the expression is the exact leading-order loss of a burn of
 constant acceleration in a fixed inertial direction, centred on an apse, for
 :math:`\Delta V \ll v`. Expanding gravity along the burn (position :math:`y \approx v t`
 along the velocity, gravity component :math:`-\omega_s^2 y`), the work done by the thrust
 falls short of the impulse's by :math:`\omega_s^2 v t_b^2 \Delta V / 24`, which at the
-speed :math:`v` is the velocity loss above. ``tests/test_study.py`` checks this against a
-numerical integration. The optimal burns of :mod:`lunarcap.optim.nlp` steer the thrust and
-choose the ignition time (and their acceleration grows as mass is spent, and the
-delta-V is not small against the perilune speed), so the estimate is a yardstick for
-them, not a prediction: the trade study shows how far apart the two are.
+speed :math:`v` is the velocity loss above.
+``tests/runs/test_study.py::test_robbins_is_the_leading_order_loss_of_a_fixed_direction_burn``
+checks this against a numerical integration (planar two-body, a circular orbit and the
+12 h ellipse's perilune, :math:`\omega_s t_b` = 0.1 and 0.3). The optimal burns of
+:mod:`lunarcap.optim.nlp` steer the thrust and choose the ignition time (and their
+acceleration grows as mass is spent, and the delta-V is not small against the perilune
+speed), so the estimate is a yardstick for them, not a prediction: the trade study shows
+how far apart the two are.
 
 Here :math:`t_b` is the Eq. (19) duration (Song 2011) of each LOI, with the masses of the
 impulsive chain (rocket equation from the arrival mass), so the estimate is closed-form
