@@ -219,6 +219,13 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
     dynamics : "full", "j2" or "two-body"
     """
     engines = [(float(t), float(i)) for t, i in engines]
+    others = [e for e in engines if e not in {(float(t), float(i)) for t, i in PAPER_ENGINES}]
+    if others:
+        raise ValueError(
+            f"the summary page sets the paper's engines beside its Table B1; "
+            f"{', '.join(engine_label(*e) for e in others)} is not one of them (150 N / 200 s, "
+            f"300 N / 250 s, 450 N / 300 s): see the other-engines page (notebooks/"
+            f"other_engines.ipynb) or `lunarcap plan` for another engine")
     params = dict(engines=[list(e) for e in engines], starts=starts, dynamics=dynamics)
     page = Page(NOTEBOOK, params, output_name, quick, solver_description())
     seqs, totals, chains = {}, {}, {}

@@ -92,3 +92,10 @@ def test_glued_totals_are_the_sums_of_the_chain(page):
     assert v["total_model_loss_mps_450N"] == pytest.approx(
         v["total_delta_v_mps_450N"] - v["total_model_impulsive_delta_v_mps_450N"])
     assert np.isnan(v["total_delta_v_mps_150N"])  # not run
+
+
+def test_another_engine_is_refused_with_a_clear_message():
+    from lunarcap.report.pages import summary
+
+    with pytest.raises(ValueError, match="320 N / 200 s is not one of them"):
+        summary.build([[320.0, 200.0]], dynamics="two-body")
