@@ -19,6 +19,7 @@ script
   ``clientWidth``; a table whose content is wider than its box has columns or caption
   text hidden behind a horizontal scroll bar; likewise every displayed math block
   (``div.math``) and the page itself,
+* notes (without failing) the code blocks of the prose that scroll sideways,
 * counts the formulas left as raw TeX (a ``.math`` element without ``mjx-container``),
   the formulas MathJax could not typeset (``mjx-merror``) and every request the page
   made to another host (the book must need no network),
@@ -26,7 +27,9 @@ script
 prints one line per page and width, and exits with status 1 if any table or math block
 overflows, any formula is left untypeset or in error, any page scrolls sideways or any
 page asked for a remote resource; 2 on bad usage or when Chromium is missing; 0 otherwise.
-The measurements are also written to ``<out>/report.json``.
+The measurements are also written to ``<out>/report.json`` (with, per table, whether the
+book's ``_static/lunarcap.js`` had to tighten it or let its words break: what is measured
+is the page as a reader sees it, after that script has run).
 
 Chromium is driven through its DevTools protocol over a pipe (``--remote-debugging-pipe``:
 JSON messages separated by NUL bytes on file descriptors 3 and 4), so no WebSocket client
@@ -99,8 +102,13 @@ MEASURE_JS = r"""
   };
   const tables = [...main.querySelectorAll('table')].map((t, i) => {
     const cap = t.querySelector('caption');
-    return measure(t, `table ${i + 1}` + (cap ? `: ${cap.innerText}` : ''));
+    return {...measure(t, `table ${i + 1}` + (cap ? `: ${cap.innerText}` : '')),
+            fitted: ['lc-tight', 'lc-wrap'].filter(c => t.classList.contains(c))};
   });
+  // code blocks of the prose (not the folded notebook cells) that scroll: reported only
+  const code = [...main.querySelectorAll('div.highlight pre')]
+    .filter(p => !p.closest('.cell_input'))
+    .map((p, i) => measure(p, `code ${i + 1}: ${p.textContent}`));
   // a displayed formula scrolls in its mjx-container, which the theme's div.math clips:
   // the larger overflow of the two
   const over = (x) => x.scrollWidth - x.clientWidth;
@@ -108,7 +116,13 @@ MEASURE_JS = r"""
     const label = `math ${i + 1}: ${m.textContent}`, outer = measure(m, label);
     const eq = m.querySelector('mjx-container');
     const inner = eq ? measure(eq, label) : outer;
-    return over(inner) > over(outer) ? inner : outer;
+    // scaled down by the book's lunarcap.js to fit: the ratio to its typeset size
+    // (MathJax's own font-size, a percentage of the text's, is kept in data-lc-font-size)
+    const typeset = eq && eq.dataset.lcFontSize;
+    const scale = typeset && typeset.endsWith('%') && eq.style.fontSize !== typeset
+      ? parseFloat(getComputedStyle(eq).fontSize) /
+        (parseFloat(getComputedStyle(m).fontSize) * parseFloat(typeset) / 100) : null;
+    return {...(over(inner) > over(outer) ? inner : outer), scaled: scale};
   });
   const allMath = [...main.querySelectorAll('.math')];
   const raw = allMath.filter(m => !m.querySelector('mjx-container'))
@@ -116,9 +130,21 @@ MEASURE_JS = r"""
   const texErrors = [...main.querySelectorAll('mjx-merror')]
                     .map(e => (e.getAttribute('data-mjx-error') || e.textContent).slice(0, 80));
   const de = document.documentElement;
-  return {tables, math, nMath: allMath.length, rawTex: raw, texErrors,
+  return {tables, math, code, nMath: allMath.length, rawTex: raw, texErrors,
           pageScrollWidth: de.scrollWidth, pageClientWidth: de.clientWidth,
           height: Math.ceil(de.scrollHeight), title: document.title};
+})()
+"""
+
+
+# Runs in the page before a screenshot: lets the layout settle (lunarcap.js refits after a
+# resize within 100 ms), scrolls everything back to its origin, returns the page height.
+SETTLE_JS = r"""
+(async () => {
+  await new Promise(r => setTimeout(r, 250));
+  window.scrollTo(0, 0);
+  await new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)));
+  return Math.ceil(document.documentElement.scrollHeight);
 })()
 """
 
@@ -249,6 +275,7 @@ class PageReport:
     remote: list = field(default_factory=list)
     screenshot: Path | None = None
     height: int = 0
+    code: list = field(default_factory=list)
 
     @staticmethod
     def _over(items):
@@ -265,6 +292,11 @@ class PageReport:
         return self._over(self.math)
 
     @property
+    def code_overflows(self) -> list:
+        """The code blocks of the prose that scroll sideways (reported, not a failure)."""
+        return self._over(self.code)
+
+    @property
     def ok(self) -> bool:
         """Nothing overflows, every formula is typeset, nothing came from the network."""
         return not (self.table_overflows or self.math_overflows or self.raw_tex
@@ -273,10 +305,15 @@ class PageReport:
     def lines(self) -> list[str]:
         """One summary line, then one indented line per problem."""
         worst = max([t["scrollWidth"] - t["clientWidth"] for t in self.tables] + [0])
+        fitted = sum(bool(t.get("fitted")) for t in self.tables)
+        scaled = sum(bool(t.get("scaled")) for t in self.math)
         head = (f"{'ok  ' if self.ok else 'FAIL'} {self.width:5d} px  {self.page:32s} "
                 f"tables {len(self.tables):2d} (overflowing {len(self.table_overflows)}, "
-                f"worst {worst:+d} px)  math {self.n_math:3d} (raw {len(self.raw_tex)}, "
-                f"errors {len(self.tex_errors)}, overflowing {len(self.math_overflows)})")
+                f"worst {worst:+d} px, fitted {fitted})  math {self.n_math:3d} "
+                f"(raw {len(self.raw_tex)}, errors {len(self.tex_errors)}, overflowing "
+                f"{len(self.math_overflows)}, scaled {scaled})"
+                + (f"  [{len(self.code_overflows)} code blocks scroll]"
+                   if self.code_overflows else ""))
         out = [head]
         for t in self.table_overflows + self.math_overflows:
             out.append(f"       {t['label'][:70]!r}: content {t['scrollWidth']} px in a "
@@ -336,12 +373,25 @@ def check_page(dt: DevTools, base: str, page: str, width: int, out_dir: Path | N
                          and not _local(e["params"]["request"]["url"], base)})
         rep = PageReport(page, width, m["tables"], m["math"], m["nMath"], m["rawTex"],
                          m["texErrors"], m["pageScrollWidth"] - m["pageClientWidth"], remote,
-                         None, m["height"])
+                         None, m["height"], m["code"])
         if out_dir is not None:
+            # full page: a viewport as tall as the page, then an ordinary capture (Chromium's
+            # captureBeyondViewport sometimes shifted the page sideways mid-capture)
+            height = m["height"]
+            for _ in range(3):  # the page may grow a little in a taller window
+                dt.send("Emulation.setDeviceMetricsOverride",
+                        {"width": width, "height": height, "deviceScaleFactor": 1,
+                         "mobile": False}, session=session)
+                now = dt.send("Runtime.evaluate", {"expression": SETTLE_JS, "awaitPromise": True,
+                                                   "returnByValue": True},
+                              session=session)["result"]["value"]
+                if now <= height:
+                    break
+                height = now
             shot = dt.send("Page.captureScreenshot",
-                           {"format": "png", "captureBeyondViewport": True,
-                            "clip": {"x": 0, "y": 0, "width": width, "height": m["height"],
-                                     "scale": 1}}, session=session)
+                           {"format": "png", "clip": {"x": 0, "y": 0, "width": width,
+                                                      "height": height, "scale": 1}},
+                           session=session)
             path = out_dir / str(width) / f"{page}.png"
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_bytes(base64.b64decode(shot["data"]))
