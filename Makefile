@@ -5,13 +5,14 @@
 #   make book   - create .venv likewise, execute every notebook of the manifest, build the HTML book
 #   make lock   - regenerate environment-lock.txt from pyproject.toml (needs network to PyPI)
 #   make lint   - ruff and the import-linter contracts of pyproject.toml
+#   make screenshots - built pages in headless Chromium at 1280/1024 px, offline; fails on overflow
 SHELL := /bin/bash
 PYTHON ?= python3.11
 VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: test book book-quick lock lint bench clean venv
+.PHONY: test book book-quick lock lint bench clean venv screenshots
 
 venv: $(STAMP)
 
@@ -32,6 +33,9 @@ book: $(STAMP)
 
 book-quick: $(STAMP)
 	$(PY) -m lunarcap.report.build build --quick
+
+screenshots: $(STAMP)
+	$(PY) -m lunarcap.report.screenshots
 
 bench: $(STAMP)
 	$(PY) -m lunarcap bench

@@ -1,10 +1,18 @@
-"""Showing tables and figures in the book: CSV/PNG/SVG out, a numbered MyST block in.
+"""Showing tables and figures in the book: CSV/PNG/SVG out, a captioned MyST block in.
 
 :func:`show_table` writes a DataFrame to ``book/generated/tables/<name>.csv`` and
 displays it as a MyST ``table`` with its caption; :func:`show_figure` saves a figure
 (PNG + SVG) and displays it as a MyST ``figure``. Both name the notebook and parameters
 that made them (:func:`lunarcap.report.provenance.source_note`). Paths come from
 :mod:`lunarcap.repro.paths` only.
+
+Numbering: the book's own tables and figures are numbered by Sphinx as "Book table N"
+and "Book figure N" (``numfig_format`` in ``book/_config.yml``), so that no number of
+ours reads like one of the paper's. A table or figure that regenerates one of the
+paper's (``paper="Table 1"``, ``"Fig. 2"``...) carries the paper's number instead,
+"Song et al. (2011) Table 1", at the head of its caption, and no book number: it gets no
+label and the class ``lc-paper``, whose items :mod:`lunarcap.report.sphinx_ext` keeps
+Sphinx from numbering.
 """
 
 from __future__ import annotations
@@ -15,6 +23,11 @@ import numpy as np
 from lunarcap.report.figures import save_figure
 from lunarcap.report.provenance import source_note
 from lunarcap.repro import paths
+
+#: How the book names the paper's own tables and figures ("Song et al. (2011) Table 1").
+PAPER_CITATION = "Song et al. (2011)"
+#: Class of the paper's tables and figures, which lunarcap.report.sphinx_ext leaves unnumbered.
+PAPER_CLASS = "lc-paper"
 
 
 def markdown_table(df, floatfmt: str | dict = ".3f") -> str:
@@ -48,6 +61,15 @@ def markdown_table(df, floatfmt: str | dict = ".3f") -> str:
     return "\n".join([head, rule, *body])
 
 
+def paper_caption(caption: str, paper: str | None) -> str:
+    """The caption with the paper's number at its head (unchanged if ``paper`` is None).
+
+    >>> paper_caption("Delta-V of LOI 1.", "Table 1")
+    '**Song et al. (2011) Table 1.** Delta-V of LOI 1.'
+    """
+    return caption if paper is None else f"**{PAPER_CITATION} {paper}.** {caption}"
+
+
 def _display_markdown(text: str) -> None:
     from IPython.display import Markdown, display
 
@@ -56,8 +78,9 @@ def _display_markdown(text: str) -> None:
 
 def show_table(df, name: str, caption: str, notebook: str, parameters: dict | None = None,
                floatfmt: str | dict = ".3f", labels: dict | None = None, label: str | None = None,
-               display: bool = True, columns: list | None = None) -> str:
-    """Write ``df`` to ``tables/<name>.csv`` and show it as a numbered MyST table.
+               display: bool = True, columns: list | None = None,
+               paper: str | None = None) -> str:
+    """Write ``df`` to ``tables/<name>.csv`` and show it as a captioned MyST table.
 
     Parameters
     ----------
@@ -82,6 +105,10 @@ def show_table(df, name: str, caption: str, notebook: str, parameters: dict | No
         Display the Markdown (default) or only return it.
     columns : list, optional
         Columns shown in the book (default all); the CSV keeps every column.
+    paper : str, optional
+        The paper's number of the table this one regenerates (``"Table 1"``, ``"Table
+        B1"``): the caption starts with "Song et al. (2011) Table 1" and the table has no
+        label and no book number (see the module docstring).
 
     Returns
     -------
@@ -96,7 +123,8 @@ def show_table(df, name: str, caption: str, notebook: str, parameters: dict | No
     shown = df.rename(columns=labels or {})
     if isinstance(floatfmt, dict) and labels:
         floatfmt = {labels.get(k, k): v for k, v in floatfmt.items()}
-    text = (f":::{{table}} {caption}\n:name: {label}\n:align: center\n\n"
+    name = f":class: {PAPER_CLASS}\n" if paper else f":name: {label}\n"
+    text = (f":::{{table}} {paper_caption(caption, paper)}\n{name}:align: center\n\n"
             f"{markdown_table(shown, floatfmt)}\n:::\n\n"
             f"{source_note(notebook, parameters)} Data: {{download}}`{csv.name} <{rel}>`.\n")
     if display:
@@ -106,8 +134,8 @@ def show_table(df, name: str, caption: str, notebook: str, parameters: dict | No
 
 def show_figure(fig, name: str, caption: str, notebook: str, parameters: dict | None = None,
                 alt: str | None = None, label: str | None = None, width: str = "100%",
-                display: bool = True) -> str:
-    """Save ``fig`` (PNG + SVG) and show the PNG as a numbered MyST figure with a caption.
+                display: bool = True, paper: str | None = None) -> str:
+    """Save ``fig`` (PNG + SVG) and show the PNG as a MyST figure with a caption.
 
     Parameters
     ----------
@@ -125,6 +153,10 @@ def show_figure(fig, name: str, caption: str, notebook: str, parameters: dict | 
         Display width.
     display : bool
         Display the Markdown (default) or only return it.
+    paper : str, optional
+        The paper's number of the figure this one regenerates (``"Fig. 2"``): the caption
+        starts with "Song et al. (2011) Fig. 2" and the figure has no label and no book
+        number (see the module docstring).
 
     Returns
     -------
@@ -137,8 +169,9 @@ def show_figure(fig, name: str, caption: str, notebook: str, parameters: dict | 
     alt = alt or caption.split(". ")[0].replace("`", "").replace("$", "").replace("\\", "")
     png = paths.relative_to_page(files["png"])
     svg = paths.relative_to_page(files["svg"])
-    text = (f":::{{figure}} {png}\n:name: {label}\n:alt: {alt}\n:width: {width}\n\n"
-            f"{caption} {source_note(notebook, parameters)} "
+    name = f":figclass: {PAPER_CLASS}\n" if paper else f":name: {label}\n"
+    text = (f":::{{figure}} {png}\n{name}:alt: {alt}\n:width: {width}\n\n"
+            f"{paper_caption(caption, paper)} {source_note(notebook, parameters)} "
             f"Files: {{download}}`PNG <{png}>`, {{download}}`SVG <{svg}>`.\n:::\n")
     if display:
         _display_markdown(text)

@@ -52,6 +52,7 @@ class Table:
     floatfmt: dict | str = ".3f"
     show_columns: list | None = None  # columns shown (default all; the CSV keeps all)
     name: str | None = None           # output name suffix (default: the key)
+    paper: str | None = None          # the paper's table it regenerates ("Table 1")
 
 
 @dataclass
@@ -63,6 +64,7 @@ class Figure:
     alt: str | None = None
     width: str = "100%"
     name: str | None = None           # output name suffix (default: the key)
+    paper: str | None = None          # the paper's figure it regenerates ("Fig. 2")
 
 
 @dataclass
@@ -84,21 +86,27 @@ class Page:
     # ------------------------------------------------------------------ building
     def table(self, key: str, df, caption: str, columns: dict | None = None,
               floatfmt: dict | str = ".3f", show_columns: list | None = None,
-              name: str | None = None) -> None:
-        """Add a table (written to ``tables/<output_name>_<name or key>.csv`` when shown)."""
-        self.items[key] = Table(df, caption, columns, floatfmt, show_columns, name)
+              name: str | None = None, paper: str | None = None) -> None:
+        """Add a table (written to ``tables/<output_name>_<name or key>.csv`` when shown).
+
+        ``paper`` names the paper's table it regenerates ("Table 1"): the caption then
+        carries the paper's number, not a book number (:mod:`lunarcap.report.display`).
+        """
+        self.items[key] = Table(df, caption, columns, floatfmt, show_columns, name, paper)
 
     def figure(self, key: str, fig, caption: str, alt: str | None = None,
-               width: str = "100%", name: str | None = None) -> None:
+               width: str = "100%", name: str | None = None,
+               paper: str | None = None) -> None:
         """Add a figure (``figures/<output_name>_<name or key>.png/.svg`` when shown).
 
         The figure is closed at once (it can still be saved), so the notebook's inline
-        backend does not display it a second time where the page is built.
+        backend does not display it a second time where the page is built. ``paper``
+        names the paper's figure it regenerates ("Fig. 2"), as for :meth:`table`.
         """
         import matplotlib.pyplot as plt
 
         plt.close(fig)
-        self.items[key] = Figure(fig, caption, alt, width, name)
+        self.items[key] = Figure(fig, caption, alt, width, name, paper)
 
     def value(self, name: str, v) -> None:
         """A number (or short text) the page's prose quotes through glue.
@@ -140,10 +148,10 @@ class Page:
             heads = _labels(shown, **(item.columns or {}))
             return _display.show_table(df, self.name_of(key), item.caption, self.notebook,
                                        self.parameters, floatfmt=item.floatfmt, labels=heads,
-                                       columns=shown, display=display)
+                                       columns=shown, display=display, paper=item.paper)
         return _display.show_figure(item.fig, self.name_of(key), item.caption, self.notebook,
                                     self.parameters, alt=item.alt, width=item.width,
-                                    display=display)
+                                    display=display, paper=item.paper)
 
     def glue(self) -> None:
         """Glue every value and note (for ``{glue:text}`` and ``{glue:md}`` in the prose)."""

@@ -149,6 +149,30 @@ def test_show_table_and_figure_write_files(tmp_path, monkeypatch):
     assert not [p for p in (gen / "figures").iterdir() if ".tmp" in p.name]
 
 
+def test_paper_tables_and_figures_carry_the_papers_number_and_no_book_number(tmp_path,
+                                                                            monkeypatch):
+    # one that regenerates the paper's has the paper's number at the head of its caption,
+    # no label and the class that lunarcap.report.sphinx_ext keeps from being numbered
+    # (the quick book's test_caption_numbers_never_read_like_the_papers checks the HTML)
+    gen = tmp_path / "generated"
+    monkeypatch.setattr(paths, "GENERATED", gen)
+    monkeypatch.setattr(paths, "TABLES", gen / "tables")
+    monkeypatch.setattr(paths, "FIGURES", gen / "figures")
+    df = pd.DataFrame({"dv_mps": [1.0]})
+    md = display.show_table(df, "t2", "Delta-V (m/s).", "notebooks/x.ipynb", display=False,
+                            paper="Table 1")
+    assert md.startswith(":::{table} **Song et al. (2011) Table 1.** Delta-V (m/s).\n")
+    assert ":name:" not in md and "\n:class: lc-paper\n" in md
+    fig = figures.plot_fig1_geometry(figdata.fig1_geometry())
+    md = display.show_figure(fig, "f2", "Geometry.", "notebooks/x.ipynb", display=False,
+                             paper="Fig. 1")
+    assert "\n\n**Song et al. (2011) Fig. 1.** Geometry. " in md and ":name:" not in md
+    assert "\n:figclass: lc-paper\n" in md
+    from lunarcap.report import sphinx_ext
+
+    assert sphinx_ext.PAPER_CLASS == display.PAPER_CLASS == "lc-paper"
+
+
 # ------------------------------------------------------------------ Figs. 2-5: capture sequence
 def test_orbit_plane_basis_is_right_handed_and_follows_the_pole():
     rng = np.random.default_rng(2)

@@ -6,6 +6,7 @@ fast and not marked.
 """
 
 import json
+import re
 import subprocess
 import sys
 from html.parser import HTMLParser
@@ -54,6 +55,153 @@ class _Page(HTMLParser):
 
 def _html_pages():
     return [paths.HTML / f"{f}.html" for f in book.toc_files()]
+
+
+_VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source",
+         "track", "wbr"}
+
+
+class _Reader(HTMLParser):
+    """What a reader of a built page gets: scripts and stylesheets it loads, the text it
+    shows (cell outputs apart from prose; code cells and literal code blocks left out),
+    the kinds of cell outputs, and the captions with their numbers."""
+
+    def __init__(self):
+        super().__init__(convert_charrefs=True)
+        self.stack = []                   # open elements: (tag, classes)
+        self.assets = []                  # (kind, url) of scripts and stylesheets
+        self.text = {"output": [], "prose": []}
+        self.output_kinds = []            # classes of the output blocks in cell outputs
+        self.captions = []                # [number, text] per table or figure caption
+
+    def _inside(self, cls=None, tags=()):
+        return any((cls is not None and cls in c) or t in tags for t, c in self.stack)
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        cls = set((a.get("class") or "").split())
+        rel = set((a.get("rel") or "").split())
+        if tag == "script" and a.get("src"):
+            self.assets.append(("script", a["src"]))
+        elif tag == "link" and ("stylesheet" in rel or
+                                ("preload" in rel and a.get("as") in ("script", "style"))):
+            self.assets.append(("stylesheet" if "stylesheet" in rel else "preload",
+                                a.get("href", "")))
+        if "output" in cls and self._inside("cell_output"):
+            self.output_kinds.append(cls - {"output", "notranslate"})
+        if tag in ("caption", "figcaption"):
+            self.captions.append(["", ""])
+        if tag not in _VOID:
+            self.stack.append((tag, cls))
+
+    def handle_startendtag(self, tag, attrs):
+        self.handle_starttag(tag, attrs)
+        if tag not in _VOID:
+            self.stack.pop()
+
+    def handle_endtag(self, tag):
+        for i in range(len(self.stack) - 1, -1, -1):
+            if self.stack[i][0] == tag:
+                del self.stack[i:]
+                break
+
+    def handle_data(self, data):
+        if self._inside(tags=("script", "style")) or self._inside("cell_input"):
+            return
+        if self._inside(tags=("caption", "figcaption")) and self.captions:
+            self.captions[-1][0 if self._inside("caption-number") else 1] += data
+        if self._inside("cell_output"):
+            self.text["output"].append(data)
+        elif not self._inside(tags=("pre", "code")) and not self._inside("highlight"):
+            self.text["prose"].append(data)
+
+
+def _read(page: Path) -> _Reader:
+    reader = _Reader()
+    reader.feed(page.read_text(encoding="utf-8"))
+    return reader
+
+
+#: Markup that should have been rendered, Python reprs, tracebacks and progress bars: none
+#: belongs in what a reader sees.
+LEAKS = {
+    "a raw MyST directive": re.compile(r":::\{|```\{|^\s*:(name|alt|width|align):", re.M),
+    "a raw MyST role or glue": re.compile(r"\{glue|\{(download|doc|ref|numref|eq|math)\}`"),
+    "a Python repr": re.compile(r"<Figure size|<matplotlib|\bDataFrame\b|object at 0x|"
+                                r"\bnp\.float64\(|<lunarcap\."),
+    "a traceback": re.compile(r"Traceback \(most recent call last\)|\w+Error: "),
+    "a progress bar": re.compile(r"\d+%\||\d+(\.\d+)?(it|s|engine)/s\]|\|[█▏▎▍▌▋▊▉]+"),
+}
+#: A run of characters without a space longer than this would be a line thousands of px
+#: wide (a repr of a whole Markdown block is one); the longest honest one is a path or a
+#: hash in a provenance block (about 70).
+LONGEST_WORD = 200
+
+
+def leaks(reader: _Reader) -> list[str]:
+    """Every leak in a page: markup, reprs, tracebacks, progress bars, stray outputs."""
+    found = []
+    for where, chunks in reader.text.items():
+        text = "\n".join(chunks)
+        for what, pattern in LEAKS.items():
+            for m in pattern.finditer(text):
+                context = text[max(0, m.start() - 40):m.end() + 40].replace("\n", " ")
+                found.append(f"{what} in the {where}: ...{context}...")
+        for word in text.split():
+            if len(word) > LONGEST_WORD:
+                found.append(f"a {len(word)}-character word in the {where}: {word[:80]}...")
+    for kinds in reader.output_kinds:
+        stray = kinds & {"stream", "stderr", "text_plain", "traceback"}
+        if stray:
+            found.append(f"a stray output ({', '.join(sorted(stray))}) in a cell output")
+    return found
+
+
+def remote_assets(reader: _Reader) -> list[str]:
+    """Scripts and stylesheets a page would fetch from another host."""
+    return [f"{kind} {url}" for kind, url in reader.assets if re.match(r"(https?:)?//", url)]
+
+
+#: The paper's own tables and figures (Song et al. 2011).
+PAPER_ITEMS = {f"Table {k}" for k in ("1", "2", "3", "4", "5", "B1")} | {
+    f"Fig. {k}" for k in range(1, 6)}
+_PAPER_LABEL = re.compile(r"^Song et al\. \(2011\) (Table [A-Z]?\d+|Fig\. \d+)\b")
+
+
+def paper_items_of_title(title: str) -> set:
+    """The paper's tables or figures a page title names: "Table 4: ..." -> {"Table 4"},
+    "Figs. 2–5: ..." -> Figs. 2 to 5, "Table B1 and ..." -> {"Table B1"}."""
+    m = re.match(r"(Tables?|Figs?\.)\s*([A-Z]?)(\d+)(?:[–-](\d+))?", title)
+    if not m:
+        return set()
+    kind = "Table" if m[1].startswith("Table") else "Fig."
+    last = int(m[4] or m[3])
+    return {f"{kind} {m[2]}{k}" for k in range(int(m[3]), last + 1)}
+
+
+def numbering_problems(reader: _Reader, title: str) -> list[str]:
+    """Captions whose number could be taken for one of the paper's, or that carry a paper
+    number on a page that does not regenerate that table or figure."""
+    named = paper_items_of_title(title)
+    problems, shown = [], set()
+    for number, text in reader.captions:
+        number, text = number.strip(), " ".join(text.split())
+        if number and not re.fullmatch(r"Book (table|figure) \d+", number):
+            bare = re.fullmatch(r"(Table|Fig\.) ?([A-Z]?\d+)", number)
+            clash = bare and f"{bare[1]} {bare[2]}" in PAPER_ITEMS
+            problems.append(f"caption number {number!r}" + (" collides with the paper's"
+                                                            if clash else " is not a book number"))
+        label = _PAPER_LABEL.match(text)
+        if label:
+            shown.add(label[1])
+            if number:
+                problems.append(f"{label[1]} of the paper also numbered {number!r}")
+            if label[1] not in named:
+                problems.append(f"a caption claims the paper's {label[1]} on a page titled "
+                                f"{title!r}")
+    problems += [f"the page titled {title!r} shows no caption labelled Song et al. (2011) "
+                 f"{item}" for item in sorted(named - shown)]
+    return problems
 
 
 # ------------------------------------------------------------------ quick build
@@ -115,12 +263,48 @@ def test_every_image_resolves_and_no_table_is_empty(quick_build):
 
 @pytest.mark.notebooks
 def test_pages_are_self_contained(quick_build):
-    """No launch/repository buttons or external stylesheets; only MathJax comes from a CDN."""
-    for page in _html_pages():
+    """No launch/repository buttons; no script or stylesheet from another host, MathJax
+    included: it is shipped in _static/mathjax (sphinx-mathjax-offline), so the book's
+    equations render with no network (`make screenshots` checks that in Chromium)."""
+    n_math_pages = 0
+    for page in [paths.HTML / "index.html", *_html_pages()]:
         html = page.read_text(encoding="utf-8")
         for needle in ("mybinder.org", "colab.research.google.com", "github.com/executablebooks"):
             assert needle not in html, (page.name, needle)
-        assert 'rel="stylesheet" href="http' not in html
+        reader = _read(page)
+        assert not remote_assets(reader), (page.name, remote_assets(reader))
+        for kind, url in reader.assets:
+            target = (page.parent / unquote(urlparse(url).path)).resolve()
+            assert target.is_file(), f"{page.name}: {kind} {url} does not resolve"
+        mathjax = [url for _, url in reader.assets if "mathjax" in url.lower()]
+        if 'class="math' in html:
+            assert mathjax, f"{page.name} has math but loads no MathJax"
+            n_math_pages += 1
+    assert n_math_pages >= 2  # the model page and the Fig. 1 page at least
+
+
+@pytest.mark.notebooks
+def test_no_leaked_markup_reprs_tracebacks_or_stray_outputs(quick_build):
+    problems = [f"{page.relative_to(paths.HTML)}: {p}" for page in _html_pages()
+                for p in leaks(_read(page))]
+    assert not problems, "\n".join(problems)
+
+
+@pytest.mark.notebooks
+def test_caption_numbers_never_read_like_the_papers(quick_build):
+    # the book's own tables and figures are "Book table N" / "Book figure N"; those that
+    # regenerate the paper's carry "Song et al. (2011) Table 1" (no book number), only on
+    # the page whose title names them, and every such page shows them
+    titles = {f"generated/{e.name}": e.title for e in ENTRIES}
+    problems, n_numbered, n_paper = [], 0, 0
+    for page in _html_pages():
+        key = page.relative_to(paths.HTML).with_suffix("").as_posix()
+        reader = _read(page)
+        problems += [f"{key}: {p}" for p in numbering_problems(reader, titles.get(key, ""))]
+        n_numbered += sum(bool(n.strip()) for n, _ in reader.captions)
+        n_paper += sum(bool(_PAPER_LABEL.match(" ".join(t.split()))) for _, t in reader.captions)
+    assert not problems, "\n".join(problems)
+    assert n_numbered >= 20 and n_paper >= 15  # the checks above did see captions
 
 
 @pytest.mark.notebooks

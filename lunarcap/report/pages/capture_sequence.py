@@ -153,7 +153,8 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN
                  f"are the verified re-propagations of the solutions. {projection} Axes in "
                  f"lunar units, 1 LU = R_Moon = {C.LU_KM:g} km; the grey disc is the Moon."),
         alt=("The arrival hyperbola, the capture orbits and the final circular orbit around "
-             "the Moon, with the burn arcs near perilune in red"))
+             "the Moon, with the burn arcs near perilune in red"),
+        paper="Fig. 2" if paper_case else None)
     spans = ", ".join(f"burn {int(r.burn)} {r.ignition_from_perilune_deg:+.1f}° to "
                       f"{r.cutoff_from_perilune_deg:+.1f}°" for r in table.itertuples())
     page.figure(
@@ -167,7 +168,7 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN
                  "negative before perilune), which separates the arcs that overlap in (a); "
                  f"dashed: coasting before and after. Spans: {spans}."),
         alt="Zoom on the burn arcs near perilune, and their altitudes against the angle "
-            "from perilune")
+            "from perilune", paper="Fig. 3" if paper_case else None)
 
     # ------------------------------------------------------------------ Fig. 4
     d4 = figdata.fig4_steering(sols[0])
@@ -200,7 +201,8 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN
                  f"{d4.m_kg[0]:.3f} to {d4.m_kg[-1]:.3f} kg{mass_txt}. "
                  f"Data: {data_link(output_name + '_fig4')}."),
         alt="Three stacked panels against time from burn 1 ignition: alpha rising from 137 to "
-            "215 degrees, beta near zero, and the mass falling")
+            "215 degrees, beta near zero, and the mass falling",
+        paper="Fig. 4" if paper_case else None)
 
     # ------------------------------------------------------------------ Fig. 5
     d5 = figdata.fig5_vectors(sols[0], geo.basis)
@@ -226,7 +228,7 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN
                  + f"; it is closest to anti-parallel {d5.t_min[k]:.2f} min after ignition. "
                  f"Data of the arrows: {data_link(output_name + '_fig5')}."),
         alt="Velocity and thrust-acceleration arrows along the burn 1 arc, and the angle "
-            "between them against time")
+            "between them against time", paper="Fig. 5" if paper_case else None)
 
     # ------------------------------------------------------------------ numbers for the prose
     b = geo.burns

@@ -62,7 +62,8 @@ def build(alpha_deg: float = 55.0, beta_deg: float = 30.0, true_anomaly_deg: flo
             f"$\\hat\\imath_r$ (Eq. (14a)), β = {geo.beta_deg:.1f}° from the orbit plane "
             "towards $\\hat\\imath_n$ (Eq. (14b)). Angles in degrees."),
         alt=("Orbit plane with the RTN unit vectors at the spacecraft, and a 3-D view of the "
-             "RTN frame with the thrust vector and the angles alpha and beta"))
+             "RTN frame with the thrust vector and the angles alpha and beta"),
+        paper="Fig. 1")
     page.table(
         "vectors", geo.vectors_table(),
         caption=("The vectors drawn above, in the perifocal frame of the ellipse (x towards "

@@ -266,7 +266,8 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
                   "delta_v_diff_percent": "+.2f", "paper_loss_percent": ".2f",
                   "loss_percent": ".2f"},
         show_columns=["engine", "loi", *start_cols, "paper_delta_v_mps", "delta_v_mps",
-                      "delta_v_diff_mps", "delta_v_diff_percent"])
+                      "delta_v_diff_mps", "delta_v_diff_percent"],
+        paper="Table B1, delta-V")
     page.table(
         "duration", b1[["engine", "loi", *start_cols, "paper_burn_duration_min",
                         "burn_duration_min", "burn_duration_diff_min", "fuel_kg", "m_end_kg"]],
@@ -281,7 +282,8 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
                   "burn_duration_min": ".2f", "burn_duration_diff_min": "+.2f", "fuel_kg": ".3f",
                   "m_end_kg": ".3f"},
         show_columns=["engine", "loi", "paper_burn_duration_min", "burn_duration_min",
-                      "burn_duration_diff_min", "fuel_kg", "m_end_kg"])
+                      "burn_duration_diff_min", "fuel_kg", "m_end_kg"],
+        paper="Table B1, burn durations")
     page.table(
         "totals", totals_table(engines, totals),
         caption=("Totals of the capture sequence per engine, in the unit each quantity names: "

@@ -190,7 +190,8 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, loi: int = 1,
                  "loss_percent": "loss, ours (%)", "verified": "gate"},
         floatfmt={"start_min": "g", "paper_delta_v_mps": ".3f", "delta_v_mps": ".3f",
                   "delta_v_diff_mps": "+.3f", "delta_v_diff_percent": "+.2f",
-                  "paper_loss_percent": ".2f", "loss_percent": ".2f"})
+                  "paper_loss_percent": ".2f", "loss_percent": ".2f"},
+        paper=source and f"{source}, delta-V")
     eq19_min = float(sweep.eq19_duration_min.iloc[0])
     page.table(
         "duration", sweep[["start_min", "paper_burn_duration_min", "burn_duration_min",
@@ -201,7 +202,8 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, loi: int = 1,
         columns={"burn_duration_min": "duration, ours (min)",
                  "burn_duration_diff_min": "ours − paper (min)"},
         floatfmt={"start_min": "g", "paper_burn_duration_min": ".2f",
-                  "burn_duration_min": ".2f", "burn_duration_diff_min": "+.2f"})
+                  "burn_duration_min": ".2f", "burn_duration_diff_min": "+.2f"},
+        paper=source and f"{source}, burn durations")
     page.figure(
         "dv_figure", figures.plot_sweep_dv(sweep, printed, f"Song et al. (2011), {source}"),
         caption=(f"Delta-V (m/s) of LOI {loi} ({thrust_N:g} N / Isp {isp_s:g} s) against the "

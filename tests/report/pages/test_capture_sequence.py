@@ -62,6 +62,10 @@ def test_figure_data_and_checks(page, tmp_path, monkeypatch):
     csv = pd.read_csv(paths.table_path("t_capture_fig4"))
     np.testing.assert_allclose(csv.alpha_deg, d4.alpha_deg)
     assert "t_capture_fig4.csv" in page.items["fig4"].caption
+    # the paper's case (150 N / 200 s at its best offsets): Figs. 2-5 carry its numbers
+    assert [page.items[f"fig{k}"].paper for k in (2, 3, 4, 5)] == [
+        "Fig. 2", "Fig. 3", "Fig. 4", "Fig. 5"]
+    assert page.items["burns"].paper is None
     assert paths.figure_path("t_capture_fig4", "svg").is_file()
 
 

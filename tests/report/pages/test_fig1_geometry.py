@@ -34,6 +34,7 @@ def test_values_checks_and_caption(page):
     # before perilune the spacecraft descends: negative flight-path angle
     assert page.values["gamma_deg"] < 0
     assert "period 12.235 h" in page.items["rtn"].caption
+    assert page.items["rtn"].paper == "Fig. 1" and page.items["vectors"].paper is None
     assert page.parameters == dict(alpha_deg=55.0, beta_deg=30.0, true_anomaly_deg=-40.0,
                                    period_h=12.235)
     page.check()

@@ -29,6 +29,8 @@ def test_b1_table_sets_ours_beside_table_b1(page):
     # a finite burn needs more than the paper's impulse, even in two-body dynamics
     assert (df.delta_v_mps > imp).all()
     assert len(page.items["b1"].show_columns) <= 7
+    assert page.items["b1"].paper == "Table B1, delta-V"
+    assert page.items["totals"].paper is None
 
 
 def test_mass_carries_through_the_chain(page):

@@ -29,6 +29,10 @@ def test_delta_v_table_sets_ours_beside_the_paper(page):
     # the smallest delta-V is flagged (ours, and the paper's best -10 min is "both")
     best = fin.loc[fin.delta_v_mps.idxmin()]
     assert best.best in ("ours", "both")
+    # the paper's Table 1 carries the paper's number, not a book number
+    assert page.items["dv"].paper == "Table 1, delta-V"
+    assert page.items["duration"].paper == "Table 1, burn durations"
+    assert page.items["dv_figure"].paper is None   # our plot, not one of the paper's
 
 
 def test_values_and_checks(page):
