@@ -221,3 +221,185 @@ def count_result(plan: CapturePlan, n: int, max_period_h: float = DEFAULT_MAX_PE
     fn = solve_count if use_cache else solve_count.uncached
     return fn(plan.key(), int(n), float(max_period_h) * 3600.0, float(max_days) * 86400.0,
               impulsive, module_version(), verbose=verbose)
+
+
+# ====================================================================== the study on Dask
+#: Columns of the study's table (one row per plan and count; units in the names).
+COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "n_burns", "max_period_h",
+           "max_days", "status", "reason", "periods_h", "total_delta_v_mps",
+           "total_impulsive_delta_v_mps", "total_loss_mps", "two_body_impulsive_total_mps",
+           "fuel_kg", "final_mass_kg", "total_burn_duration_min", "time_to_final_orbit_h",
+           "all_verified", "ipopt_status", "iterations", "burns_json", "task_wall_s",
+           "worker", "code_version", "completed_utc", "error")
+KEY = ("plan_id", "n_burns", "max_period_h", "max_days")
+
+
+def table_format():
+    """The campaign table format of this study."""
+    from lunarcap.runs.campaign import TableFormat
+
+    return TableFormat(KEY, COLUMNS, text_columns=("plan", "plan_id", "dynamics", "reason",
+                                                   "periods_h", "ipopt_status",
+                                                   "burns_json"))
+
+
+def plan_id(plan: CapturePlan) -> str:
+    """A short hash of what a plan's solves depend on (its key), for the study's table."""
+    return hashlib.sha256(repr(plan.key()).encode()).hexdigest()[:12]
+
+
+def parse_counts(text) -> tuple:
+    """Counts of burns from ``"1,2,3"`` (or a sequence): distinct integers >= 1, sorted."""
+    items = text.split(",") if isinstance(text, str) else list(text)
+    out = []
+    for item in items:
+        s = item.strip() if isinstance(item, str) else item
+        try:
+            v = float(s)
+        except (TypeError, ValueError):
+            raise InputError(f"--counts must be integers >= 1 separated by commas, got "
+                             f"{text!r}") from None
+        if not math.isfinite(v) or v != int(v) or v < 1:
+            raise InputError(f"--counts must be integers >= 1, got {item!r} in {text!r}")
+        out.append(int(v))
+    if not out:
+        raise InputError("--counts is empty: give e.g. 1,2,3,4,5")
+    if len(set(out)) != len(out):
+        raise InputError(f"--counts has duplicates: {text!r}")
+    return tuple(sorted(out))
+
+
+def default_table_path():
+    """``<cache>/study/burns.csv``."""
+    from lunarcap.repro import paths
+
+    return paths.CACHE / "study" / "burns.csv"
+
+
+def count_row(plan: CapturePlan, n: int, max_period_h: float, max_days: float,
+              use_cache: bool = True) -> dict:
+    """Dask task: one plan in ``n`` burns, as a row of the study's table.
+
+    Never raises for a solver failure (status "failed" with IPOPT's status); any other
+    exception is recorded as status "error". ``use_cache`` False: no disk cache.
+    """
+    import json
+    import os
+
+    old = os.environ.get("LUNARCAP_NO_CACHE")
+    if not use_cache:
+        os.environ["LUNARCAP_NO_CACHE"] = "1"
+    try:
+        r = count_result(plan, n, max_period_h, max_days)
+    except Exception as exc:  # a bug must not lose the rest of the study
+        return {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
+    finally:
+        if not use_cache:
+            if old is None:
+                os.environ.pop("LUNARCAP_NO_CACHE", None)
+            else:
+                os.environ["LUNARCAP_NO_CACHE"] = old
+    row = {k: r.get(k) for k in COLUMNS if k in r and k not in ("burns_json",)}
+    row["periods_h"] = ";".join(f"{p:.6f}" for p in r["periods_h"])
+    row["burns_json"] = json.dumps(r["burns"])
+    row["task_wall_s"] = r.get("wall_s")
+    row["error"] = ""
+    return row
+
+
+def run_burns(plans, counts, max_period_h: float = DEFAULT_MAX_PERIOD_H,
+              max_days: float = DEFAULT_MAX_DAYS, out=None, workers=2, scheduler=None,
+              progress: bool = True, use_cache: bool = True, processes: bool = True,
+              task=None):
+    """Run (or resume) the study for every plan and count on Dask (see the module).
+
+    Returns a :class:`lunarcap.runs.campaign.CampaignResult` whose table has one row per
+    (plan, count), in the order given. InputError (bad counts or bounds, an unusable
+    ``out``, an unreachable scheduler) before any solve.
+    """
+    from lunarcap.repro.cache import code_version
+    from lunarcap.runs.campaign import run_campaign
+    from lunarcap.runs.study import check_workers
+
+    counts = parse_counts(counts)
+    check_bounds(_hours(max_period_h) * 3600.0, _days(max_days) * 86400.0)
+    workers = check_workers(workers)
+    cases = []
+    for plan in plans:
+        for n in counts:
+            key = {"plan": plan.name, "plan_id": plan_id(plan), "thrust_N":
+                   plan.engine.thrust_N, "isp_s": plan.engine.isp_s,
+                   "dynamics": plan.dynamics, "n_burns": n,
+                   "max_period_h": float(max_period_h), "max_days": float(max_days)}
+            cases.append((key, (plan, n, float(max_period_h), float(max_days), use_cache)))
+    return run_campaign(cases, task or count_row, out or default_table_path(),
+                        table_format(), f"{code_version()}:{module_version()}",
+                        workers=workers, scheduler=scheduler, progress=progress,
+                        processes=processes, desc="burns study", unit="count",
+                        recompute=not use_cache, ok_statuses=("ok", "infeasible"),
+                        describe={"study": "burns", "counts": list(counts),
+                                  "max_period_h": max_period_h, "max_days": max_days})
+
+
+def _hours(v) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+        raise InputError(f"--max-period-h must be a positive number of hours, got {v!r}")
+    return float(v)
+
+
+def _days(v) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+        raise InputError(f"--max-days must be a positive number of days, got {v!r}")
+    return float(v)
+
+
+def burns_of(row) -> list:
+    """The per-burn rows of a table row (decoded ``burns_json``)."""
+    import json
+
+    text = row["burns_json"] if isinstance(row, dict) else row.burns_json
+    return json.loads(text) if isinstance(text, str) and text else []
+
+
+def format_rows(plan: CapturePlan, rows: list, result) -> str:
+    """The CLI's text: one block per count (its burns), then the run."""
+    lines = [f"Plan {plan.name} in N burns: {plan.engine.thrust_N:g} N / "
+             f"{plan.engine.isp_s:g} s, {plan.dynamics} dynamics, final orbit "
+             f"{plan.burns[-1].describe()}; intermediate periods optimised (longest "
+             f"{rows[0]['max_period_h']:g} h, all burns within {rows[0]['max_days']:g} days); "
+             f"loss against the impulsive limit in the same dynamics"
+             if rows else f"Plan {plan.name}: no counts"]
+    if rows:
+        lines.append(f"two-body impulsive total (any N, any periods): "
+                     f"{capture_total_mps(plan.perilune_radius_km, plan.arrival.v_inf_kmps):.3f}"
+                     f" m/s")
+    for r in rows:
+        n = int(r["n_burns"])
+        if r["status"] != "ok":
+            lines.append(f"N = {n}: {r['status']}: {r['reason'] or r['error']}")
+            continue
+        periods = r["periods_h"] if isinstance(r["periods_h"], str) else ""
+        lines.append(
+            f"N = {n}: total dV {r['total_delta_v_mps']:.3f} m/s, impulsive "
+            f"{_num(r['total_impulsive_delta_v_mps'])} m/s, loss {_num(r['total_loss_mps'])} "
+            f"m/s; fuel {r['fuel_kg']:.2f} kg; final orbit {r['time_to_final_orbit_h']:.2f} h "
+            f"after arrival; periods "
+            + (", ".join(f"{float(p):.3f}" for p in periods.split(";")) + " h" if periods
+               else "none"))
+        for b in burns_of(r):
+            lines.append(f"    burn {b['burn']}: {b['target']:<20} ignition {b['ignition_epoch']}"
+                         f" ({b['start_min']:+.2f} min), {b['burn_duration_min']:6.2f} min, "
+                         f"dV {b['delta_v_mps']:8.3f} m/s, impulsive "
+                         f"{_num(b['impulsive_delta_v_mps'])}, loss {_num(b['loss_mps'])} m/s"
+                         f"{'' if b['verified'] else ', NOT VERIFIED'}")
+    run = result.run
+    lines.append(f"{run['computed']} count(s) computed, {run['reused']} taken from the table; "
+                 f"wall time {run['wall_s']:.1f} s ({run['scheduler']}, {run['workers']} "
+                 f"worker(s), cache: {run['cache']})")
+    lines.append(f"table: {result.path}")
+    return "\n".join(lines)
+
+
+def _num(v, fmt: str = ".3f") -> str:
+    return "—" if v is None or (isinstance(v, float) and not math.isfinite(v)) else \
+        f"{v:{fmt}}"
