@@ -353,6 +353,35 @@ def cmd_burns(args) -> int:
     return 0 if all(r["status"] in ("ok", "infeasible") for r in rows) else 3
 
 
+def cmd_missed(args) -> int:
+    """Missed thrust: the engine stops during a burn; the rest re-planned and re-optimised."""
+    from lunarcap.runs import missed
+
+    plan = _plan_from_args(args)
+    try:
+        burn = int(args.burn)
+    except ValueError:
+        raise InputError(f"--burn must be a burn number from 1, got {args.burn!r}") from None
+    max_period_h = _number_arg("--max-period-h", args.max_period_h, "hours")
+    try:
+        res = missed.run_missed(plan, burn, args.fractions, args.delays_min, max_period_h,
+                                out=args.out, workers=args.workers, scheduler=args.scheduler,
+                                progress=not args.no_progress, use_cache=not args.no_cache)
+    except KeyboardInterrupt:
+        print("lunarcap: interrupted; finished cases are in the table, run the same command "
+              "again to resume", file=sys.stderr)
+        return 130
+    rows = res.table.to_dict("records")
+    if args.json:
+        out = {"plan": plan.to_dict(), "burn": burn, "table": str(res.path), "run": res.run,
+               "cases": [dict({k: v for k, v in r.items() if k != "recovery_burns_json"},
+                              recovery_burns=missed.recovery_burns_of(r)) for r in rows]}
+        print(json.dumps(_jsonable(out), indent=2))
+    else:
+        print(missed.format_rows(plan, burn, rows, res))
+    return 0 if all(r["status"] in ("recovered", "no recovery") for r in rows) else 3
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of every subcommand."""
     parser = argparse.ArgumentParser(prog="lunarcap", description=__doc__.splitlines()[0])
@@ -434,6 +463,20 @@ def build_parser() -> argparse.ArgumentParser:
                         "days (3)")
     _add_dask_options(p, "count")
     p.set_defaults(func=cmd_burns)
+
+    p = sub.add_parser("missed", help="missed thrust: a burn cut short, the capture re-planned")
+    _add_plan_options(p, plan_positional=True)
+    p.add_argument("--burn", default="1", metavar="N", help="the burn cut short (1)")
+    p.add_argument("--fractions", default="0.25,0.5,0.75,0.9", metavar="F1,F2,...",
+                   help="fractions of the burn flown before the engine stops, in (0, 1] "
+                        "(0.25,0.5,0.75,0.9)")
+    p.add_argument("--delays-min", default="0,30,120,720", metavar="D1,D2,...",
+                   help="minutes from the cut-off to the recovery window (0,30,120,720)")
+    p.add_argument("--max-period-h", default="12.235", metavar="H",
+                   help="longest coast from the end of the fault to the make-up orbit's "
+                        "perilune, h (12.235)")
+    _add_dask_options(p, "case")
+    p.set_defaults(func=cmd_missed)
     return parser
 
 

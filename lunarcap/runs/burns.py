@@ -178,6 +178,10 @@ def solve_count(plan: CapturePlan, n: int, max_period_s: float, max_time_s: floa
         out.update(status="failed", reason=str(exc), ipopt_status=exc.status,
                    wall_s=time.perf_counter() - t_start)
         return out
+    except RuntimeError as exc:  # a guess's propagation failed
+        out.update(status="failed", reason=f"no initial guess: {exc}".split("\n")[0],
+                   wall_s=time.perf_counter() - t_start)
+        return out
     opt = res.plan
     imps = None
     if impulsive:
