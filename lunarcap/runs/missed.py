@@ -121,7 +121,9 @@ def time_to_perilune_after_impulse_s(x, dv_mps: float, after_s: float = 0.0,
     """
     r, v = (np.array(a, float) for a in rv_from_mee(*np.asarray(x, float)[:6], mu))
     vn = np.linalg.norm(v)
-    v2 = v * max(vn - dv_mps * 1e-3, 0.0) / vn
+    if dv_mps * 1e-3 >= vn:   # the impulse would stop the spacecraft: no such orbit
+        return math.inf
+    v2 = v * (vn - dv_mps * 1e-3) / vn
     mee = mee_from_rv(r, v2, mu)
     if math.hypot(mee[1], mee[2]) >= 1:
         return math.inf
@@ -148,7 +150,9 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
         of the state it starts from), ``recovery_delta_v_mps`` (its burns),
         ``total_delta_v_mps`` (partial + recovery), ``nominal_remaining_delta_v_mps``,
         ``penalty_mps``, ``recovery_burns`` (per burn: ignition, duration, delta-V),
-        ``first_coast_h``, ``time_to_final_orbit_h`` and the nominal's
+        ``first_coast_h`` (the make-up orbit's coast to its perilune, optimised) and
+        ``make_up_estimate_h`` (its two-body estimate, the NLP's start; inf: none),
+        ``time_to_final_orbit_h`` and the nominal's
         (``nominal_time_to_final_orbit_h``), both from the nominal perilune before burn n
         to the end of the last burn; ``ipopt_status``, ``all_verified``.
     """
@@ -213,6 +217,7 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
             est = probe.impulsive()[0]
             burn_end = (window_min[1] + 2 * est.eq19_duration_min) * 60.0
             guess = time_to_perilune_after_impulse_s(x_r, est.delta_v_mps, burn_end)
+            out["make_up_estimate_h"] = guess / 3600.0
             if not math.isfinite(guess) or guess > max_period_s:
                 guess = max_period_s
             first_coast = max(guess, window_min[1] * 60.0 + MIN_FIRST_COAST_S)
@@ -239,9 +244,13 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
             out["wall_s"] = time.perf_counter() - t_start
             return out
         infeasible = exc.status in INFEASIBLE
+        hint = ""
+        if not math.isfinite(out.get("make_up_estimate_h", 0.0)):
+            hint = (" (two-body estimate: no make-up orbit, a tangential impulse of the "
+                    "estimated size would stop the spacecraft or leave it unbound)")
         out.update(status="no recovery" if infeasible else "failed",
                    reason=("IPOPT found no recovery within the plan's bounds "
-                           f"({exc.status})" if infeasible else str(exc)),
+                           f"({exc.status})" if infeasible else str(exc)) + hint,
                    ipopt_status=exc.status)
         out["wall_s"] = time.perf_counter() - t_start
         return out
@@ -310,7 +319,8 @@ COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "burn", "fraction
            "cutoff_e", "cutoff_rp_km", "cutoff_ra_km", "cutoff_period_h",
            "cutoff_soi_radius_km", "recovery_start_e", "recovery_delta_v_mps",
            "total_delta_v_mps", "nominal_remaining_delta_v_mps", "penalty_mps",
-           "first_coast_h", "time_to_final_orbit_h", "nominal_time_to_final_orbit_h",
+           "first_coast_h", "make_up_estimate_h", "time_to_final_orbit_h",
+           "nominal_time_to_final_orbit_h",
            "all_verified", "ipopt_status", "recovery_burns_json", "task_wall_s", "worker",
            "code_version", "completed_utc", "error")
 KEY = ("plan_id", "burn", "fraction", "delay_min", "max_period_h")
