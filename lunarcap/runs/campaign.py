@@ -232,9 +232,18 @@ def read_table(path: str | os.PathLike, fmt: TableFormat) -> pd.DataFrame:
 
 
 def append_rows(path: str | os.PathLike, rows: list[dict], columns) -> None:
-    """Append rows to the table atomically (rewrite to a temporary file, then rename)."""
+    """Append rows to the table atomically (rewrite to a temporary file, then rename).
+
+    A table whose header is not ``columns`` (written by an older version) is rewritten
+    with ``columns`` first, so that every line has the header's fields.
+    """
     path = Path(path)
     old = path.read_bytes() if path.exists() else b""
+    if old and old.split(b"\n", 1)[0].decode("utf-8", "replace").strip().split(",") != \
+            list(columns):
+        # a table written with other columns (an older version): rewritten with these
+        prev = pd.read_csv(path, dtype=str, keep_default_na=False)
+        old = prev.reindex(columns=list(columns)).to_csv(index=False).encode()
     if old and not old.endswith(b"\n"):
         old += b"\n"
     text = pd.DataFrame(rows).reindex(columns=list(columns)).to_csv(index=False,

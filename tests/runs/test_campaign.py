@@ -119,3 +119,16 @@ def test_distributed_path_gives_the_local_numbers(dask_cluster, tmp_path, monkey
     np.testing.assert_array_equal(remote.table[NUMBERS_MISSED].to_numpy(float),
                                   local.table[NUMBERS_MISSED].to_numpy(float))
 
+
+
+def test_a_table_of_other_columns_is_rewritten_not_corrupted(tmp_path):
+    fmt_old = campaign.TableFormat(("k",), ("k", "a", "status", "code_version"))
+    fmt_new = campaign.TableFormat(("k",), ("k", "a", "b", "status", "code_version"))
+    path = tmp_path / "t.csv"
+    campaign.append_rows(path, [{"k": 1, "a": 2.0, "status": "ok", "code_version": "v"}],
+                         fmt_old.columns)
+    campaign.append_rows(path, [{"k": 2, "a": 3.0, "b": 4.0, "status": "ok",
+                                 "code_version": "v"}], fmt_new.columns)
+    t = campaign.read_table(path, fmt_new)
+    assert list(t.k) == [1, 2] and list(t.a) == [2.0, 3.0]
+    assert np.isnan(t.b.iloc[0]) and t.b.iloc[1] == 4.0
