@@ -52,6 +52,29 @@ def burn_rows(table: pd.DataFrame) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def reading(table: pd.DataFrame) -> str:
+    """Per plan, what the counts say (loss and time at the fewest and most burns solved)."""
+    out = []
+    for label, g in table.groupby("label", sort=False):
+        ok = g[g.status == "ok"].sort_values("n_burns")
+        bad = g[g.status != "ok"]
+        if len(ok) >= 2:
+            a, b = ok.iloc[0], ok.iloc[-1]
+            step = ok.total_loss_mps.diff().iloc[-1]
+            out.append(f"{label}: from {int(a.n_burns)} to {int(b.n_burns)} burns the loss "
+                       f"goes from {a.total_loss_mps:.1f} to {b.total_loss_mps:.1f} m/s and "
+                       f"the final orbit is reached {b.time_to_final_orbit_h:.1f} h after "
+                       f"arrival instead of {a.time_to_final_orbit_h:.1f} h; the last burn "
+                       f"added changes the loss by {step:+.2f} m/s.")
+        elif len(ok) == 1:
+            out.append(f"{label}: only N = {int(ok.n_burns.iloc[0])} solved "
+                       f"(loss {ok.total_loss_mps.iloc[0]:.1f} m/s).")
+        if len(bad):
+            out.append(" ".join(f"N = {int(r.n_burns)}: {r.status} ({str(r.reason)[:160]})."
+                                for r in bad.itertuples()))
+    return "\n\n".join(f"* {x}" for x in out)
+
+
 def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5burn"),
           counts=(1, 2, 3, 4, 5), max_period_h: float = burns.DEFAULT_MAX_PERIOD_H,
           max_days: float = burns.DEFAULT_MAX_DAYS, dynamics: str | None = None,
@@ -115,6 +138,7 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
         page.value("last_step_gain_mps", float(-steps[-1]))
         page.expect("the loss falls as burns are added (reference plan)", bool(np.all(steps < 0)),
                     f"losses {list(np.round(ok.total_loss_mps, 3))}")
+    page.note("reading", reading(table))
     bugs = table[~table.status.isin(["ok", "infeasible", "failed"])]
     page.expect("no count ended in an unexpected error (failures are reported, not hidden)",
                 bugs.empty, "; ".join(bugs.error.astype(str)))

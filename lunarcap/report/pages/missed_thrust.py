@@ -33,6 +33,38 @@ def recovery_rows(table: pd.DataFrame) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def reading(t: pd.DataFrame) -> str:
+    """What the table says for mission planning, in sentences computed from it."""
+    ok = t[t.status == "recovered"]
+    out = []
+    for d, g in t.groupby("delay_min", sort=True):
+        rec = g[g.status == "recovered"]
+        esc = int((rec.cutoff_orbit == "escape").sum())
+        if len(rec) == len(g):
+            first = (f"With a delay of {d:g} min every cut-off is recovered, at a penalty of "
+                     f"at most {rec.penalty_mps.max():.2f} m/s"
+                     + (f" (including {esc} that left a hyperbola)" if esc else "") + ".")
+        else:
+            first = (f"With a delay of {d:g} min, {len(rec)} of {len(g)} cut-offs are "
+                     f"recovered" + (f", at a penalty of up to {rec.penalty_mps.max():.1f} m/s"
+                                     if len(rec) else "") + ".")
+        out.append(first)
+    if len(ok):
+        worst = ok.loc[ok.penalty_mps.idxmax()]
+        out.append(f"The delay, not the fraction missed, drives the cost: the worst recovered "
+                   f"case (fraction {worst.fraction:g}, {worst.delay_min:g} min) costs "
+                   f"{worst.penalty_mps:.1f} m/s, because the make-up burn is flown ever "
+                   f"farther from the perilune, where a burn changes the orbit's energy most "
+                   f"cheaply.")
+        bound = ok.first_coast_h.dropna()
+        if len(bound):
+            out.append(f"In {int((bound >= bound.max() - 1e-6).sum())} of {len(bound)} "
+                       f"recoveries the make-up orbit's coast sits at its upper bound "
+                       f"({bound.max():.3f} h): the longest orbit allowed is what the "
+                       f"recovery wants, so that bound shapes these penalties.")
+    return " ".join(out)
+
+
 def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75, 0.9),
           delays_min=(0.0, 30.0, 120.0, 720.0), dynamics: str | None = None, workers: int = 2,
           output_name: str = "missed_thrust", quick: bool = False) -> Page:
@@ -84,6 +116,7 @@ def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75
     late = ok[ok.delay_min == ok.delay_min.max()] if len(ok) else ok
     page.value("max_delay_min", float(t.delay_min.max()))
     page.value("n_late_recovered", int(len(late)))
+    page.note("reading", reading(t))
     bugs = t[~t.status.isin(["recovered", "no recovery", "failed"])]
     page.value("n_failed", int((t.status == "failed").sum()))
     page.expect("no case ended in an unexpected error (failures are reported, not hidden)",
