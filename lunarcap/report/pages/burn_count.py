@@ -70,8 +70,9 @@ def reading(table: pd.DataFrame) -> str:
             out.append(f"{label}: only N = {int(ok.n_burns.iloc[0])} solved "
                        f"(loss {ok.total_loss_mps.iloc[0]:.1f} m/s).")
         if len(bad):
-            out.append(" ".join(f"N = {int(r.n_burns)}: {r.status} ({str(r.reason)[:160]})."
-                                for r in bad.itertuples()))
+            out.append(f"{label}: " + " ".join(f"N = {int(r.n_burns)}: {r.status} "
+                                               f"({str(r.reason)[:160]})."
+                                               for r in bad.itertuples()))
     return "\n\n".join(f"* {x}" for x in out)
 
 

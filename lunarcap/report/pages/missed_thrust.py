@@ -46,12 +46,13 @@ def reading(t: pd.DataFrame) -> str:
                      + (f" (including {esc} that left a hyperbola)" if esc else "") + ".")
         else:
             first = (f"With a delay of {d:g} min, {len(rec)} of {len(g)} cut-offs are "
-                     f"recovered" + (f", at a penalty of up to {rec.penalty_mps.max():.1f} m/s"
-                                     if len(rec) else "") + ".")
+                     f"recovered" + (f" (penalty {rec.penalty_mps.min():+.1f} to "
+                                     f"{rec.penalty_mps.max():+.1f} m/s)" if len(rec) else "")
+                     + "; the others have no verified recovery (see the table).")
         out.append(first)
     if len(ok):
         worst = ok.loc[ok.penalty_mps.idxmax()]
-        out.append(f"The delay, not the fraction missed, drives the cost: the worst recovered "
+        out.append(f"Waiting is what costs: the worst recovered "
                    f"case (fraction {worst.fraction:g}, {worst.delay_min:g} min) costs "
                    f"{worst.penalty_mps:.1f} m/s, because the make-up burn is flown ever "
                    f"farther from the perilune, where a burn changes the orbit's energy most "
