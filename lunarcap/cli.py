@@ -318,6 +318,75 @@ def cmd_study(args) -> int:
     return 0 if res.failures.empty else 3
 
 
+def _number_arg(option: str, text: str, unit: str) -> float:
+    """A positive finite number from an option's text, else InputError naming the option."""
+    try:
+        val = float(text)
+    except (TypeError, ValueError):
+        raise InputError(f"{option} must be a positive number of {unit}, got {text!r}") \
+            from None
+    if not math.isfinite(val) or val <= 0:
+        raise InputError(f"{option} must be a positive number of {unit}, got {text!r}")
+    return val
+
+
+def cmd_burns(args) -> int:
+    """How many capture burns: the plan's capture in N burns, the periods optimised."""
+    from lunarcap.runs import burns
+
+    plan = _plan_from_args(args)
+    counts = burns.parse_counts(args.counts)
+    max_period_h = _number_arg("--max-period-h", args.max_period_h, "hours")
+    max_days = _number_arg("--max-days", args.max_days, "days")
+    try:
+        res = burns.run_burns([plan], counts, max_period_h, max_days, out=args.out,
+                              workers=args.workers, scheduler=args.scheduler,
+                              progress=not args.no_progress, use_cache=not args.no_cache)
+    except KeyboardInterrupt:
+        print("lunarcap: interrupted; finished counts are in the table, run the same command "
+              "again to resume", file=sys.stderr)
+        return 130
+    rows = res.table.to_dict("records")
+    if args.json:
+        out = {"plan": plan.to_dict(), "max_period_h": max_period_h, "max_days": max_days,
+               "table": str(res.path), "run": res.run,
+               "counts": [dict({k: v for k, v in r.items() if k != "burns_json"},
+                               burns=burns.burns_of(r)) for r in rows]}
+        print(json.dumps(_jsonable(out), indent=2))
+    else:
+        print(burns.format_rows(plan, rows, res))
+    return 0 if all(r["status"] in ("ok", "infeasible") for r in rows) else 3
+
+
+def cmd_missed(args) -> int:
+    """Missed thrust: the engine stops during a burn; the rest re-planned and re-optimised."""
+    from lunarcap.runs import missed
+
+    plan = _plan_from_args(args)
+    try:
+        burn = int(args.burn)
+    except ValueError:
+        raise InputError(f"--burn must be a burn number from 1, got {args.burn!r}") from None
+    max_period_h = _number_arg("--max-period-h", args.max_period_h, "hours")
+    try:
+        res = missed.run_missed(plan, burn, args.fractions, args.delays_min, max_period_h,
+                                out=args.out, workers=args.workers, scheduler=args.scheduler,
+                                progress=not args.no_progress, use_cache=not args.no_cache)
+    except KeyboardInterrupt:
+        print("lunarcap: interrupted; finished cases are in the table, run the same command "
+              "again to resume", file=sys.stderr)
+        return 130
+    rows = res.table.to_dict("records")
+    if args.json:
+        out = {"plan": plan.to_dict(), "burn": burn, "table": str(res.path), "run": res.run,
+               "cases": [dict({k: v for k, v in r.items() if k != "recovery_burns_json"},
+                              recovery_burns=missed.recovery_burns_of(r)) for r in rows]}
+        print(json.dumps(_jsonable(out), indent=2))
+    else:
+        print(missed.format_rows(plan, burn, rows, res))
+    return 0 if all(r["status"] in ("recovered", "no recovery") for r in rows) else 3
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of every subcommand."""
     parser = argparse.ArgumentParser(prog="lunarcap", description=__doc__.splitlines()[0])
@@ -387,10 +456,50 @@ def build_parser() -> argparse.ArgumentParser:
                    help="recompute engines that failed in an earlier run")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_study)
+
+    p = sub.add_parser("burns", help="how many capture burns: N burns, periods optimised")
+    _add_plan_options(p, plan_positional=True)
+    p.add_argument("--counts", default="1,2,3,4,5", metavar="N1,N2,...",
+                   help="numbers of burns to try (1,2,3,4,5)")
+    p.add_argument("--max-period-h", default="12.235", metavar="H",
+                   help="longest intermediate period, h (12.235)")
+    p.add_argument("--max-days", default="3", metavar="D",
+                   help="longest time from the arrival perilune to the end of the last burn, "
+                        "days (3)")
+    _add_dask_options(p, "count")
+    p.set_defaults(func=cmd_burns)
+
+    p = sub.add_parser("missed", help="missed thrust: a burn cut short, the capture re-planned")
+    _add_plan_options(p, plan_positional=True)
+    p.add_argument("--burn", default="1", metavar="N", help="the burn cut short (1)")
+    p.add_argument("--fractions", default="0.25,0.5,0.75,0.9", metavar="F1,F2,...",
+                   help="fractions of the burn flown before the engine stops, in (0, 1] "
+                        "(0.25,0.5,0.75,0.9)")
+    p.add_argument("--delays-min", default="0,30,120,720", metavar="D1,D2,...",
+                   help="minutes from the cut-off to the recovery window (0,30,120,720)")
+    p.add_argument("--max-period-h", default="12.235", metavar="H",
+                   help="longest coast from the end of the fault to the make-up orbit's "
+                        "perilune, h (12.235)")
+    _add_dask_options(p, "case")
+    p.set_defaults(func=cmd_missed)
     return parser
 
 
-_LIST_OPTIONS = ("--starts", "--previous-starts", "--start")
+def _add_dask_options(p: argparse.ArgumentParser, what: str) -> None:
+    p.add_argument("--workers", default="2", metavar="W",
+                   help="local Dask worker processes, one thread each (2)")
+    p.add_argument("--scheduler", default=None, metavar="ADDR",
+                   help="address of an existing Dask scheduler instead of a local cluster")
+    p.add_argument("--out", default=None, metavar="PATH",
+                   help=f"CSV table, appended as each {what} finishes and resumed on rerun "
+                        f"(default below .cache/study/)")
+    p.add_argument("--no-cache", action="store_true",
+                   help="recompute every case, ignoring the disk cache and the table")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+_LIST_OPTIONS = ("--starts", "--previous-starts", "--start", "--counts", "--fractions",
+                 "--delays-min", "--max-period-h", "--max-days", "--burn", "--workers")
 
 
 def _join_negative_lists(argv: list) -> list:

@@ -84,7 +84,8 @@ class ImpulsiveBurn:
 
 def impulsive_chain(rp_km: float, v_inf_kmps: float, periods_after_s, thrust_N: float,
                     isp_s: float, mass_kg: float, mu: float = C.MU_MOON,
-                    eq19_masses_kg=None) -> list[ImpulsiveBurn]:
+                    eq19_masses_kg=None, first_delta_v_mps: float | None = None
+                    ) -> list[ImpulsiveBurn]:
     """Tangential perilune impulses from a hyperbola through orbits of given periods.
 
     Parameters
@@ -96,6 +97,8 @@ def impulsive_chain(rp_km: float, v_inf_kmps: float, periods_after_s, thrust_N: 
     thrust_N, isp_s : engine for the masses and Eq. (19) (N, s)
     mass_kg : mass at the first perilune, kg
     eq19_masses_kg : optional masses at each burn for Eq. (19) (default: this chain's)
+    first_delta_v_mps : optional delta-V of the first impulse, m/s, for a chain that starts
+        from a given state rather than the hyperbola (:func:`tangential_impulse_mps`)
 
     Returns
     -------
@@ -110,6 +113,9 @@ def impulsive_chain(rp_km: float, v_inf_kmps: float, periods_after_s, thrust_N: 
     for T in periods_after_s:
         speeds.append(perilune_speed_kmps(rp_km, T, mu))
         periods_h.append((2 * np.pi * np.sqrt(rp_km ** 3 / mu) if T is None else T) / 3600)
+    if first_delta_v_mps is not None:  # the speed "before" is the equivalent one
+        speeds[0] = speeds[1] + float(first_delta_v_mps) * 1e-3
+        periods_h[0] = np.nan
     burns, m = [], float(mass_kg)
     for i in range(len(speeds) - 1):
         dv = (speeds[i] - speeds[i + 1]) * 1e3
@@ -145,3 +151,85 @@ def impulsive_sequence(thrust_N: float = 150.0, isp_s: float = 200.0,
         v_inf_kmps = v_inf_from_loi1(rp_km=rp, period_s=periods_s[0], mu=mu)
     return impulsive_chain(rp, v_inf_kmps, (*periods_s, None), thrust_N, isp_s, mass_kg, mu,
                            eq19_masses_kg)
+
+
+# ---------------------------------------------------------------------- any number of burns
+def capture_total_mps(rp_km: float, v_inf_kmps: float, mu: float = C.MU_MOON) -> float:
+    """Two-body impulsive delta-V from the hyperbola to the circle at r_p, any number of burns, m/s.
+
+    Through any chain of tangential impulses at the perilune radius r_p, each impulse takes
+    the perilune speed from one orbit's vis-viva value to the next one's, so the sum
+    telescopes to the first speed minus the last:
+
+        dV_total = sqrt(v_inf^2 + 2 mu / r_p) - sqrt(mu / r_p),
+
+    whatever the number of burns and the periods of the intermediate ellipses (for the
+    paper's arrival at 100 km, 852.67 m/s).
+
+    Parameters
+    ----------
+    rp_km : perilune radius, km
+    v_inf_kmps : hyperbolic excess speed of the arrival, km/s
+    mu : gravitational parameter, km^3/s^2
+    """
+    check_perilune_radius(rp_km)
+    if not np.isfinite(v_inf_kmps) or v_inf_kmps <= 0:
+        raise InputError(f"v_inf must be positive (km/s), got {v_inf_kmps}")
+    return float((np.sqrt(v_inf_kmps ** 2 + 2 * mu / rp_km) - np.sqrt(mu / rp_km)) * 1e3)
+
+
+def period_from_perilune_speed_s(rp_km: float, v_kmps: float, mu: float = C.MU_MOON) -> float:
+    """Period (s) of the ellipse with perilune radius r_p and perilune speed v (inf if open)."""
+    inv_a = 2.0 / rp_km - v_kmps ** 2 / mu
+    if inv_a <= 0:
+        return float("inf")
+    return float(2 * np.pi * np.sqrt((1.0 / inv_a) ** 3 / mu))
+
+
+def equal_split_periods_s(rp_km: float, v_inf_kmps: float, n_burns: int,
+                          max_period_s: float | None = None, mu: float = C.MU_MOON) -> tuple:
+    """Periods (s) of the n-1 intermediate ellipses that share the impulsive total equally.
+
+    The hyperbola-to-circle total (:func:`capture_total_mps`) is split into ``n_burns``
+    equal tangential perilune impulses; if the first ellipse would then be longer than
+    ``max_period_s``, the first impulse reaches ``max_period_s`` and the rest of the total
+    is split equally among the other burns. A start for the search of the best periods
+    (finite-burn losses grow faster than linearly with each burn's delta-V, so spreading
+    the delta-V evenly is the natural first guess), not an optimum.
+    """
+    if int(n_burns) != n_burns or n_burns < 1:
+        raise InputError(f"the number of burns must be an integer >= 1, got {n_burns!r}")
+    n_burns = int(n_burns)
+    v0 = float(np.sqrt(v_inf_kmps ** 2 + 2 * mu / rp_km))
+    vc = float(np.sqrt(mu / rp_km))
+    if n_burns == 1:
+        return ()
+    share = (v0 - vc) / n_burns
+    v1 = v0 - share
+    if max_period_s is not None and period_from_perilune_speed_s(rp_km, v1, mu) > max_period_s:
+        v1 = perilune_speed_kmps(rp_km, max_period_s, mu)
+        if v1 <= vc:
+            raise InputError(f"a longest period of {max_period_s / 3600:g} h is not longer than "
+                             f"the circle's at r_p = {rp_km:g} km")
+        share = (v1 - vc) / (n_burns - 1)
+    if v1 ** 2 >= 2 * mu / rp_km:
+        raise InputError(f"an equal share of {share * 1e3:.1f} m/s per burn leaves the "
+                         f"spacecraft on a hyperbola after the first burn: give a longest "
+                         f"period")
+    speeds = [v1 - k * share for k in range(n_burns - 1)]
+    return tuple(period_from_perilune_speed_s(rp_km, v, mu) for v in speeds)
+
+
+def tangential_impulse_mps(r_km: float, v_kmps: float, a_target_km: float | None,
+                           mu: float = C.MU_MOON) -> float:
+    """Tangential impulse at radius r that turns speed v into the target orbit's energy, m/s.
+
+    ``a_target_km`` is the target's semi-major axis (None: the circle of radius r). Where
+    the target orbit cannot reach radius r (its apolune is below r), the whole speed is
+    returned: a rough upper estimate. Sizes the first burn of a plan that starts from a
+    given state (:class:`lunarcap.mission.plan.Start`), which need not be at a perilune.
+    """
+    a = r_km if a_target_km is None else a_target_km
+    v2 = mu * (2.0 / r_km - 1.0 / a)
+    v_new = float(np.sqrt(v2)) if v2 > 0 else 0.0
+    return abs(float(v_kmps) - v_new) * 1e3

@@ -37,6 +37,12 @@ durations around perilune, within +-120 min and half the orbit before the burn).
 
 Nominal perilune epochs are the arrival epoch plus the coasts; with them the arrival
 epoch and every coast must lie inside the ephemeris. Every error names the field.
+
+A plan may also start from a known state instead of the arrival perilune (a ``start``:
+epoch, state, and the coast from it to the first nominal perilune), for a capture
+re-planned after a fault (:meth:`CapturePlan.resumed`); its first burn then ignites
+``start_min`` after that epoch, within its ``start_bounds_min``. The arrival section still
+gives the perilune radius and inclination every target uses.
 """
 
 from __future__ import annotations
@@ -55,6 +61,7 @@ from lunarcap.mission.impulsive import (
     PAPER_DV_LOI1_MPS,
     ImpulsiveBurn,
     impulsive_chain,
+    tangential_impulse_mps,
     v_inf_from_loi1,
 )
 from lunarcap.mission.targets import CIRCULAR, PERILUNE, Target
@@ -81,7 +88,8 @@ MIN_BURN_S = 0.5
 MAX_BURN_FRACTION = 0.5
 
 _TOP_KEYS = {"name", "description", "arrival", "engine", "dynamics", "burns", "ephemeris",
-             "lunar_pole"}
+             "lunar_pole", "start"}
+_START_KEYS = {"epoch", "mee", "mass_kg", "first_coast_min"}
 _ARRIVAL_KEYS = {"epoch", "perilune_altitude_km", "inclination_deg", "v_inf_kmps",
                  "impulsive_loi1_mps", "hemisphere", "approach_dir", "mass_kg"}
 _ENGINE_KEYS = {"thrust_N", "isp_s"}
@@ -177,6 +185,59 @@ class Burn:
 
 
 @dataclass(frozen=True)
+class Start:
+    """A known state a capture starts from, instead of the arrival perilune.
+
+    Attributes
+    ----------
+    epoch_s : float
+        Epoch of the state, TDB s past J2000.
+    state : tuple of 7 floats
+        (p km, f, g, h, k, L rad, m kg) in M-MME2000.
+    first_coast_s : float
+        From ``epoch_s`` to the nominal perilune where the first burn's target must hold, s
+        (it replaces the first burn's period as the first coast).
+    """
+
+    epoch_s: float
+    state: tuple
+    first_coast_s: float
+
+    def __post_init__(self):
+        object.__setattr__(self, "state", tuple(float(v) for v in self.state))
+        object.__setattr__(self, "epoch_s", _number("start.epoch", self.epoch_s, "s",
+                                                    positive=False))
+        if len(self.state) != 7:
+            raise _err("start.mee", f"a state is 7 numbers (p, f, g, h, k, L, m), got "
+                                    f"{len(self.state)}")
+        if not all(math.isfinite(v) for v in self.state):
+            raise _err("start.mee", f"must be finite numbers, got {self.state!r}")
+        if self.state[0] <= 0:
+            raise _err("start.mee", f"p must be positive (km), got {self.state[0]!r}")
+        if self.state[6] <= 0:
+            raise _err("start.mass_kg", f"must be positive (kg), got {self.state[6]!r}")
+        _number("start.first_coast_min", self.first_coast_s / 60.0, "min")
+
+    @property
+    def mass_kg(self) -> float:
+        """Mass of the state, kg."""
+        return self.state[6]
+
+    def orbit(self, mu: float = C.MU_MOON) -> dict:
+        """The osculating orbit of the state, with its energy and semi-major axis.
+
+        :func:`lunarcap.physics.elements.orbit_summary` plus ``energy_km2ps2`` (specific
+        energy, km^2/s^2) and ``a_km`` (semi-major axis, km; negative if open).
+        """
+        from lunarcap.physics.elements import orbit_summary
+
+        o = orbit_summary(np.array(self.state), mu)
+        o["energy_km2ps2"] = o["v_kmps"] ** 2 / 2 - mu / o["r_km"]
+        o["a_km"] = -mu / (2 * o["energy_km2ps2"])
+        return o
+
+
+@dataclass(frozen=True)
 class CapturePlan:
     """A capture: arrival, engine, dynamics and burns (validated on construction).
 
@@ -193,6 +254,7 @@ class CapturePlan:
     impulsive_loi1_mps: float | None = None
     description: str = field(default="", compare=False)
     lunar_pole: str = DEFAULT_LUNAR_POLE
+    start: Start | None = None
 
     # ------------------------------------------------------------------ validation
     def __post_init__(self):
@@ -208,10 +270,13 @@ class CapturePlan:
             raise _err("burns", "a plan needs at least one burn")
         rp = self.perilune_radius_km
         period_before = math.inf
+        if self.start is not None:
+            self._check_start()
         for i, b in enumerate(self.burns):
             _validate_burn(f"burns[{i}]", b, rp, period_before, last=i == len(self.burns) - 1)
             period_before = b.period_s if b.target == PERILUNE else _circle_period_s(rp)
-        if self.impulsive_loi1_mps is not None or self.arrival.v_inf_kmps is None:
+        if self.start is None and (self.impulsive_loi1_mps is not None
+                                   or self.arrival.v_inf_kmps is None):
             # v_inf from an impulsive first burn (default: the paper's 353.272 m/s)
             dv = PAPER_DV_LOI1_MPS if self.impulsive_loi1_mps is None else \
                 _number("arrival.impulsive_loi1_mps", self.impulsive_loi1_mps, "m/s")
@@ -224,6 +289,21 @@ class CapturePlan:
             object.__setattr__(self, "arrival", replace(self.arrival, v_inf_kmps=vinf))
         self._check_ephemeris()
         self._check_engine_fits()
+
+    def _check_start(self) -> None:
+        st = self.start
+        if not isinstance(st, Start):
+            raise _err("start", f"must be a Start, got {type(st).__name__}")
+        b0 = self.burns[0]
+        if b0.free_start and b0.start_bounds_min is None:
+            raise _err("burns[0].start_bounds_min",
+                       "a plan that starts from a given state needs a window [lo, hi] (min "
+                       "from its epoch) for a free first ignition")
+        latest = b0.start_bounds_min[1] if b0.free_start else b0.start_min
+        if latest * 60.0 >= st.first_coast_s:
+            raise _err("start.first_coast_min",
+                       f"the first coast ({st.first_coast_s / 60:.1f} min) must end after the "
+                       f"latest ignition ({latest:g} min)")
 
     def _check_ephemeris(self) -> None:
         eph = self.ephemeris_model()
@@ -272,7 +352,12 @@ class CapturePlan:
                      for b in self.burns)
 
     def coast_s(self, i: int) -> float:
-        """Time from the nominal perilune before burn ``i`` (0-based) to the next, s."""
+        """Time from the nominal perilune before burn ``i`` (0-based) to the next, s.
+
+        For the first burn of a plan with a :class:`Start`, from the start's epoch.
+        """
+        if i == 0 and self.start is not None:
+            return self.start.first_coast_s
         b = self.burns[i]
         if b.target == PERILUNE:
             return b.period_s
@@ -280,8 +365,12 @@ class CapturePlan:
 
     @property
     def nominal_perilunes_s(self) -> tuple:
-        """Nominal perilune epochs (TDB s past J2000): arrival, then after each coast."""
-        t = [seconds_from_calendar(self.arrival.epoch)]
+        """Nominal perilune epochs (TDB s past J2000): arrival, then after each coast.
+
+        With a :class:`Start`, the first is the start's epoch (not a perilune).
+        """
+        t = [seconds_from_calendar(self.arrival.epoch) if self.start is None
+             else self.start.epoch_s]
         for i in range(self.n_burns):
             t.append(t[-1] + self.coast_s(i))
         return tuple(t)
@@ -289,9 +378,22 @@ class CapturePlan:
     def impulsive(self, eq19_masses_kg=None) -> list[ImpulsiveBurn]:
         """The two-body impulsive chain of this plan (tangential perilune impulses)."""
         periods = [b.period_s if b.target == PERILUNE else None for b in self.burns]
+        first = None
+        if self.start is not None:  # the first burn from the start's radius and speed
+            o = self.start.orbit()
+            a = None if self.burns[0].target == CIRCULAR else \
+                (C.MU_MOON * (periods[0] / (2 * math.pi)) ** 2) ** (1.0 / 3.0)
+            if a is None:
+                a = self.perilune_radius_km
+            first = tangential_impulse_mps(o["r_km"], o["v_kmps"], a)
         return impulsive_chain(self.perilune_radius_km, self.arrival.v_inf_kmps, periods,
-                               self.engine.thrust_N, self.engine.isp_s, self.arrival.mass_kg,
-                               eq19_masses_kg=eq19_masses_kg)
+                               self.engine.thrust_N, self.engine.isp_s, self.initial_mass_kg,
+                               eq19_masses_kg=eq19_masses_kg, first_delta_v_mps=first)
+
+    @property
+    def initial_mass_kg(self) -> float:
+        """Mass before the first burn: the arrival's, or the start state's, kg."""
+        return self.arrival.mass_kg if self.start is None else self.start.mass_kg
 
     # ------------------------------------------------------------------ variants
     def with_engine(self, thrust_N: float, isp_s: float, name: str | None = None
@@ -328,6 +430,61 @@ class CapturePlan:
         burns = list(self.burns)
         burns[i] = replace(burns[i], steering=steering)
         return replace(self, burns=tuple(burns))
+
+    def with_coasts(self, coasts_s) -> "CapturePlan":
+        """The same plan with the coasts after its burns replaced (one per burn, s; None keeps one).
+
+        The coast after an ellipse target is its period (the target's period changes with
+        it); after the first burn of a plan with a :class:`Start`, the start's first coast;
+        after a circle, its ``coast_s``. An all-burns NLP with free coasts
+        (:func:`lunarcap.optim.joint.solve_joint`) reports its optimum as such a plan.
+        """
+        coasts = list(coasts_s)
+        if len(coasts) != self.n_burns:
+            raise _err("burns", f"{self.n_burns} coasts expected (one per burn), got "
+                                f"{len(coasts)}")
+        burns, start = list(self.burns), self.start
+        for i, c in enumerate(coasts):
+            if c is None:
+                continue
+            c = _number(f"burns[{i}].coast", float(c) / 60.0, "min") * 60.0
+            if i == 0 and start is not None:
+                start = replace(start, first_coast_s=c)
+            elif burns[i].target == PERILUNE:
+                burns[i] = replace(burns[i], period_s=c, apolune_altitude_km=None)
+            else:
+                burns[i] = replace(burns[i], coast_s=c)
+        return replace(self, burns=tuple(burns), start=start)
+
+    def with_burn_count(self, periods_s, name: str | None = None) -> "CapturePlan":
+        """The plan's arrival, engine and last burn, reached through ellipses of these periods.
+
+        ``len(periods_s) + 1`` burns: one into each ellipse (periods in s, longest first),
+        then the plan's last burn (its target and coast); every ignition free.
+        """
+        last = replace(self.burns[-1], start_min="free", start_bounds_min=None)
+        burns = tuple(Burn(PERILUNE, period_s=float(p), start_min="free") for p in periods_s)
+        n = len(burns) + 1
+        return replace(self, burns=burns + (last,), impulsive_loi1_mps=None,
+                       name=name or f"{self.name} in {n} burn{'s' * (n > 1)}")
+
+    def resumed(self, i: int, epoch_s: float, state, first_coast_s: float | None = None,
+                window_min: tuple = (0.0, 30.0)) -> "CapturePlan":
+        """The capture from burn ``i`` (0-based) on, starting from ``state`` at ``epoch_s``.
+
+        Burns i, i+1, ... of this plan; the first ignites within ``window_min`` (min after
+        ``epoch_s``, free), the others as in this plan. The first coast ends at
+        ``first_coast_s`` after ``epoch_s`` (default: this plan's nominal perilune after
+        burn i). The re-plan after a fault (:mod:`lunarcap.runs.missed`) and the impulsive
+        limit of a burn from a given state are such plans.
+        """
+        self._index(i)
+        t = self.nominal_perilunes_s
+        coast = t[i + 1] - float(epoch_s) if first_coast_s is None else float(first_coast_s)
+        first = replace(self.burns[i], start_min="free",
+                        start_bounds_min=tuple(float(w) for w in window_min))
+        return replace(self, burns=(first,) + self.burns[i + 1:], impulsive_loi1_mps=None,
+                       start=Start(float(epoch_s), tuple(np.asarray(state, float)), coast))
 
     def truncated(self, n: int) -> "CapturePlan":
         """The plan's first ``n`` burns (a prefix: what burn n depends on)."""
@@ -421,13 +578,16 @@ class CapturePlan:
         desc = d.get("description", "")
         if not isinstance(desc, str):
             raise _err("description", f"must be a text, got {desc!r}")
+        start = d.get("start")
+        if start is not None:
+            start = _start_from_dict(start)
         return cls(name=name.strip(), arrival=arrival, engine=engine, burns=burns,
                    dynamics=d.get("dynamics", "full"), ephemeris=eph,
                    lunar_pole=d.get("lunar_pole", DEFAULT_LUNAR_POLE),
                    impulsive_loi1_mps=(_number("arrival.impulsive_loi1_mps",
                                                a["impulsive_loi1_mps"], "m/s")
                                        if "impulsive_loi1_mps" in a else None),
-                   description=desc.strip())
+                   description=desc.strip(), start=start)
 
     def to_dict(self) -> dict:
         """The plan as a mapping with the YAML file's keys (round-trips :meth:`from_dict`)."""
@@ -469,6 +629,10 @@ class CapturePlan:
             out["ephemeris"] = self.ephemeris
         if self.lunar_pole != DEFAULT_LUNAR_POLE:
             out["lunar_pole"] = self.lunar_pole
+        if self.start is not None:
+            out["start"] = {"epoch": calendar_from_seconds(self.start.epoch_s, 6),
+                            "mee": list(self.start.state[:6]), "mass_kg": self.start.mass_kg,
+                            "first_coast_min": self.start.first_coast_s / 60.0}
         return out
 
     def to_yaml(self) -> str:
@@ -542,6 +706,24 @@ def _burn_from_dict(where: str, b, altitude_km: float) -> Burn:
                 start_min=_start_value(f"{where}.start_min", b["start_min"]),
                 coast_s=coast, apolune_altitude_km=apo, steering=steering,
                 start_bounds_min=bounds)
+
+
+def _start_from_dict(d) -> Start:
+    _keys("start", d, _START_KEYS, _START_KEYS)
+    if not isinstance(d["epoch"], str):
+        raise _err("start.epoch", f"must be a text like '2017-02-20 03:41:26 TDB', got "
+                                  f"{d['epoch']!r}")
+    try:
+        epoch = seconds_from_calendar(d["epoch"])
+    except InputError as exc:
+        raise _err("start.epoch", str(exc)) from None
+    mee = d["mee"]
+    if not isinstance(mee, (list, tuple)) or len(mee) != 6:
+        raise _err("start.mee", f"must be six numbers (p km, f, g, h, k, L rad), got {mee!r}")
+    mee = [_number(f"start.mee[{j}]", x, "", positive=False) for j, x in enumerate(mee)]
+    mass = _number("start.mass_kg", d["mass_kg"], "kg")
+    coast = _number("start.first_coast_min", d["first_coast_min"], "min") * 60.0
+    return Start(epoch, tuple(mee) + (mass,), coast)
 
 
 def _validate_engine(e: Engine) -> None:

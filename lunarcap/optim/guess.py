@@ -39,7 +39,7 @@ def make_guess(prob: BurnProblem, t1_s: float | None = None, tune: bool = True) 
     at a perilune at ``t_end`` (:func:`tune_duration`).
     """
     t1 = t1_s or prob.eq19_duration_s or 600.0
-    t1 = min(t1, 0.9 * (prob.t_end_s - prob.t_ign_s))
+    t1 = min(t1, 0.9 * (prob.t_end_s - prob.t_ign_s), speed_stop_s(prob))
     if tune and not prob.circular:
         t1, guess = tune_duration(prob, t1)
         if guess is not None:
@@ -67,7 +67,7 @@ def tune_duration(prob: BurnProblem, t1: float, revs: int = 1):
     Returns the duration and the guess propagated for it (None if not found).
     """
     span = prob.t_end_s - prob.t_ign_s
-    tmax = min(2.0 * t1, 0.9 * span)
+    tmax = min(2.0 * t1, 0.9 * span, speed_stop_s(prob))
     g = guess_arcs(prob, tmax, coast=False)
     ts = np.linspace(0.3 * t1, tmax, 600)
     xs = g.burn(prob.t_ign_s + ts)
@@ -88,6 +88,22 @@ def tune_duration(prob: BurnProblem, t1: float, revs: int = 1):
             return float(tk), arc
         tk = tk - Mend / slope
     return float(tk), None
+
+
+def speed_stop_s(prob: BurnProblem, share: float = 0.9) -> float:
+    """Thrust time that removes ``share`` of the initial speed (rocket equation), s.
+
+    Thrust opposite the velocity for longer would stop the spacecraft and turn it round
+    (the orbit degenerates, p -> 0): the guess never burns that long. Matters for a burn
+    far from the Moon, where the speed is low (a re-planned capture after a fault).
+    """
+    from lunarcap.physics.elements import speed_from_mee
+
+    x = prob.x0
+    v_mps = float(speed_from_mee(x[0], x[1], x[2], x[5], prob.model.mu)) * 1e3
+    ve = prob.model.exhaust_speed_kmps * 1e3
+    mdot = prob.model.thrust_N / ve
+    return float(x[6] * (1.0 - np.exp(-share * v_mps / ve)) / mdot)
 
 
 def guess_arcs(prob: BurnProblem, t1: float, coast: bool = True) -> Guess:

@@ -11,6 +11,16 @@ circle), so the comparison isolates what the one-burn-at-a-time approach loses.
 
 The joint optimum is verified leg by leg exactly like a single burn: each leg's steering
 is flown from the previous leg's *verified* end state.
+
+Free coasts (beyond the paper): a leg's coast, from the epoch its ignition is counted
+from to the nominal perilune where its target holds, may be a decision variable instead
+of the plan's period. The later epochs then follow from it (t_{k+1} = t_k + coast_k),
+so the NLP chooses the intermediate orbits (an ellipse's coast is its period: reaching
+the perilune radius on the perilune branch at t_{k+1} makes the orbit's period about
+coast_k); bounds on each free coast, an order (each free coast no longer than the free
+one before it: the orbits shrink) and a limit on the time from the first epoch to the
+end of the last burn are constraints. The optimum is returned as the plan with those
+coasts (:meth:`lunarcap.mission.plan.CapturePlan.with_coasts`) and verified from it.
 """
 
 from __future__ import annotations
@@ -49,30 +59,57 @@ class JointNLP:
 
 
 @lru_cache(maxsize=None)
-def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full") -> JointNLP:
+def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
+                    free_coasts: tuple = ()) -> JointNLP:
     """The NLP of N legs (one per target kind), each with a free ignition, linked end to start.
 
     Parameters (by name): ``x_start`` (the state at the first nominal perilune, physical),
     ``t_ref`` (the N+1 nominal perilune epochs), and per leg ``leg<k>.dynamics``,
     ``leg<k>.mesh_burn``, ``leg<k>.mesh_coast``, ``leg<k>.target``.
+
+    ``free_coasts``: one flag per leg (empty: none free). A free leg k has a variable
+    ``leg<k>.coast`` (TU), its coast from t_k to t_{k+1}; the epochs after it are t_k plus
+    the coasts (fixed ones from ``t_ref``). Then also the constraint rows ``coast_order``
+    (coast_k - coast_{k+1} >= 0 for consecutive free legs; the solver may release them)
+    and ``time_limit`` (end of the last burn minus t_0, TU; its upper bound set by the
+    solver).
     """
     nb, nc = mesh.n_burn, mesh.n_coast
     n = len(target_kinds)
+    free = tuple(bool(f) for f in free_coasts) or (False,) * n
+    if len(free) != n:
+        raise ValueError(f"free_coasts needs one flag per leg ({n}), got {len(free)}")
     nlp = NLPBuilder()
     P_x0 = nlp.param("x_start", N_X)
     P_tref = nlp.param("t_ref", n + 1)
     S = ca.vertcat(LU, 1, 1, 1, 1, 1, P_x0[6])
-    x_start, J, legs = P_x0 / S, 0, []
+    x_start, J, legs, coasts = P_x0 / S, 0, [], {}
+    t = [P_tref[0]]
+    for k, kind in enumerate(target_kinds):
+        if free[k]:
+            coasts[k] = nlp.var(f"leg{k}.coast", 1)
+            t.append(t[k] + coasts[k] * TU)
+        elif not any(free[:k]):
+            t.append(P_tref[k + 1])
+        else:
+            t.append(t[k] + (P_tref[k + 1] - P_tref[k]))
     for k, kind in enumerate(target_kinds):
         pre = f"leg{k}."
-        leg = add_leg(nlp, pre, mesh, kind, x_start, P_tref[k], P_tref[k + 1],
+        leg = add_leg(nlp, pre, mesh, kind, x_start, t[k], t[k + 1],
                       dynamics_params(nlp, pre + "dynamics"), nlp.param(pre + "mesh_burn", nb + 1),
                       nlp.param(pre + "mesh_coast", nc + 1), nlp.param(pre + "target", 2), S,
                       mode, free_start=True)
         legs.append(leg)
         x_start = leg.xf
         J = J + leg.dv
-    name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{mode}".replace("-", "_")
+    if any(free):
+        for k in range(n - 1):
+            if free[k] and free[k + 1]:
+                nlp.constrain(coasts[k] - coasts[k + 1], "coast_order", 0.0, np.inf)
+        last = legs[-1]
+        nlp.constrain((last.t_ign + last.t1 - t[0]) / TU, "time_limit", 0.0, np.inf)
+    tag = "" if not any(free) else "_free" + "".join("1" if f else "0" for f in free)
+    name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{mode}{tag}".replace("-", "_")
     return JointNLP(nlp.compile(J, name), legs)
 
 
@@ -84,6 +121,7 @@ class JointResult:
     ipopt_status: str
     iterations: int
     solve_s: float
+    plan: CapturePlan | None = None   # the plan solved (with the optimal coasts if free)
 
     @property
     def total_delta_v_mps(self) -> float:
@@ -91,8 +129,9 @@ class JointResult:
         return sum(s.delta_v_mps for s in self.legs)
 
 
-def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 16, 5)
-                ) -> JointResult:
+def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 16, 5),
+                free_coasts: tuple = (), coast_bounds_s: tuple | None = None,
+                max_time_s: float | None = None, fit=None) -> JointResult:
     """Solve all burns of ``plan`` as one NLP, warm-started from a one-at-a-time chain.
 
     Parameters
@@ -102,6 +141,16 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         The plan's burns solved one at a time with free ignition (the warm start).
     eph : Ephemeris
     mesh : Mesh
+    free_coasts : tuple of bool, optional
+        Per burn, whether its coast is optimised (see the module docstring; the plan's
+        coasts are the initial values).
+    coast_bounds_s : (lo, hi), optional
+        Bounds of every free coast, s.
+    max_time_s : float, optional
+        Upper bound of the time from the plan's first epoch to the end of its last burn, s.
+    fit : ChebyshevFit, optional
+        One ephemeris fit for every leg (required in full dynamics with free coasts: it
+        must cover every epoch the coasts allow); default each leg's own.
 
     Raises
     ------
@@ -109,15 +158,29 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         If IPOPT fails or a leg fails verification.
     """
     kinds = tuple(t.kind for t in plan.targets)
-    nlp = build_joint_nlp(mesh, kinds, plan.dynamics)
+    free = tuple(bool(f) for f in free_coasts)
+    nlp = build_joint_nlp(mesh, kinds, plan.dynamics, free if any(free) else ())
     lay = nlp.compiled.layout
     S = state_scale(sequential[0].problem.x_ref[6])
     w0 = np.zeros(lay.nv)
     lbx, ubx, lbg, ubg = lay.bounds()
     params = {"x_start": sequential[0].problem.x_ref, "t_ref": plan.nominal_perilunes_s}
+    if any(free):
+        lo, hi = coast_bounds_s if coast_bounds_s is not None else (0.0, np.inf)
+        for k in range(plan.n_burns):
+            if free[k]:
+                lay.put(w0, f"leg{k}.coast", plan.coast_s(k) / TU)
+                lay.put(lbx, f"leg{k}.coast", lo / TU)
+                lay.put(ubx, f"leg{k}.coast", hi / TU)
+        if max_time_s is not None:
+            ubg[lay.rows("time_limit")] = max_time_s / TU
     meshes = []
     for k, sol in enumerate(sequential):
         prob, raw = sol.problem, sol.raw
+        if fit is not None and prob.model.fit is not None:
+            from dataclasses import replace
+
+            prob = replace(prob, model=replace(prob.model, fit=fit))
         pre = f"leg{k}."
         mb = np.linspace(0, 1, mesh.n_burn + 1)
         mc = raw.mesh_coast if len(raw.mesh_coast) == mesh.n_coast + 1 else \
@@ -139,6 +202,9 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         raise SolveError(f"all-burns NLP of plan {plan.name!r}: IPOPT "
                          f"{stats['return_status']}", status=stats["return_status"])
     w = np.asarray(res["x"]).ravel()
+    if any(free):  # the optimum as a plan: its coasts, then its epochs
+        plan = plan.with_coasts([float(lay.get(w, f"leg{k}.coast")[0]) * TU if free[k]
+                                 else None for k in range(plan.n_burns)])
     legs, x_peri = [], sequential[0].problem.x_ref
     t_ref = plan.nominal_perilunes_s
     for k, sol in enumerate(sequential):
@@ -146,7 +212,7 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         t_ign = t_ref[k] + float(lay.get(w, pre + "ts")[0]) * TU
         # the leg as a fixed-ignition problem from the previous leg's verified end state
         prob = burn_problem(plan, k, x_peri, eph, start_min=(t_ign - t_ref[k]) / 60.0,
-                            fit=sol.problem.model.fit)
+                            fit=fit if fit is not None else sol.problem.model.fit)
         mb, mc = meshes[k]
         fixed = leg_solution(lay, pre, w, prob, mesh, mb, mc, S)
         xf = fixed["x_coast"][:, -1]
@@ -164,5 +230,5 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
                              status="verification failed", details=ver.to_dict())
         legs.append(Solution(raw, ver, flight, [], solve_s, sol.raw.t1_s))
         x_peri = flight.end_state
-    return JointResult(legs, stats["return_status"], int(stats["iter_count"]), solve_s)
+    return JointResult(legs, stats["return_status"], int(stats["iter_count"]), solve_s, plan)
 

@@ -126,6 +126,33 @@ def fly(raw: RawSolution) -> Flight:
     return Flight(burn, coast, float(x[7]) * 1e3)
 
 
+def fly_burn_until(raw: RawSolution, duration_s: float) -> np.ndarray:
+    """State and delta-V after the first ``duration_s`` of the solution's burn, re-flown.
+
+    The steering is flown from the initial state as in :func:`fly` and the engine stops
+    after ``duration_s`` (0 <= duration_s <= the burn's duration): a burn cut short.
+
+    Returns
+    -------
+    ndarray (8,)
+        (p km, f, g, h, k, L rad, m kg, delta-V km/s) at ignition + ``duration_s``.
+    """
+    prob = raw.prob
+    if not 0.0 <= duration_s <= raw.t1_s * (1 + 1e-12):
+        raise ValueError(f"a cut-off after {duration_s} s is outside the burn's "
+                         f"{raw.t1_s} s")
+    x = np.append(prob.x0, 0.0)
+    rel = raw.t1_s * raw.mesh_burn
+    for j in range(len(rel) - 1):
+        if duration_s <= rel[j]:
+            break
+        span = min(rel[j + 1], duration_s) - rel[j]
+        x = propagate(prob.model, prob.t_ign_s + rel[j], x[:7], None,
+                      u=interval_steering(raw, j), delta_v=True, dv0_kmps=x[7],
+                      duration_s=span).final
+    return x
+
+
 def verify(raw: RawSolution, return_flight: bool = False):
     """Re-propagate ``raw`` and measure its residuals against the gate.
 

@@ -806,3 +806,83 @@ def plot_engine_loss(totals, loss_column: str, loss_label: str):
         a.grid(alpha=0.3)
         a.margins(x=0.2, y=0.12)
     return fig
+
+
+# =============================================================================== burn count
+def plot_burn_count(counts):
+    """Total loss and time to the final orbit against the number of burns, one line per plan.
+
+    Parameters
+    ----------
+    counts : DataFrame, one row per (plan, count) with ``label``, ``n_burns``, ``status``,
+        ``total_loss_mps`` and ``time_to_final_orbit_h`` (rows not "ok" are drawn as an
+        open marker on the axis: no capture with that count)
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(9.6, 3.8), layout="constrained")
+    for j, (label, g) in enumerate(counts.groupby("label", sort=False)):
+        g = g.sort_values("n_burns")
+        ok = g[g.status == "ok"]
+        c = f"C{j}"
+        ax.plot(ok.n_burns, ok.total_loss_mps, "o-", color=c, label=label)
+        bx.plot(ok.n_burns, ok.time_to_final_orbit_h, "o-", color=c, label=label)
+        bad = g[g.status != "ok"]
+        for a in (ax, bx):
+            a.plot(bad.n_burns, np.zeros(len(bad)), "x", color=c, ms=9, mew=2)
+    ax.set_ylabel("total loss vs impulsive limit (m/s)")
+    bx.set_ylabel("arrival perilune → end of last burn (h)")
+    for a in (ax, bx):
+        a.set_xlabel("number of burns")
+        a.grid(alpha=0.3)
+        a.set_xticks(sorted(set(counts.n_burns.astype(int))))
+    ax.plot([], [], "x", color="0.4", mew=2, label="no plan (infeasible or failed)")
+    ax.legend(fontsize=8)
+    return fig
+
+
+# =============================================================================== missed thrust
+def plot_missed_penalty(cases):
+    """Penalty map of a missed burn: fraction flown × delay, the penalty written in each cell.
+
+    Parameters
+    ----------
+    cases : DataFrame, one row per case with ``fraction``, ``delay_min``, ``status``,
+        ``penalty_mps`` and ``cutoff_orbit`` (cells without a recovery are grey, marked
+        "none"; an "esc." under the number marks a cut-off on a hyperbola)
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fr = sorted(set(cases.fraction.astype(float)))
+    de = sorted(set(cases.delay_min.astype(float)))
+    grid = np.full((len(fr), len(de)), np.nan)
+    fig, ax = plt.subplots(figsize=(7.2, 0.8 + 0.75 * len(fr)), layout="constrained")
+    for r in cases.itertuples():
+        i, j = fr.index(float(r.fraction)), de.index(float(r.delay_min))
+        if r.status == "recovered":
+            grid[i, j] = max(float(r.penalty_mps), 0.0)
+    vmax = max(np.nanmax(grid), 1.0) if np.isfinite(grid).any() else 1.0
+    shown = np.ma.masked_invalid(np.log10(grid + 1.0))
+    im = ax.imshow(shown, cmap="viridis_r", vmin=0, vmax=np.log10(vmax + 1.0), aspect="auto",
+                   origin="lower")
+    ax.set_facecolor("0.85")
+    for r in cases.itertuples():
+        i, j = fr.index(float(r.fraction)), de.index(float(r.delay_min))
+        txt = f"{r.penalty_mps:.1f}" if r.status == "recovered" else "none"
+        if r.cutoff_orbit == "escape":
+            txt += "\nesc."
+        ax.text(j, i, txt, ha="center", va="center", fontsize=9,
+                color="k" if r.status != "recovered" or grid[i, j] < vmax / 3 else "w")
+    ax.set_xticks(range(len(de)), [f"{d:g}" for d in de])
+    ax.set_yticks(range(len(fr)), [f"{f:g}" for f in fr])
+    ax.set_xlabel("delay before the recovery (min)")
+    ax.set_ylabel("fraction of the burn flown")
+    cb = fig.colorbar(im, ax=ax)
+    ticks = [t for t in (0, 1, 10, 100, 1000) if t <= vmax]
+    cb.set_ticks([np.log10(t + 1.0) for t in ticks], labels=[f"{t:g}" for t in ticks])
+    cb.set_label("penalty (m/s)")
+    return fig

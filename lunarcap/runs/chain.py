@@ -65,7 +65,13 @@ def reuse_earlier_burns():
 
 
 def perilune_state(plan: CapturePlan, i: int, verbose: bool = False) -> np.ndarray:
-    """State (p, f, g, h, k, L, m) at the nominal perilune before burn ``i`` (0-based)."""
+    """State (p, f, g, h, k, L, m) at the nominal perilune before burn ``i`` (0-based).
+
+    For the first burn of a plan with a start (:class:`lunarcap.mission.plan.Start`), the
+    start's state at its epoch.
+    """
+    if i == 0 and plan.start is not None:
+        return np.array(plan.start.state)
     if i == 0:  # the arrival state carries the plan's mass
         return arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole).state
     key = plan.key(i)

@@ -63,10 +63,7 @@ Examples
 
 from __future__ import annotations
 
-import contextlib
 import datetime as _dt
-import json
-import logging
 import math
 import os
 import socket
@@ -84,6 +81,18 @@ from lunarcap.physics import constants as C
 from lunarcap.physics.losses import PERILUNE_RADIUS_KM, robbins_loss_mps, schuler_rate_rad_s
 from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine, rocket_mass_after
 from lunarcap.repro import paths
+from lunarcap.runs import campaign as _campaign
+
+# The machinery the studies share (lunarcap.runs.campaign); runs_path and read_runs are
+# this module's API too.
+runs_path = _campaign.runs_path
+read_runs = _campaign.read_runs
+_append_run = _campaign.append_run
+_cache_description = _campaign.cache_description
+_dask_client = _campaign.dask_client
+_loadavg = _campaign.loadavg
+_table_lock = _campaign.table_lock
+_umask = _campaign._umask
 
 #: Lunar surface gravity mu / R^2, m/s^2 (from :data:`lunarcap.physics.constants.MU_MOON` and
 #: :data:`lunarcap.physics.constants.R_MOON`, Song 2011's values).
@@ -285,12 +294,6 @@ def default_table_path() -> Path:
     return paths.CACHE / "study" / "engine_trade.csv"
 
 
-def runs_path(table: str | os.PathLike) -> Path:
-    """The run log next to a table: ``<stem>.runs.json``."""
-    table = Path(table)
-    return table.with_name(f"{table.stem}.runs.json")
-
-
 def _key(thrust_N, isp_s, dynamics) -> tuple:
     return (f"{float(thrust_N):.6g}", f"{float(isp_s):.6g}", str(dynamics))
 
@@ -472,12 +475,6 @@ def append_rows(path: str | os.PathLike, rows: list[dict]) -> None:
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp's 0600 would hide the table
 
 
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
-
-
 def _normalise_table(path: Path, df: pd.DataFrame) -> None:
     """Rewrite a table whose header is not :data:`COLUMNS` (an older layout)."""
     if not path.exists() or path.stat().st_size == 0:
@@ -486,34 +483,6 @@ def _normalise_table(path: Path, df: pd.DataFrame) -> None:
     if header != list(COLUMNS):
         with paths.atomic_path(path) as tmp:
             df.to_csv(tmp, index=False)
-
-
-@contextlib.contextmanager
-def _table_lock(path: Path, wait_s: float = 0.0):
-    """Hold an exclusive lock on ``.<table>.lock``.
-
-    Waits up to ``wait_s`` seconds for another run to release it, then raises InputError.
-    """
-    import fcntl
-
-    path.parent.mkdir(parents=True, exist_ok=True)
-    lock = path.with_name(f".{path.name}.lock")
-    fh = open(lock, "w")
-    deadline = time.monotonic() + max(0.0, float(wait_s))
-    try:
-        while True:
-            try:
-                fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
-                break
-            except BlockingIOError:
-                if time.monotonic() >= deadline:
-                    raise InputError(f"the study table {path} is being written by another "
-                                     f"run; wait for it to finish or give another --out") \
-                        from None
-                time.sleep(1.0)
-        yield
-    finally:
-        fh.close()
 
 
 def latest_rows(table: pd.DataFrame) -> pd.DataFrame:
@@ -592,67 +561,6 @@ class StudyResult:
         return wide_table(self.table)
 
 
-@contextlib.contextmanager
-def _dask_client(workers: int, scheduler: str | None, processes: bool = True):
-    from dask.distributed import Client, LocalCluster
-
-    if scheduler:
-        try:
-            client = Client(scheduler, timeout="20s")
-        except (OSError, TimeoutError, ValueError, TypeError) as exc:
-            raise InputError(f"cannot connect to the Dask scheduler {scheduler!r}: {exc}") \
-                from None
-        try:
-            yield client
-        finally:
-            client.close()
-        return
-    # no dashboard; the scheduler's HTTP (health) server on a free port, not 8787
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=processes,
-                      dashboard_address=None, scheduler_kwargs={"dashboard_address": ":0"},
-                      silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
-        yield client
-
-
-def _loadavg() -> float | None:
-    """1-minute load average of the machine (None where unavailable)."""
-    try:
-        return round(os.getloadavg()[0], 2)
-    except (AttributeError, OSError):
-        return None
-
-
-def _cache_description() -> str:
-    from lunarcap.repro import cache
-    loc = cache.location()
-    return "disabled (LUNARCAP_NO_CACHE)" if loc is None else f"joblib at {loc}"
-
-
-def _append_run(path: Path, record: dict) -> None:
-    rp = runs_path(path)
-    runs = []
-    if rp.exists():
-        try:
-            runs = json.loads(rp.read_text(encoding="utf-8"))
-            if not isinstance(runs, list):
-                raise ValueError("not a list")
-        except ValueError:
-            os.replace(rp, rp.with_suffix(".json.unreadable"))
-            runs = []
-    runs.append(record)
-    paths.write_text_atomic(rp, json.dumps(runs, indent=1, default=str) + "\n")
-
-
-def read_runs(table: str | os.PathLike) -> list[dict]:
-    """The run records of a table (empty if none)."""
-    rp = runs_path(table)
-    try:
-        runs = json.loads(rp.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return []
-    return runs if isinstance(runs, list) else []
-
-
 def run_study(spec: StudySpec | None = None, out: str | os.PathLike | None = None,
               workers=2, scheduler: str | None = None, retry_failed: bool = False,
               progress: bool = True, lock_wait_s: float = 0.0, task=None,
@@ -699,12 +607,8 @@ def run_study(spec: StudySpec | None = None, out: str | os.PathLike | None = Non
     if not isinstance(spec, StudySpec):
         raise InputError(f"spec must be a StudySpec, got {type(spec).__name__}")
     workers = check_workers(workers)
-    if scheduler is not None and (not isinstance(scheduler, str) or not scheduler.strip()):
-        raise InputError(f"scheduler must be an address such as tcp://host:8786, "
-                         f"got {scheduler!r}")
-    path = Path(out) if out is not None else default_table_path()
-    if path.exists() and path.is_dir():
-        raise InputError(f"--out {path} is a directory: give a file name (.csv)")
+    _campaign.check_scheduler(scheduler)
+    path = _campaign.check_output_path(out if out is not None else default_table_path())
     task = task or solve_engine
     cv = code_version()
     started = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
@@ -712,7 +616,7 @@ def run_study(spec: StudySpec | None = None, out: str | os.PathLike | None = Non
     counts = {"computed": 0, "failed": 0}
     cluster_s = 0.0
     n_workers = 0
-    with _table_lock(path, lock_wait_s):
+    with _table_lock(path, lock_wait_s, what="study table"):
         table = read_table(path)
         _normalise_table(path, table)
         todo, reused = plan(table, spec, cv, retry_failed)

@@ -127,3 +127,36 @@ def test_loi1_too_small_to_have_arrived_on_a_hyperbola():
         imp.v_inf_from_loi1(dv_loi1_mps=10.0)
     with pytest.raises(InputError):
         imp.impulsive_sequence(v_inf_kmps=-0.5)
+
+
+def test_capture_total_telescopes_over_any_chain_of_periods():
+    """The sum of the chain's impulses is the closed form for any count and periods."""
+    rng = np.random.default_rng(11)
+    rp, vinf = C.R_MOON + 100.0, 0.91837
+    total = imp.capture_total_mps(rp, vinf)
+    circle = 2 * np.pi * np.sqrt(rp ** 3 / C.MU_MOON)
+    for n in range(1, 7):
+        periods = np.sort(rng.uniform(1.05 * circle, 30 * 3600.0, n - 1))[::-1]
+        chain = imp.impulsive_chain(rp, vinf, [*periods, None], 150.0, 200.0, 524.895)
+        assert sum(b.delta_v_mps for b in chain) == pytest.approx(total, abs=1e-9)
+    # and it is what the paper's three burns add up to (Table 1: 353.272 + 254.034 + 245.363)
+    assert total == pytest.approx(852.669, abs=0.5)
+
+
+def test_equal_split_periods_share_the_total_and_respect_the_longest_period():
+    rp, vinf = C.R_MOON + 100.0, 0.91837
+    total = imp.capture_total_mps(rp, vinf)
+    with pytest.raises(InputError, match="hyperbola"):  # 170 m/s do not capture
+        imp.equal_split_periods_s(rp, vinf, 5)
+    for n in (2, 3):
+        free = imp.equal_split_periods_s(rp, vinf, n)
+        dvs = [b.delta_v_mps for b in imp.impulsive_chain(rp, vinf, [*free, None], 150.0,
+                                                           200.0, 524.895)]
+        np.testing.assert_allclose(dvs, total / n, atol=1e-9)
+    for n in (2, 3, 5):
+        capped = imp.equal_split_periods_s(rp, vinf, n, max_period_s=6 * 3600.0)
+        assert capped[0] == pytest.approx(6 * 3600.0, rel=1e-12)
+        dvs = [b.delta_v_mps for b in imp.impulsive_chain(rp, vinf, [*capped, None], 150.0,
+                                                           200.0, 524.895)]
+        np.testing.assert_allclose(dvs[1:], dvs[1], atol=1e-9)
+    assert imp.equal_split_periods_s(rp, vinf, 1) == ()

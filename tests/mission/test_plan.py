@@ -227,3 +227,67 @@ def test_lunar_pole_is_part_of_the_plan_and_validated():
     d["lunar_pole"] = "iau1994"
     with pytest.raises(PlanError, match="lunar_pole: must be one of iau2009-j2000, iau-constant"):
         CapturePlan.from_dict(d)
+
+
+def test_a_plan_resumed_from_a_state_keeps_the_later_perilunes():
+    from lunarcap.mission.plan import Start
+
+    plan = load_plan("song2011-150N")
+    t = plan.nominal_perilunes_s
+    x = (6000.0, 0.6, 0.01, 0.9, 0.1, 1.0, 500.0)
+    later = plan.resumed(0, t[0] + 600.0, x, window_min=(0.0, 20.0))
+    assert later.n_burns == 3 and later.start == Start(t[0] + 600.0, x, t[1] - t[0] - 600.0)
+    np.testing.assert_allclose(later.nominal_perilunes_s, [t[0] + 600.0, *t[1:]], rtol=0,
+                               atol=1e-6)
+    assert later.initial_mass_kg == 500.0 and later.burns[0].start_bounds_min == (0.0, 20.0)
+    # the first burn is sized from the start's radius and speed, not the hyperbola's
+    o = later.start.orbit()
+    a1 = (C.MU_MOON * (plan.burns[0].period_s / (2 * np.pi)) ** 2) ** (1 / 3)
+    v_new = math.sqrt(C.MU_MOON * (2 / o["r_km"] - 1 / a1))
+    assert later.impulsive()[0].delta_v_mps == pytest.approx(abs(o["v_kmps"] - v_new) * 1e3)
+    assert CapturePlan.from_dict(later.to_dict()) == later
+    # a plan from burn 2: two burns, the first from the given state at the given epoch
+    rest = plan.resumed(1, t[1], x)
+    assert rest.n_burns == 2 and rest.nominal_perilunes_s[1] == pytest.approx(t[2])
+
+
+def test_with_coasts_and_burn_count():
+    plan = load_plan("song2011-150N")
+    three = plan.with_burn_count([10 * 3600.0, 4 * 3600.0])
+    assert [b.period_s for b in three.burns[:2]] == [36000.0, 14400.0]
+    assert three.burns[2] == replace_start_free(plan.burns[2])
+    assert all(b.free_start for b in three.burns)
+    moved = three.with_coasts([11 * 3600.0, None, None])
+    assert moved.burns[0].period_s == 39600.0 and moved.burns[1:] == three.burns[1:]
+    assert moved.nominal_perilunes_s[1] - moved.nominal_perilunes_s[0] == 39600.0
+    one = plan.with_burn_count([])
+    assert one.n_burns == 1 and one.burns[0].target == "circular"
+    with pytest.raises(PlanError, match="not shorter"):
+        plan.with_burn_count([4 * 3600.0, 10 * 3600.0])
+
+
+def replace_start_free(burn):
+    from dataclasses import replace
+
+    return replace(burn, start_min="free")
+
+
+@pytest.mark.parametrize("start, field", [
+    ({"epoch": "2017-02-20 04:00:00 TDB", "mee": [1, 2], "mass_kg": 500,
+      "first_coast_min": 700}, "start.mee"),
+    ({"epoch": "2017-02-20 04:00:00 TDB", "mee": [-1, 0, 0, 1, 0, 0], "mass_kg": 500,
+      "first_coast_min": 700}, "start.mee"),
+    ({"epoch": "2017-02-20 04:00:00 TDB", "mee": [6000, 0.6, 0, 1, 0, 0], "mass_kg": 0,
+      "first_coast_min": 700}, "start.mass_kg"),
+    ({"epoch": "2017-02-20 04:00:00 TDB", "mee": [6000, 0.6, 0, 1, 0, 0], "mass_kg": 500,
+      "first_coast_min": -1}, "start.first_coast_min"),
+    ({"epoch": "yesterday", "mee": [6000, 0.6, 0, 1, 0, 0], "mass_kg": 500,
+      "first_coast_min": 700}, "start.epoch"),
+])
+def test_bad_start_names_the_field(start, field):
+    d = load_plan("song2011-150N").to_dict()
+    d["start"] = start
+    d["burns"][0] = {"target_period_h": 12.235, "start_min": "free",
+                     "start_bounds_min": [0, 30]}
+    with pytest.raises(PlanError, match=field.replace(".", r"\.").replace("[", r"\[")):
+        CapturePlan.from_dict(d)

@@ -1,0 +1,146 @@
+"""The number-of-burns page (notebooks/burn_count.ipynb): how many capture burns to plan.
+
+For each plan, the capture from its arrival to its final orbit in N = 1, 2, ... burns,
+the intermediate periods optimised (:mod:`lunarcap.runs.burns`, run on Dask and resumed
+from the table ``<cache>/study/<output_name>.csv``). :func:`build` shows one row per plan
+and count, one row per burn, and the figure: total loss and time to the final orbit
+against N, one line per plan.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from lunarcap.mission.impulsive import capture_total_mps
+from lunarcap.mission.plan import load_plan
+from lunarcap.report import figures
+from lunarcap.report.page import Page, solver_description
+from lunarcap.repro import paths
+from lunarcap.runs import burns
+
+NOTEBOOK = "notebooks/burn_count.ipynb"
+
+COUNT_SHOWN = ["plan", "n_burns", "status", "periods_h", "total_delta_v_mps",
+               "total_impulsive_delta_v_mps", "total_loss_mps", "fuel_kg",
+               "time_to_final_orbit_h"]
+BURN_SHOWN = ["plan", "n_burns", "burn", "target", "start_min", "burn_duration_min",
+              "delta_v_mps", "impulsive_delta_v_mps", "loss_mps", "verified"]
+
+
+def label_of(plan) -> str:
+    """'song2011-150N (150 N / 200 s, 524.895 kg)'."""
+    return (f"{plan.name} ({plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} s, "
+            f"{plan.arrival.mass_kg:g} kg)")
+
+
+def count_table(table: pd.DataFrame, labels: dict) -> pd.DataFrame:
+    """One row per plan and count (the study's columns; periods as text, h)."""
+    t = table.copy()
+    t.insert(0, "label", [labels[p] for p in t.plan_id])
+    t["periods_h"] = [", ".join(f"{float(p):.3f}" for p in s.split(";")) if
+                      isinstance(s, str) and s else "—" for s in t.periods_h]
+    return t
+
+
+def burn_rows(table: pd.DataFrame) -> pd.DataFrame:
+    """One row per burn of every successful count."""
+    rows = []
+    for r in table.to_dict("records"):
+        for b in burns.burns_of(r):
+            rows.append({"plan": r["plan"], "n_burns": int(r["n_burns"]), **b})
+    return pd.DataFrame(rows)
+
+
+def reading(table: pd.DataFrame) -> str:
+    """Per plan, what the counts say (loss and time at the fewest and most burns solved)."""
+    out = []
+    for label, g in table.groupby("label", sort=False):
+        ok = g[g.status == "ok"].sort_values("n_burns")
+        bad = g[g.status != "ok"]
+        if len(ok) >= 2:
+            a, b = ok.iloc[0], ok.iloc[-1]
+            step = ok.total_loss_mps.diff().iloc[-1]
+            out.append(f"{label}: from {int(a.n_burns)} to {int(b.n_burns)} burns the loss "
+                       f"goes from {a.total_loss_mps:.1f} to {b.total_loss_mps:.1f} m/s and "
+                       f"the final orbit is reached {b.time_to_final_orbit_h:.1f} h after "
+                       f"arrival instead of {a.time_to_final_orbit_h:.1f} h; the last burn "
+                       f"added changes the loss by {step:+.2f} m/s.")
+        elif len(ok) == 1:
+            out.append(f"{label}: only N = {int(ok.n_burns.iloc[0])} solved "
+                       f"(loss {ok.total_loss_mps.iloc[0]:.1f} m/s).")
+        if len(bad):
+            out.append(f"{label}: " + " ".join(f"N = {int(r.n_burns)}: {r.status} "
+                                               f"({str(r.reason)[:160]})."
+                                               for r in bad.itertuples()))
+    return "\n\n".join(f"* {x}" for x in out)
+
+
+def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5burn"),
+          counts=(1, 2, 3, 4, 5), max_period_h: float = burns.DEFAULT_MAX_PERIOD_H,
+          max_days: float = burns.DEFAULT_MAX_DAYS, dynamics: str | None = None,
+          workers: int = 2, output_name: str = "burn_count", quick: bool = False) -> Page:
+    """The page (see the module docstring); ``dynamics`` None keeps each plan's own."""
+    ps = []
+    for name in plans:
+        p = load_plan(name)
+        ps.append(p if dynamics is None or dynamics == p.dynamics else p.with_dynamics(dynamics))
+    params = dict(plans=list(plans), counts=list(counts), max_period_h=max_period_h,
+                  max_days=max_days, dynamics=dynamics, workers=workers)
+    page = Page(NOTEBOOK, params, output_name, quick, solver_description(**{
+        "all-burns NLP": "8×16 LGR-5 per leg, free ignitions and intermediate periods",
+        "impulsive limit": "4 s and 2 s burns, Richardson-extrapolated"}))
+    res = burns.run_burns(ps, counts, max_period_h, max_days,
+                          out=paths.CACHE / "study" / f"{output_name}.csv", workers=workers,
+                          progress=False)
+    labels = {burns.plan_id(p): label_of(p) for p in ps}
+    table = count_table(res.table, labels)
+    page.data.update(table=table, run=res.run)
+    page.table("counts", table, caption=(
+        f"Each plan's capture in N burns, the intermediate periods chosen to minimise the "
+        f"total ΔV (each at most {max_period_h:g} h and no longer than the one before; all "
+        f"burns within {max_days:g} days of the arrival perilune). Loss: total ΔV minus the "
+        f"sum of each burn's impulsive limit in the same dynamics from the same pre-burn "
+        f"state. Time: from the arrival perilune to the end of the last burn. A status "
+        f"other than ok says why that count has no capture."),
+        show_columns=COUNT_SHOWN, floatfmt=".3f",
+        columns={"periods_h": "periods (h)", "n_burns": "N"})
+    page.table("burns", burn_rows(res.table), caption=(
+        "Every burn of every count: ignition (min from its nominal perilune), duration, "
+        "ΔV, its impulsive limit and loss (m/s), verification."),
+        show_columns=BURN_SHOWN, floatfmt=".3f", columns={"n_burns": "N"})
+    page.figure("loss", figures.plot_burn_count(table), caption=(
+        "Left: total finite-burn loss against the number of burns; right: time from the "
+        "arrival perilune to the end of the last burn. One line per plan; a cross on the "
+        "axis marks a count with no capture."),
+        alt="Total loss and time to the final orbit against the number of burns")
+    # ---- numbers the prose quotes (the first plan is the reference)
+    ref = table[table.plan_id == burns.plan_id(ps[0])]
+    ok = ref[ref.status == "ok"].sort_values("n_burns")
+    page.value("ref_plan", ps[0].name)
+    page.value("two_body_total_mps", capture_total_mps(ps[0].perilune_radius_km,
+                                                       ps[0].arrival.v_inf_kmps))
+    page.value("wall_s", float(res.run["wall_s"]))
+    page.value("n_cases", int(len(table)))
+    page.value("n_infeasible", int((table.status == "infeasible").sum()))
+    page.value("n_failed", int((~table.status.isin(["ok", "infeasible"])).sum()))
+    for n in sorted(set(range(1, 6)) | set(counts)):  # the prose quotes N = 1 to 3
+        row = ok[ok.n_burns == n]
+        page.value(f"loss_{n}_mps", float(row.total_loss_mps.iloc[0]) if len(row) else np.nan)
+        page.value(f"time_{n}_h", float(row.time_to_final_orbit_h.iloc[0]) if len(row)
+                   else np.nan)
+    if len(ok) >= 2:
+        a, b = ok.iloc[0], ok.iloc[-1]
+        page.value("first_n", int(a.n_burns))
+        page.value("last_n", int(b.n_burns))
+        page.value("loss_drop_mps", float(a.total_loss_mps - b.total_loss_mps))
+        page.value("time_added_h", float(b.time_to_final_orbit_h - a.time_to_final_orbit_h))
+        steps = np.diff(ok.total_loss_mps.to_numpy(float))
+        page.value("last_step_gain_mps", float(-steps[-1]))
+        page.expect("the loss falls as burns are added (reference plan)", bool(np.all(steps < 0)),
+                    f"losses {list(np.round(ok.total_loss_mps, 3))}")
+    page.note("reading", reading(table))
+    bugs = table[~table.status.isin(["ok", "infeasible", "failed"])]
+    page.expect("no count ended in an unexpected error (failures are reported, not hidden)",
+                bugs.empty, "; ".join(bugs.error.astype(str)))
+    return page

@@ -1,0 +1,409 @@
+"""How many capture burns: a plan's capture in N burns, the intermediate orbits optimised.
+
+For a count N, the capture goes from the plan's arrival to its final orbit (its last
+burn's target) through N-1 intermediate ellipses with the plan's perilune radius and
+inclination. Their periods are chosen to minimise the total delta-V of the finite burns:
+
+1. a start: the periods that share the two-body impulsive total equally among the burns
+   (:func:`lunarcap.mission.impulsive.equal_split_periods_s`; the first ellipse no longer
+   than the longest period allowed);
+2. that plan solved burn by burn, every ignition free (:func:`lunarcap.runs.chain.solve_plan`,
+   cached), the warm start of
+3. the all-burns NLP with the N-1 coasts free (:func:`lunarcap.optim.joint.solve_joint`):
+   objective the total delta-V; each period between the circle's (+1 min) and
+   ``max_period_s``, each no longer than the one before, and the end of the last burn at
+   most ``max_time_s`` after the arrival perilune. Its optimum is verified leg by leg.
+
+Each burn's loss is measured against its impulsive limit in the same dynamics from the
+same (verified) pre-burn state at its nominal perilune
+(:func:`lunarcap.runs.chain.impulsive_limit` of the plan resumed from that state,
+:meth:`lunarcap.mission.plan.CapturePlan.resumed`).
+
+What the impulsive limit predicts: in two-body dynamics, tangential perilune impulses from
+the hyperbola to the circle cost ``sqrt(v_inf^2 + 2 mu/r_p) - sqrt(mu/r_p)`` in total
+whatever N and the periods (:func:`lunarcap.mission.impulsive.capture_total_mps`), so any
+difference between counts is the finite burns' loss (and, in full dynamics, the Earth's
+and Sun's pull on the longer orbits).
+
+A count for which no plan exists is reported as such (``status`` "infeasible" with the
+reason: for example a burn longer than half the orbit around it), and a count whose NLP
+fails as "failed" with IPOPT's status; neither is an error of the study.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import time
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from lunarcap.errors import InputError, SolveError
+from lunarcap.mission.impulsive import capture_total_mps, equal_split_periods_s
+from lunarcap.mission.plan import CapturePlan, PlanError, plan_ephemeris
+from lunarcap.mission.targets import CIRCULAR
+from lunarcap.optim.joint import solve_joint
+from lunarcap.physics import constants as C
+from lunarcap.physics.ephemeris import ChebyshevFit
+from lunarcap.physics.epochs import calendar_from_seconds
+from lunarcap.repro.cache import cached
+from lunarcap.runs.chain import impulsive_limit, solve_plan
+
+#: Longest intermediate period allowed by default, h (the paper's first ellipse: longer
+#: orbits are strongly perturbed by the Earth).
+DEFAULT_MAX_PERIOD_H = 12.235
+#: Longest time from the arrival perilune to the end of the last burn, by default, days.
+DEFAULT_MAX_DAYS = 3.0
+#: Shortest intermediate period allowed: the circle's at the perilune radius plus this, s.
+MIN_PERIOD_MARGIN_S = 60.0
+#: Margin of the ephemeris fit around the capture, s; a fit spans at most 4 days.
+FIT_MARGIN_S = 6 * 3600.0
+MAX_FIT_SPAN_S = 4 * 86400.0
+
+STATUSES = ("ok", "infeasible", "failed")
+
+
+@lru_cache(maxsize=1)
+def module_version() -> str:
+    """Hash of this module's source: part of the cache key of :func:`solve_count`."""
+    return hashlib.sha256(Path(__file__).read_bytes()).hexdigest()[:16]
+
+
+def circle_period_s(r_km: float) -> float:
+    """Period of the circle of radius r about the Moon, s."""
+    return 2 * math.pi * math.sqrt(r_km ** 3 / C.MU_MOON)
+
+
+def check_bounds(max_period_s: float, max_time_s: float) -> None:
+    """InputError unless both bounds are positive finite numbers."""
+    for name, v, unit in (("the longest period", max_period_s / 3600.0, "h"),
+                          ("the longest time to the final orbit", max_time_s / 86400.0,
+                           "days")):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
+                or v <= 0:
+            raise InputError(f"{name} must be a positive number of {unit}, got {v!r}")
+
+
+def count_guess(plan: CapturePlan, n: int, max_period_s: float) -> CapturePlan:
+    """The plan in ``n`` burns with the equal-share periods (the search's start).
+
+    Raises PlanError (the count is infeasible: no such plan) or InputError.
+    """
+    if n > 1 and max_period_s <= circle_period_s(plan.perilune_radius_km) + MIN_PERIOD_MARGIN_S:
+        raise PlanError(f"the longest period {max_period_s / 3600:g} h leaves no room for an "
+                        f"ellipse above the {circle_period_s(plan.perilune_radius_km) / 3600:.3f}"
+                        f" h circle")
+    periods = equal_split_periods_s(plan.perilune_radius_km, plan.arrival.v_inf_kmps, n,
+                                    max_period_s)
+    return plan.with_burn_count(periods)
+
+
+def _fit_for(plan: CapturePlan, n: int, max_period_s: float, max_time_s: float):
+    """One Earth/Sun fit covering every epoch the free coasts allow (None if not needed)."""
+    if plan.dynamics != "full":
+        return None
+    t0 = plan.nominal_perilunes_s[0]
+    horizon = min(max_time_s, (n - 1) * max_period_s) + plan.coast_s(plan.n_burns - 1)
+    span = horizon + 2 * FIT_MARGIN_S
+    if span > MAX_FIT_SPAN_S:
+        raise InputError(f"the capture may last {horizon / 86400:.2f} days: an ephemeris fit "
+                         f"covers at most {MAX_FIT_SPAN_S / 86400 - 0.5:g} days; lower "
+                         f"--max-days or --max-period-h")
+    return ChebyshevFit.fit(plan_ephemeris(plan.ephemeris), t0 - FIT_MARGIN_S, t0 + span
+                            - FIT_MARGIN_S)
+
+
+def _burn_rows(plan: CapturePlan, legs: list, imps: list | None) -> list[dict]:
+    t = plan.nominal_perilunes_s
+    rows = []
+    for k, sol in enumerate(legs):
+        s = sol.summary()
+        b = plan.burns[k]
+        imp = None if imps is None else imps[k]["delta_v_mps"]
+        rows.append({
+            "burn": k + 1, "target": b.describe(),
+            "period_after_h": (b.period_s / 3600.0 if b.target != CIRCULAR
+                               else circle_period_s(plan.perilune_radius_km) / 3600.0),
+            "nominal_perilune_epoch": calendar_from_seconds(t[k]),
+            "ignition_epoch": s["ignition_epoch"], "start_min": s["start_min"],
+            "burn_duration_min": s["burn_duration_min"], "delta_v_mps": s["delta_v_mps"],
+            "impulsive_delta_v_mps": imp,
+            "loss_mps": None if imp is None else s["delta_v_mps"] - imp,
+            "m_start_kg": s["m_start_kg"], "m_end_kg": s["m_end_kg"],
+            "fuel_kg": s["fuel_kg"], "rp_end_km": s["rp_end_km"], "ra_end_km": s["ra_end_km"],
+            "verified": bool(sol.verification.passed),
+            "impulsive_verified": None if imps is None else imps[k]["verification_passed"]})
+    return rows
+
+
+@cached(ignore=["verbose"])
+def solve_count(plan: CapturePlan, n: int, max_period_s: float, max_time_s: float,
+                impulsive: bool = True, version: str = "", verbose: bool = False) -> dict:
+    """The capture of ``plan`` (pass ``plan.key()``) in ``n`` burns, periods optimised.
+
+    See the module docstring. ``version`` is :func:`module_version` (part of the cache key).
+
+    Returns
+    -------
+    dict
+        ``n_burns``, ``status`` ("ok", "infeasible" or "failed"), ``reason`` (why not ok),
+        ``periods_h`` (the optimal intermediate periods), ``burns`` (one row per burn:
+        target, ignition, duration, delta-V, impulsive limit, loss, masses, verdicts),
+        ``total_delta_v_mps``, ``total_impulsive_delta_v_mps`` (sum of the limits),
+        ``total_loss_mps``, ``two_body_impulsive_total_mps`` (the closed form),
+        ``fuel_kg``, ``final_mass_kg``, ``time_to_final_orbit_h`` (arrival perilune to
+        the end of the last burn), ``ipopt_status``, ``iterations``, ``wall_s``.
+    """
+    t_start = time.perf_counter()
+    n = int(n)
+    out = {"n_burns": n, "status": "ok", "reason": "", "periods_h": [], "burns": [],
+           "two_body_impulsive_total_mps": capture_total_mps(plan.perilune_radius_km,
+                                                             plan.arrival.v_inf_kmps),
+           "ipopt_status": "", "iterations": None}
+    try:
+        guess = count_guess(plan, n, max_period_s)
+        fit = _fit_for(guess, n, max_period_s, max_time_s)
+    except PlanError as exc:
+        out.update(status="infeasible", reason=str(exc), wall_s=time.perf_counter() - t_start)
+        return out
+    eph = plan_ephemeris(plan.ephemeris)
+    try:
+        seq = solve_plan(guess, verbose=verbose)
+        lo = circle_period_s(plan.perilune_radius_km) + MIN_PERIOD_MARGIN_S
+        res = solve_joint(guess, seq, eph, free_coasts=(True,) * (n - 1) + (False,),
+                          coast_bounds_s=(lo, max_period_s), max_time_s=max_time_s, fit=fit)
+    except SolveError as exc:
+        out.update(status="failed", reason=str(exc), ipopt_status=exc.status,
+                   wall_s=time.perf_counter() - t_start)
+        return out
+    except RuntimeError as exc:  # a guess's propagation failed
+        out.update(status="failed", reason=f"no initial guess: {exc}".split("\n")[0],
+                   wall_s=time.perf_counter() - t_start)
+        return out
+    opt = res.plan
+    imps = None
+    if impulsive:
+        imps, t = [], opt.nominal_perilunes_s
+        x = [seq[0].problem.x_ref] + [leg.end_state for leg in res.legs[:-1]]
+        try:
+            for k in range(n):
+                rest = opt.resumed(k, t[k], x[k], window_min=(-10.0, 10.0))
+                imps.append(impulsive_limit(rest.key(1), verbose=verbose))
+        except (SolveError, PlanError) as exc:
+            out["reason"] = f"impulsive limit of burn {len(imps) + 1}: {exc}"
+            imps = None
+    rows = _burn_rows(opt, res.legs, imps)
+    dv = sum(r["delta_v_mps"] for r in rows)
+    imp_total = None if imps is None else sum(r["impulsive_delta_v_mps"] for r in rows)
+    last = res.legs[-1]
+    t0 = opt.nominal_perilunes_s[0]
+    out.update(
+        periods_h=[b.period_s / 3600.0 for b in opt.burns[:-1]], burns=rows,
+        total_delta_v_mps=dv, total_impulsive_delta_v_mps=imp_total,
+        total_loss_mps=None if imp_total is None else dv - imp_total,
+        fuel_kg=rows[0]["m_start_kg"] - rows[-1]["m_end_kg"],
+        final_mass_kg=rows[-1]["m_end_kg"],
+        total_burn_duration_min=sum(r["burn_duration_min"] for r in rows),
+        time_to_final_orbit_h=(last.problem.t_ign_s + last.raw.t1_s - t0) / 3600.0,
+        all_verified=all(r["verified"] for r in rows),
+        ipopt_status=res.ipopt_status, iterations=res.iterations, nlp_solve_s=res.solve_s,
+        wall_s=time.perf_counter() - t_start)
+    if not out["all_verified"]:
+        out.update(status="failed", reason="a burn failed verification")
+    return out
+
+
+def count_result(plan: CapturePlan, n: int, max_period_h: float = DEFAULT_MAX_PERIOD_H,
+                 max_days: float = DEFAULT_MAX_DAYS, impulsive: bool = True,
+                 use_cache: bool = True, verbose: bool = False) -> dict:
+    """:func:`solve_count` of ``plan`` in ``n`` burns with bounds in hours and days."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise InputError(f"a number of burns is an integer >= 1, got {n!r}")
+    check_bounds(max_period_h * 3600.0, max_days * 86400.0)
+    fn = solve_count if use_cache else solve_count.uncached
+    return fn(plan.key(), int(n), float(max_period_h) * 3600.0, float(max_days) * 86400.0,
+              impulsive, module_version(), verbose=verbose)
+
+
+# ====================================================================== the study on Dask
+#: Columns of the study's table (one row per plan and count; units in the names).
+COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "n_burns", "max_period_h",
+           "max_days", "status", "reason", "periods_h", "total_delta_v_mps",
+           "total_impulsive_delta_v_mps", "total_loss_mps", "two_body_impulsive_total_mps",
+           "fuel_kg", "final_mass_kg", "total_burn_duration_min", "time_to_final_orbit_h",
+           "all_verified", "ipopt_status", "iterations", "burns_json", "task_wall_s",
+           "worker", "code_version", "completed_utc", "error")
+KEY = ("plan_id", "n_burns", "max_period_h", "max_days")
+
+
+def table_format():
+    """The campaign table format of this study."""
+    from lunarcap.runs.campaign import TableFormat
+
+    return TableFormat(KEY, COLUMNS, text_columns=("plan", "plan_id", "dynamics", "reason",
+                                                   "periods_h", "ipopt_status",
+                                                   "burns_json"))
+
+
+def plan_id(plan: CapturePlan) -> str:
+    """A short hash of what a plan's solves depend on (its key), for the study's table."""
+    return hashlib.sha256(repr(plan.key()).encode()).hexdigest()[:12]
+
+
+def parse_counts(text) -> tuple:
+    """Counts of burns from ``"1,2,3"`` (or a sequence): distinct integers >= 1, sorted."""
+    items = text.split(",") if isinstance(text, str) else list(text)
+    out = []
+    for item in items:
+        s = item.strip() if isinstance(item, str) else item
+        try:
+            v = float(s)
+        except (TypeError, ValueError):
+            raise InputError(f"--counts must be integers >= 1 separated by commas, got "
+                             f"{text!r}") from None
+        if not math.isfinite(v) or v != int(v) or v < 1:
+            raise InputError(f"--counts must be integers >= 1, got {item!r} in {text!r}")
+        out.append(int(v))
+    if not out:
+        raise InputError("--counts is empty: give e.g. 1,2,3,4,5")
+    if len(set(out)) != len(out):
+        raise InputError(f"--counts has duplicates: {text!r}")
+    return tuple(sorted(out))
+
+
+def default_table_path():
+    """``<cache>/study/burns.csv``."""
+    from lunarcap.repro import paths
+
+    return paths.CACHE / "study" / "burns.csv"
+
+
+def count_row(plan: CapturePlan, n: int, max_period_h: float, max_days: float,
+              use_cache: bool = True) -> dict:
+    """Dask task: one plan in ``n`` burns, as a row of the study's table.
+
+    Never raises for a solver failure (status "failed" with IPOPT's status); any other
+    exception is recorded as status "error". ``use_cache`` False: no disk cache.
+    """
+    import json
+    import os
+
+    old = os.environ.get("LUNARCAP_NO_CACHE")
+    if not use_cache:
+        os.environ["LUNARCAP_NO_CACHE"] = "1"
+    try:
+        r = count_result(plan, n, max_period_h, max_days)
+    except Exception as exc:  # a bug must not lose the rest of the study
+        return {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
+    finally:
+        if not use_cache:
+            if old is None:
+                os.environ.pop("LUNARCAP_NO_CACHE", None)
+            else:
+                os.environ["LUNARCAP_NO_CACHE"] = old
+    row = {k: r.get(k) for k in COLUMNS if k in r and k not in ("burns_json",)}
+    row["periods_h"] = ";".join(f"{p:.6f}" for p in r["periods_h"])
+    row["burns_json"] = json.dumps(r["burns"])
+    row["task_wall_s"] = r.get("wall_s")
+    row["error"] = ""
+    return row
+
+
+def run_burns(plans, counts, max_period_h: float = DEFAULT_MAX_PERIOD_H,
+              max_days: float = DEFAULT_MAX_DAYS, out=None, workers=2, scheduler=None,
+              progress: bool = True, use_cache: bool = True, processes: bool = True,
+              task=None):
+    """Run (or resume) the study for every plan and count on Dask (see the module).
+
+    Returns a :class:`lunarcap.runs.campaign.CampaignResult` whose table has one row per
+    (plan, count), in the order given. InputError (bad counts or bounds, an unusable
+    ``out``, an unreachable scheduler) before any solve.
+    """
+    from lunarcap.repro.cache import code_version
+    from lunarcap.runs.campaign import run_campaign
+    from lunarcap.runs.study import check_workers
+
+    counts = parse_counts(counts)
+    check_bounds(_hours(max_period_h) * 3600.0, _days(max_days) * 86400.0)
+    workers = check_workers(workers)
+    cases = []
+    for plan in plans:
+        for n in counts:
+            key = {"plan": plan.name, "plan_id": plan_id(plan), "thrust_N":
+                   plan.engine.thrust_N, "isp_s": plan.engine.isp_s,
+                   "dynamics": plan.dynamics, "n_burns": n,
+                   "max_period_h": float(max_period_h), "max_days": float(max_days)}
+            cases.append((key, (plan, n, float(max_period_h), float(max_days), use_cache)))
+    return run_campaign(cases, task or count_row, out or default_table_path(),
+                        table_format(), f"{code_version()}:{module_version()}",
+                        workers=workers, scheduler=scheduler, progress=progress,
+                        processes=processes, desc="burns study", unit="count",
+                        recompute=not use_cache, ok_statuses=("ok", "infeasible"),
+                        describe={"study": "burns", "counts": list(counts),
+                                  "max_period_h": max_period_h, "max_days": max_days})
+
+
+def _hours(v) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+        raise InputError(f"--max-period-h must be a positive number of hours, got {v!r}")
+    return float(v)
+
+
+def _days(v) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+        raise InputError(f"--max-days must be a positive number of days, got {v!r}")
+    return float(v)
+
+
+def burns_of(row) -> list:
+    """The per-burn rows of a table row (decoded ``burns_json``)."""
+    import json
+
+    text = row["burns_json"] if isinstance(row, dict) else row.burns_json
+    return json.loads(text) if isinstance(text, str) and text else []
+
+
+def format_rows(plan: CapturePlan, rows: list, result) -> str:
+    """The CLI's text: one block per count (its burns), then the run."""
+    lines = [f"Plan {plan.name} in N burns: {plan.engine.thrust_N:g} N / "
+             f"{plan.engine.isp_s:g} s, {plan.dynamics} dynamics, final orbit "
+             f"{plan.burns[-1].describe()}; intermediate periods optimised (longest "
+             f"{rows[0]['max_period_h']:g} h, all burns within {rows[0]['max_days']:g} days); "
+             f"loss against the impulsive limit in the same dynamics"
+             if rows else f"Plan {plan.name}: no counts"]
+    if rows:
+        lines.append(f"two-body impulsive total (any N, any periods): "
+                     f"{capture_total_mps(plan.perilune_radius_km, plan.arrival.v_inf_kmps):.3f}"
+                     f" m/s")
+    for r in rows:
+        n = int(r["n_burns"])
+        if r["status"] != "ok":
+            lines.append(f"N = {n}: {r['status']}: {r['reason'] or r['error']}")
+            continue
+        periods = r["periods_h"] if isinstance(r["periods_h"], str) else ""
+        lines.append(
+            f"N = {n}: total dV {r['total_delta_v_mps']:.3f} m/s, impulsive "
+            f"{_num(r['total_impulsive_delta_v_mps'])} m/s, loss {_num(r['total_loss_mps'])} "
+            f"m/s; fuel {r['fuel_kg']:.2f} kg; final orbit {r['time_to_final_orbit_h']:.2f} h "
+            f"after arrival; periods "
+            + (", ".join(f"{float(p):.3f}" for p in periods.split(";")) + " h" if periods
+               else "none"))
+        for b in burns_of(r):
+            lines.append(f"    burn {b['burn']}: {b['target']:<20} ignition {b['ignition_epoch']}"
+                         f" ({b['start_min']:+.2f} min), {b['burn_duration_min']:6.2f} min, "
+                         f"dV {b['delta_v_mps']:8.3f} m/s, impulsive "
+                         f"{_num(b['impulsive_delta_v_mps'])}, loss {_num(b['loss_mps'])} m/s"
+                         f"{'' if b['verified'] else ', NOT VERIFIED'}")
+    run = result.run
+    lines.append(f"{run['computed']} count(s) computed, {run['reused']} taken from the table; "
+                 f"wall time {run['wall_s']:.1f} s ({run['scheduler']}, {run['workers']} "
+                 f"worker(s), cache: {run['cache']})")
+    lines.append(f"table: {result.path}")
+    return "\n".join(lines)
+
+
+def _num(v, fmt: str = ".3f") -> str:
+    return "—" if v is None or (isinstance(v, float) and not math.isfinite(v)) else \
+        f"{v:{fmt}}"

@@ -1,0 +1,399 @@
+"""Studies as campaigns of independent cases on Dask: a table, resumable, logged, with progress.
+
+The machinery the engine trade study (:mod:`lunarcap.runs.study`), the number-of-burns
+study (:mod:`lunarcap.runs.burns`) and the missed-thrust study (:mod:`lunarcap.runs.missed`)
+share:
+
+* **Execution**: one Dask task per case. By default a
+  :class:`dask.distributed.LocalCluster` of ``workers`` processes, one thread each;
+  ``scheduler="tcp://host:port"`` uses an existing cluster instead (its workers need
+  lunarcap importable). Solves inside the tasks are also cached on disk by joblib
+  (:mod:`lunarcap.repro.cache`).
+* **Table**: one CSV file, appended as each case completes (rewritten to a temporary
+  file and moved into place, so it is never half-written), each row carrying the code
+  version it was computed with. A rerun skips every case already in the table for the
+  current version (so an interrupted study resumes where it stopped); failed cases are
+  kept, not retried unless asked.
+* **Runs log**: each run appends its wall time, counts and the machine's load to
+  ``<table stem>.runs.json`` next to the table, also when interrupted.
+* **Lock**: a lock file next to the table keeps two runs from writing it at once.
+* **Output path**: checked before any work: a path that cannot be written (its directory
+  cannot be created, or is not writable) is an :class:`~lunarcap.errors.InputError`.
+* **Progress**: a tqdm bar on stderr.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import datetime as _dt
+import json
+import logging
+import os
+import socket
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import pandas as pd
+
+from lunarcap.errors import InputError
+from lunarcap.repro import paths
+
+
+# ====================================================================== paths and locks
+def check_output_path(path: str | os.PathLike, what: str = "--out") -> Path:
+    """The table path, its directory created; InputError if it cannot be written.
+
+    Checks, before any work: the path is not a directory, its directory exists or can be
+    created, and a file can be created in it (the table's temporary file and lock).
+    """
+    path = Path(path).expanduser()
+    if path.is_dir():
+        raise InputError(f"{what} {path} is a directory: give a file name (.csv)")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with paths.atomic_path(path.with_name(f".{path.name}.probe")) as tmp:
+            tmp.write_bytes(b"")
+        path.with_name(f".{path.name}.probe").unlink(missing_ok=True)
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        raise InputError(f"{what} {path}: cannot write in {path.parent} ({reason})") \
+            from None
+    if path.exists() and not os.access(path, os.W_OK):
+        raise InputError(f"{what} {path}: the file is not writable")
+    return path
+
+
+@contextlib.contextmanager
+def table_lock(path: Path, wait_s: float = 0.0, what: str = "table"):
+    """Hold an exclusive lock on ``.<table>.lock`` next to ``path``.
+
+    Waits up to ``wait_s`` seconds for another run to release it, then raises InputError.
+    A lock file that cannot be created is an InputError too.
+    """
+    import fcntl
+
+    path = Path(path)
+    lock = path.with_name(f".{path.name}.lock")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fh = open(lock, "w")
+    except OSError as exc:
+        raise InputError(f"the {what} {path} cannot be written: no lock file {lock} "
+                         f"({exc.strerror or type(exc).__name__})") from None
+    deadline = time.monotonic() + max(0.0, float(wait_s))
+    try:
+        while True:
+            try:
+                fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                break
+            except BlockingIOError:
+                if time.monotonic() >= deadline:
+                    raise InputError(f"the {what} {path} is being written by another "
+                                     f"run; wait for it to finish or give another --out") \
+                        from None
+                time.sleep(1.0)
+        yield
+    finally:
+        fh.close()
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+# ====================================================================== runs log
+def runs_path(table: str | os.PathLike) -> Path:
+    """The run log next to a table: ``<stem>.runs.json``."""
+    table = Path(table)
+    return table.with_name(f"{table.stem}.runs.json")
+
+
+def append_run(path: Path, record: dict) -> None:
+    """Append one run record to the log of the table at ``path``."""
+    rp = runs_path(path)
+    runs = []
+    if rp.exists():
+        try:
+            runs = json.loads(rp.read_text(encoding="utf-8"))
+            if not isinstance(runs, list):
+                raise ValueError("not a list")
+        except ValueError:
+            os.replace(rp, rp.with_suffix(".json.unreadable"))
+            runs = []
+    runs.append(record)
+    paths.write_text_atomic(rp, json.dumps(runs, indent=1, default=str) + "\n")
+
+
+def read_runs(table: str | os.PathLike) -> list[dict]:
+    """The run records of a table (empty if none)."""
+    rp = runs_path(table)
+    try:
+        runs = json.loads(rp.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return []
+    return runs if isinstance(runs, list) else []
+
+
+def loadavg() -> float | None:
+    """1-minute load average of the machine (None where unavailable)."""
+    try:
+        return round(os.getloadavg()[0], 2)
+    except (AttributeError, OSError):
+        return None
+
+
+def cache_description() -> str:
+    """Where solves are cached (or that caching is off), for the runs log."""
+    from lunarcap.repro import cache
+
+    loc = cache.location()
+    return "disabled (LUNARCAP_NO_CACHE)" if loc is None else f"joblib at {loc}"
+
+
+# ====================================================================== Dask
+def check_scheduler(scheduler) -> str | None:
+    """The scheduler address (None: a local cluster); InputError if it is not text."""
+    if scheduler is not None and (not isinstance(scheduler, str) or not scheduler.strip()):
+        raise InputError(f"scheduler must be an address such as tcp://host:8786, "
+                         f"got {scheduler!r}")
+    return scheduler
+
+
+@contextlib.contextmanager
+def dask_client(workers: int, scheduler: str | None, processes: bool = True):
+    """A Dask client: of an existing scheduler, or of a local cluster of ``workers``."""
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler:
+        try:
+            client = Client(scheduler, timeout="20s")
+        except (OSError, TimeoutError, ValueError, TypeError) as exc:
+            raise InputError(f"cannot connect to the Dask scheduler {scheduler!r}: {exc}") \
+                from None
+        try:
+            yield client
+        finally:
+            client.close()
+        return
+    # no dashboard; the scheduler's HTTP (health) server on a free port, not 8787
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=processes,
+                      dashboard_address=None, scheduler_kwargs={"dashboard_address": ":0"},
+                      silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+        yield client
+
+
+# ====================================================================== the table
+@dataclass(frozen=True)
+class TableFormat:
+    """Columns of a campaign's CSV table: its case key, and all columns in order."""
+
+    key: tuple
+    columns: tuple
+    text_columns: tuple = ()
+
+    def case_key(self, row) -> tuple:
+        """The key of a row (or a case's key values) as comparable text."""
+        out = []
+        for k in self.key:
+            v = row[k]
+            out.append(f"{float(v):.6g}" if isinstance(v, (int, float)) and
+                       not isinstance(v, bool) else str(v))
+        return tuple(out)
+
+
+def read_table(path: str | os.PathLike, fmt: TableFormat) -> pd.DataFrame:
+    """The table at ``path`` (empty with ``fmt.columns`` if absent).
+
+    Raises InputError if the path is a directory, unreadable, or not such a table.
+    """
+    path = Path(path)
+    if path.is_dir():
+        raise InputError(f"the table {path} is a directory: give a file name (.csv)")
+    if not path.exists() or path.stat().st_size == 0:
+        return pd.DataFrame(columns=list(fmt.columns))
+    try:
+        df = pd.read_csv(path, dtype={c: str for c in ("status", "code_version", "worker",
+                                                          "error", *fmt.text_columns)})
+    except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError,
+            ValueError) as exc:
+        raise InputError(f"cannot read the table {path}: {exc}") from None
+    missing = [c for c in (*fmt.key, "status", "code_version") if c not in df.columns]
+    if missing:
+        raise InputError(f"{path} is not a table of this study (no column "
+                         f"{', '.join(missing)}); give another --out")
+    for c in ("error", "worker", *fmt.text_columns):
+        if c in df:
+            df[c] = df[c].fillna("")
+    return df.reindex(columns=list(fmt.columns))
+
+
+def append_rows(path: str | os.PathLike, rows: list[dict], columns) -> None:
+    """Append rows to the table atomically (rewrite to a temporary file, then rename).
+
+    A table whose header is not ``columns`` (written by an older version) is rewritten
+    with ``columns`` first, so that every line has the header's fields.
+    """
+    path = Path(path)
+    old = path.read_bytes() if path.exists() else b""
+    if old and old.split(b"\n", 1)[0].decode("utf-8", "replace").strip().split(",") != \
+            list(columns):
+        # a table written with other columns (an older version): rewritten with these
+        prev = pd.read_csv(path, dtype=str, keep_default_na=False)
+        old = prev.reindex(columns=list(columns)).to_csv(index=False).encode()
+    if old and not old.endswith(b"\n"):
+        old += b"\n"
+    text = pd.DataFrame(rows).reindex(columns=list(columns)).to_csv(index=False,
+                                                                    header=not old)
+    with paths.atomic_path(path) as tmp:
+        tmp.write_bytes(old + text.encode())
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp's 0600 would hide the table
+
+
+def latest(table: pd.DataFrame, fmt: TableFormat, version: str) -> dict:
+    """The last row of every case computed with ``version``: {case key: row dict}."""
+    out = {}
+    if table.empty:
+        return out
+    for row in table[table.code_version.astype(str) == version].to_dict("records"):
+        out[fmt.case_key(row)] = row
+    return out
+
+
+@dataclass
+class CampaignResult:
+    """What :func:`run_campaign` returns: the cases' rows (in case order), path, run record."""
+
+    table: pd.DataFrame
+    path: Path
+    run: dict
+
+
+def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, version: str,
+                 *, workers: int = 2, scheduler: str | None = None, progress: bool = True,
+                 retry_failed: bool = False, lock_wait_s: float = 0.0, processes: bool = True,
+                 desc: str = "study", unit: str = "case", describe: dict | None = None,
+                 ok_statuses=("ok",), recompute: bool = False) -> CampaignResult:
+    """Run (or resume) a campaign: one Dask task per case not yet in the table.
+
+    Parameters
+    ----------
+    cases : list of (key, args)
+        ``key`` a dict of the key columns (scalars), ``args`` the task's arguments.
+    task : callable(*args) -> dict
+        Computes one case (in a worker) and returns its row (without the key columns);
+        it should record a failure in the row (``status``) rather than raise. A task that
+        raises is recorded as ``status`` "task error".
+    out : path of the CSV table (checked writable before any work)
+    fmt : TableFormat
+    version : str
+        The code version rows are computed with; rows of another version are not reused.
+    workers, scheduler, processes : the cluster (see :func:`dask_client`)
+    progress : show a tqdm bar on stderr
+    retry_failed : recompute cases whose row's status is not in ``ok_statuses``
+    lock_wait_s : how long to wait for another run writing the same table
+    desc, unit : the progress bar's words; ``describe``: added to the run record
+    recompute : compute every case again, whatever the table holds
+
+    Raises
+    ------
+    InputError
+        An unusable table path, a table in use, an unreachable scheduler: before any case.
+    """
+    t0 = time.perf_counter()
+    path = check_output_path(out)
+    scheduler = check_scheduler(scheduler)
+    started = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
+    load_start = loadavg()
+    counts = {"computed": 0, "failed": 0}
+    state = {"cluster_s": 0.0, "workers": 0, "interrupted": False}
+    keys = [fmt.case_key(k) for k, _ in cases]
+    with table_lock(path, lock_wait_s):
+        have = latest(read_table(path, fmt), fmt, version)
+        todo = [(k, a) for (k, a), ck in zip(cases, keys)
+                if recompute or ck not in have
+                or (retry_failed and have[ck]["status"] not in ok_statuses)]
+
+        def record() -> dict:
+            run = {"started_utc": started, "wall_s": round(time.perf_counter() - t0, 2),
+                   "cluster_start_s": round(state["cluster_s"], 2),
+                   "scheduler": (scheduler or "LocalCluster") if todo
+                   else "none (all in the table)",
+                   "workers": state["workers"] if todo else 0, "cases": len(cases),
+                   "computed": counts["computed"], "reused": len(cases) - len(todo),
+                   "failed_computed": counts["failed"], "interrupted": state["interrupted"],
+                   "table": str(path), "cache": cache_description(), "code_version": version,
+                   "host": socket.gethostname(), "cpu_count": os.cpu_count(),
+                   "load_avg_1min_start": load_start, "load_avg_1min_end": loadavg(),
+                   **(describe or {})}
+            append_run(path, run)
+            return run
+
+        try:
+            if todo:
+                tc = time.perf_counter()
+                with dask_client(workers, scheduler, processes) as client:
+                    state["cluster_s"] = time.perf_counter() - tc
+                    state["workers"] = len(client.scheduler_info().get("workers", {})) \
+                        or workers
+                    _compute(client, task, todo, fmt, version, path, counts, progress,
+                             f"{desc} ({state['workers']} worker"
+                             f"{'s' * (state['workers'] > 1)})", unit, ok_statuses)
+        except KeyboardInterrupt:
+            state["interrupted"] = True
+            record()
+            raise
+        run = record()
+        have = latest(read_table(path, fmt), fmt, version)
+    rows = [have[ck] for ck in keys if ck in have]
+    return CampaignResult(pd.DataFrame(rows, columns=list(fmt.columns)), path, run)
+
+
+def _compute(client, task, todo, fmt, version, path, counts, progress, desc, unit,
+             ok_statuses) -> None:
+    """Submit one task per case; append each case's row as its task completes."""
+    from dask.distributed import as_completed
+    from tqdm import tqdm
+
+    futures = {}
+    for rank, (key, args) in enumerate(todo):
+        fut = client.submit(_run_task, task, key, args, pure=False,
+                            priority=len(todo) - rank)
+        futures[fut] = key
+    bar = tqdm(as_completed(list(futures)), total=len(futures), unit=unit, desc=desc,
+               file=sys.stderr, disable=not progress, dynamic_ncols=True)
+    for fut in bar:
+        key = futures.pop(fut)
+        try:
+            row = fut.result()
+        except Exception as exc:  # the task raised, its worker died, or it was cancelled
+            row = dict(key, status="task error", error=_one_line(f"{type(exc).__name__}: "
+                                                                 f"{exc}"))
+        fut.release()
+        row["code_version"] = version  # the version this run scheduled under
+        append_rows(path, [row], fmt.columns)
+        counts["computed"] += 1
+        if row.get("status") not in ok_statuses:
+            counts["failed"] += 1
+        bar.set_postfix(failed=counts["failed"], refresh=False)
+
+
+def _run_task(task, key: dict, args: tuple) -> dict:
+    """In a worker: the task's row with its key, timing and worker recorded."""
+    t0 = time.perf_counter()
+    row = dict(task(*args))
+    row.update(key)
+    row.setdefault("task_wall_s", time.perf_counter() - t0)
+    row["worker"] = f"{socket.gethostname()}:{os.getpid()}"
+    row["completed_utc"] = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S")
+    if "error" in row:
+        row["error"] = _one_line(row["error"])
+    return row
+
+
+def _one_line(text: str, limit: int = 500) -> str:
+    text = " ".join(str(text).split())
+    return text if len(text) <= limit else text[:limit - 3] + "..."

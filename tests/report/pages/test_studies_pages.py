@@ -1,0 +1,45 @@
+"""The number-of-burns and missed-thrust pages: what they read from a study's table.
+
+Pure data (no solves): synthetic tables with the studies' columns. The pages themselves
+run in the quick book build (tests/report/test_notebooks.py).
+"""
+
+import json
+
+import pandas as pd
+
+from lunarcap.report.pages import burn_count, missed_thrust
+
+
+def test_burn_rows_decode_every_burn_and_reading_names_infeasible_counts():
+    burns = [{"burn": 1, "target": "ellipse, 8 h", "delta_v_mps": 428.0},
+             {"burn": 2, "target": "circle", "delta_v_mps": 462.0}]
+    t = pd.DataFrame([
+        {"plan": "p", "plan_id": "x", "label": "P", "n_burns": 1, "status": "infeasible",
+         "reason": "burn 1 too long", "total_loss_mps": None, "time_to_final_orbit_h": None,
+         "burns_json": "[]"},
+        {"plan": "p", "plan_id": "x", "label": "P", "n_burns": 2, "status": "ok", "reason": "",
+         "total_loss_mps": 40.0, "time_to_final_orbit_h": 8.5, "burns_json": json.dumps(burns)},
+        {"plan": "p", "plan_id": "x", "label": "P", "n_burns": 3, "status": "ok", "reason": "",
+         "total_loss_mps": 20.0, "time_to_final_orbit_h": 16.0, "burns_json": json.dumps(burns)},
+    ])
+    rows = burn_count.burn_rows(t)
+    assert list(rows.n_burns) == [2, 2, 3, 3] and list(rows.burn) == [1, 2, 1, 2]
+    text = burn_count.reading(t)
+    assert "from 2 to 3 burns the loss goes from 40.0 to 20.0 m/s" in text
+    assert "-20.00 m/s" in text and "P: N = 1: infeasible (burn 1 too long)" in text
+
+
+def test_missed_reading_counts_recoveries_per_delay_and_signs_penalties():
+    def case(f, d, status, penalty, orbit="captured", coast=12.235):
+        return {"fraction": f, "delay_min": d, "status": status, "penalty_mps": penalty,
+                "cutoff_orbit": orbit, "first_coast_h": coast}
+    t = pd.DataFrame([case(0.5, 0, "recovered", 0.01, "escape"),
+                      case(0.9, 0, "recovered", -0.03),
+                      case(0.5, 720, "failed", None, "escape", None),
+                      case(0.9, 720, "recovered", -0.5, coast=5.0)])
+    text = missed_thrust.reading(t)
+    assert "With a delay of 0 min every cut-off is recovered, at a penalty of at most " \
+           "0.01 m/s (including 1 that left a hyperbola)." in text
+    assert "With a delay of 720 min, 1 of 2 cut-offs are recovered (penalty -0.5 to -0.5" in text
+    assert "In 2 of 3 recoveries the make-up orbit's coast sits at its upper bound" in text

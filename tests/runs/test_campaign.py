@@ -1,0 +1,134 @@
+"""The studies' shared machinery (lunarcap.runs.campaign) and the distributed path.
+
+* A table path that cannot be written is one InputError before any work, for each study
+  (a file where a directory should be; a directory of /proc, where nothing can be made).
+* The distributed path: a real ``dask scheduler`` and ``dask worker`` (the shared venv's
+  commands) on 127.0.0.1, started here; the burns and missed-thrust studies run through
+  them give the same numbers, bit for bit, as through the default local cluster (both with
+  the disk cache off, so each solves afresh).
+"""
+
+import os
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lunarcap.errors import InputError
+from lunarcap.mission.plan import load_plan
+from lunarcap.runs import burns, campaign, missed, study
+
+ROOT = Path(__file__).resolve().parents[2]
+BIN = Path(sys.executable).parent
+
+
+def _bad_paths(tmp_path):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a directory")
+    return [blocker / "table.csv", Path("/proc/lunarcap-test/table.csv")]
+
+
+def test_unwritable_table_paths_are_input_errors_before_any_work(tmp_path):
+    plan = load_plan("song2011-150N").with_dynamics("two-body")
+    never = lambda *a: pytest.fail("a case ran")  # noqa: E731
+    for bad in _bad_paths(tmp_path):
+        with pytest.raises(InputError, match="cannot write"):
+            campaign.check_output_path(bad)
+        with pytest.raises(InputError, match="cannot write"):
+            burns.run_burns([plan], "1", out=bad, task=never, progress=False)
+        with pytest.raises(InputError, match="cannot write"):
+            missed.run_missed(plan, 1, "0.5", "0", out=bad, task=never, progress=False)
+        with pytest.raises(InputError, match="cannot write"):
+            study.run_study(study.StudySpec(100, 200, 2, (250,), "two-body"), out=bad,
+                            task=never, progress=False)
+    assert campaign.check_output_path(tmp_path / "new" / "t.csv") == tmp_path / "new" / "t.csv"
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture
+def dask_cluster(tmp_path):
+    """A dask scheduler and one worker on 127.0.0.1 (processes of the shared venv)."""
+    port = _free_port()
+    env = dict(os.environ, PYTHONPATH=str(ROOT), LUNARCAP_NO_CACHE="1")
+    log = open(tmp_path / "dask.log", "w")
+    sched = subprocess.Popen([str(BIN / "dask"), "scheduler", "--host", "127.0.0.1", "--port",
+                              str(port), "--no-dashboard"], env=env, stdout=log, stderr=log)
+    addr = f"tcp://127.0.0.1:{port}"
+    worker = subprocess.Popen([str(BIN / "dask"), "worker", addr, "--nworkers", "1",
+                               "--nthreads", "1", "--no-dashboard", "--host", "127.0.0.1"],
+                              env=env, stdout=log, stderr=log)
+    try:
+        from dask.distributed import Client
+
+        deadline = time.monotonic() + 60
+        while True:
+            try:
+                with Client(addr, timeout="5s") as c:
+                    if c.scheduler_info()["workers"]:
+                        break
+            except OSError:
+                pass
+            assert time.monotonic() < deadline, (tmp_path / "dask.log").read_text()
+            time.sleep(0.5)
+        yield addr
+    finally:
+        for p in (worker, sched):
+            p.terminate()
+        for p in (worker, sched):
+            try:
+                p.wait(10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+        log.close()
+
+
+NUMBERS_BURNS = ["total_delta_v_mps", "total_impulsive_delta_v_mps", "fuel_kg",
+                 "time_to_final_orbit_h"]
+NUMBERS_MISSED = ["partial_delta_v_mps", "cutoff_e", "recovery_delta_v_mps", "penalty_mps"]
+
+
+@pytest.mark.slow
+def test_distributed_path_gives_the_local_numbers(dask_cluster, tmp_path, monkeypatch):
+    monkeypatch.setenv("LUNARCAP_NO_CACHE", "1")
+    plan = load_plan("song2011-150N").with_dynamics("two-body").with_engine(450.0, 300.0)
+    remote = burns.run_burns([plan], "1,2", out=tmp_path / "remote.csv",
+                             scheduler=dask_cluster, progress=False)
+    local = burns.run_burns([plan], "1,2", out=tmp_path / "local.csv", workers=1,
+                            progress=False)
+    assert remote.run["scheduler"] == dask_cluster and local.run["scheduler"] == "LocalCluster"
+    assert list(remote.table.status) == ["ok", "ok"]
+    np.testing.assert_array_equal(remote.table[NUMBERS_BURNS].to_numpy(float),
+                                  local.table[NUMBERS_BURNS].to_numpy(float))
+    assert list(remote.table.periods_h) == list(local.table.periods_h)
+    # the rows were computed in other processes: the scheduler's worker and a local one
+    assert remote.table.worker.iloc[0] != local.table.worker.iloc[0]
+    remote = missed.run_missed(plan, 1, "0.5", "0", out=tmp_path / "mr.csv",
+                               scheduler=dask_cluster, progress=False)
+    local = missed.run_missed(plan, 1, "0.5", "0", out=tmp_path / "ml.csv", workers=1,
+                              progress=False)
+    assert list(remote.table.status) == ["recovered"]
+    np.testing.assert_array_equal(remote.table[NUMBERS_MISSED].to_numpy(float),
+                                  local.table[NUMBERS_MISSED].to_numpy(float))
+
+
+
+def test_a_table_of_other_columns_is_rewritten_not_corrupted(tmp_path):
+    fmt_old = campaign.TableFormat(("k",), ("k", "a", "status", "code_version"))
+    fmt_new = campaign.TableFormat(("k",), ("k", "a", "b", "status", "code_version"))
+    path = tmp_path / "t.csv"
+    campaign.append_rows(path, [{"k": 1, "a": 2.0, "status": "ok", "code_version": "v"}],
+                         fmt_old.columns)
+    campaign.append_rows(path, [{"k": 2, "a": 3.0, "b": 4.0, "status": "ok",
+                                 "code_version": "v"}], fmt_new.columns)
+    t = campaign.read_table(path, fmt_new)
+    assert list(t.k) == [1, 2] and list(t.a) == [2.0, 3.0]
+    assert np.isnan(t.b.iloc[0]) and t.b.iloc[1] == 4.0
