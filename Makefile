@@ -1,7 +1,7 @@
 # lunarcap: the few verbs a newcomer needs.
 #   make test   - create .venv from the hashed lock if missing/stale, check the code (ruff,
 #                 the import contracts), run the test suite (unit + slow optimisation tests
-#                 + papermill quick runs + quick book build)
+#                 + papermill quick runs + a quick book in book/_build/quick)
 #   make book   - create .venv likewise, execute every notebook of the manifest, build the HTML book
 #   make lock   - regenerate environment-lock.txt from pyproject.toml (needs network to PyPI)
 #   make lint   - ruff and the import-linter contracts of pyproject.toml

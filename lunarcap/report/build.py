@@ -42,6 +42,11 @@ terminal's Ctrl-C does not reach them), removes the temporary files of the inter
 executions and prints one line. Executed notebooks and their outputs are only ever moved
 into place complete, so ``book/generated`` keeps what earlier runs made.
 
+``--quick`` builds a separate book: the sources are copied to ``book/_build/quick/``,
+whose own ``generated/`` and ``_build/html/`` receive the quick outputs and site
+(:func:`lunarcap.repro.paths.stage_quick_book`), so the quick build that ``make test``
+runs never replaces the full book or makes its next build start over.
+
 Exit status: 0 success, 1 an entry or the book build failed, 2 invalid manifest or usage,
 130 interrupted by SIGINT, 143 interrupted by SIGTERM.
 """
@@ -744,7 +749,7 @@ def run_entries(entries: list[Entry], quick: bool = False, jobs: int = 2, force:
         log(f"\nerror: entry {e.name!r} ({e.notebook.relative_to(paths.ROOT)}) failed: {err}")
         if rel:
             log(f"the executed notebook with the error is {rel}")
-        log("other outputs in book/generated were left as they were.")
+        log(f"other outputs in {_shown(paths.GENERATED)} were left as they were.")
     return not failed
 
 
@@ -757,11 +762,19 @@ def _generated_digest(entries: list[Entry]) -> str:
     return h.hexdigest()
 
 
-def build_book(entries: list[Entry], log=print) -> bool:
-    """Run jupyter-book on ``book/`` (execution off); True on success.
+def _shown(path: Path) -> str:
+    """``path`` relative to the repository when below it (as a reader types it)."""
+    path = Path(path)
+    return path.relative_to(paths.ROOT).as_posix() if path.is_relative_to(paths.ROOT) \
+        else str(path)
 
-    The full jupyter-book output goes to ``book/_build/jupyter-book.log``; on failure its
-    warnings and errors are printed.
+
+def build_book(entries: list[Entry], log=print) -> bool:
+    """Run jupyter-book on the book being built (execution off); True on success.
+
+    The book is :data:`lunarcap.repro.paths.BOOK`: ``book/``, or ``book/_build/quick/`` for
+    a quick build. The full jupyter-book output goes to ``_build/jupyter-book.log`` below
+    it; on failure its warnings and errors are printed.
     """
     missing = [e.name for e in entries if not e.output.is_file()]
     if missing:
@@ -788,7 +801,7 @@ def build_book(entries: list[Entry], log=print) -> bool:
                  if re.search(r"WARNING|ERROR|Error|Exception|Traceback", ln)]
         log(f"      jupyter-book ... FAILED {dt:.1f} s")
         log("\n".join(lines[-40:]) or "\n".join(out.splitlines()[-40:]))
-        log(f"full log: {(paths.BUILD / 'jupyter-book.log').relative_to(paths.ROOT)}")
+        log(f"full log: {_shown(paths.BUILD / 'jupyter-book.log')}")
         marker.unlink(missing_ok=True)
         return False
     paths.write_text_atomic(marker, digest)
@@ -833,6 +846,8 @@ def main(argv=None) -> int:
         print(f"lunarcap.report.build: error: {exc}", file=sys.stderr)
         return 2
     mode = "quick" if args.quick else "full"
+    if args.quick and not os.environ.get("LUNARCAP_BOOK_DIR"):
+        paths.use_book(paths.stage_quick_book())  # never over the full book's results
     print(f"lunarcap.report.build: {len(chosen)} of {len(entries)} entries, {mode} parameters, "
           f"up to {args.jobs} in parallel", flush=True)
     stage = "notebooks"
@@ -854,8 +869,9 @@ def main(argv=None) -> int:
             what = (f"stopped {len(stopped)} running notebook(s) ({', '.join(stopped)})"
                     if stopped else "no notebook was running")
         print(f"lunarcap.report.build: interrupted by {exc} after "
-              f"{time.perf_counter() - t0:.1f} s: {what}; completed outputs in book/generated "
-              "are kept, nothing half-written is left", file=sys.stderr, flush=True)
+              f"{time.perf_counter() - t0:.1f} s: {what}; completed outputs in "
+              f"{_shown(paths.GENERATED)} are kept, nothing half-written is left",
+              file=sys.stderr, flush=True)
         return exc.exit_status
     print(f"total {time.perf_counter() - t0:.1f} s")
     return 0 if ok else 1

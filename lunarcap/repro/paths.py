@@ -16,10 +16,13 @@ Layout::
                 tables/       CSV files
                 figures/      PNG and SVG files
             _build/html/      the built site
+            _build/quick/     the quick book (``build --quick``): a copy of the sources
+                generated/    with its own outputs
+                _build/html/  and its own site
         .cache/joblib/        cached solutions (:mod:`lunarcap.repro.cache`)
 
 The cache directory may be moved with the environment variable ``LUNARCAP_CACHE_DIR``,
-the whole tree with ``LUNARCAP_ROOT``.
+the book being built with ``LUNARCAP_BOOK_DIR``, the whole tree with ``LUNARCAP_ROOT``.
 
 Examples
 --------
@@ -56,18 +59,75 @@ ROOT = _find_root()
 NOTEBOOKS = ROOT / "notebooks"
 MANIFEST = NOTEBOOKS / "manifest.yml"
 
-#: jupyter-book sources.
-BOOK = ROOT / "book"
-TOC = BOOK / "_toc.yml"
+#: jupyter-book sources (committed): pages, configuration, table of contents, _static.
+BOOK_SOURCES = ROOT / "book"
 
-#: Everything the notebooks produce (git-ignored).
+#: Where the quick book (``build --quick``: coarse parameters, what ``make test`` builds)
+#: is made: a copy of the sources with its own ``generated/`` and ``_build/``, so that a
+#: quick build never replaces the full book's results or its stamps.
+QUICK_BOOK = BOOK_SOURCES / "_build" / "quick"
+
+#: The book being built: :data:`BOOK_SOURCES`, or the directory named by the environment
+#: variable ``LUNARCAP_BOOK_DIR`` (set by :func:`use_book` for the quick book, and
+#: inherited from there by the notebook kernels).
+BOOK = BOOK_SOURCES
+TOC = BOOK_SOURCES / "_toc.yml"
 GENERATED = BOOK / "generated"
 TABLES = GENERATED / "tables"
 FIGURES = GENERATED / "figures"
-
-#: The built HTML site.
 BUILD = BOOK / "_build"
 HTML = BUILD / "html"
+
+
+def use_book(directory: str | os.PathLike) -> Path:
+    """Make ``directory`` the book being built, in this process and its children.
+
+    Sets :data:`BOOK`, :data:`GENERATED` (everything the notebooks produce, git-ignored:
+    executed notebooks, ``tables/``, ``figures/``), :data:`BUILD` and :data:`HTML` (the
+    built site) below it, and the environment variable ``LUNARCAP_BOOK_DIR`` so that
+    notebook kernels started afterwards write there too. Returns the resolved directory.
+    """
+    global BOOK, GENERATED, TABLES, FIGURES, BUILD, HTML
+    BOOK = Path(directory).resolve()
+    GENERATED = BOOK / "generated"
+    TABLES = GENERATED / "tables"
+    FIGURES = GENERATED / "figures"
+    BUILD = BOOK / "_build"
+    HTML = BUILD / "html"
+    os.environ["LUNARCAP_BOOK_DIR"] = str(BOOK)
+    return BOOK
+
+
+if os.environ.get("LUNARCAP_BOOK_DIR"):
+    use_book(os.environ["LUNARCAP_BOOK_DIR"])
+
+
+def stage_quick_book() -> Path:
+    """Copy the book's sources into :data:`QUICK_BOOK` and return that directory.
+
+    Every file and directory of :data:`BOOK_SOURCES` except ``_build`` and ``generated``
+    is copied (modification times kept, so jupyter-book's incremental build still sees
+    what changed); files removed from the sources are removed from the copy.
+    """
+    import shutil
+
+    dest = QUICK_BOOK
+    dest.mkdir(parents=True, exist_ok=True)
+    skip = {"_build", "generated"}
+    wanted = {p.name for p in BOOK_SOURCES.iterdir() if p.name not in skip}
+    for old in dest.iterdir():
+        if old.name not in skip and old.name not in wanted:
+            if old.is_dir() and not old.is_symlink():
+                shutil.rmtree(old)
+            else:
+                old.unlink()
+    for name in sorted(wanted):
+        src = BOOK_SOURCES / name
+        if src.is_dir():
+            shutil.copytree(src, dest / name, dirs_exist_ok=True)
+        elif not (dest / name).is_file() or (dest / name).read_bytes() != src.read_bytes():
+            shutil.copy2(src, dest / name)
+    return dest
 
 #: Cache of expensive results (git-ignored).
 CACHE = Path(os.environ.get("LUNARCAP_CACHE_DIR", ROOT / ".cache"))

@@ -22,12 +22,40 @@ from lunarcap.repro import paths
 ENTRIES = book.load_manifest()
 
 
+def _full_book_files():
+    """(path, size, mtime) of every file the full book's build made (may be none yet)."""
+    full = [paths.BOOK_SOURCES / "generated", paths.BOOK_SOURCES / "_build" / "html"]
+    return {(f.as_posix(), f.stat().st_size, f.stat().st_mtime_ns)
+            for d in full if d.is_dir() for f in d.rglob("*") if f.is_file()}
+
+
 @pytest.fixture(scope="module")
 def quick_build():
+    """The quick book, built in ``book/_build/quick``; the tests below read it there."""
+    before = _full_book_files()
     run = subprocess.run([sys.executable, "-m", "lunarcap.report.build", "build", "--quick"],
                          cwd=paths.ROOT, capture_output=True, text=True, timeout=1800)
     assert run.returncode == 0, run.stdout + run.stderr
-    return run.stdout
+    touched = before ^ _full_book_files()
+    with pytest.MonkeyPatch.context() as mp:
+        book_dir = paths.QUICK_BOOK.resolve()
+        for name, value in (("BOOK", book_dir), ("GENERATED", book_dir / "generated"),
+                            ("TABLES", book_dir / "generated" / "tables"),
+                            ("FIGURES", book_dir / "generated" / "figures"),
+                            ("BUILD", book_dir / "_build"),
+                            ("HTML", book_dir / "_build" / "html")):
+            mp.setattr(paths, name, value)
+        mp.setenv("LUNARCAP_BOOK_DIR", str(book_dir))
+        yield {"stdout": run.stdout, "touched_full_book": touched}
+
+
+@pytest.mark.notebooks
+def test_quick_build_leaves_the_full_book_alone(quick_build):
+    # `make test` after `make book` must not replace the full book's pages, tables or
+    # stamps with the quick ones (nor make the next `make book` start over)
+    assert not quick_build["touched_full_book"], sorted(quick_build["touched_full_book"])[:5]
+    assert (paths.HTML / "index.html").is_file()
+    assert paths.HTML.is_relative_to(paths.BOOK_SOURCES / "_build" / "quick")
 
 
 class _Page(HTMLParser):
