@@ -872,7 +872,9 @@ def plot_missed_penalty(cases):
     ax.set_facecolor("0.85")
     for r in cases.itertuples():
         i, j = fr.index(float(r.fraction)), de.index(float(r.delay_min))
-        txt = f"{r.penalty_mps:.1f}" if r.status == "recovered" else "none"
+        txt = (("0" if abs(r.penalty_mps) < 0.005 else  # no "-0.0" for a null penalty
+                f"{r.penalty_mps:.2f}" if abs(r.penalty_mps) < 1 else f"{r.penalty_mps:.1f}")
+               if r.status == "recovered" else "none")
         if r.cutoff_orbit == "escape":
             txt += "\nesc."
         ax.text(j, i, txt, ha="center", va="center", fontsize=9,

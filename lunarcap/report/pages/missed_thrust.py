@@ -19,7 +19,7 @@ from lunarcap.runs import missed
 
 NOTEBOOK = "notebooks/missed_thrust.ipynb"
 
-CASE_SHOWN = ["fraction", "delay_min", "cutoff_orbit", "cutoff_e", "cutoff_ra_km",
+CASE_SHOWN = ["fraction", "delay_min", "cutoff_orbit", "cutoff_ra_km",  # e: in the CSV
               "partial_delta_v_mps", "recovery_delta_v_mps", "penalty_mps", "first_coast_h",
               "time_to_final_orbit_h", "status"]
 
@@ -35,6 +35,7 @@ def recovery_rows(table: pd.DataFrame) -> pd.DataFrame:
 
 def reading(t: pd.DataFrame) -> str:
     """What the table says for mission planning, in sentences computed from it."""
+    t = t.reset_index(drop=True)
     ok = t[t.status == "recovered"]
     out = []
     for d, g in t.groupby("delay_min", sort=True):
@@ -45,10 +46,13 @@ def reading(t: pd.DataFrame) -> str:
                      f"at most {rec.penalty_mps.max():.2f} m/s"
                      + (f" (including {esc} that left a hyperbola)" if esc else "") + ".")
         else:
-            first = (f"With a delay of {d:g} min, {len(rec)} of {len(g)} cut-offs are "
-                     f"recovered" + (f" (penalty {rec.penalty_mps.min():+.1f} to "
-                                     f"{rec.penalty_mps.max():+.1f} m/s)" if len(rec) else "")
-                     + "; the others have no verified recovery (see the table).")
+            lo, hi = rec.penalty_mps.min(), rec.penalty_mps.max()
+            span = (f" (penalty {lo:+.1f} m/s)" if len(rec) == 1 else
+                    f" (penalty {lo:+.1f} to {hi:+.1f} m/s)" if len(rec) else "")
+            first = (f"With a delay of {d:g} min, {len(rec)} of {len(g)} cut-offs "
+                     f"{'is' if len(rec) == 1 else 'are'} recovered{span}; the "
+                     f"{'other has' if len(g) - len(rec) == 1 else 'others have'} no verified "
+                     f"recovery (see the table).")
         out.append(first)
     if len(ok):
         worst = ok.loc[ok.penalty_mps.idxmax()]
@@ -95,8 +99,9 @@ def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75
         "Moon's sphere of influence), ΔV of the partial burn and of the recovery, penalty "
         "(m/s), the make-up orbit's coast to its perilune (h) and the time from the "
         "perilune before the burn to the end of the last burn (h)."),
-        show_columns=CASE_SHOWN, floatfmt=".3f",
-        columns={"cutoff_orbit": "orbit at cut-off", "cutoff_e": "e at cut-off",
+        show_columns=CASE_SHOWN,
+        floatfmt={"fraction": ".2f", "delay_min": ".0f", "cutoff_ra_km": ".0f"},  # else .3f
+        columns={"cutoff_orbit": "orbit at cut-off",
                  "cutoff_ra_km": "apolune at cut-off (km)"})
     page.table("recovery", recovery_rows(t), caption=(
         "The recovery's burns: ignition (min after the fault is cleared), duration, ΔV."),

@@ -41,5 +41,10 @@ def test_missed_reading_counts_recoveries_per_delay_and_signs_penalties():
     text = missed_thrust.reading(t)
     assert "With a delay of 0 min every cut-off is recovered, at a penalty of at most " \
            "0.01 m/s (including 1 that left a hyperbola)." in text
-    assert "With a delay of 720 min, 1 of 2 cut-offs are recovered (penalty -0.5 to -0.5" in text
+    assert "With a delay of 720 min, 1 of 2 cut-offs is recovered (penalty -0.5 m/s); the " \
+           "other has no verified recovery" in text
+    t2 = pd.concat([t, pd.DataFrame([case(0.75, 720, "recovered", 12.0),
+                                     case(0.25, 720, "failed", None, "escape", None)])])
+    assert "With a delay of 720 min, 2 of 4 cut-offs are recovered (penalty -0.5 to +12.0 " \
+           "m/s); the others have no verified recovery" in missed_thrust.reading(t2)
     assert "In 2 of 3 recoveries the make-up orbit's coast sits at its upper bound" in text
