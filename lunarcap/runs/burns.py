@@ -288,21 +288,13 @@ def count_row(plan: CapturePlan, n: int, max_period_h: float, max_days: float,
     exception is recorded as status "error". ``use_cache`` False: no disk cache.
     """
     import json
-    import os
 
-    old = os.environ.get("LUNARCAP_NO_CACHE")
-    if not use_cache:
-        os.environ["LUNARCAP_NO_CACHE"] = "1"
-    try:
-        r = count_result(plan, n, max_period_h, max_days)
-    except Exception as exc:  # a bug must not lose the rest of the study
-        return {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
-    finally:
-        if not use_cache:
-            if old is None:
-                os.environ.pop("LUNARCAP_NO_CACHE", None)
-            else:
-                os.environ["LUNARCAP_NO_CACHE"] = old
+    from lunarcap.runs import campaign
+
+    r, error = campaign.guarded(lambda: count_result(plan, n, max_period_h, max_days),
+                                use_cache)
+    if error:
+        return error
     row = {k: r.get(k) for k in COLUMNS if k in r and k not in ("burns_json",)}
     row["periods_h"] = ";".join(f"{p:.6f}" for p in r["periods_h"])
     row["burns_json"] = json.dumps(r["burns"])

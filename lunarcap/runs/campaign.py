@@ -154,6 +154,29 @@ def cache_description() -> str:
     return "disabled (LUNARCAP_NO_CACHE)" if loc is None else f"joblib at {loc}"
 
 
+def guarded(compute, use_cache: bool = True) -> tuple[dict | None, dict | None]:
+    """Run ``compute()`` in a task: ``(result, None)``, or ``(None, error row)``.
+
+    ``use_cache`` False sets ``LUNARCAP_NO_CACHE`` for the call (nothing read from or
+    written to the disk cache) and restores it after. An exception becomes the row
+    ``{"status": "error", "error": ...}``: a bug in one case must not lose the rest of a
+    study.
+    """
+    old = os.environ.get("LUNARCAP_NO_CACHE")
+    if not use_cache:
+        os.environ["LUNARCAP_NO_CACHE"] = "1"
+    try:
+        return compute(), None
+    except Exception as exc:
+        return None, {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
+    finally:
+        if not use_cache:
+            if old is None:
+                os.environ.pop("LUNARCAP_NO_CACHE", None)
+            else:
+                os.environ["LUNARCAP_NO_CACHE"] = old
+
+
 # ====================================================================== Dask
 def check_scheduler(scheduler) -> str | None:
     """The scheduler address (None: a local cluster); InputError if it is not text."""

@@ -370,21 +370,13 @@ def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
              max_period_h: float, use_cache: bool = True) -> dict:
     """Dask task: one case as a row of the study's table (a failure is a status, not raised)."""
     import json
-    import os
 
-    old = os.environ.get("LUNARCAP_NO_CACHE")
-    if not use_cache:
-        os.environ["LUNARCAP_NO_CACHE"] = "1"
-    try:
-        r = case_result(plan, burn, fraction, delay_min, max_period_h)
-    except Exception as exc:  # a bug must not lose the rest of the study
-        return {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
-    finally:
-        if not use_cache:
-            if old is None:
-                os.environ.pop("LUNARCAP_NO_CACHE", None)
-            else:
-                os.environ["LUNARCAP_NO_CACHE"] = old
+    from lunarcap.runs import campaign
+
+    r, error = campaign.guarded(
+        lambda: case_result(plan, burn, fraction, delay_min, max_period_h), use_cache)
+    if error:
+        return error
     row = {k: v for k, v in r.items() if k in COLUMNS}
     row["recovery_burns_json"] = json.dumps(r.get("recovery_burns", []))
     row["task_wall_s"] = r.get("wall_s")

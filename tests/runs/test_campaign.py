@@ -132,3 +132,17 @@ def test_a_table_of_other_columns_is_rewritten_not_corrupted(tmp_path):
     t = campaign.read_table(path, fmt_new)
     assert list(t.k) == [1, 2] and list(t.a) == [2.0, 3.0]
     assert np.isnan(t.b.iloc[0]) and t.b.iloc[1] == 4.0
+
+
+def test_guarded_turns_a_bug_into_a_row_and_restores_the_cache_setting(monkeypatch):
+    from lunarcap.repro import cache
+
+    monkeypatch.delenv("LUNARCAP_NO_CACHE", raising=False)
+    seen = []
+    r, err = campaign.guarded(lambda: seen.append(cache.location()) or 7, use_cache=False)
+    assert (r, err) == (7, None) and seen == [None]       # no disk cache inside the call
+    assert "LUNARCAP_NO_CACHE" not in os.environ          # and restored after it
+    monkeypatch.setenv("LUNARCAP_NO_CACHE", "0")
+    r, err = campaign.guarded(lambda: 1 / 0, use_cache=False)
+    assert r is None and err == {"status": "error", "error": "ZeroDivisionError: division by zero"}
+    assert os.environ["LUNARCAP_NO_CACHE"] == "0"
