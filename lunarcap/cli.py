@@ -302,18 +302,30 @@ def cmd_plans(args) -> int:
     return 0
 
 
+def _resumable(run, unit: str):
+    """``(run(), None)``, or ``(None, 130)`` after Ctrl-C.
+
+    On Ctrl-C one line says that the finished ``unit`` are in the study's table, which
+    keeps every finished case, so running the same command again resumes.
+    """
+    try:
+        return run(), None
+    except KeyboardInterrupt:
+        print(f"lunarcap: interrupted; finished {unit} are in the table, run the same command "
+              "again to resume", file=sys.stderr)
+        return None, 130
+
+
 def cmd_study(args) -> int:
     """Engine trade study on Dask: loss against thrust-to-weight, free ignition, per Isp."""
     from lunarcap.runs.study import StudySpec, format_summary, run_study
 
     spec = StudySpec(args.thrust_min, args.thrust_max, args.points, args.isp, args.dynamics)
-    try:
-        res = run_study(spec, out=args.out, workers=args.workers, scheduler=args.scheduler,
-                        retry_failed=args.retry_failed, progress=not args.no_progress)
-    except KeyboardInterrupt:
-        print("lunarcap: interrupted; finished engines are in the table, run the same command "
-              "again to resume", file=sys.stderr)
-        return 130
+    res, status = _resumable(lambda: run_study(
+        spec, out=args.out, workers=args.workers, scheduler=args.scheduler,
+        retry_failed=args.retry_failed, progress=not args.no_progress), "engines")
+    if status:
+        return status
     print(format_summary(res))
     return 0 if res.failures.empty else 3
 
@@ -338,14 +350,12 @@ def cmd_burns(args) -> int:
     counts = burns.parse_counts(args.counts)
     max_period_h = _number_arg("--max-period-h", args.max_period_h, "hours")
     max_days = _number_arg("--max-days", args.max_days, "days")
-    try:
-        res = burns.run_burns([plan], counts, max_period_h, max_days, out=args.out,
-                              workers=args.workers, scheduler=args.scheduler,
-                              progress=not args.no_progress, use_cache=not args.no_cache)
-    except KeyboardInterrupt:
-        print("lunarcap: interrupted; finished counts are in the table, run the same command "
-              "again to resume", file=sys.stderr)
-        return 130
+    res, status = _resumable(lambda: burns.run_burns(
+        [plan], counts, max_period_h, max_days, out=args.out, workers=args.workers,
+        scheduler=args.scheduler, progress=not args.no_progress, use_cache=not args.no_cache),
+        "counts")
+    if status:
+        return status
     rows = res.table.to_dict("records")
     if args.json:
         out = {"plan": plan.to_dict(), "max_period_h": max_period_h, "max_days": max_days,
@@ -368,14 +378,12 @@ def cmd_missed(args) -> int:
     except ValueError:
         raise InputError(f"--burn must be a burn number from 1, got {args.burn!r}") from None
     max_period_h = _number_arg("--max-period-h", args.max_period_h, "hours")
-    try:
-        res = missed.run_missed(plan, burn, args.fractions, args.delays_min, max_period_h,
-                                out=args.out, workers=args.workers, scheduler=args.scheduler,
-                                progress=not args.no_progress, use_cache=not args.no_cache)
-    except KeyboardInterrupt:
-        print("lunarcap: interrupted; finished cases are in the table, run the same command "
-              "again to resume", file=sys.stderr)
-        return 130
+    res, status = _resumable(lambda: missed.run_missed(
+        plan, burn, args.fractions, args.delays_min, max_period_h, out=args.out,
+        workers=args.workers, scheduler=args.scheduler, progress=not args.no_progress,
+        use_cache=not args.no_cache), "cases")
+    if status:
+        return status
     rows = res.table.to_dict("records")
     if args.json:
         out = {"plan": plan.to_dict(), "burn": burn, "table": str(res.path), "run": res.run,

@@ -76,3 +76,22 @@ def test_study_out_in_an_unwritable_directory_subprocess(bad_dir):
         f"lunarcap: error: --out {bad_dir / 't.csv'}: cannot write in {bad_dir} "
         f"(File exists)"], p.stderr
     assert "Traceback" not in p.stderr
+
+
+@pytest.mark.parametrize("argv, module, func, unit", [
+    (["study", "--points", "2"], "lunarcap.runs.study", "run_study", "engines"),
+    (["burns", "song2011-150N", "--counts", "1"], "lunarcap.runs.burns", "run_burns", "counts"),
+    (["missed", "song2011-150N"], "lunarcap.runs.missed", "run_missed", "cases"),
+])
+def test_ctrl_c_in_a_study_exits_130_with_one_line(argv, module, func, unit, monkeypatch,
+                                                     capsys):
+    import importlib
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(importlib.import_module(module), func, interrupted)
+    assert main(argv) == 130
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"lunarcap: interrupted; finished {unit} are in the table, run the same "
+                   "command again to resume"]
