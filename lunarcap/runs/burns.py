@@ -254,23 +254,9 @@ def plan_id(plan: CapturePlan) -> str:
 
 def parse_counts(text) -> tuple:
     """Counts of burns from ``"1,2,3"`` (or a sequence): distinct integers >= 1, sorted."""
-    items = text.split(",") if isinstance(text, str) else list(text)
-    out = []
-    for item in items:
-        s = item.strip() if isinstance(item, str) else item
-        try:
-            v = float(s)
-        except (TypeError, ValueError):
-            raise InputError(f"--counts must be integers >= 1 separated by commas, got "
-                             f"{text!r}") from None
-        if not math.isfinite(v) or v != int(v) or v < 1:
-            raise InputError(f"--counts must be integers >= 1, got {item!r} in {text!r}")
-        out.append(int(v))
-    if not out:
-        raise InputError("--counts is empty: give e.g. 1,2,3,4,5")
-    if len(set(out)) != len(out):
-        raise InputError(f"--counts has duplicates: {text!r}")
-    return tuple(sorted(out))
+    from lunarcap.runs.campaign import parse_numbers
+
+    return tuple(sorted(parse_numbers("--counts", text, 1, True, integer=True)))
 
 
 def default_table_path():

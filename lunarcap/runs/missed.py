@@ -335,30 +335,6 @@ def table_format():
                                                    "ipopt_status", "recovery_burns_json"))
 
 
-def parse_list(option: str, text, minimum: float, include_min: bool, maximum=None) -> tuple:
-    """Numbers from ``"0.25,0.5"`` (or a sequence), each in range; InputError naming the option."""
-    items = text.split(",") if isinstance(text, str) else list(text)
-    out = []
-    for item in items:
-        s = item.strip() if isinstance(item, str) else item
-        try:
-            v = float(s)
-        except (TypeError, ValueError):
-            raise InputError(f"{option} must be numbers separated by commas, got {text!r}") \
-                from None
-        low_ok = v >= minimum if include_min else v > minimum
-        if not math.isfinite(v) or not low_ok or (maximum is not None and v > maximum):
-            rng = (f"{'[' if include_min else '('}{minimum:g}, "
-                   f"{'inf)' if maximum is None else f'{maximum:g}]'}")
-            raise InputError(f"{option}: {item!r} is outside {rng}")
-        out.append(v)
-    if not out:
-        raise InputError(f"{option} is empty")
-    if len(set(out)) != len(out):
-        raise InputError(f"{option} has duplicates: {text!r}")
-    return tuple(out)
-
-
 def default_table_path():
     """``<cache>/study/missed.csv``."""
     from lunarcap.repro import paths
@@ -396,11 +372,11 @@ def run_missed(plan: CapturePlan, burn: int, fractions, delays_min,
     """
     from lunarcap.repro.cache import code_version
     from lunarcap.runs.burns import plan_id
-    from lunarcap.runs.campaign import run_campaign
+    from lunarcap.runs.campaign import parse_numbers, run_campaign
     from lunarcap.runs.study import check_workers
 
-    fractions = parse_list("--fractions", fractions, 0.0, False, 1.0)
-    delays = parse_list("--delays-min", delays_min, 0.0, True)
+    fractions = parse_numbers("--fractions", fractions, 0.0, False, 1.0)
+    delays = parse_numbers("--delays-min", delays_min, 0.0, True)
     check_case(plan, burn, fractions[0], delays[0])
     if isinstance(max_period_h, bool) or not isinstance(max_period_h, (int, float)) or \
             not math.isfinite(max_period_h) or max_period_h <= 0:
