@@ -67,35 +67,47 @@ BOOK_SOURCES = ROOT / "book"
 #: quick build never replaces the full book's results or its stamps.
 QUICK_BOOK = BOOK_SOURCES / "_build" / "quick"
 
-#: The book being built: :data:`BOOK_SOURCES`, or the directory named by the environment
-#: variable ``LUNARCAP_BOOK_DIR`` (set by :func:`use_book` for the quick book, and
-#: inherited from there by the notebook kernels).
-BOOK = BOOK_SOURCES
+
+def _layout(book: Path) -> tuple[Path, Path, Path, Path, Path, Path]:
+    """``BOOK, GENERATED, TABLES, FIGURES, BUILD, HTML`` of the book in ``book``."""
+    generated, build = book / "generated", book / "_build"
+    return book, generated, generated / "tables", generated / "figures", build, build / "html"
+
+
+#: The book being built (:data:`BOOK_SOURCES`, or the directory named by the environment
+#: variable ``LUNARCAP_BOOK_DIR``, set by :func:`use_book` for the quick book and inherited
+#: from there by the notebook kernels); below it :data:`GENERATED`, everything the
+#: notebooks produce (git-ignored: executed notebooks, :data:`TABLES` of CSV files,
+#: :data:`FIGURES`), and :data:`HTML`, the built site in :data:`BUILD`.
+BOOK, GENERATED, TABLES, FIGURES, BUILD, HTML = _layout(BOOK_SOURCES)
 TOC = BOOK_SOURCES / "_toc.yml"
-GENERATED = BOOK / "generated"
-TABLES = GENERATED / "tables"
-FIGURES = GENERATED / "figures"
-BUILD = BOOK / "_build"
-HTML = BUILD / "html"
 
 
 def use_book(directory: str | os.PathLike) -> Path:
     """Make ``directory`` the book being built, in this process and its children.
 
-    Sets :data:`BOOK`, :data:`GENERATED` (everything the notebooks produce, git-ignored:
-    executed notebooks, ``tables/``, ``figures/``), :data:`BUILD` and :data:`HTML` (the
-    built site) below it, and the environment variable ``LUNARCAP_BOOK_DIR`` so that
+    Moves :data:`BOOK` and everything below it (:data:`GENERATED`, :data:`TABLES`,
+    :data:`FIGURES`, :data:`BUILD`, :data:`HTML`) and sets ``LUNARCAP_BOOK_DIR`` so that
     notebook kernels started afterwards write there too. Returns the resolved directory.
     """
     global BOOK, GENERATED, TABLES, FIGURES, BUILD, HTML
-    BOOK = Path(directory).resolve()
-    GENERATED = BOOK / "generated"
-    TABLES = GENERATED / "tables"
-    FIGURES = GENERATED / "figures"
-    BUILD = BOOK / "_build"
-    HTML = BUILD / "html"
+    BOOK, GENERATED, TABLES, FIGURES, BUILD, HTML = _layout(Path(directory).resolve())
     os.environ["LUNARCAP_BOOK_DIR"] = str(BOOK)
     return BOOK
+
+
+@contextlib.contextmanager
+def using_book(directory: str | os.PathLike):
+    """:func:`use_book` for the length of a ``with`` block; the previous book after it."""
+    previous, env = BOOK, os.environ.get("LUNARCAP_BOOK_DIR")
+    try:
+        yield use_book(directory)
+    finally:
+        use_book(previous)
+        if env is None:
+            os.environ.pop("LUNARCAP_BOOK_DIR", None)
+        else:
+            os.environ["LUNARCAP_BOOK_DIR"] = env
 
 
 if os.environ.get("LUNARCAP_BOOK_DIR"):

@@ -37,15 +37,7 @@ def quick_build():
                          cwd=paths.ROOT, capture_output=True, text=True, timeout=1800)
     assert run.returncode == 0, run.stdout + run.stderr
     touched = before ^ _full_book_files()
-    with pytest.MonkeyPatch.context() as mp:
-        book_dir = paths.QUICK_BOOK.resolve()
-        for name, value in (("BOOK", book_dir), ("GENERATED", book_dir / "generated"),
-                            ("TABLES", book_dir / "generated" / "tables"),
-                            ("FIGURES", book_dir / "generated" / "figures"),
-                            ("BUILD", book_dir / "_build"),
-                            ("HTML", book_dir / "_build" / "html")):
-            mp.setattr(paths, name, value)
-        mp.setenv("LUNARCAP_BOOK_DIR", str(book_dir))
+    with paths.using_book(paths.QUICK_BOOK):
         yield {"stdout": run.stdout, "touched_full_book": touched}
 
 

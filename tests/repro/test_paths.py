@@ -52,3 +52,17 @@ def test_book_dir_reaches_child_processes(tmp_path):
     assert out[0] == str((tmp_path / "q" / "generated").resolve())
     assert out[1] == str((tmp_path / "q" / "_build" / "html").resolve())
     assert out[2] == str(paths.BOOK_SOURCES / "_toc.yml")  # one table of contents
+
+
+def test_using_book_moves_every_output_path_and_restores_them(tmp_path, monkeypatch):
+    monkeypatch.delenv("LUNARCAP_BOOK_DIR", raising=False)
+    before = (paths.BOOK, paths.GENERATED, paths.TABLES, paths.FIGURES, paths.BUILD, paths.HTML)
+    with paths.using_book(tmp_path / "q") as book:
+        assert book == (tmp_path / "q").resolve()
+        assert paths.table_path("t") == book / "generated" / "tables" / "t.csv"
+        assert paths.figure_path("f", "svg") == book / "generated" / "figures" / "f.svg"
+        assert paths.HTML == book / "_build" / "html"
+        assert os.environ["LUNARCAP_BOOK_DIR"] == str(book)
+    assert (paths.BOOK, paths.GENERATED, paths.TABLES, paths.FIGURES, paths.BUILD,
+            paths.HTML) == before
+    assert "LUNARCAP_BOOK_DIR" not in os.environ
