@@ -26,7 +26,7 @@ the book being built with ``LUNARCAP_BOOK_DIR``, the whole tree with ``LUNARCAP_
 
 Examples
 --------
->>> from lunarcap import paths
+>>> from lunarcap.repro import paths
 >>> paths.table_path("impulsive_baseline").name
 'impulsive_baseline.csv'
 >>> paths.figure_path("fig1_geometry", "svg").relative_to(paths.GENERATED).as_posix()
