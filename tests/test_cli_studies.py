@@ -59,8 +59,6 @@ def test_bad_study_input_is_one_line_and_exit_2(args, bad_dir, capsys, monkeypat
 
     monkeypatch.setattr(campaign, "dask_client",
                         lambda *a, **k: pytest.fail("a cluster was started"))
-    monkeypatch.setattr("lunarcap.runs.study._dask_client",
-                        lambda *a, **k: pytest.fail("a cluster was started"))
     code = main([a.replace("{bad}", str(bad_dir)) for a in args])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2

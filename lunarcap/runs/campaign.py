@@ -245,11 +245,18 @@ def dask_client(workers: int, scheduler: str | None, processes: bool = True):
 # ====================================================================== the table
 @dataclass(frozen=True)
 class TableFormat:
-    """Columns of a campaign's CSV table: its case key, and all columns in order."""
+    """Columns of a campaign's CSV table: its case key, and all columns in order.
+
+    ``row_key``: the columns that tell apart the rows of one case when its task returns
+    several (the trade study's ``part``: LOI1, LOI2, LOI3, sequence); empty for one row
+    per case. ``name``: what the table is called in messages.
+    """
 
     key: tuple
     columns: tuple
     text_columns: tuple = ()
+    row_key: tuple = ()
+    name: str = "table of this study"
 
     def case_key(self, row) -> tuple:
         """The key of a row (or a case's key values) as comparable text."""
@@ -268,7 +275,7 @@ def read_table(path: str | os.PathLike, fmt: TableFormat) -> pd.DataFrame:
     """
     path = Path(path)
     if path.is_dir():
-        raise InputError(f"the table {path} is a directory: give a file name (.csv)")
+        raise InputError(f"the {fmt.name} {path} is a directory: give a file name (.csv)")
     if not path.exists() or path.stat().st_size == 0:
         return pd.DataFrame(columns=list(fmt.columns))
     try:
@@ -276,11 +283,12 @@ def read_table(path: str | os.PathLike, fmt: TableFormat) -> pd.DataFrame:
                                                           "error", *fmt.text_columns)})
     except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError,
             ValueError) as exc:
-        raise InputError(f"cannot read the table {path}: {exc}") from None
-    missing = [c for c in (*fmt.key, "status", "code_version") if c not in df.columns]
+        raise InputError(f"cannot read the {fmt.name} {path}: {exc}") from None
+    missing = [c for c in (*fmt.key, *fmt.row_key, "status", "code_version")
+               if c not in df.columns]
     if missing:
-        raise InputError(f"{path} is not a table of this study (no column "
-                         f"{', '.join(missing)}); give another --out")
+        raise InputError(f"{path} is not a {fmt.name} (no column {', '.join(missing)}); "
+                         f"give another --out")
     for c in ("error", "worker", *fmt.text_columns):
         if c in df:
             df[c] = df[c].fillna("")
@@ -310,13 +318,22 @@ def append_rows(path: str | os.PathLike, rows: list[dict], columns) -> None:
 
 
 def latest(table: pd.DataFrame, fmt: TableFormat, version: str) -> dict:
-    """The last row of every case computed with ``version``: {case key: row dict}."""
+    """The rows of the last attempt at every case computed with ``version``.
+
+    Returns ``{case key: [row dict, ...]}`` (one row per case, or one per ``row_key`` in
+    the order the task returned them). An attempt's rows are appended together, so a
+    row key seen again for a case starts its next attempt.
+    """
     out = {}
     if table.empty:
         return out
     for row in table[table.code_version.astype(str) == version].to_dict("records"):
-        out[fmt.case_key(row)] = row
-    return out
+        ck, rk = fmt.case_key(row), tuple(str(row[k]) for k in fmt.row_key)
+        attempt = out.get(ck)
+        if attempt is None or rk in attempt:
+            attempt = out[ck] = {}
+        attempt[rk] = row
+    return {ck: list(rows.values()) for ck, rows in out.items()}
 
 
 @dataclass
@@ -332,17 +349,18 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
                  *, workers: int = 2, scheduler: str | None = None, progress: bool = True,
                  retry_failed: bool = False, lock_wait_s: float = 0.0, processes: bool = True,
                  desc: str = "study", unit: str = "case", describe: dict | None = None,
-                 ok_statuses=("ok",), recompute: bool = False) -> CampaignResult:
+                 ok_statuses=("ok",), recompute: bool = False,
+                 error_rows=None) -> CampaignResult:
     """Run (or resume) a campaign: one Dask task per case not yet in the table.
 
     Parameters
     ----------
     cases : list of (key, args)
         ``key`` a dict of the key columns (scalars), ``args`` the task's arguments.
-    task : callable(*args) -> dict
-        Computes one case (in a worker) and returns its row (without the key columns);
-        it should record a failure in the row (``status``) rather than raise. A task that
-        raises is recorded as ``status`` "task error".
+    task : callable(*args) -> dict, or list of dict with ``fmt.row_key``
+        Computes one case (in a worker) and returns its row or rows (without the key
+        columns); it should record a failure in the rows (``status``) rather than raise.
+        A task that raises (or whose worker dies) is recorded by ``error_rows``.
     out : path of the CSV table (checked writable before any work)
     fmt : TableFormat
     version : str
@@ -353,6 +371,9 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
     lock_wait_s : how long to wait for another run writing the same table
     desc, unit : the progress bar's words; ``describe``: added to the run record
     recompute : compute every case again, whatever the table holds
+    error_rows : callable(key, message) -> list of dict, optional
+        The rows recorded for a case whose task raised (default: the key with ``status``
+        "task error" and the message).
 
     Raises
     ------
@@ -367,11 +388,11 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
     counts = {"computed": 0, "failed": 0}
     state = {"cluster_s": 0.0, "workers": 0, "interrupted": False}
     keys = [fmt.case_key(k) for k, _ in cases]
-    with table_lock(path, lock_wait_s):
+    with table_lock(path, lock_wait_s, what=fmt.name):
         have = latest(read_table(path, fmt), fmt, version)
         todo = [(k, a) for (k, a), ck in zip(cases, keys)
                 if recompute or ck not in have
-                or (retry_failed and have[ck]["status"] not in ok_statuses)]
+                or (retry_failed and any(r["status"] not in ok_statuses for r in have[ck]))]
 
         def record() -> dict:
             run = {"started_utc": started, "wall_s": round(time.perf_counter() - t0, 2),
@@ -397,20 +418,21 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
                         or workers
                     _compute(client, task, todo, fmt, version, path, counts, progress,
                              f"{desc} ({state['workers']} worker"
-                             f"{'s' * (state['workers'] > 1)})", unit, ok_statuses)
+                             f"{'s' * (state['workers'] > 1)})", unit, ok_statuses,
+                             error_rows or _task_error_row)
         except KeyboardInterrupt:
             state["interrupted"] = True
             record()
             raise
         run = record()
         have = latest(read_table(path, fmt), fmt, version)
-    rows = [have[ck] for ck in keys if ck in have]
+    rows = [row for ck in keys for row in have.get(ck, [])]
     return CampaignResult(pd.DataFrame(rows, columns=list(fmt.columns)), path, run)
 
 
 def _compute(client, task, todo, fmt, version, path, counts, progress, desc, unit,
-             ok_statuses) -> None:
-    """Submit one task per case; append each case's row as its task completes."""
+             ok_statuses, error_rows) -> None:
+    """Submit one task per case; append each case's rows as its task completes."""
     from dask.distributed import as_completed
     from tqdm import tqdm
 
@@ -424,30 +446,39 @@ def _compute(client, task, todo, fmt, version, path, counts, progress, desc, uni
     for fut in bar:
         key = futures.pop(fut)
         try:
-            row = fut.result()
+            rows = fut.result()
         except Exception as exc:  # the task raised, its worker died, or it was cancelled
-            row = dict(key, status="task error", error=_one_line(f"{type(exc).__name__}: "
-                                                                 f"{exc}"))
+            rows = error_rows(key, _one_line(f"{type(exc).__name__}: {exc}"))
         fut.release()
-        row["code_version"] = version  # the version this run scheduled under
-        append_rows(path, [row], fmt.columns)
+        rows = rows if isinstance(rows, list) else [rows]
+        for row in rows:
+            row["code_version"] = version  # the version this run scheduled under
+        append_rows(path, rows, fmt.columns)
         counts["computed"] += 1
-        if row.get("status") not in ok_statuses:
+        if any(row.get("status") not in ok_statuses for row in rows):
             counts["failed"] += 1
         bar.set_postfix(failed=counts["failed"], refresh=False)
 
 
-def _run_task(task, key: dict, args: tuple) -> dict:
-    """In a worker: the task's row with its key, timing and worker recorded."""
+def _task_error_row(key: dict, message: str) -> dict:
+    """The row of a case whose task raised: its key, status "task error", the message."""
+    return dict(key, status="task error", error=message)
+
+
+def _run_task(task, key: dict, args: tuple) -> dict | list[dict]:
+    """In a worker: the task's row (or rows) with key, timing and worker recorded."""
     t0 = time.perf_counter()
-    row = dict(task(*args))
-    row.update(key)
-    row.setdefault("task_wall_s", time.perf_counter() - t0)
-    row["worker"] = f"{socket.gethostname()}:{os.getpid()}"
-    row["completed_utc"] = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S")
-    if "error" in row:
-        row["error"] = _one_line(row["error"])
-    return row
+    out = task(*args)
+    rows = [dict(r) for r in out] if isinstance(out, list) else [dict(out)]
+    done = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S")
+    for row in rows:
+        row.update(key)
+        row.setdefault("task_wall_s", time.perf_counter() - t0)
+        row["worker"] = f"{socket.gethostname()}:{os.getpid()}"
+        row["completed_utc"] = done
+        if "error" in row:
+            row["error"] = _one_line(row["error"])
+    return rows if isinstance(out, list) else rows[0]
 
 
 def _one_line(text: str, limit: int = 500) -> str:

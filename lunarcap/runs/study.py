@@ -67,7 +67,6 @@ import datetime as _dt
 import math
 import os
 import socket
-import sys
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -87,12 +86,6 @@ from lunarcap.runs import campaign as _campaign
 # this module's API too.
 runs_path = _campaign.runs_path
 read_runs = _campaign.read_runs
-_append_run = _campaign.append_run
-_cache_description = _campaign.cache_description
-_dask_client = _campaign.dask_client
-_loadavg = _campaign.loadavg
-_table_lock = _campaign.table_lock
-_umask = _campaign._umask
 
 #: Lunar surface gravity mu / R^2, m/s^2 (from :data:`lunarcap.physics.constants.MU_MOON` and
 #: :data:`lunarcap.physics.constants.R_MOON`, Song 2011's values).
@@ -129,7 +122,12 @@ COLUMNS = (
 #: failed (worker lost); a sequence with a failed LOI.
 STATUSES = ("ok", "failed", "not run", "error", "task error", "incomplete")
 
-_KEY = ("thrust_N", "isp_s", "dynamics")
+#: The study table as a campaign table: one case per engine (thrust, Isp, dynamics), four
+#: rows per case told apart by ``part``.
+TABLE = _campaign.TableFormat(
+    key=("thrust_N", "isp_s", "dynamics"), columns=COLUMNS,
+    text_columns=("dynamics", "part", "ipopt_status", "mesh"), row_key=("part",),
+    name="study table")
 
 
 # ====================================================================== definitions
@@ -294,8 +292,9 @@ def default_table_path() -> Path:
     return paths.CACHE / "study" / "engine_trade.csv"
 
 
-def _key(thrust_N, isp_s, dynamics) -> tuple:
-    return (f"{float(thrust_N):.6g}", f"{float(isp_s):.6g}", str(dynamics))
+def _case(thrust_N, isp_s, dynamics) -> dict:
+    """The key columns of one engine's case."""
+    return {"thrust_N": float(thrust_N), "isp_s": float(isp_s), "dynamics": str(dynamics)}
 
 
 # ====================================================================== rows
@@ -436,99 +435,28 @@ def read_table(path: str | os.PathLike) -> pd.DataFrame:
     InputError
         If ``path`` is a directory, unreadable, or not a study table.
     """
-    path = Path(path)
-    if path.is_dir():
-        raise InputError(f"the study table {path} is a directory: give a file name (.csv)")
-    if not path.exists() or path.stat().st_size == 0:
-        return pd.DataFrame(columns=list(COLUMNS))
-    try:
-        df = pd.read_csv(path, dtype={"dynamics": str, "part": str, "status": str,
-                                      "ipopt_status": str, "mesh": str, "worker": str,
-                                      "code_version": str, "error": str},
-                         keep_default_na=True)
-    except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError,
-            ValueError) as exc:
-        raise InputError(f"cannot read the study table {path}: {exc}") from None
-    missing = [c for c in (*_KEY, "part", "status", "code_version") if c not in df.columns]
-    if missing:
-        raise InputError(f"{path} is not a study table (no column {', '.join(missing)}); "
-                         f"give another --out")
-    for c in ("ipopt_status", "mesh", "error", "worker"):
-        if c in df:
-            df[c] = df[c].fillna("")
-    return df.reindex(columns=list(COLUMNS))
-
-
-def _to_csv_text(rows: list[dict], header: bool) -> str:
-    return pd.DataFrame(rows).reindex(columns=list(COLUMNS)).to_csv(index=False, header=header)
-
-
-def append_rows(path: str | os.PathLike, rows: list[dict]) -> None:
-    """Append rows to the table atomically (rewrite to a temporary file, then rename)."""
-    path = Path(path)
-    old = path.read_bytes() if path.exists() else b""
-    if old and not old.endswith(b"\n"):
-        old += b"\n"
-    text = _to_csv_text(rows, header=not old).encode()
-    with paths.atomic_path(path) as tmp:
-        tmp.write_bytes(old + text)
-        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp's 0600 would hide the table
-
-
-def _normalise_table(path: Path, df: pd.DataFrame) -> None:
-    """Rewrite a table whose header is not :data:`COLUMNS` (an older layout)."""
-    if not path.exists() or path.stat().st_size == 0:
-        return
-    header = path.open(encoding="utf-8", errors="replace").readline().strip().split(",")
-    if header != list(COLUMNS):
-        with paths.atomic_path(path) as tmp:
-            df.to_csv(tmp, index=False)
-
-
-def latest_rows(table: pd.DataFrame) -> pd.DataFrame:
-    """The last row of every (thrust, Isp, dynamics, code version, part) of a table."""
-    if table.empty:
-        return table
-    k = table.assign(_k=[_key(*r) for r in table[list(_KEY)].itertuples(index=False)])
-    k = k.drop_duplicates(subset=["_k", "code_version", "part"], keep="last")
-    return k.drop(columns="_k")
+    return _campaign.read_table(path, TABLE)
 
 
 def select(table: pd.DataFrame, spec: StudySpec, code_version: str | None = None
            ) -> pd.DataFrame:
-    """Rows of ``table`` on the grid of ``spec`` (latest per engine and part), sorted.
+    """Rows of ``table`` on the grid of ``spec``, sorted by Isp, thrust and part.
 
-    ``code_version`` None: the current :func:`lunarcap.repro.cache.code_version`.
+    The last attempt at each engine with ``code_version`` (None: the current
+    :func:`lunarcap.repro.cache.code_version`).
     """
     if code_version is None:
         from lunarcap.repro.cache import code_version as _cv
         code_version = _cv()
-    wanted = {_key(t, i, spec.dynamics) for t, i in spec.engines}
-    t = latest_rows(table[table.code_version.astype(str) == code_version])
+    have = _campaign.latest(table, TABLE, code_version)
+    rows = [r for t, i in spec.engines
+            for r in have.get(TABLE.case_key(_case(t, i, spec.dynamics)), [])]
+    t = pd.DataFrame(rows, columns=list(COLUMNS))
     if t.empty:
-        return t.reset_index(drop=True)
-    keep = [_key(*r) in wanted for r in t[list(_KEY)].itertuples(index=False)]
-    t = t[keep].copy()
+        return t
     t["_part"] = t.part.map({p: i for i, p in enumerate(PARTS)})
     return t.sort_values(["isp_s", "thrust_N", "_part"]).drop(columns="_part") \
         .reset_index(drop=True)
-
-
-def plan(table: pd.DataFrame, spec: StudySpec, code_version: str,
-         retry_failed: bool = False) -> tuple[list, list]:
-    """Split the grid's engines into (to compute, already in the table)."""
-    done = select(table, spec, code_version)
-    have = {}
-    for r in done[done.part == "sequence"].itertuples(index=False):
-        have[_key(r.thrust_N, r.isp_s, r.dynamics)] = r.status
-    todo, reused = [], []
-    for t, i in spec.engines:
-        st = have.get(_key(t, i, spec.dynamics))
-        if st is None or (retry_failed and st != "ok"):
-            todo.append((t, i))
-        else:
-            reused.append((t, i))
-    return todo, reused
 
 
 # ====================================================================== running
@@ -602,87 +530,27 @@ def run_study(spec: StudySpec | None = None, out: str | os.PathLike | None = Non
     """
     from lunarcap.repro.cache import code_version
 
-    t0 = time.perf_counter()
     spec = spec if spec is not None else StudySpec()
     if not isinstance(spec, StudySpec):
         raise InputError(f"spec must be a StudySpec, got {type(spec).__name__}")
     workers = check_workers(workers)
-    _campaign.check_scheduler(scheduler)
-    path = _campaign.check_output_path(out if out is not None else default_table_path())
-    task = task or solve_engine
     cv = code_version()
-    started = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
-    load_start = _loadavg()
-    counts = {"computed": 0, "failed": 0}
-    cluster_s = 0.0
-    n_workers = 0
-    with _table_lock(path, lock_wait_s, what="study table"):
-        table = read_table(path)
-        _normalise_table(path, table)
-        todo, reused = plan(table, spec, cv, retry_failed)
-        interrupted = False
-
-        def record() -> dict:
-            run = {"started_utc": started, "wall_s": round(time.perf_counter() - t0, 2),
-                   "cluster_start_s": round(cluster_s, 2),
-                   "scheduler": (scheduler or "LocalCluster") if todo
-                   else "none (all in the table)",
-                   "workers": n_workers if todo else 0,
-                   "engines": len(spec.engines), "computed": counts["computed"],
-                   "reused": len(reused), "failed_computed": counts["failed"],
-                   "interrupted": interrupted, "grid": spec.to_dict(), "table": str(path),
-                   "cache": _cache_description(), "code_version": cv,
-                   "host": socket.gethostname(), "cpu_count": os.cpu_count(),
-                   "load_avg_1min_start": load_start, "load_avg_1min_end": _loadavg()}
-            _append_run(path, run)
-            return run
-
-        try:
-            if todo:
-                tc = time.perf_counter()
-                with _dask_client(workers, scheduler, processes) as client:
-                    cluster_s = time.perf_counter() - tc
-                    n_workers = len(client.scheduler_info().get("workers", {})) or workers
-                    _compute(client, task, todo, spec, cv, path, counts, progress, n_workers)
-        except KeyboardInterrupt:
-            interrupted = True
-            record()
-            raise
-        run = record()
-        table = read_table(path)
-    return StudyResult(select(table, spec, cv), path, run)
-
-
-def _compute(client, task, todo, spec, cv, path, counts, progress, n_workers) -> None:
-    """Submit one task per engine; append each engine's rows as its task completes."""
-    from dask.distributed import as_completed
-    from tqdm import tqdm
-
     # slow (low-thrust) engines first, for better packing on few workers
-    order = sorted(todo, key=lambda e: e[0])
-    futures = {}
-    for rank, (t, i) in enumerate(order):
-        fut = client.submit(task, t, i, spec.dynamics, pure=False, priority=len(order) - rank)
-        futures[fut] = (t, i)
-    bar = tqdm(as_completed(list(futures)), total=len(futures), unit="engine",
-               desc=f"trade study ({n_workers} worker{'s' * (n_workers > 1)})",
-               file=sys.stderr, disable=not progress, dynamic_ncols=True)
-    for fut in bar:
-        t, i = futures.pop(fut)
-        try:
-            rows = fut.result()
-        except Exception as exc:  # the task raised, its worker died, or it was cancelled
-            rows = engine_rows(t, i, spec.dynamics, [], {
-                "loi": None, "status": "task error", "ipopt_status": "",
-                "error": f"{type(exc).__name__}: {exc}"}, code_version=cv)
-        fut.release()
-        for r in rows:
-            r["code_version"] = cv  # the version this run scheduled under
-        append_rows(path, rows)
-        counts["computed"] += 1
-        if any(r["status"] != "ok" for r in rows):
-            counts["failed"] += 1
-        bar.set_postfix(failed=counts["failed"], refresh=False)
+    cases = [(_case(t, i, spec.dynamics), (t, i, spec.dynamics))
+             for t, i in sorted(spec.engines, key=lambda e: e[0])]
+    res = _campaign.run_campaign(
+        cases, task or solve_engine, out if out is not None else default_table_path(), TABLE,
+        cv, workers=workers, scheduler=scheduler, progress=progress,
+        retry_failed=retry_failed, lock_wait_s=lock_wait_s, processes=processes,
+        desc="trade study", unit="engine", error_rows=_task_error_rows,
+        describe={"engines": len(spec.engines), "grid": spec.to_dict()})
+    return StudyResult(select(read_table(res.path), spec, cv), res.path, res.run)
+
+
+def _task_error_rows(key: dict, message: str) -> list[dict]:
+    """The four rows of an engine whose task raised or whose worker was lost."""
+    return engine_rows(key["thrust_N"], key["isp_s"], key["dynamics"], [], {
+        "loi": None, "status": "task error", "ipopt_status": "", "error": message})
 
 
 # ====================================================================== summaries

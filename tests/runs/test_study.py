@@ -19,7 +19,7 @@ from lunarcap.errors import InputError, SolveError
 from lunarcap.physics import constants as C
 from lunarcap.physics import losses as fbt
 from lunarcap.physics.rocket import burn_duration_estimate_s
-from lunarcap.runs import study
+from lunarcap.runs import campaign, study
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -142,7 +142,7 @@ def test_bad_run_options_fail_before_any_work(tmp_path, monkeypatch, kw, match):
     def no_cluster(*a, **k):
         raise AssertionError("a cluster was started")
 
-    monkeypatch.setattr(study, "_dask_client", no_cluster)
+    monkeypatch.setattr(campaign, "dask_client", no_cluster)
     opts = {"workers": 1, **kw}
     with pytest.raises(InputError, match=match):
         study.run_study(SMALL, out=tmp_path / "t.csv", progress=False, task=fake_engine, **opts)
@@ -150,7 +150,7 @@ def test_bad_run_options_fail_before_any_work(tmp_path, monkeypatch, kw, match):
 
 
 def test_unusable_table_paths_fail_before_any_work(tmp_path, monkeypatch):
-    monkeypatch.setattr(study, "_dask_client", lambda *a, **k: pytest.fail("cluster started"))
+    monkeypatch.setattr(campaign, "dask_client", lambda *a, **k: pytest.fail("cluster started"))
     with pytest.raises(InputError, match="directory"):
         _run(SMALL, tmp_path)
     other = tmp_path / "other.csv"
@@ -221,19 +221,19 @@ def test_interrupted_table_is_completed_not_recomputed(tmp_path):
 
 def test_interrupt_keeps_finished_engines_and_logs_the_run(tmp_path, monkeypatch):
     out = tmp_path / "t.csv"
-    real = study._compute
+    real = campaign._compute
 
-    def compute_then_ctrl_c(client, task, todo, spec, *args):
-        real(client, task, todo[:2], spec, *args)  # two engines finish, then Ctrl-C
+    def compute_then_ctrl_c(client, task, todo, *args):
+        real(client, task, todo[:2], *args)  # two engines finish, then Ctrl-C
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(study, "_compute", compute_then_ctrl_c)
+    monkeypatch.setattr(campaign, "_compute", compute_then_ctrl_c)
     with pytest.raises(KeyboardInterrupt):
         _run(SMALL, out)
     assert len(study.read_table(out)) == 8
     run = study.read_runs(out)[-1]
     assert run["interrupted"] and run["computed"] == 2
-    monkeypatch.setattr(study, "_compute", real)
+    monkeypatch.setattr(campaign, "_compute", real)
     CALLS.clear()
     res = _run(SMALL, out)
     assert len(CALLS) == 4 and res.run["reused"] == 2 and not res.run["interrupted"]
@@ -329,7 +329,7 @@ def test_solve_error_in_the_chain_is_recorded_with_ipopt_status(monkeypatch):
 
 def test_a_table_in_use_is_refused(tmp_path):
     out = tmp_path / "t.csv"
-    with study._table_lock(out):
+    with campaign.table_lock(out):
         with pytest.raises(InputError, match="another run"):
             _run(SMALL, out)
     assert not CALLS
