@@ -451,10 +451,14 @@ def select(table: pd.DataFrame, spec: StudySpec, code_version: str | None = None
     have = _campaign.latest(table, TABLE, code_version)
     rows = [r for t, i in spec.engines
             for r in have.get(TABLE.case_key(_case(t, i, spec.dynamics)), [])]
-    t = pd.DataFrame(rows, columns=list(COLUMNS))
+    return _in_grid_order(pd.DataFrame(rows, columns=list(COLUMNS)))
+
+
+def _in_grid_order(t: pd.DataFrame) -> pd.DataFrame:
+    """Study rows sorted by Isp, thrust and part (LOI1, LOI2, LOI3, sequence)."""
     if t.empty:
-        return t
-    t["_part"] = t.part.map({p: i for i, p in enumerate(PARTS)})
+        return t.reset_index(drop=True)
+    t = t.assign(_part=t.part.map({p: i for i, p in enumerate(PARTS)}))
     return t.sort_values(["isp_s", "thrust_N", "_part"]).drop(columns="_part") \
         .reset_index(drop=True)
 
@@ -544,7 +548,8 @@ def run_study(spec: StudySpec | None = None, out: str | os.PathLike | None = Non
         retry_failed=retry_failed, lock_wait_s=lock_wait_s, processes=processes,
         desc="trade study", unit="engine", error_rows=_task_error_rows,
         describe={"engines": len(spec.engines), "grid": spec.to_dict()})
-    return StudyResult(select(read_table(res.path), spec, cv), res.path, res.run)
+    # res.table: the last attempt at each engine of the grid, this code version
+    return StudyResult(_in_grid_order(res.table), res.path, res.run)
 
 
 def _task_error_rows(key: dict, message: str) -> list[dict]:
