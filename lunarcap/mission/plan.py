@@ -64,7 +64,7 @@ from lunarcap.mission.impulsive import (
     tangential_impulse_mps,
     v_inf_from_loi1,
 )
-from lunarcap.mission.targets import CIRCULAR, PERILUNE, Target
+from lunarcap.mission.targets import CIRCULAR, ELLIPSE, PERILUNE, Target, check_inclination
 from lunarcap.physics import constants as C
 from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
@@ -74,6 +74,11 @@ from lunarcap.physics.frames import DEFAULT_LUNAR_POLE, LUNAR_POLES
 PLAN_DIR = Path(__file__).resolve().parent / "plans"
 
 DYNAMICS = ("full", "j2", "two-body")
+#: How a burn's period or apolune target is met (:mod:`lunarcap.mission.targets`):
+#: ``orbit``, the orbit named, as osculating elements at the first perilune after the burn
+#: (its epoch free); ``song2011``, the paper's Eq. (17): perilune radius, inclination and
+#: gamma = 0 at the next nominal perilune (the period only through that timing).
+FORMULATIONS = ("orbit", "song2011")
 STEERING = ("optimal", "inertial", "antivelocity")
 HEMISPHERES = ("north", "south")
 
@@ -88,7 +93,7 @@ MIN_BURN_S = 0.5
 MAX_BURN_FRACTION = 0.5
 
 _TOP_KEYS = {"name", "description", "arrival", "engine", "dynamics", "burns", "ephemeris",
-             "lunar_pole", "start"}
+             "lunar_pole", "start", "formulation"}
 _START_KEYS = {"epoch", "mee", "mass_kg", "first_coast_min"}
 _ARRIVAL_KEYS = {"epoch", "perilune_altitude_km", "inclination_deg", "v_inf_kmps",
                  "impulsive_loi1_mps", "hemisphere", "approach_dir", "mass_kg"}
@@ -160,6 +165,13 @@ class Burn:
     steering : {"optimal", "inertial", "antivelocity"}
     start_bounds_min : (lo, hi) or None
         Window of a free ignition, min from the nominal perilune.
+    perilune_altitude_km : float or None
+        The perilune altitude of an explicit final ellipse (``target: {perilune_altitude_km,
+        apolune_altitude_km}``), km; None: the plan's.
+    nominal_timing : bool
+        The paper's formulation (Eq. 17 at the next nominal perilune) for this burn's
+        ellipse, whatever the plan's: the studies that optimise the orbits themselves move
+        the nominal perilunes (:meth:`CapturePlan.with_burn_count`).
     """
 
     target: str = PERILUNE
@@ -169,6 +181,8 @@ class Burn:
     apolune_altitude_km: float | None = None
     steering: str = "optimal"
     start_bounds_min: tuple | None = None
+    perilune_altitude_km: float | None = None
+    nominal_timing: bool = False
 
     @property
     def free_start(self) -> bool:
@@ -179,6 +193,9 @@ class Burn:
         """A few words on the target: 'ellipse, 12.235 h' or 'circle'."""
         if self.target == CIRCULAR:
             return "circle"
+        if self.perilune_altitude_km is not None:
+            return (f"ellipse, {self.perilune_altitude_km:g} x {self.apolune_altitude_km:g} "
+                    "km altitude")
         if self.apolune_altitude_km is not None:
             return f"ellipse, apolune altitude {self.apolune_altitude_km:g} km"
         return f"ellipse, {self.period_s / 3600:.6g} h"
@@ -255,12 +272,16 @@ class CapturePlan:
     description: str = field(default="", compare=False)
     lunar_pole: str = DEFAULT_LUNAR_POLE
     start: Start | None = None
+    formulation: str = "orbit"
 
     # ------------------------------------------------------------------ validation
     def __post_init__(self):
         object.__setattr__(self, "burns", tuple(self.burns))
         _validate_engine(self.engine)
         _validate_arrival(self.arrival)
+        if self.formulation not in FORMULATIONS:
+            raise _err("formulation", f"must be one of {', '.join(FORMULATIONS)}, got "
+                                      f"{self.formulation!r}")
         if self.dynamics not in DYNAMICS:
             raise _err("dynamics", f"must be one of {', '.join(DYNAMICS)}, got {self.dynamics!r}")
         if self.lunar_pole not in LUNAR_POLES:
@@ -274,6 +295,8 @@ class CapturePlan:
             self._check_start()
         for i, b in enumerate(self.burns):
             _validate_burn(f"burns[{i}]", b, rp, period_before, last=i == len(self.burns) - 1)
+            if b.perilune_altitude_km is not None:
+                self._check_explicit_ellipse(i)
             period_before = b.period_s if b.target == PERILUNE else _circle_period_s(rp)
         if self.start is None and (self.impulsive_loi1_mps is not None
                                    or self.arrival.v_inf_kmps is None):
@@ -289,6 +312,16 @@ class CapturePlan:
             object.__setattr__(self, "arrival", replace(self.arrival, v_inf_kmps=vinf))
         self._check_ephemeris()
         self._check_engine_fits()
+
+    def _check_explicit_ellipse(self, i: int) -> None:
+        """An ellipse given by both altitudes: the last burn, in the orbit formulation."""
+        if i != self.n_burns - 1:
+            raise _err(f"burns[{i}].target", "an ellipse given by both altitudes is a final "
+                                             "orbit: only the last burn may have it")
+        if self.formulation == "song2011":
+            raise _err(f"burns[{i}].target", "the song2011 formulation (Eq. 17) targets a "
+                                             "perilune and a timing, not an apolune: use "
+                                             "formulation: orbit for an ellipse by altitudes")
 
     def _check_start(self) -> None:
         st = self.start
@@ -347,9 +380,26 @@ class CapturePlan:
 
     @property
     def targets(self) -> tuple:
-        """The :class:`~lunarcap.mission.targets.Target` of each burn."""
-        return tuple(Target(b.target, self.perilune_radius_km, self.arrival.inclination_deg)
-                     for b in self.burns)
+        """The :class:`~lunarcap.mission.targets.Target` of each burn.
+
+        A period or apolune target is an ``ellipse`` (the orbit as asked, at its first
+        perilune) unless the plan's formulation is ``song2011`` or the burn keeps the
+        nominal timing, when it is the paper's ``perilune`` target (Eq. 17).
+        """
+        return tuple(self._target(b) for b in self.burns)
+
+    def _target(self, b: Burn) -> Target:
+        rp, inc = self.perilune_radius_km, self.arrival.inclination_deg
+        if b.target == CIRCULAR:
+            return Target(CIRCULAR, rp, inc)
+        if b.perilune_altitude_km is not None:
+            rp = C.R_MOON + b.perilune_altitude_km
+        if self.formulation == "song2011" or b.nominal_timing:
+            return Target(PERILUNE, rp, inc)
+        if b.apolune_altitude_km is not None:
+            return Target(ELLIPSE, rp, inc, C.R_MOON + b.apolune_altitude_km)
+        a = (C.MU_MOON * (b.period_s / (2 * math.pi)) ** 2) ** (1.0 / 3.0)
+        return Target(ELLIPSE, rp, inc, 2 * a - rp)
 
     def coast_s(self, i: int) -> float:
         """Time from the nominal perilune before burn ``i`` (0-based) to the next, s.
@@ -451,7 +501,8 @@ class CapturePlan:
             if i == 0 and start is not None:
                 start = replace(start, first_coast_s=c)
             elif burns[i].target == PERILUNE:
-                burns[i] = replace(burns[i], period_s=c, apolune_altitude_km=None)
+                burns[i] = replace(burns[i], period_s=c, apolune_altitude_km=None,
+                                   perilune_altitude_km=None, nominal_timing=True)
             else:
                 burns[i] = replace(burns[i], coast_s=c)
         return replace(self, burns=tuple(burns), start=start)
@@ -463,7 +514,8 @@ class CapturePlan:
         then the plan's last burn (its target and coast); every ignition free.
         """
         last = replace(self.burns[-1], start_min="free", start_bounds_min=None)
-        burns = tuple(Burn(PERILUNE, period_s=float(p), start_min="free") for p in periods_s)
+        burns = tuple(Burn(PERILUNE, period_s=float(p), start_min="free", nominal_timing=True)
+                      for p in periods_s)
         n = len(burns) + 1
         return replace(self, burns=burns + (last,), impulsive_loi1_mps=None,
                        name=name or f"{self.name} in {n} burn{'s' * (n > 1)}")
@@ -587,7 +639,8 @@ class CapturePlan:
                    impulsive_loi1_mps=(_number("arrival.impulsive_loi1_mps",
                                                a["impulsive_loi1_mps"], "m/s")
                                        if "impulsive_loi1_mps" in a else None),
-                   description=desc.strip(), start=start)
+                   description=desc.strip(), start=start,
+                   formulation=d.get("formulation", "orbit"))
 
     def to_dict(self) -> dict:
         """The plan as a mapping with the YAML file's keys (round-trips :meth:`from_dict`)."""
@@ -609,6 +662,9 @@ class CapturePlan:
                 row["target"] = CIRCULAR
                 if b.coast_s is not None:
                     row["coast_min"] = b.coast_s / 60.0
+            elif b.perilune_altitude_km is not None:
+                row["target"] = {"perilune_altitude_km": b.perilune_altitude_km,
+                                 "apolune_altitude_km": b.apolune_altitude_km}
             elif b.apolune_altitude_km is not None:
                 row["target_apolune_altitude_km"] = b.apolune_altitude_km
             else:
@@ -629,6 +685,8 @@ class CapturePlan:
             out["ephemeris"] = self.ephemeris
         if self.lunar_pole != DEFAULT_LUNAR_POLE:
             out["lunar_pole"] = self.lunar_pole
+        if self.formulation != "orbit":
+            out["formulation"] = self.formulation
         if self.start is not None:
             out["start"] = {"epoch": calendar_from_seconds(self.start.epoch_s, 6),
                             "mee": list(self.start.state[:6]), "mass_kg": self.start.mass_kg,
@@ -661,14 +719,36 @@ def _start_value(where: str, value):
     return v
 
 
+def _ellipse_from_dict(where: str, t) -> tuple:
+    """(perilune altitude, apolune altitude, period) of ``target: {perilune_altitude_km, ...}``."""
+    keys = {"perilune_altitude_km", "apolune_altitude_km"}
+    _keys(where, t, keys, keys)
+    rp = _number(f"{where}.perilune_altitude_km", t["perilune_altitude_km"], "km")
+    ra = _number(f"{where}.apolune_altitude_km", t["apolune_altitude_km"], "km")
+    if not ra > rp:
+        raise _err(f"{where}.apolune_altitude_km", f"{ra:g} km is not above the perilune "
+                                                   f"altitude {rp:g} km")
+    return rp, ra, _period_from_apolune_s(C.R_MOON + rp, C.R_MOON + ra)
+
+
 def _burn_from_dict(where: str, b, altitude_km: float) -> Burn:
     _keys(where, b, _BURN_KEYS, {"start_min"})
     given = [k for k in ("target_period_h", "target_apolune_altitude_km") if k in b]
+    if isinstance(b.get("target"), dict):
+        if given or "coast_min" in b:
+            raise _err(f"{where}.target", "an ellipse given by both altitudes takes no "
+                                          "period, apolune or coast_min of its own")
+        rp_alt, ra_alt, period = _ellipse_from_dict(f"{where}.target", b["target"])
+        return replace(_burn_from_dict(where, {k: v for k, v in b.items() if k != "target"}
+                                       | {"target_period_h": period / 3600.0}, altitude_km),
+                       period_s=period, apolune_altitude_km=ra_alt,
+                       perilune_altitude_km=rp_alt)
     kind = b.get("target", PERILUNE if given else None)
     if kind not in (PERILUNE, CIRCULAR):
-        raise _err(f"{where}.target", f"must be 'circular' or 'perilune' (or give "
-                                      f"target_period_h / target_apolune_altitude_km), got "
-                                      f"{kind!r}")
+        raise _err(f"{where}.target", f"must be 'circular', an ellipse "
+                                      f"{{perilune_altitude_km, apolune_altitude_km}}, or "
+                                      f"'perilune' (or give target_period_h / "
+                                      f"target_apolune_altitude_km), got {kind!r}")
     period = apo = coast = None
     if kind == CIRCULAR:
         if given:
@@ -738,9 +818,10 @@ def _validate_arrival(a: ArrivalSpec) -> None:
                    f"{alt:g} km puts the perilune at or below the lunar surface "
                    f"(radius {C.R_MOON} km): the altitude must be positive")
     inc = _number("arrival.inclination_deg", a.inclination_deg, "deg", positive=False)
-    if not 0.0 < inc < 180.0:
-        raise _err("arrival.inclination_deg", f"must lie strictly between 0 and 180 deg, "
-                                              f"got {inc:g}")
+    try:
+        check_inclination("arrival.inclination_deg", inc)
+    except InputError as exc:
+        raise PlanError(str(exc)) from None
     _number("arrival.mass_kg", a.mass_kg, "kg")
     if a.v_inf_kmps is not None:
         _number("arrival.v_inf_kmps", a.v_inf_kmps, "km/s")
