@@ -281,7 +281,8 @@ class PlanResult:
         imps = [r["impulsive_delta_v_mps"] for r in rows]
         imp = None if any(x is None for x in imps) else sum(imps)
         last = rows[-1]
-        t = self.plan.nominal_perilunes_s
+        # the perilunes reached (an ellipse as asked moves them), not the plan's estimate
+        t = (self.plan.nominal_perilunes_s[0], self.burns[-1].solution.problem.t_end_s)
         return {"total_delta_v_mps": dv, "total_impulsive_delta_v_mps": imp,
                 "total_loss_mps": None if imp is None else dv - imp,
                 "total_loss_percent": None if imp is None else 100 * (dv - imp) / imp,
