@@ -20,16 +20,23 @@ spacecraft arrives, with which engine, in which dynamics, and which burns captur
 
 Burns
 -----
-Each burn ignites ``start_min`` minutes from the nominal perilune of the orbit it starts
-on (negative: before; ``free``: optimised) and is followed by a coast to the next nominal
-perilune, where the target must hold (:mod:`lunarcap.mission.targets`):
+Each burn ignites ``start_min`` minutes from the perilune of the orbit it starts on
+(negative: before; ``free``: optimised), and its target is the orbit it must leave
+(:mod:`lunarcap.mission.targets`). How a period or apolune is met is the plan's
+``formulation``:
 
-* ``target_period_h`` (or ``target_apolune_altitude_km``): an ellipse with the plan's
-  perilune radius and inclination; its period fixes the coast (next nominal perilune =
-  this one + the period, Song 2011 Sec. 2.2), and reaching perilune at that epoch with
-  that radius is what makes the orbit have that period.
-* ``target: circular``: the circle at the perilune radius, last burn only; the coast after
-  it lasts ``coast_min`` (default one period of the circle).
+* ``orbit`` (default): as asked. ``target_period_h`` or ``target_apolune_altitude_km`` is
+  an ellipse with the plan's perilune radius and inclination, and that period or apolune,
+  as the osculating orbit at the first perilune after the burn (its epoch free, within a
+  fifth of the period of the perilune the plan predicts); the next burn's ignition is
+  counted from that perilune. The last burn may instead name both altitudes,
+  ``target: {perilune_altitude_km: 100, apolune_altitude_km: 300}``.
+* ``song2011``: the paper's Eq. (17). The coast ends at the next nominal perilune (this
+  one + the period, Song 2011 Sec. 2.2), where perilune radius, inclination and gamma = 0
+  hold; the period is met only through that timing. The packaged ``song2011-*`` plans.
+
+``target: circular`` is the circle at the perilune radius, last burn only; the coast
+after it lasts ``coast_min`` (default one period of the circle).
 
 Optional keys per burn: ``steering`` (optimal | inertial | antivelocity) and
 ``start_bounds_min: [lo, hi]`` (the window of a free ignition; default +-2 Eq. (19)
