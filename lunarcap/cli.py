@@ -188,6 +188,8 @@ def _print_burn_row(plan, r: dict) -> None:
         ver += f", gamma {r['verification_gamma_error_deg']:.1g} deg"
     if r["verification_ra_error_m"] is not None:
         ver += f", ra {r['verification_ra_error_m']:.2g} m"
+    if r.get("verification_period_error_s") is not None:
+        ver += f", period {r['verification_period_error_s']:.2g} s"
     ver += ")"
     print(f"{r['burn']:>4}  {b.describe():<{_target_width(plan)}} {r['ignition_epoch']:<27} "
           f"{r['start_min']:9.3f} "
