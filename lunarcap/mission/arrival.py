@@ -59,6 +59,15 @@ class ArrivalSpec:
         """R_Moon + perilune altitude, km."""
         return C.R_MOON + self.perilune_altitude_km
 
+    def approach_direction(self, eph: Ephemeris | None = None) -> np.ndarray:
+        """Unit velocity direction of the incoming asymptote, M-MME2000 (see the module)."""
+        if self.approach_dir is not None:
+            s = np.asarray(self.approach_dir, float)
+            return s / np.linalg.norm(s)
+        eph = eph or default_ephemeris()
+        _, vm = eph.moon_geocentric_state(seconds_from_calendar(self.epoch))
+        return -vm[:, 0] / np.linalg.norm(vm[:, 0])
+
     def build(self, eph: Ephemeris | None = None) -> "Arrival":
         """The Arrival state of these parameters."""
         approach = "anti-lunar-velocity" if self.approach_dir is None else self.approach_dir

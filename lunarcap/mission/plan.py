@@ -318,6 +318,8 @@ class CapturePlan:
                 raise _err("arrival.impulsive_loi1_mps", str(exc)) from None
             object.__setattr__(self, "arrival", replace(self.arrival, v_inf_kmps=vinf))
         self._check_ephemeris()
+        if self.start is None:
+            self._check_arrival_geometry()
         self._check_engine_fits()
 
     def _check_explicit_ellipse(self, i: int) -> None:
@@ -344,6 +346,20 @@ class CapturePlan:
             raise _err("start.first_coast_min",
                        f"the first coast ({st.first_coast_s / 60:.1f} min) must end after the "
                        f"latest ignition ({latest:g} min)")
+
+    def _check_arrival_geometry(self) -> None:
+        """The arrival hyperbola can be built with this inclination (else PlanError)."""
+        a = self.arrival
+        s = a.approach_direction(self.ephemeris_model())
+        lat = math.degrees(math.asin(max(-1.0, min(1.0, float(s[2])))))
+        inc = a.inclination_deg
+        if min(inc, 180.0 - inc) < abs(lat) - 1e-9:
+            raise _err("arrival.inclination_deg",
+                       f"{inc:g} deg cannot be reached from this arrival: its approach "
+                       f"asymptote lies {abs(lat):.2f} deg from the lunar equator (M-MME2000) "
+                       f"on {a.epoch}, and an orbit containing it is inclined at least that "
+                       f"much (and at most 180 deg minus it); ask for {abs(lat):.2f} to "
+                       f"{180 - abs(lat):.2f} deg, or give approach_dir")
 
     def _check_ephemeris(self) -> None:
         eph = self.ephemeris_model()

@@ -100,6 +100,13 @@ def test_inclinations_a_plan_cannot_have_are_refused_at_load():
             plan_of(RETRO, inclination=bad)
 
 
+def test_an_inclination_the_approach_cannot_give_is_refused_at_load():
+    # the paper's arrival asymptote lies 2.33 deg from the lunar equator on 2017-02-20
+    with pytest.raises(PlanError, match=r"arrival.inclination_deg: 2 deg cannot be reached"):
+        plan_of(RETRO, inclination=2.0)
+    assert plan_of(RETRO, inclination=3.0).arrival.inclination_deg == 3.0
+
+
 def random_plan(rng, index):
     """A two-body plan drawn from the ranges an analyst might write (may be refused at load)."""
     n = int(rng.integers(2, 6))
