@@ -137,8 +137,12 @@ def initial_point(layout, prefix: str, prob: BurnProblem, mesh: Mesh, guess: Gue
     """Write the guess of one leg into ``w0`` (scaled; names with ``prefix``)."""
     d = mesh.degree
     t1 = guess.t1_s
+    t_end = prob.t_end_s
+    if prob.free_end and prefix + "te" in layout.var_slices:   # the guess's perilune
+        t_end = float(guess.coast.t[-1])
+        layout.put(w0, prefix + "te", (t_end - prob.t_end_s) / TU)
     tb = node_epochs(prob.t_ign_s, t1, mb, d)
-    tc = node_epochs(prob.t_ign_s + t1, prob.t_end_s - prob.t_ign_s - t1, mc, d)[1:]
+    tc = node_epochs(prob.t_ign_s + t1, t_end - prob.t_ign_s - t1, mc, d)[1:]
     Xb = guess.burn(tb)[:N_X] / S[:, None]
     Xb[:, 0] = prob.x0 / S
     layout.put(w0, prefix + "t1", t1 / TU)

@@ -156,6 +156,14 @@ def anti_velocity_u(x) -> np.ndarray:
     return law("antivelocity")(x)
 
 
+#: Least half-width of a free ignition window for an ellipse as asked, min. A short burn
+#: (Eq. 19: 25 s) that must also undo what the lunar J2, the Earth and the Sun do to the
+#: next perilune (5 km of perilune radius and 0.06 deg of inclination over a 12 h orbit
+#: of 10,500 km apolune) cannot from +-2 Eq. (19) durations around perilune: the
+#: perilune radius moves only with burns away from the perilune (IPOPT: Maximum_Iterations_
+#: Exceeded on every mesh; with +-30 min: solved, ignition 11.8 min after perilune).
+MIN_ORBIT_WINDOW_MIN = 30.0
+
 #: A target of free epoch (an ellipse as asked) holds at the perilune within this fraction
 #: of its period of the perilune the plan predicts: one perilune, whatever the shift.
 END_WINDOW_FRACTION = 0.2
@@ -243,7 +251,10 @@ def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
         bounds = start_bounds_min or burn.start_bounds_min
         if bounds is None:
             lim = MAX_START_MIN if i == 0 else min(MAX_START_MIN, 0.4 * (t[i] - t[i - 1]) / 60)
-            bounds = (max(-2.0 * t19, -lim), min(2.0 * t19, lim))
+            half = 2.0 * t19
+            if plan.targets[i].free_epoch:
+                half = max(half, MIN_ORBIT_WINDOW_MIN)
+            bounds = (max(-half, -lim), min(half, lim))
         if not bounds[0] <= guess_min <= bounds[1]:
             guess_min = 0.5 * (bounds[0] + bounds[1])
     else:
