@@ -232,8 +232,10 @@ def _erfa():
 
 
 def _quiet(fn, *args):
-    """An ERFA call with its 'dubious year' warning silenced (epochs past the table's
-    expiry: UTC - TAI stays at its last value, see the module docstring)."""
+    """An ERFA call with its 'dubious year' warning silenced.
+
+    Epochs past the table's expiry: UTC - TAI stays at its last value (module docstring).
+    """
     import erfa
 
     with warnings.catch_warnings():
