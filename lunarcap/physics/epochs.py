@@ -213,8 +213,10 @@ def leap_second_table() -> dict:
         import numpy as np
 
         table = np.array(rows, dtype=erfa.leap_seconds.get().dtype)
+        import datetime as _dt
+
         erfa.leap_seconds.set(table)
-        erfa.leap_seconds.expires = expires
+        erfa.leap_seconds.expires = _dt.datetime.fromisoformat(expires)
         source = "astropy-iers-data Leap_Second.dat"
     except Exception:  # the package missing or unreadable: ERFA's compiled-in table
         erfa.leap_seconds.set()
