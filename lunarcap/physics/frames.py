@@ -106,8 +106,8 @@ def mme_from_icrf(vectors, pole: str = DEFAULT_LUNAR_POLE) -> np.ndarray:
     Examples
     --------
     >>> v = mme_from_icrf([0.0, 0.0, 1.0])   # the ICRF pole seen from M-MME2000
-    >>> round(float(v[2]), 6)                # cos(90 deg - 65.6411 deg)
-    0.910928
+    >>> round(float(v[2]), 5)                # sin(65.6411 deg), the pole's declination
+    0.91098
     """
     return icrf_to_mme(pole) @ np.asarray(vectors, float)
 

@@ -195,5 +195,5 @@ def test_cli_export_in_utc(exported, tmp_path, capsys):
     # the same instants as the TDB file: 69.18 s earlier on the UTC clock
     tdb = ccsds.read_oem(exported[0].files["oem"])
     utc = ccsds.read_oem(tmp_path / "song2011-150N.oem")
-    assert np.max(np.abs(utc[0].t_s - tdb[0].t_s)) < 1.01e-6
+    assert np.max(np.abs(utc[0].t_s - tdb[0].t_s)) < 1.2e-6
     assert "START_TIME = 2017-02-20T02:30:16.814761" in text   # 02:31:26 TDB
