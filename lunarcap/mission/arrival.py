@@ -114,10 +114,8 @@ class ArrivalSpec:
         """The Arrival state of these parameters."""
         if self.perilune_mee is not None:   # a state arrival: the propagated perilune
             r, v = (np.array(a, float) for a in rv_from_mee(*self.perilune_mee, C.MU_MOON))
-            e = 1 + np.linalg.norm(r) * self.v_inf_kmps ** 2 / C.MU_MOON
-            s_in = r / np.linalg.norm(r) / e + np.sqrt(1 - 1 / e ** 2) * v / np.linalg.norm(v)
             return Arrival(seconds_from_calendar(self.epoch), r, v, float(self.mass_kg),
-                           float(self.v_inf_kmps), s_in / np.linalg.norm(s_in),
+                           float(self.v_inf_kmps), np.array(self.approach_direction(eph)),
                            self.hemisphere)
         approach = "anti-lunar-velocity" if self.approach_dir is None else self.approach_dir
         return arrival_state(self.epoch, self.perilune_altitude_km, self.inclination_deg,
@@ -229,8 +227,8 @@ def perilune_from_state(state: StateArrival, mass_kg: float, dynamics: str,
     -------
     dict
         ``epoch`` (TDB calendar string, microseconds), ``epoch_s``, ``mee`` (6-tuple),
-        ``altitude_km``, ``inclination_deg`` (M-MME2000), ``hemisphere``, ``v_inf_kmps``
-        and ``hours_to_perilune``.
+        ``altitude_km``, ``inclination_deg`` (M-MME2000), ``hemisphere``, ``v_inf_kmps``,
+        ``approach_dir`` (the incoming asymptote, M-MME2000) and ``hours_to_perilune``.
 
     Raises
     ------
@@ -311,7 +309,12 @@ def perilune_from_state(state: StateArrival, mass_kg: float, dynamics: str,
         raise InputError(f"the state reaches its perilune bound to the Moon (v^2 - 2 mu/r "
                          f"= {vinf2:.4f} km^2/s^2 in {dynamics} dynamics): an arrival is a "
                          f"hyperbolic approach")
+    # the incoming asymptote of the osculating hyperbola at the perilune (its velocity
+    # direction): s = r/(e r) + sqrt(1 - 1/e^2) v/v, rotated back by the asymptote angle
+    e_p = 1 + rp * vinf2 / mu
+    s_in = rp_vec / rp / e_p + np.sqrt(1 - 1 / e_p ** 2) * vp_vec / np.linalg.norm(vp_vec)
     return {"epoch": calendar_from_seconds(tp, 6), "epoch_s": tp,
+            "approach_dir": tuple(float(q) for q in s_in / np.linalg.norm(s_in)),
             "mee": tuple(float(q) for q in xp[:6]), "altitude_km": float(rp - C.R_MOON),
             "inclination_deg": float(np.degrees(inclination(xp[3], xp[4]))),
             "hemisphere": "north" if rp_vec[2] >= 0 else "south",

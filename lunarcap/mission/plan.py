@@ -359,7 +359,8 @@ class CapturePlan:
         object.__setattr__(self, "arrival", replace(
             a, epoch=peri["epoch"], perilune_altitude_km=peri["altitude_km"],
             inclination_deg=peri["inclination_deg"], hemisphere=peri["hemisphere"],
-            v_inf_kmps=peri["v_inf_kmps"], perilune_mee=peri["mee"], approach_dir=None))
+            v_inf_kmps=peri["v_inf_kmps"], perilune_mee=peri["mee"],
+            approach_dir=peri["approach_dir"]))
 
     def _check_explicit_ellipse(self, i: int) -> None:
         """An ellipse given by both altitudes: the last burn, in the orbit formulation."""

@@ -129,3 +129,17 @@ def test_derived_state_matches_reconstruction_in_mee():
     ref = arrival_state()
     assert np.linalg.norm(arr.r_km - ref.r_km) < 1e-3   # km
     assert np.allclose(mee_from_rv(arr.r_km, arr.v_kmps, C.MU_MOON), ref.mee, atol=1e-9)
+
+
+def test_low_inclination_state_arrival_is_judged_by_its_own_asymptote():
+    # A 1 deg orbit arriving along the lunar equator: a v_inf arrival on this date could
+    # not have it (its anti-lunar-velocity asymptote is 2.33 deg from the equator), but the
+    # state's own asymptote lies in its plane, so the plan must load with it.
+    arr = arrival_state(inclination_deg=1.0, approach=[1.0, 0.0, 0.0])
+    x = np.concatenate([arr.mee, [arr.mass_kg]])
+    t0 = T_PERI - 2 * 3600.0
+    x0 = propagate(Model("two-body", 0.0, 300.0), T_PERI, x, t0).final
+    r, v = (icrf_from_mme(np.array(q)) for q in rv_from_mee(*x0[:6], C.MU_MOON))
+    plan = _plan(_state(t0, r, v))
+    assert plan.arrival.inclination_deg == pytest.approx(1.0, abs=1e-7)
+    assert np.allclose(plan.arrival.approach_dir, [1.0, 0.0, 0.0], atol=1e-9)
