@@ -236,14 +236,13 @@ def cmd_plan(args) -> int:
             print(json.dumps(_jsonable(out), indent=2))
     if not args.json:
         _print_totals(res.totals())
-    if not res.totals()["all_verified"]:
-        if args.export:
-            print("lunarcap: error: not exported: a burn or impulsive limit failed "
-                  "verification", file=sys.stderr)
-        return 3
     if args.export:
-        _export_plan(res, args)
-    return 0
+        if all(b.solution.verification.passed for b in res.burns):
+            _export_plan(res, args)
+        else:
+            print("lunarcap: error: not exported: a burn failed verification", file=sys.stderr)
+            return 3
+    return 0 if res.totals()["all_verified"] else 3
 
 
 def _export_plan(res, args) -> None:

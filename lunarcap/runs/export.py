@@ -29,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lunarcap.errors import InputError
 from lunarcap.exchange.burns import mean_direction, write_attitude, write_maneuvers
 from lunarcap.exchange.ccsds import OemSegment, interpolation_error, write_oem
 from lunarcap.exchange.spk import DEFAULT_OBJECT_ID, write_spk
@@ -212,11 +213,13 @@ def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFA
         Of the epochs written (SPK epochs are always ET, i.e. TDB).
     object_id : the spacecraft's NAIF ID in the SPK and the OEM's OBJECT_ID
     """
+    from lunarcap.mission.plan import CapturePlan
     from lunarcap.runs.chain import plan_result
 
-    if not hasattr(result, "burns") or not hasattr(result, "plan") or \
-            not isinstance(result.burns, list):
+    if isinstance(result, CapturePlan):
         result = plan_result(result, impulsive=False)
+    if not all(b.solution.verification.passed for b in result.burns):
+        raise InputError(f"plan {result.plan.name}: not exported: a burn failed verification")
     start = time.perf_counter()
     plan = result.plan
     ts = time_system.upper()

@@ -182,6 +182,14 @@ def test_attitude_and_maneuver_files_fly_to_the_final_orbit(exported):
             C.G0_MPS2 * m["isp_s"] * np.log(m["m_start_kg"] / m["m_end_kg"]), abs=1e-3)
 
 
+def test_export_from_a_plan_solves_it_first(exported, tmp_path):
+    ex, res = exported
+    again = export_plan(res.plan, tmp_path)   # the solutions come from the cache
+    assert again.sizes_bytes["spk"] == ex.sizes_bytes["spk"]
+    assert (tmp_path / "song2011-150N_maneuvers.csv").read_text() == \
+        ex.files["maneuvers"].read_text()
+
+
 def test_cli_export_in_utc(exported, tmp_path, capsys):
     from lunarcap.cli import main
 
