@@ -42,6 +42,26 @@ Optional keys per burn: ``steering`` (optimal | inertial | antivelocity) and
 ``start_bounds_min: [lo, hi]`` (the window of a free ignition; default +-2 Eq. (19)
 durations around perilune, within +-120 min and half the orbit before the burn).
 
+Arrival from a state
+--------------------
+Instead of ``v_inf_kmps`` and the reconstructed geometry, ``arrival`` may give a
+Moon-centred state, as a navigation team hands it over::
+
+    arrival:
+      epoch: "2017-02-20 03:11:26 UTC"     # UTC or TDB, the scale named in the string
+      frame: ICRF                          # ICRF (Moon-centred, ICRF axes) or M-MME2000
+      position_km: [x, y, z]
+      velocity_kmps: [vx, vy, vz]
+      mass_kg: 650
+
+or ``arrival: {opm: approach.opm}`` (a CCSDS OPM in KVN, relative to the plan's
+directory; ``mass_kg`` beside it if the OPM has no ``MASS``). The arrival perilune is
+derived from the state in the plan's dynamics (:func:`lunarcap.mission.arrival.
+perilune_from_state`): its epoch, altitude, inclination and hemisphere then act as a v_inf
+arrival's do (``start_min`` counts from that perilune; every target uses its altitude and
+inclination). A state that cannot be captured (moving away from the Moon, bound to it,
+perilune below the surface, outside the ephemeris) is refused with its cause.
+
 Nominal perilune epochs are the arrival epoch plus the coasts; with them the arrival
 epoch and every coast must lie inside the ephemeris. Every error names the field.
 
@@ -63,7 +83,7 @@ from pathlib import Path
 import numpy as np
 
 from lunarcap.errors import InputError
-from lunarcap.mission.arrival import ArrivalSpec
+from lunarcap.mission.arrival import STATE_FRAMES, ArrivalSpec, StateArrival, perilune_from_state
 from lunarcap.mission.impulsive import (
     PAPER_DV_LOI1_MPS,
     ImpulsiveBurn,
@@ -104,6 +124,7 @@ _TOP_KEYS = {"name", "description", "arrival", "engine", "dynamics", "burns", "e
 _START_KEYS = {"epoch", "mee", "mass_kg", "first_coast_min"}
 _ARRIVAL_KEYS = {"epoch", "perilune_altitude_km", "inclination_deg", "v_inf_kmps",
                  "impulsive_loi1_mps", "hemisphere", "approach_dir", "mass_kg"}
+_STATE_ARRIVAL_KEYS = {"epoch", "frame", "position_km", "velocity_kmps", "mass_kg"}
 _ENGINE_KEYS = {"thrust_N", "isp_s"}
 _BURN_KEYS = {"target", "target_period_h", "target_apolune_altitude_km", "start_min",
               "coast_min", "steering", "start_bounds_min"}
@@ -285,6 +306,8 @@ class CapturePlan:
     def __post_init__(self):
         object.__setattr__(self, "burns", tuple(self.burns))
         _validate_engine(self.engine)
+        if self.arrival.state is not None:
+            self._derive_state_arrival()
         _validate_arrival(self.arrival)
         if self.formulation not in FORMULATIONS:
             raise _err("formulation", f"must be one of {', '.join(FORMULATIONS)}, got "
@@ -321,6 +344,23 @@ class CapturePlan:
         if self.start is None:
             self._check_arrival_geometry()
         self._check_engine_fits()
+
+    def _derive_state_arrival(self) -> None:
+        """Replace the perilune numbers of a state arrival by those of its propagation."""
+        if self.dynamics not in DYNAMICS or self.lunar_pole not in LUNAR_POLES:
+            return  # refused below with the field named
+        a = self.arrival
+        try:
+            peri = perilune_from_state(a.state, float(a.mass_kg), self.dynamics,
+                                       self.ephemeris_model(), self.lunar_pole)
+        except InputError as exc:
+            where = "arrival.opm" if a.state.opm else "arrival"
+            raise _err(where, str(exc)) from None
+        object.__setattr__(self, "arrival", replace(
+            a, epoch=peri["epoch"], perilune_altitude_km=peri["altitude_km"],
+            inclination_deg=peri["inclination_deg"], hemisphere=peri["hemisphere"],
+            v_inf_kmps=peri["v_inf_kmps"], perilune_mee=peri["mee"],
+            approach_dir=peri["approach_dir"]))
 
     def _check_explicit_ellipse(self, i: int) -> None:
         """An ellipse given by both altitudes: the last burn, in the orbit formulation."""
@@ -602,37 +642,9 @@ class CapturePlan:
         if not isinstance(name, str) or not name.strip():
             raise _err("name", f"must be a non-empty text, got {name!r}")
         a = d["arrival"]
-        _keys("arrival", a, _ARRIVAL_KEYS,
-              {"epoch", "perilune_altitude_km", "inclination_deg", "mass_kg"})
-        if ("v_inf_kmps" in a) == ("impulsive_loi1_mps" in a):
-            raise _err("arrival.v_inf_kmps", "give exactly one of v_inf_kmps and "
-                                             "impulsive_loi1_mps")
-        epoch = a["epoch"]
-        if not isinstance(epoch, str):
-            raise _err("arrival.epoch", f"must be a text like '2017-02-20 03:41:26 TDB', "
-                                        f"got {epoch!r}")
-        try:
-            seconds_from_calendar(epoch)
-        except InputError as exc:
-            raise _err("arrival.epoch", str(exc)) from None
-        approach = a.get("approach_dir")
-        if approach is not None:
-            if not isinstance(approach, (list, tuple)) or len(approach) != 3:
-                raise _err("arrival.approach_dir", f"must be a list of three numbers "
-                                                   f"(M-MME2000), got {approach!r}")
-            approach = tuple(_number(f"arrival.approach_dir[{j}]", x, "", positive=False)
-                             for j, x in enumerate(approach))
-        arrival = ArrivalSpec(
-            epoch=epoch,
-            perilune_altitude_km=_number("arrival.perilune_altitude_km",
-                                         a["perilune_altitude_km"], "km", positive=False),
-            inclination_deg=_number("arrival.inclination_deg", a["inclination_deg"], "deg",
-                                    positive=False),
-            mass_kg=_number("arrival.mass_kg", a["mass_kg"], "kg"),
-            v_inf_kmps=(_number("arrival.v_inf_kmps", a["v_inf_kmps"], "km/s")
-                        if "v_inf_kmps" in a else None),
-            hemisphere=a.get("hemisphere", "north"),
-            approach_dir=approach)
+        arrival = _state_arrival_from_dict(a, base_dir)
+        if arrival is None:
+            arrival = _perilune_arrival_from_dict(a)
         e = d["engine"]
         _keys("engine", e, _ENGINE_KEYS, _ENGINE_KEYS)
         engine = Engine(_number("engine.thrust_N", e["thrust_N"], "N"),
@@ -678,6 +690,12 @@ class CapturePlan:
         if a.approach_dir is not None:
             arrival["approach_dir"] = list(a.approach_dir)
         arrival["mass_kg"] = a.mass_kg
+        if a.state is not None:   # as given (the perilune is derived again on loading)
+            st = a.state
+            arrival = ({"opm": st.opm} if st.opm else
+                       {"epoch": st.epoch, "frame": st.frame,
+                        "position_km": list(st.position_km),
+                        "velocity_kmps": list(st.velocity_kmps)}) | {"mass_kg": a.mass_kg}
         burns = []
         for b in self.burns:
             row = {}
@@ -809,6 +827,101 @@ def _burn_from_dict(where: str, b, altitude_km: float) -> Burn:
                 start_min=_start_value(f"{where}.start_min", b["start_min"]),
                 coast_s=coast, apolune_altitude_km=apo, steering=steering,
                 start_bounds_min=bounds)
+
+
+def _perilune_arrival_from_dict(a) -> ArrivalSpec:
+    """The ``arrival`` of a plan given by its perilune (v_inf and the reconstructed geometry)."""
+    _keys("arrival", a, _ARRIVAL_KEYS,
+          {"epoch", "perilune_altitude_km", "inclination_deg", "mass_kg"})
+    if ("v_inf_kmps" in a) == ("impulsive_loi1_mps" in a):
+        raise _err("arrival.v_inf_kmps", "give exactly one of v_inf_kmps and "
+                                         "impulsive_loi1_mps")
+    epoch = a["epoch"]
+    if not isinstance(epoch, str):
+        raise _err("arrival.epoch", f"must be a text like '2017-02-20 03:41:26 TDB', "
+                                    f"got {epoch!r}")
+    try:
+        seconds_from_calendar(epoch)
+    except InputError as exc:
+        raise _err("arrival.epoch", str(exc)) from None
+    approach = a.get("approach_dir")
+    if approach is not None:
+        if not isinstance(approach, (list, tuple)) or len(approach) != 3:
+            raise _err("arrival.approach_dir", f"must be a list of three numbers "
+                                               f"(M-MME2000), got {approach!r}")
+        approach = tuple(_number(f"arrival.approach_dir[{j}]", x, "", positive=False)
+                         for j, x in enumerate(approach))
+    return ArrivalSpec(
+        epoch=epoch,
+        perilune_altitude_km=_number("arrival.perilune_altitude_km",
+                                     a["perilune_altitude_km"], "km", positive=False),
+        inclination_deg=_number("arrival.inclination_deg", a["inclination_deg"], "deg",
+                                positive=False),
+        mass_kg=_number("arrival.mass_kg", a["mass_kg"], "kg"),
+        v_inf_kmps=(_number("arrival.v_inf_kmps", a["v_inf_kmps"], "km/s")
+                    if "v_inf_kmps" in a else None),
+        hemisphere=a.get("hemisphere", "north"),
+        approach_dir=approach)
+
+
+def _state_arrival_from_dict(a, base_dir) -> ArrivalSpec | None:
+    """The ``arrival`` of a plan given as a state or an OPM file (None: a perilune arrival).
+
+    The perilune numbers are placeholders until the plan derives them in its dynamics
+    (:meth:`CapturePlan._derive_state_arrival`).
+    """
+    if not isinstance(a, dict) or not ({"opm", "position_km", "velocity_kmps"} & set(a)):
+        return None
+    mass = a.get("mass_kg")
+    if "opm" in a:
+        _keys("arrival", a, {"opm", "mass_kg"}, {"opm"})
+        from lunarcap.exchange.ccsds import read_opm
+
+        path = a["opm"]
+        if not isinstance(path, str):
+            raise _err("arrival.opm", f"must be the path of a CCSDS OPM file, got {path!r}")
+        p = Path(path).expanduser()
+        if not p.is_absolute() and base_dir is not None:
+            p = Path(base_dir) / p
+        try:
+            sv = read_opm(p)
+        except InputError as exc:
+            raise _err("arrival.opm", str(exc)) from None
+        if mass is None:
+            if sv.mass_kg is None:
+                raise _err("arrival.mass_kg", f"missing: the OPM {p.name} gives no MASS")
+            mass = sv.mass_kg
+        state = StateArrival(sv.epoch_text, "ICRF", sv.r_km, sv.v_kmps, opm=str(path))
+    else:
+        unknown = sorted(set(a) - _STATE_ARRIVAL_KEYS)
+        if unknown:
+            raise _err(f"arrival.{unknown[0]}",
+                       f"a state arrival takes {', '.join(sorted(_STATE_ARRIVAL_KEYS))}; "
+                       f"{unknown[0]} belongs to an arrival given by its perilune")
+        _keys("arrival", a, _STATE_ARRIVAL_KEYS, _STATE_ARRIVAL_KEYS)
+        if not isinstance(a["epoch"], str):
+            raise _err("arrival.epoch", f"must be a text like '2017-02-20 03:11:26 UTC', "
+                                        f"got {a['epoch']!r}")
+        try:
+            seconds_from_calendar(a["epoch"])
+        except InputError as exc:
+            raise _err("arrival.epoch", str(exc)) from None
+        if a["frame"] not in STATE_FRAMES:
+            raise _err("arrival.frame", f"must be one of {', '.join(STATE_FRAMES)}, got "
+                                        f"{a['frame']!r}")
+        vecs = []
+        for key, unit in (("position_km", "km"), ("velocity_kmps", "km/s")):
+            val = a[key]
+            if not isinstance(val, (list, tuple)) or len(val) != 3:
+                raise _err(f"arrival.{key}", f"must be a list of three numbers ({unit}), got "
+                                             f"{val!r}")
+            vecs.append(tuple(_number(f"arrival.{key}[{j}]", x, unit, positive=False)
+                              for j, x in enumerate(val)))
+        state = StateArrival(a["epoch"], a["frame"], vecs[0], vecs[1])
+    mass = _number("arrival.mass_kg", mass, "kg")
+    # placeholders (a valid perilune), replaced by the derivation in the plan's dynamics
+    return ArrivalSpec(epoch=state.epoch, perilune_altitude_km=100.0, inclination_deg=90.0,
+                       mass_kg=mass, v_inf_kmps=1.0, state=state)
 
 
 def _start_from_dict(d) -> Start:
