@@ -101,7 +101,11 @@ def count_guess(plan: CapturePlan, n: int, max_period_s: float) -> CapturePlan:
 
 
 def _fit_for(plan: CapturePlan, n: int, max_period_s: float, max_time_s: float):
-    """One Earth/Sun fit covering every epoch the free coasts allow (None if not needed)."""
+    """One Earth/Sun fit covering every epoch the free coasts allow (None if not needed).
+
+    Only full dynamics need one: two-body and J2 use no ephemeris, so neither the span
+    check nor a fit applies to them (see :func:`_without_fit`).
+    """
     if plan.dynamics != "full":
         return None
     t0 = plan.nominal_perilunes_s[0]
@@ -113,6 +117,25 @@ def _fit_for(plan: CapturePlan, n: int, max_period_s: float, max_time_s: float):
                          f"--max-days or --max-period-h")
     return ChebyshevFit.fit(plan_ephemeris(plan.ephemeris), t0 - FIT_MARGIN_S, t0 + span
                             - FIT_MARGIN_S)
+
+
+def _without_fit(sol):
+    """``sol`` with its problem's ephemeris fit dropped (two-body and J2 dynamics).
+
+    :func:`lunarcap.runs.chain.solve_plan` builds every burn with a fit of its own orbit
+    (unused outside full dynamics); :func:`lunarcap.optim.joint.solve_joint` keeps a warm
+    start's fit for each leg when it is given none, and the propagation then checks the
+    optimised legs' epochs against that window. Free coasts shortened by a binding
+    ``max_time_s`` move the epochs out of it ("propagation leaves the ephemeris-fit
+    window"), although no ephemeris is used. Without a fit, each leg gets its own.
+    """
+    from dataclasses import replace
+
+    prob = sol.raw.prob
+    if prob.model.fit is None:
+        return sol
+    return replace(sol, raw=replace(sol.raw, prob=replace(
+        prob, model=replace(prob.model, fit=None))))
 
 
 def _burn_rows(plan: CapturePlan, legs: list, imps: list | None) -> list[dict]:
@@ -171,6 +194,8 @@ def solve_count(plan: CapturePlan, n: int, max_period_s: float, max_time_s: floa
     eph = plan_ephemeris(plan.ephemeris)
     try:
         seq = solve_plan(guess, verbose=verbose)
+        if plan.dynamics != "full":
+            seq = [_without_fit(sol) for sol in seq]
         lo = circle_period_s(plan.perilune_radius_km) + MIN_PERIOD_MARGIN_S
         res = solve_joint(guess, seq, eph, free_coasts=(True,) * (n - 1) + (False,),
                           coast_bounds_s=(lo, max_period_s), max_time_s=max_time_s, fit=fit)

@@ -80,3 +80,16 @@ def test_a_count_with_no_plan_is_infeasible_not_an_error():
     r = count_result(_plan(150.0), 2, max_period_h=circle_period_s(1838.2) / 3600.0,
                      impulsive=False)
     assert r["status"] == "infeasible" and "no room" in r["reason"]
+
+
+@pytest.mark.parametrize("dynamics", ["two-body", "j2"])
+def test_a_binding_time_limit_needs_no_ephemeris_fit_outside_full_dynamics(dynamics):
+    # 3 burns within 0.3 days (7.2 h): the equal-share guess (periods of ~9 and ~3.5 h)
+    # ends later, so the time limit binds and the optimum's epochs leave the fit windows
+    # the guess's burns were solved with; two-body and J2 use no ephemeris and must not
+    # check one (was status "error": "propagation leaves the ephemeris-fit window")
+    plan = _plan(150.0).with_dynamics(dynamics)
+    r = count_result(plan, 3, max_days=0.3, impulsive=False)
+    assert r["status"] == "ok", r["reason"]
+    assert r["all_verified"]
+    assert r["time_to_final_orbit_h"] == pytest.approx(0.3 * 24.0, abs=1e-3)
