@@ -93,3 +93,13 @@ def test_a_binding_time_limit_needs_no_ephemeris_fit_outside_full_dynamics(dynam
     assert r["status"] == "ok", r["reason"]
     assert r["all_verified"]
     assert r["time_to_final_orbit_h"] == pytest.approx(0.3 * 24.0, abs=1e-3)
+
+
+def test_an_optimum_that_is_no_plan_is_a_status_not_an_exception():
+    # 4 burns within 0.29 days in two-body: IPOPT converges with both last periods at the
+    # shortest allowed (the circle's + 1 min), so burn 3 does nothing and the optimum's
+    # plan is refused by the plan check (a PlanError that escaped solve_count before)
+    r = count_result(_plan(150.0), 4, max_days=0.29, impulsive=False)
+    assert r["status"] == "infeasible"
+    assert r["reason"].startswith("burn 3 vanishes at the optimum"), r["reason"]
+    assert "4 burns do no better than 3" in r["reason"]
