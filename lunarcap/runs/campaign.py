@@ -417,6 +417,40 @@ def append_rows(path: str | os.PathLike, rows: list[dict], columns) -> None:
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp's 0600 would hide the table
 
 
+def replace_case_rows(path: str | os.PathLike, rows: list[dict], fmt: TableFormat,
+                      version: str) -> None:
+    """Write a recomputed case's rows in place of its earlier rows of ``version``.
+
+    The rows of every other case (and this case's rows of other code versions) are kept
+    as written; the new rows go at the end. Atomic, as :func:`append_rows`. Without this,
+    ``--no-cache`` (compute every case again) after an interrupted run appended a second
+    row for each case the first run had finished.
+    """
+    path = Path(path)
+    old = pd.read_csv(path, dtype=str, keep_default_na=False) if path.exists() and \
+        path.stat().st_size else pd.DataFrame(columns=list(fmt.columns), dtype=str)
+    key = rows[0]
+    same = pd.Series(True, index=old.index)
+    for k in fmt.key:
+        same &= old[k].map(lambda text, v=key[k]: _key_text(text, v)) == _key_text(key[k], key[k])
+    same &= old["code_version"] == version
+    text = pd.concat([old[~same].reindex(columns=list(fmt.columns)),
+                      pd.DataFrame(rows).reindex(columns=list(fmt.columns))])
+    with paths.atomic_path(path) as tmp:
+        tmp.write_bytes(text.to_csv(index=False).encode())
+        os.chmod(tmp, 0o666 & ~_umask())
+
+
+def _key_text(value, like) -> str:
+    """A key value as :meth:`TableFormat.case_key` writes it, read as the type of ``like``."""
+    if isinstance(like, (int, float)) and not isinstance(like, bool):
+        try:
+            return f"{float(value):.6g}"
+        except (TypeError, ValueError):
+            return str(value)
+    return str(value)
+
+
 def latest(table: pd.DataFrame, fmt: TableFormat, version: str) -> dict:
     """The rows of the last attempt at every case computed with ``version``.
 
@@ -519,7 +553,7 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
                     _compute(client, task, todo, fmt, version, path, counts, progress,
                              f"{desc} ({state['workers']} worker"
                              f"{'s' * (state['workers'] > 1)})", unit, ok_statuses,
-                             error_rows or _task_error_row)
+                             error_rows or _task_error_row, set(have))
         except KeyboardInterrupt:
             state["interrupted"] = True
             record()
@@ -531,8 +565,12 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
 
 
 def _compute(client, task, todo, fmt, version, path, counts, progress, desc, unit,
-             ok_statuses, error_rows) -> None:
-    """Submit one task per case; append each case's rows as its task completes."""
+             ok_statuses, error_rows, present=frozenset()) -> None:
+    """Submit one task per case; append each case's rows as its task completes.
+
+    ``present``: case keys with rows of ``version`` in the table already (a case
+    recomputed on request, or retried): their rows are replaced, not duplicated.
+    """
     from dask.distributed import as_completed
     from tqdm import tqdm
 
@@ -553,7 +591,11 @@ def _compute(client, task, todo, fmt, version, path, counts, progress, desc, uni
         rows = rows if isinstance(rows, list) else [rows]
         for row in rows:
             row["code_version"] = version  # the version this run scheduled under
-        append_rows(path, rows, fmt.columns)
+        ck = fmt.case_key(key)
+        if ck in present:
+            replace_case_rows(path, rows, fmt, version)
+        else:
+            append_rows(path, rows, fmt.columns)
         counts["computed"] += 1
         if any(row.get("status") not in ok_statuses for row in rows):
             counts["failed"] += 1
