@@ -208,7 +208,8 @@ def _print_totals(tot: dict) -> None:
           f"{tot['total_burn_duration_min']:.2f} min; fuel {tot['total_fuel_kg']:.3f} kg, final "
           f"mass {tot['final_mass_kg']:.3f} kg; final orbit {tot['final_rp_km']:.1f} x "
           f"{tot['final_ra_km']:.1f} km, {tot['final_inc_deg']:.4f} deg, reached "
-          f"{tot['final_perilune_epoch']} ({tot['time_to_final_orbit_h']:.2f} h after arrival)")
+          f"{tot['final_orbit_epoch']} (end of the last burn, {tot['time_to_final_orbit_h']:.2f} h "
+          f"after the arrival perilune)")
 
 
 def cmd_plan(args) -> int:

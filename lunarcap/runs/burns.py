@@ -50,7 +50,7 @@ from lunarcap.physics import constants as C
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.repro.cache import cached
-from lunarcap.runs.chain import impulsive_limit, solve_plan
+from lunarcap.runs.chain import impulsive_limit, solve_plan, time_to_final_orbit_h
 
 #: Longest intermediate period allowed by default, h (the paper's first ellipse: longer
 #: orbits are strongly perturbed by the Earth).
@@ -295,7 +295,7 @@ def _totals(res, imps: list | None) -> dict:
         fuel_kg=rows[0]["m_start_kg"] - rows[-1]["m_end_kg"],
         final_mass_kg=rows[-1]["m_end_kg"],
         total_burn_duration_min=sum(r["burn_duration_min"] for r in rows),
-        time_to_final_orbit_h=(last.problem.t_ign_s + last.raw.t1_s - t0) / 3600.0,
+        time_to_final_orbit_h=time_to_final_orbit_h(t0, last),
         all_verified=all(r["verified"] for r in rows),
         ipopt_status=res.ipopt_status, iterations=res.iterations, nlp_solve_s=res.solve_s)
 
