@@ -10,6 +10,9 @@ attempt. A converged IPOPT status alone is never accepted.
 from __future__ import annotations
 
 import time
+from dataclasses import replace
+
+import numpy as np
 
 from lunarcap.errors import SolveError
 from lunarcap.optim.collocation import DEFAULT_MESHES
@@ -39,6 +42,48 @@ def solve_burn(prob: BurnProblem, meshes=DEFAULT_MESHES, guess=None, progress=No
         If no mesh gives a converged, verified solution.
     """
     t0 = time.perf_counter()
+    try:
+        return _solve_on_meshes(prob, meshes, guess, progress, t0)
+    except SolveError as exc:
+        wider = widened(prob)
+        if wider is None:
+            raise
+        if progress:
+            progress(f"  ignition window widened to {wider.start_bounds_min[0]:+.1f} .. "
+                     f"{wider.start_bounds_min[1]:+.1f} min")
+        try:
+            return _solve_on_meshes(wider, meshes[:1], None, progress, t0)
+        except SolveError:
+            raise exc from None
+
+
+def widened(prob: BurnProblem) -> BurnProblem | None:
+    """The problem of an ellipse as asked with a wider free-ignition window, or None.
+
+    The second try of :func:`solve_burn`: three times as early and twice as late as the
+    window that failed, within 120 min and 0.4 of the orbit the burn starts on. IPOPT's
+    path depends on the bounds: a capture whose next perilune the Earth lowers by 19 km
+    failed in +-30 min (its iterates stalled at the early bound) and was solved in -100 ..
+    +60 min, igniting at -6.4 min. The paper's formulation never gets here with a different
+    answer: its solves that succeed never reach this second try.
+    """
+    if not (prob.free_start and prob.target.free_epoch):
+        return None
+    lo, hi = prob.start_bounds_min
+    x = prob.x_ref
+    e2 = x[1] ** 2 + x[2] ** 2
+    lim = 120.0
+    if e2 < 1:
+        a = x[0] / (1 - e2)
+        lim = min(lim, 0.4 * 2 * np.pi * np.sqrt(a ** 3 / prob.model.mu) / 60.0)
+    new = (max(3.0 * lo, -lim), min(2.0 * hi, lim))
+    if not (new[0] < lo or new[1] > hi):
+        return None
+    return replace(prob, start_bounds_min=new)
+
+
+def _solve_on_meshes(prob: BurnProblem, meshes, guess, progress, t0: float) -> Solution:
+    """The mesh loop of :func:`solve_burn` (see there)."""
     guess = guess or make_guess(prob)
     attempts = []
     for mesh in meshes:
