@@ -390,7 +390,7 @@ def _check_a() -> list[Finding]:
     return [Finding(
         "sun-gm", "a", _where("mu_sun_km3s2"), "gravitational parameter of the Sun",
         p, c, "km³/s²", _half("mu_sun_km3s2") + 0.5,
-        f"IAU 2009 / DE405 value {c:,.0f} km³/s² (lunarcap.physics.constants.MU_SUN). "
+        f"DE405 value (Standish 1998) {c:,.0f} km³/s² (lunarcap.physics.constants.MU_SUN). "
         f"The printed value is {ratio:.9f} times too small. {tcb_note}",
         extra={"ratio_correct_over_printed": ratio, "tcb_value": tcb,
                "rel_diff_10x_printed_vs_tcb": rel_tcb})]
