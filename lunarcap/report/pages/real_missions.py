@@ -158,7 +158,8 @@ SOURCES = {
            "1,984.0 kg.",
     "S13": "Y.-J. Song, J. Bae, Y.-R. Kim, B.-Y. Kim (KARI), \"Early Phase Contingency "
            "Trajectory Design for the Failure of the First Lunar Orbit Insertion Maneuver: "
-           "Direct Recovery Options\", Journal of Astronomy and Space Sciences 34, 331 (2017). "
+           "Direct Recovery Options\", Journal of Astronomy and Space Sciences 34(4), 331 (2017) "
+           "{cite:p}`song2017`. "
            "<https://janss.kr/archive/view_article?pid=jass-34-331>; Table 2, \"Expected event "
            "sequences and associated values for the nominal LOA phase\", "
            "<http://www.janss.kr/download/download_excel?pid=jass-34-331&tid=T2>. KPLO launch "
@@ -202,9 +203,22 @@ def source_keys(text: str) -> list[str]:
     return re.findall(r"\bS\d+", text)
 
 
+def explicit_links(text: str) -> str:
+    """Autolinks ``<https://...>`` written as ``[https://...](https://...)``.
+
+    MyST escapes the ``&`` of an autolink's address twice when the text reaches the page
+    through glue (``&amp;amp;`` in the ``href``: a broken link); an explicit link is
+    escaped once.
+
+    >>> explicit_links("see <http://a.org/x?b=1&c=2>.")
+    'see [http://a.org/x?b=1&c=2](http://a.org/x?b=1&c=2).'
+    """
+    return re.sub(r"<(https?://[^>\s]+)>", r"[\1](\1)", text)
+
+
 def sources_markdown() -> str:
     """The source list as a MyST definition list (keys in order, then what was not found)."""
-    items = [f"{k}\n: {v}" for k, v in SOURCES.items()]
+    items = [f"{k}\n: {explicit_links(v)}" for k, v in SOURCES.items()]
     items.append(f"Not found\n: {NOT_FOUND}")
     return "\n\n".join(items)
 
@@ -337,7 +351,7 @@ def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
                  "LOI, KPLO's and ours (our verified chain, "
                  f"{engines[0][0]:g} N / {engines[0][1]:g} s, {dynamics} dynamics; nearly the "
                  "same for every engine, since the orbits are targets), ours − KPLO in m/s; "
-                 "impulsive ΔV of each LOI (m/s), KPLO's and the paper's (Song et al. 2009c, "
+                 "impulsive ΔV of each LOI (m/s), KPLO's and the paper's ({cite:t}`song2009c`, "
                  "printed in Tables 1–5), KPLO − paper (m/s)."),
         columns={"point": "point", "kplo_speed_kmps": "speed, KPLO (km/s)",
                  "our_speed_kmps": "speed, ours (km/s)",
