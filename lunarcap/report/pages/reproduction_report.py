@@ -27,6 +27,7 @@ from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.report import figdata
 from lunarcap.report import reproduction as rep
+from lunarcap.report.display import verdict
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.runs import sweeps as runs_sweeps
@@ -83,7 +84,7 @@ def tables_shown(long: pd.DataFrame) -> pd.DataFrame:
         "paper": long.paper, "ours": long.ours, "difference": long.difference,
         "best": np.select([long.paper_best & long.ours_best, long.paper_best, long.ours_best],
                           ["both", "paper", "ours"], ""),
-        "verified": np.where(long.verified, "yes", "no")})
+        "verified": long.verified.map(verdict)})
 
 
 def tables_summary(main: pd.DataFrame) -> pd.DataFrame:
@@ -132,9 +133,9 @@ def _part_a(page: Page, engines, dynamics: str, output_name: str):
                  f"this run: {rng}). Start: ignition, min from the nominal perilune "
                  "(negative: before). Quantities: burn duration (min), finite-burn delta-V "
                  "(m/s), its excess over the paper's impulsive delta-V in % of the latter, "
-                 "and, last, the impulsive delta-V the paper prints in every table (from Song "
-                 "et al. 2009c) against our two-body impulsive sequence; ours − paper in the "
-                 "same unit. Best: the row the paper marks best, our smallest delta-V among "
+                 "and, last, the impulsive delta-V the paper prints in every table (from "
+                 "{cite:t}`song2009c`) against our two-body impulsive sequence; ours − paper "
+                 "in the same unit. Best: the row the paper marks best, our smallest delta-V among "
                  f"the paper's offsets, or both. {dynamics} dynamics. {gate} All columns "
                  f"(engine, LOI, flags): {_link(f'{output_name}_tables_data')}."),
         columns={"source": "source", "quantity": "quantity", "paper": "paper", "ours": "ours",
