@@ -430,8 +430,9 @@ def prepare_for_book(nb, title: str) -> None:
       block lists the parameters of the run);
     * the ``parameters`` cell is folded (``hide-cell``);
     * every other code cell without a display tag gets ``hide-input``: readers see the
-      tables and figures, the code is one click away. Tag a cell ``show-input`` to keep
-      its code visible.
+      tables and figures, the code is one click away; a cell that only shows the page's
+      items (:func:`only_shows`) gets ``remove-input``, no toggle in the results. Tag a
+      cell ``show-input`` to keep its code visible.
     """
     import nbformat
 
@@ -453,8 +454,21 @@ def prepare_for_book(nb, title: str) -> None:
         elif "parameters" in tags and not _DISPLAY_TAGS & set(tags):
             tags.append("hide-cell")
         elif not _DISPLAY_TAGS & set(tags):
-            tags.append("hide-input")
+            tags.append("remove-input" if only_shows(cell.source) else "hide-input")
         cell.metadata["tags"] = tags
+
+
+#: A line that only shows an item of the page (``page.show("dv")``, ``page.glue()``...).
+_SHOW_LINE = re.compile(r"^\s*(#.*|page\.(show|glue|check)\(.*\);?\s*(#.*)?)?$")
+
+
+def only_shows(source: str) -> bool:
+    r"""Whether a code cell only shows the page's items (no toggle: nothing to read).
+
+    >>> only_shows('page.show("dv")\npage.show("duration");'), only_shows("x = 1")
+    (True, False)
+    """
+    return all(_SHOW_LINE.match(line) for line in source.splitlines())
 
 
 #: Heading of the section at the end of each page that holds its provenance and set-up code.

@@ -228,6 +228,7 @@ def test_prepare_for_book_puts_results_before_the_setup():
     assert order[4].startswith(book.SETUP_HEADING)          # then the set-up, headed
     assert order[5:] == [src[1], src[2], src[3]]
     assert nb.cells[-1].metadata["tags"] == ["hide-input"]  # the build call stays folded
+    assert nb.cells[1].metadata["tags"] == ["remove-input"]  # a show cell: no toggle
 
 
 def test_stamp_changes_with_parameters_and_detects_missing_outputs(nbdir, tmp_path, monkeypatch):
