@@ -691,7 +691,7 @@ def plot_mesh_convergence(mesh, tol_dv_mps: float, default_points: int):
 
 # ======================================================== free-ignition page
 def plot_free_ignition_rule(rule):
-    """Optimal ignition against the Eq. (19)/2 rule (left) and the residual (right).
+    """Optimal ignition against the Eq. (19)/2 rule (top) and the residual (bottom).
 
     Parameters
     ----------

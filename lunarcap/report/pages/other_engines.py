@@ -204,9 +204,9 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
     page.figure(
         "loss_figure",
         figures.plot_engine_loss(totals, loss_col, f"total ΔV loss vs {ref_short} (m/s)"),
-        caption=("Left: total ΔV loss of the capture (m/s) above "
+        caption=("Top: total ΔV loss of the capture (m/s) above "
                  + (REF_OURS if model_loss else REF_PAPER)
-                 + f". Right: propellant of LOI 1–3 (kg). Both against thrust (N), ignition "
+                 + f". Bottom: propellant of LOI 1–3 (kg). Both against thrust (N), ignition "
                  f"{ignition}; colours: specific impulse; diamonds: the engines cited in Sec. "
                  "3.1, circles: the paper's."),
         alt="Total delta-V loss and propellant against thrust for each engine", name="loss")

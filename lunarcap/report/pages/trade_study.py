@@ -202,9 +202,10 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
         "duration", figures.plot_trade_study_duration(
             loi_ok, spec.isp_s, {p: PART_TITLES[p] for p in study.PARTS[:3]},
             newton_per_ratio),
-        caption=("Top: optimal burn duration divided by the Eq. (19) estimate (from the "
+        caption=("One row per burn. Left: optimal burn duration divided by the Eq. (19) "
+                 "estimate (from the "
                  "two-body impulsive ΔV and the mass at ignition), against the thrust-to-weight "
-                 "ratio T/(m₀ g₀) (thrust in N on the top axis). Bottom: optimal ignition "
+                 "ratio T/(m₀ g₀) (thrust in N on the top axis). Right: optimal ignition "
                  "offset from the nominal perilune (negative: before) divided by the Eq. (19) "
                  "duration; the paper's rule of thumb is to ignite half the estimated duration "
                  "before perilune (−½). Both ratios are dimensionless."),
