@@ -203,22 +203,9 @@ def source_keys(text: str) -> list[str]:
     return re.findall(r"\bS\d+", text)
 
 
-def explicit_links(text: str) -> str:
-    """Autolinks ``<https://...>`` written as ``[https://...](https://...)``.
-
-    MyST escapes the ``&`` of an autolink's address twice when the text reaches the page
-    through glue (``&amp;amp;`` in the ``href``: a broken link); an explicit link is
-    escaped once.
-
-    >>> explicit_links("see <http://a.org/x?b=1&c=2>.")
-    'see [http://a.org/x?b=1&c=2](http://a.org/x?b=1&c=2).'
-    """
-    return re.sub(r"<(https?://[^>\s]+)>", r"[\1](\1)", text)
-
-
 def sources_markdown() -> str:
     """The source list as a MyST definition list (keys in order, then what was not found)."""
-    items = [f"{k}\n: {explicit_links(v)}" for k, v in SOURCES.items()]
+    items = [f"{k}\n: {v}" for k, v in SOURCES.items()]
     items.append(f"Not found\n: {NOT_FOUND}")
     return "\n\n".join(items)
 
