@@ -19,10 +19,21 @@
     return el.scrollWidth > el.clientWidth + 1;
   }
 
+  // a cell that holds a number (digits, signs, separators, a unit or two): it never
+  // breaks, even in a table whose text cells may (lc-wrap)
+  var NUMBER = /^[\s\u2212+\-]*[\d.,\u2009]+[\d.,\s%\u00b3\u00b2a-zA-Z\/\u2212+\-]{0,12}$/;
+
+  function markNumbers(table) {
+    table.querySelectorAll("td").forEach(function (td) {
+      if (NUMBER.test(td.textContent.trim())) td.classList.add("lc-num");
+    });
+  }
+
   function fitTables() {
     document.querySelectorAll("table.table").forEach(function (table) {
       var box = table.closest(".pst-scrollable-table-container") || table.parentElement;
       table.classList.remove("lc-tight", "lc-wrap");
+      markNumbers(table);
       if (overflows(box)) table.classList.add("lc-tight");
       if (overflows(box)) table.classList.add("lc-wrap");
     });
@@ -63,7 +74,41 @@
   config.startup.pageReady = function () {
     return window.MathJax.startup.defaultPageReady().then(fit);
   };
+  // The search page's summaries are cut from each page's text, where a formula is still
+  // its TeX source (\(\Delta V\), \begin{aligned} ...): shown as plain text instead.
+  var SYMBOLS = {Delta: "Δ", delta: "δ", mu: "μ", omega: "ω", Omega: "Ω", alpha: "α",
+                 beta: "β", gamma: "γ", nu: "ν", theta: "θ", pi: "π", sum: "Σ", le: "≤",
+                 ge: "≥", leq: "≤", geq: "≥", times: "×", cdot: "·", mp: "∓", pm: "±",
+                 infty: "∞", approx: "≈", lVert: "‖", rVert: "‖", imath: "i", sqrt: "√",
+                 partial: "∂", quad: " ", qquad: " "};
+
+  function plainTex(s) {
+    return s.replace(/\\[()\[\]]/g, "")
+      .replace(/\\(begin|end|tag|label)\{[^{}]*\}/g, " ")
+      .replace(/\\\\/g, " ")
+      .replace(/\\([A-Za-z]+)/g, function (m, name) {
+        return SYMBOLS[name] !== undefined ? SYMBOLS[name] : "";
+      })
+      .replace(/[{}&]/g, "")
+      .replace(/\s+/g, " ");
+  }
+
+  function plainSearchSummaries() {
+    var box = document.getElementById("search-results");
+    if (!box || !window.MutationObserver) return;
+    var clean = function () {
+      box.querySelectorAll("p.context").forEach(function (p) {
+        if (p.dataset.lcPlain) return;
+        p.dataset.lcPlain = "1";
+        var walk = document.createTreeWalker(p, NodeFilter.SHOW_TEXT);
+        for (var n = walk.nextNode(); n; n = walk.nextNode()) n.nodeValue = plainTex(n.nodeValue);
+      });
+    };
+    new MutationObserver(clean).observe(box, {childList: true, subtree: true});
+  }
+
   document.addEventListener("DOMContentLoaded", function () {
+    plainSearchSummaries();
     fit();
     if (document.fonts && document.fonts.ready) document.fonts.ready.then(fit);
   });

@@ -15,9 +15,10 @@ MU_EARTH = 398600.441
 
 #: Gravitational parameter of the Sun, km^3/s^2.
 #: Song 2011 (Sec. 3.1) prints 13,271,244,207.6 km^3/s^2, which is ten times too
-#: small. The correct value 1.32712440018e11 km^3/s^2 is the IAU 2009 / JPL value
-#: (Luzum et al. 2011, Celest. Mech. Dyn. Astr. 110, 293; DE405 gives
-#: GMS = 2.959122082855911e-4 AU^3/day^2, i.e. 1.32712440018e11 km^3/s^2).
+#: small. The value used, 1.32712440018e11 km^3/s^2, is DE405's (Standish 1998, JPL IOM
+#: 312.F-98-048: GMS = 2.959122082855911e-4 AU^3/day^2), consistent with the ephemeris
+#: the dynamics read; it is not the IAU 2009 value (Luzum et al. 2011, Celest. Mech. Dyn.
+#: Astr. 110, 293: 1.32712442099e11 km^3/s^2, TCB-compatible).
 MU_SUN = 1.32712440018e11
 
 #: The Sun's gravitational parameter as printed in Song 2011 (erroneous, kept only

@@ -424,12 +424,15 @@ def prepare_for_book(nb, title: str) -> None:
     """Adapt an executed notebook for its page (in place).
 
     * ``# title`` (the manifest's) becomes the first heading, replacing the source's H1;
+    * the set-up (parameters, build call, provenance) moves to the end of the page, after
+      the results (:func:`move_setup_to_end`);
     * papermill's ``injected-parameters`` cell is removed from the page (the provenance
       block lists the parameters of the run);
     * the ``parameters`` cell is folded (``hide-cell``);
     * every other code cell without a display tag gets ``hide-input``: readers see the
-      tables and figures, the code is one click away. Tag a cell ``show-input`` to keep
-      its code visible.
+      tables and figures, the code is one click away; a cell that only shows the page's
+      items (:func:`only_shows`) gets ``remove-input``, no toggle in the results. Tag a
+      cell ``show-input`` to keep its code visible.
     """
     import nbformat
 
@@ -441,6 +444,7 @@ def prepare_for_book(nb, title: str) -> None:
                 break
         nb.cells.insert(0, nbformat.v4.new_markdown_cell(f"# {title}"))
         break
+    move_setup_to_end(nb)
     for cell in nb.cells:
         if cell.cell_type != "code":
             continue
@@ -450,8 +454,51 @@ def prepare_for_book(nb, title: str) -> None:
         elif "parameters" in tags and not _DISPLAY_TAGS & set(tags):
             tags.append("hide-cell")
         elif not _DISPLAY_TAGS & set(tags):
-            tags.append("hide-input")
+            tags.append("remove-input" if only_shows(cell.source) else "hide-input")
         cell.metadata["tags"] = tags
+
+
+#: A line that only shows an item of the page (``page.show("dv")``, ``page.glue()``...).
+_SHOW_LINE = re.compile(r"^\s*(#.*|page\.(show|glue|check)\(.*\);?\s*(#.*)?)?$")
+
+
+def only_shows(source: str) -> bool:
+    r"""Whether a code cell only shows the page's items (no toggle: nothing to read).
+
+    >>> only_shows('page.show("dv")\npage.show("duration");'), only_shows("x = 1")
+    (True, False)
+    """
+    return all(_SHOW_LINE.match(line) for line in source.splitlines())
+
+
+#: Heading of the section at the end of each page that holds its provenance and set-up code.
+SETUP_HEADING = "## How this page was made"
+
+
+def move_setup_to_end(nb) -> None:
+    """Move a page's set-up to its end, so its results come first (in place).
+
+    The set-up is the run of cells from the ``parameters`` cell to the first cell that
+    shows the provenance (``.header(``, papermill's ``injected-parameters`` cell and the
+    page's build call among them); it goes under :data:`SETUP_HEADING` at the end. The
+    notebook was executed already, so the order of its cells is only the page's.
+    """
+    import nbformat
+
+    cells = nb.cells
+    start = next((i for i, c in enumerate(cells)
+                  if "parameters" in c.get("metadata", {}).get("tags", [])), None)
+    if start is None:
+        return
+    end = next((i for i in range(start, len(cells)) if cells[i].cell_type == "code"
+                and ".header(" in cells[i].source), None)
+    if end is None:
+        return
+    setup = cells[start:end + 1]
+    intro = nbformat.v4.new_markdown_cell(
+        f"{SETUP_HEADING}\n\nThe provenance of this page (code, environment, ephemeris, "
+        "notebook and parameters), then the parameters and the code that computed it.")
+    nb.cells = cells[:start] + cells[end + 1:] + [intro] + setup
 
 
 # ====================================================================== interruption

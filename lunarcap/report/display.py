@@ -28,6 +28,17 @@ from lunarcap.repro import paths
 PAPER_CITATION = "Song et al. (2011)"
 #: Class of the paper's tables and figures, which lunarcap.report.sphinx_ext leaves unnumbered.
 PAPER_CLASS = "lc-paper"
+#: The one wording of a verification's outcome on every page (never yes/no or True/False).
+PASSED, FAILED = "passed", "failed"
+
+
+def verdict(ok) -> str:
+    """The book's word for a verification outcome.
+
+    >>> verdict(True), verdict(False)
+    ('passed', 'failed')
+    """
+    return PASSED if bool(ok) else FAILED
 
 
 def markdown_table(df, floatfmt: str | dict = ".3f") -> str:
@@ -40,6 +51,8 @@ def markdown_table(df, floatfmt: str | dict = ".3f") -> str:
         Format of float cells, one for all columns or per column name.
     """
     def fmt(col, v):
+        if isinstance(v, (bool, np.bool_)):
+            return verdict(v)
         if isinstance(v, (float, np.floating)):
             if not np.isfinite(v):
                 return "—" if np.isnan(v) else ("∞" if v > 0 else "−∞")

@@ -23,6 +23,20 @@ if TYPE_CHECKING:  # data types, for annotations only
 # Reproducible SVG output (no random ids, no date).
 matplotlib.rcParams["svg.hashsalt"] = "lunarcap"
 
+#: Width of every figure, inches: the book's text column at 1280 and 1024 px is about 700
+#: CSS px, so a figure of this width (96 CSS px per inch) is shown at about its natural
+#: size and a font of :data:`MIN_FONT_PT` reads at 9 px or more (``make screenshots``
+#: fails on a figure shown below 80 % of its natural width).
+FIG_WIDTH_IN = 6.8
+#: Smallest font of any figure text, pt (tests/report/test_figures.py checks every text).
+MIN_FONT_PT = 9.0
+matplotlib.rcParams.update({"font.size": 10, "axes.titlesize": 10, "axes.labelsize": 10,
+                            "xtick.labelsize": 9, "ytick.labelsize": 9,
+                            "legend.fontsize": 9, "figure.titlesize": 11})
+
+#: One marker per specific impulse (with one colour each), so curves differ in grey too.
+ISP_MARKERS = ("o", "s", "^", "D", "v", "P")
+
 
 # =============================================================================== Fig. 1
 def _text_align(vec) -> dict:
@@ -214,7 +228,7 @@ def plot_fig2_capture(geo: CaptureGeometry, figsize=None):
     ax.set_xlabel(_PLANE_XLABEL)
     ax.set_ylabel(_PLANE_YLABEL)
     ax.grid(alpha=0.3)
-    ax.legend(loc="lower right", fontsize=8.5, framealpha=0.9)
+    ax.legend(loc="lower right", fontsize=9.5, framealpha=0.9)
     return fig
 
 
@@ -286,7 +300,7 @@ def plot_fig3_burn_arcs(geo: CaptureGeometry, figsize=(7.0, 10.0)):
     ax.set_xlabel(_PLANE_XLABEL)
     ax.set_ylabel(_PLANE_YLABEL)
     ax.grid(alpha=0.3)
-    ax.legend(loc="lower right", fontsize=8, framealpha=0.9)
+    ax.legend(loc="lower right", fontsize=9, framealpha=0.9)
     ax.set_title("(a) zoom on the burn arcs (● ignition, ■ cutoff)", fontsize=10, loc="left")
 
     # (b) altitude vs angle from each pass's perilune (data: CaptureGeometry.pass_profiles)
@@ -309,7 +323,7 @@ def plot_fig3_burn_arcs(geo: CaptureGeometry, figsize=(7.0, 10.0)):
     ax2.set_xlabel("angle in the orbit plane from the pass's perilune (deg)")
     ax2.set_ylabel("altitude (km)")
     ax2.grid(alpha=0.3)
-    ax2.legend(loc="upper center", fontsize=8.5, framealpha=0.9)
+    ax2.legend(loc="upper center", fontsize=9.5, framealpha=0.9)
     ax2.set_title("(b) altitude along each perilune pass (dashed: coasting)", fontsize=10,
                   loc="left")
     return fig
@@ -343,7 +357,7 @@ def plot_fig4_steering(d: Fig4Steering, paper_alpha_deg=None, paper_mass_end_kg=
         axs[0].plot([t[0], t_end], paper_alpha_deg, "D", color="black", ms=6, mfc="none",
                     label="paper: start and end values (Sec. 3.3)")
     axs[0].set_ylabel("in-plane angle α (deg)")
-    axs[0].legend(loc="upper left", fontsize=8.5)
+    axs[0].legend(loc="upper left", fontsize=9.5)
     axs[1].plot(t, d.beta_deg, color="tab:orange", lw=1.8)
     lim = max(0.5, 1.3 * float(np.abs(d.beta_deg).max()))
     axs[1].set_ylim(-lim, lim)
@@ -353,14 +367,14 @@ def plot_fig4_steering(d: Fig4Steering, paper_alpha_deg=None, paper_mass_end_kg=
     if paper_mass_end_kg is not None:
         axs[2].plot([t_end], [paper_mass_end_kg], "D", color="black", ms=6, mfc="none",
                     label=f"paper: {paper_mass_end_kg:g} kg after burn {d.burn} (Sec. 3.2.1)")
-        axs[2].legend(loc="upper right", fontsize=8.5)
+        axs[2].legend(loc="upper right", fontsize=9.5)
     axs[2].set_ylabel("mass (kg)")
     axs[2].set_xlabel(f"time from burn {d.burn} ignition (min)")
     for ax in axs:
         ax.grid(alpha=0.3)
         if t[0] <= d.perilune_min <= t[-1]:
             ax.axvline(d.perilune_min, color="0.4", lw=0.9, ls="--")
-    axs[0].text(d.perilune_min, 0.04, " nominal perilune", fontsize=8, va="bottom",
+    axs[0].text(d.perilune_min, 0.04, " nominal perilune", fontsize=9, va="bottom",
                 ha="left", color="0.3", transform=axs[0].get_xaxis_transform())
     return fig
 
@@ -439,13 +453,13 @@ def plot_fig5_vectors(d: Fig5Vectors, geo: CaptureGeometry | None = None, figsiz
     ax.set_xlabel("x′: M-MME2000 equator, along the orbit's ascending node (km)")
     ax.set_ylabel("z: M-MME2000 pole (km)")
     ax.grid(alpha=0.3)
-    ax.legend(loc="lower right", fontsize=8, framealpha=0.9)
+    ax.legend(loc="lower right", fontsize=9, framealpha=0.9)
     ax.set_title(f"(a) burn {d.burn}: velocity (blue) and thrust acceleration (red), projected",
                  fontsize=10, loc="left")
     ax2.plot(d.t_min, d.angle_deg, color="black", lw=1.6)
     ax2.plot(d.t_min[i], d.angle_deg[i], "o", color="black", ms=3)
     ax2.axhline(90.0, color="tab:red", lw=0.8, ls=":")
-    ax2.text(d.t_min[0], 91.5, " 90°: above it the thrust slows the spacecraft", fontsize=8,
+    ax2.text(d.t_min[0], 91.5, " 90°: above it the thrust slows the spacecraft", fontsize=9,
              color="tab:red", va="bottom")
     ax2.set_ylim(80, 182)
     ax2.set_xlabel(f"time from burn {d.burn} ignition (min)")
@@ -487,7 +501,7 @@ def plot_sweep_dv(sweep, printed=None, printed_label: str = "paper"):
     ax.set_xlabel("ignition, min from the nominal perilune")
     ax.set_ylabel("ΔV (m/s)")
     ax.grid(alpha=0.3)
-    fig.legend(loc="outside lower center", ncols=2, fontsize=8, frameon=False)
+    fig.legend(loc="outside lower center", ncols=2, fontsize=9, frameon=False)
     return fig
 
 
@@ -497,8 +511,8 @@ def _trade_axes(ax, newton_per_ratio: float):
     ax.set_xscale("log")
     top = ax.secondary_xaxis("top", functions=(lambda r: np.asarray(r) * newton_per_ratio,
                                                lambda t: np.asarray(t) / newton_per_ratio))
-    top.set_xlabel("thrust (N)", fontsize=8)
-    top.tick_params(labelsize=8)
+    top.set_xlabel("thrust (N)", fontsize=9)
+    top.tick_params(labelsize=9)
     ax.grid(alpha=0.3, which="both")
 
 
@@ -529,22 +543,23 @@ def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict,
     matplotlib.figure.Figure
     """
     colours = _isp_colours(isp_s)
-    fig, axes = plt.subplots(2, 2, figsize=(10, 8), layout="constrained", sharex=True)
+    fig, axes = plt.subplots(2, 2, figsize=(FIG_WIDTH_IN, 8.2), layout="constrained",
+                             sharex=True)
     for ax, part in zip(axes.flat, part_titles):
-        for isp in isp_s:
+        for k, isp in enumerate(isp_s):
             d = ok[(ok.part == part) & (ok.isp_s == isp) & (ok.loss_percent > 0)]
             d = d.sort_values("thrust_to_weight")
-            ax.plot(d.thrust_to_weight, d.loss_percent, "o-", ms=3, color=colours[float(isp)],
-                    label=f"optimal, Isp {isp:g} s")
+            ax.plot(d.thrust_to_weight, d.loss_percent, "-", marker=ISP_MARKERS[k % 6], ms=4,
+                    lw=1.4, color=colours[float(isp)], label=f"optimal, Isp {isp:g} s")
             th = theory[(theory.part == part) & (theory.isp_s == isp)]
-            ax.plot(th.thrust_to_weight, th.loss_percent, "--", color=colours[float(isp)],
-                    lw=1, label=f"Robbins (1966), Isp {isp:g} s")
+            ax.plot(th.thrust_to_weight, th.loss_percent, ls=(0, (5, 2)),
+                    color=colours[float(isp)], lw=1.6, label=f"Robbins (1966), Isp {isp:g} s")
         for r in paper[paper.part == part].itertuples(index=False):
             ax.plot(r.thrust_to_weight, r.loss_percent, marker="*", ms=13, ls="none",
                     color=colours.get(float(r.isp_s), "black"), mec="black", mew=0.7)
             ax.annotate(f"{r.thrust_N:g} N / {r.isp_s:g} s",
                         (r.thrust_to_weight, r.loss_percent), xytext=(6, 3),
-                        textcoords="offset points", fontsize=7)
+                        textcoords="offset points", fontsize=9)
         _trade_axes(ax, newton_per_ratio)
         ax.set_yscale("log")
         ax.set_ylim(*ylim)
@@ -555,7 +570,7 @@ def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict,
     handles, labels = axes[0, 0].get_legend_handles_labels()
     handles.append(plt.Line2D([], [], marker="*", ms=11, ls="none", color="0.6", mec="black"))
     labels.append("paper, Table B1 (colour: its Isp)")
-    fig.legend(handles, labels, loc="outside lower center", ncol=3, fontsize=8)
+    fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=9)
     return fig
 
 
@@ -576,26 +591,28 @@ def plot_trade_study_duration(ok, isp_s, part_titles: dict, newton_per_ratio: fl
     """
     colours = _isp_colours(isp_s)
     parts = list(part_titles)
-    fig, axes = plt.subplots(2, len(parts), figsize=(11, 6.5), layout="constrained",
-                             sharex=True, squeeze=False)
-    for j, part in enumerate(parts):
-        for isp in isp_s:
+    fig, axes = plt.subplots(len(parts), 2, figsize=(FIG_WIDTH_IN, 2.6 * len(parts) + 0.8),
+                             layout="constrained", sharex=True, squeeze=False)
+    for i, part in enumerate(parts):
+        for k, isp in enumerate(isp_s):
             d = ok[(ok.part == part) & (ok.isp_s == isp)].sort_values("thrust_to_weight")
-            axes[0, j].plot(d.thrust_to_weight, d.burn_duration_min / d.eq19_duration_min,
-                            "o-", ms=3, color=colours[float(isp)], label=f"Isp {isp:g} s")
-            axes[1, j].plot(d.thrust_to_weight, d.start_min / d.eq19_duration_min, "o-",
-                            ms=3, color=colours[float(isp)], label=f"Isp {isp:g} s")
-        axes[0, j].axhline(1.0, color="0.4", ls="--", lw=1, label="Eq. (19)")
-        axes[1, j].axhline(-0.5, color="0.4", ls="--", lw=1,
-                           label="−½ Eq. (19) (paper's rule)")
-        axes[0, j].set_title(part_titles[part], fontsize=10)
-        for ax in axes[:, j]:
+            style = dict(marker=ISP_MARKERS[k % 6], ms=4, lw=1.4, color=colours[float(isp)],
+                         label=f"Isp {isp:g} s")
+            axes[i, 0].plot(d.thrust_to_weight, d.burn_duration_min / d.eq19_duration_min,
+                            **style)
+            axes[i, 1].plot(d.thrust_to_weight, d.start_min / d.eq19_duration_min, **style)
+        axes[i, 0].axhline(1.0, color="0.4", ls="--", lw=1, label="Eq. (19)")
+        axes[i, 1].axhline(-0.5, color="0.4", ls="--", lw=1, label="−½ Eq. (19) (the rule)")
+        axes[i, 0].set_title(f"{part_titles[part]}: duration", fontsize=10)
+        axes[i, 1].set_title(f"{part_titles[part]}: ignition", fontsize=10)
+        axes[i, 0].set_ylabel("optimal / Eq. (19)")
+        axes[i, 1].set_ylabel("offset / Eq. (19) duration")
+        for ax in axes[i]:
             _trade_axes(ax, newton_per_ratio)
-        axes[1, j].set_xlabel("thrust-to-weight ratio T / (m₀ g₀)")
-    axes[0, 0].set_ylabel("optimal duration / Eq. (19)")
-    axes[1, 0].set_ylabel("ignition offset / Eq. (19) duration")
-    axes[0, 0].legend(fontsize=8)
-    axes[1, 0].legend(fontsize=8)
+    for ax in axes[-1]:
+        ax.set_xlabel("T / (m₀ g₀)")
+    axes[0, 0].legend(fontsize=9)
+    axes[0, 1].legend(fontsize=9)
     return fig
 
 
@@ -614,7 +631,7 @@ def plot_summary_loss(chains: dict):
     matplotlib.figure.Figure
     """
     n = len(chains)
-    fig, axes = plt.subplots(1, n, figsize=(2.4 * n + 1.0, 3.6), sharey=True,
+    fig, axes = plt.subplots(1, n, figsize=(FIG_WIDTH_IN, 4.0), sharey=True,
                              layout="constrained", squeeze=False)
     w = 0.27
     for ax, (name, s) in zip(axes[0], chains.items()):
@@ -628,7 +645,7 @@ def plot_summary_loss(chains: dict):
         ax.grid(axis="y", alpha=0.3)
     axes[0][0].set_ylabel("ΔV loss (m/s)")
     fig.legend(*axes[0][0].get_legend_handles_labels(), loc="outside lower center",
-               ncols=3 if n >= 3 else 1, fontsize=8, frameon=False)
+               ncols=1, fontsize=9, frameon=False)
     return fig
 
 
@@ -668,13 +685,13 @@ def plot_mesh_convergence(mesh, tol_dv_mps: float, default_points: int):
     ax.set_xlabel("collocation points")
     ax.set_ylabel("|ΔV − ΔV on the finest mesh| (m/s)")
     ax.grid(alpha=0.3, which="both")
-    fig.legend(loc="outside lower center", ncols=2, fontsize=7, frameon=False)
+    fig.legend(loc="outside lower center", ncols=2, fontsize=9, frameon=False)
     return fig
 
 
 # ======================================================== free-ignition page
 def plot_free_ignition_rule(rule):
-    """Optimal ignition against the Eq. (19)/2 rule (left) and the residual (right).
+    """Optimal ignition against the Eq. (19)/2 rule (top) and the residual (bottom).
 
     Parameters
     ----------
@@ -687,7 +704,7 @@ def plot_free_ignition_rule(rule):
     matplotlib.figure.Figure
     """
     marks = {1: "o", 2: "s", 3: "^"}
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(9.6, 4.0), layout="constrained")
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(FIG_WIDTH_IN, 7.6), layout="constrained")
     for k, engine in enumerate(dict.fromkeys(rule.engine)):
         for r in rule[rule.engine == engine].itertuples():
             m = marks.get(int(r.burn), "D")
@@ -706,7 +723,7 @@ def plot_free_ignition_rule(rule):
     ax.set_xlabel("rule start, −Eq. (19) duration / 2 (min)")
     ax.set_ylabel("ignition (min from the nominal perilune)")
     ax.set_title("filled: free optimum; open: paper's best grid point", fontsize=9)
-    ax.legend(fontsize=7.5, loc="upper left")
+    ax.legend(fontsize=9.5, loc="upper left")
     ax.grid(alpha=0.3)
     bx.axhline(0, color="k", lw=0.8)
     bx.set_xlabel("Eq. (19) duration (min)")
@@ -735,7 +752,7 @@ def plot_steering_penalty(steer, engines: list, laws=("inertial", "antivelocity"
     """
     colours = {"inertial": "C0", "antivelocity": "C3"}
     n = len(engines)
-    fig, axes = plt.subplots(2, n, figsize=(3.3 * n + 0.8, 5.6), sharex=True, squeeze=False,
+    fig, axes = plt.subplots(2, n, figsize=(FIG_WIDTH_IN, 6.0), sharex=True, squeeze=False,
                              layout="constrained")
     w = 0.72 / len(laws)
     for j, eng in enumerate(engines):
@@ -752,7 +769,8 @@ def plot_steering_penalty(steer, engines: list, laws=("inertial", "antivelocity"
                         axes[1][j].annotate(f"rp {r.rp_miss_km:+.1f} km",
                                             (r.loi + off, r.objective_penalty_mps),
                                             xytext=(0, 2), textcoords="offset points",
-                                            ha="center", va="bottom", fontsize=7)
+                                            ha="center", va="bottom", fontsize=9,
+                                            rotation=90)
         axes[0][j].set_title(eng, fontsize=10)
         for ax in axes[:, j]:
             ax.axhline(0, color="k", lw=0.6)
@@ -762,7 +780,7 @@ def plot_steering_penalty(steer, engines: list, laws=("inertial", "antivelocity"
         axes[1][j].set_xticks(x, [f"LOI {i}" for i in x])
     axes[0][0].set_ylabel("ΔV penalty (m/s)")
     axes[1][0].set_ylabel("J penalty (m/s)")
-    axes[0][-1].legend(fontsize=8)
+    axes[0][-1].legend(fontsize=9)
     return fig
 
 
@@ -783,7 +801,8 @@ def plot_engine_loss(totals, loss_column: str, loss_label: str):
     matplotlib.figure.Figure
     """
     isp_colours = {200.0: "C0", 250.0: "C1", 300.0: "C2"}
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(9.6, 3.8), layout="constrained")
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(FIG_WIDTH_IN, 6.6), sharex=True,
+                                 layout="constrained")
     for r in totals.sort_values("thrust_N").itertuples():
         c = isp_colours.get(float(r.isp_s), "C7")
         cited = r.origin != "paper's engine"
@@ -791,15 +810,14 @@ def plot_engine_loss(totals, loss_column: str, loss_label: str):
             a.plot(r.thrust_N, y, "D" if cited else "o", color=c, ms=8,
                    mfc=c if cited else "white", mew=2)
             a.annotate(r.origin if cited else f"{r.thrust_N:g} N", (r.thrust_N, y),
-                       xytext=(6, 4), textcoords="offset points", fontsize=8)
+                       xytext=(6, 4), textcoords="offset points", fontsize=9)
     for isp, c in isp_colours.items():
         if isp in set(totals.isp_s.astype(float)):
             ax.plot([], [], "s", color=c, label=f"Isp {isp:g} s")
     ax.plot([], [], "o", color="0.4", mfc="white", mew=2, label="paper's engines")
     ax.plot([], [], "D", color="0.4", label="cited in Sec. 3.1")
-    ax.set_xlabel("thrust (N)")
     ax.set_ylabel(loss_label)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=9)
     bx.set_xlabel("thrust (N)")
     bx.set_ylabel("propellant, LOI 1–3 (kg)")
     for a in (ax, bx):
@@ -822,24 +840,26 @@ def plot_burn_count(counts):
     -------
     matplotlib.figure.Figure
     """
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(9.6, 3.8), layout="constrained")
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(FIG_WIDTH_IN, 6.4), sharex=True,
+                                 layout="constrained")
     for j, (label, g) in enumerate(counts.groupby("label", sort=False)):
         g = g.sort_values("n_burns")
         ok = g[g.status == "ok"]
         c = f"C{j}"
-        ax.plot(ok.n_burns, ok.total_loss_mps, "o-", color=c, label=label)
-        bx.plot(ok.n_burns, ok.time_to_final_orbit_h, "o-", color=c, label=label)
+        m = ISP_MARKERS[j % len(ISP_MARKERS)]
+        ax.plot(ok.n_burns, ok.total_loss_mps, "-", marker=m, color=c, label=label)
+        bx.plot(ok.n_burns, ok.time_to_final_orbit_h, "-", marker=m, color=c, label=label)
         bad = g[g.status != "ok"]
         for a in (ax, bx):
             a.plot(bad.n_burns, np.zeros(len(bad)), "x", color=c, ms=9, mew=2)
     ax.set_ylabel("total loss vs impulsive limit (m/s)")
     bx.set_ylabel("arrival perilune → end of last burn (h)")
+    bx.set_xlabel("number of burns")
     for a in (ax, bx):
-        a.set_xlabel("number of burns")
         a.grid(alpha=0.3)
         a.set_xticks(sorted(set(counts.n_burns.astype(int))))
     ax.plot([], [], "x", color="0.4", mew=2, label="no plan (infeasible or failed)")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=9)
     return fig
 
 

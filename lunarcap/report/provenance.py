@@ -123,11 +123,27 @@ def collect(ephemeris=None, solver: dict | None = None) -> dict:
     return rec
 
 
+#: What a parameter left at None means, as the book says it (never a bare "None").
+NONE_MEANS = {"dynamics": "each plan's own", "previous_starts": "the paper's best (Table B1)",
+              "starts": "the paper's best (Table B1)", "thrusts_N": "the paper's engines"}
+
+
+def format_value(name: str, v) -> str:
+    """One parameter's value as the book shows it: ``repr``, or what None means.
+
+    >>> format_value("dynamics", None), format_value("thrust_N", 150.0)
+    ("(each plan's own)", '150.0')
+    """
+    if v is None:
+        return f"({NONE_MEANS.get(name, 'default')})"
+    return repr(v)
+
+
 def format_parameters(parameters: dict | None) -> str:
-    """``a=1, b='x'`` from a parameter dict (in its order)."""
+    """``a=1, b='x'`` from a parameter dict (in its order; None as its meaning)."""
     if not parameters:
         return "(none)"
-    return ", ".join(f"{k}={v!r}" for k, v in parameters.items())
+    return ", ".join(f"{k}={format_value(k, v)}" for k, v in parameters.items())
 
 
 def source_note(notebook: str, parameters: dict | None = None) -> str:

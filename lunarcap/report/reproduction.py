@@ -170,7 +170,7 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
         out[n] = (per[2] / 60.0, note)
     out["mu_moon_km3s2"] = (C.MU_MOON, inp)
     out["mu_earth_km3s2"] = (C.MU_EARTH, inp)
-    out["mu_sun_km3s2"] = (C.MU_SUN, "corrected: IAU 2009 / DE405 value (the printed one "
+    out["mu_sun_km3s2"] = (C.MU_SUN, "corrected: DE405 value, Standish 1998 (the printed one "
                                      "is ten times too small)")
     out["r_moon_km"] = (C.R_MOON, inp)
     out["lunar_unit_km"] = (C.LU_KM, inp)

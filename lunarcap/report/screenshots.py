@@ -20,13 +20,20 @@ script
   text hidden behind a horizontal scroll bar; likewise every displayed math block
   (``div.math``) and the page itself,
 * notes (without failing) the code blocks of the prose that scroll sideways,
+* measures every figure (``img``) as shown against its natural size: the scale is the
+  shown width (CSS px) over the image's width at 96 CSS px per inch of the figure (its
+  pixels and the resolution in its PNG ``pHYs`` chunk, :func:`figure_scale`); a figure
+  shown below :data:`MIN_FIGURE_SCALE` of its natural width has its text shrunk below
+  the size it was drawn at (the book's figures use 9 pt or more, i.e. 9 px or more at
+  that scale),
 * counts the formulas left as raw TeX (a ``.math`` element without ``mjx-container``),
   the formulas MathJax could not typeset (``mjx-merror``) and every request the page
   made to another host (the book must need no network),
 
 prints one line per page and width, and exits with status 1 if any table or math block
-overflows, any formula is left untypeset or in error, any page scrolls sideways or any
-page asked for a remote resource; 2 on bad usage or when Chromium is missing; 0 otherwise.
+overflows, any figure is shown below :data:`MIN_FIGURE_SCALE` of its natural width, any
+formula is left untypeset or in error, any page scrolls sideways or any page asked for a
+remote resource; 2 on bad usage or when Chromium is missing; 0 otherwise.
 The measurements are also written to ``<out>/report.json`` (with, per table, whether the
 book's ``_static/lunarcap.js`` had to tighten it or let its words break: what is measured
 is the page as a reader sees it, after that script has run).
@@ -74,6 +81,10 @@ CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic
                   "--mute-audio", "--remote-debugging-pipe")
 #: Seconds to wait for one page to load and typeset.
 PAGE_TIMEOUT_S = 60.0
+#: A figure shown below this fraction of its natural width (96 CSS px per inch) fails.
+MIN_FIGURE_SCALE = 0.8
+#: CSS px per inch.
+CSS_PX_PER_IN = 96.0
 
 # Runs in the page: waits for MathJax and the fonts, then measures. Returns plain JSON.
 MEASURE_JS = r"""
@@ -129,8 +140,14 @@ MEASURE_JS = r"""
                      .map(m => m.textContent.trim().slice(0, 60));
   const texErrors = [...main.querySelectorAll('mjx-merror')]
                     .map(e => (e.getAttribute('data-mjx-error') || e.textContent).slice(0, 80));
+  await Promise.all([...main.querySelectorAll('img')].map(im => im.complete ? 0 :
+    new Promise(r => { im.addEventListener('load', r); im.addEventListener('error', r); })));
+  const images = [...main.querySelectorAll('img')].map((im, i) => ({
+    label: `figure ${i + 1}: ${im.alt || ''}`.replace(/\s+/g, ' ').trim().slice(0, 90),
+    src: im.currentSrc || im.src, naturalWidth: im.naturalWidth,
+    shownWidth: Math.round(im.getBoundingClientRect().width)}));
   const de = document.documentElement;
-  return {tables, math, code, nMath: allMath.length, rawTex: raw, texErrors,
+  return {tables, math, code, images, nMath: allMath.length, rawTex: raw, texErrors,
           pageScrollWidth: de.scrollWidth, pageClientWidth: de.clientWidth,
           height: Math.ceil(de.scrollHeight), title: document.title};
 })()
@@ -147,6 +164,56 @@ SETTLE_JS = r"""
   return Math.ceil(document.documentElement.scrollHeight);
 })()
 """
+
+
+def png_dpi(path: Path) -> float | None:
+    """The resolution a PNG records (its ``pHYs`` chunk), dots per inch; None if absent.
+
+    matplotlib writes the ``dpi`` a figure was saved at there.
+    """
+    import struct
+
+    try:
+        data = Path(path).read_bytes()
+    except OSError:
+        return None
+    pos = 8  # after the signature
+    while pos + 8 <= len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        if kind == b"pHYs" and length == 9:
+            ppu_x, _, unit = struct.unpack(">IIB", data[pos + 8:pos + 17])
+            return ppu_x * 0.0254 if unit == 1 and ppu_x else None
+        if kind in (b"IDAT", b"IEND"):
+            return None
+        pos += 12 + length
+    return None
+
+
+def figure_scale(shown_px: float, natural_px: float, dpi: float | None) -> float:
+    """A figure's shown width over its natural width (96 CSS px per inch of the figure).
+
+    >>> figure_scale(700, 1050, 150)   # a 7 in figure in a 700 px column
+    1.0416666666666667
+    >>> round(figure_scale(700, 1500, 150), 3)   # a 10 in figure: text shrunk to 73 %
+    0.729
+    """
+    natural_css = natural_px * CSS_PX_PER_IN / (dpi or CSS_PX_PER_IN)
+    return shown_px / natural_css if natural_css else float("inf")
+
+
+def figure_reports(images: list, base: str, html: Path | None) -> list:
+    """The measured images with their ``dpi`` (from the file served) and ``scale``."""
+    from urllib.parse import unquote, urlparse
+
+    out = []
+    for im in images:
+        if not im.get("naturalWidth"):
+            continue
+        path = urlparse(im["src"]).path
+        dpi = png_dpi(html / unquote(path).lstrip("/")) if html and path.endswith(".png") else None
+        out.append({**im, "dpi": dpi,
+                    "scale": figure_scale(im["shownWidth"], im["naturalWidth"], dpi)})
+    return out
 
 
 class ChromiumError(RuntimeError):
@@ -276,6 +343,7 @@ class PageReport:
     screenshot: Path | None = None
     height: int = 0
     code: list = field(default_factory=list)
+    figures: list = field(default_factory=list)   # from figure_reports
 
     @staticmethod
     def _over(items):
@@ -297,10 +365,16 @@ class PageReport:
         return self._over(self.code)
 
     @property
+    def small_figures(self) -> list:
+        """The figures shown below :data:`MIN_FIGURE_SCALE` of their natural width."""
+        return [f for f in self.figures if f["scale"] < MIN_FIGURE_SCALE]
+
+    @property
     def ok(self) -> bool:
-        """Nothing overflows, every formula is typeset, nothing came from the network."""
+        """Nothing overflows or is shrunk, every formula is typeset, nothing is remote."""
         return not (self.table_overflows or self.math_overflows or self.raw_tex
-                    or self.tex_errors or self.page_overflow_px > TOLERANCE_PX or self.remote)
+                    or self.tex_errors or self.page_overflow_px > TOLERANCE_PX or self.remote
+                    or self.small_figures)
 
     def lines(self) -> list[str]:
         """One summary line, then one indented line per problem."""
@@ -311,13 +385,19 @@ class PageReport:
                 f"tables {len(self.tables):2d} (overflowing {len(self.table_overflows)}, "
                 f"worst {worst:+d} px, fitted {fitted})  math {self.n_math:3d} "
                 f"(raw {len(self.raw_tex)}, errors {len(self.tex_errors)}, overflowing "
-                f"{len(self.math_overflows)}, scaled {scaled})"
+                f"{len(self.math_overflows)}, scaled {scaled})  figures {len(self.figures)}"
+                + (f" (smallest {min(f['scale'] for f in self.figures):.0%} of natural width, "
+                   f"below {MIN_FIGURE_SCALE:.0%}: {len(self.small_figures)})"
+                   if self.figures else "")
                 + (f"  [{len(self.code_overflows)} code blocks scroll]"
                    if self.code_overflows else ""))
         out = [head]
         for t in self.table_overflows + self.math_overflows:
             out.append(f"       {t['label'][:70]!r}: content {t['scrollWidth']} px in a "
                        f"{t['clientWidth']} px box ({t['scrollWidth'] - t['clientWidth']:+d})")
+        out += [f"       {f['label'][:70]!r}: shown {f['shownWidth']} px, natural "
+                f"{f['naturalWidth'] * CSS_PX_PER_IN / (f['dpi'] or CSS_PX_PER_IN):.0f} px "
+                f"({f['scale']:.0%})" for f in self.small_figures]
         out += [f"       raw TeX: {t!r}" for t in self.raw_tex[:5]]
         out += [f"       TeX error: {t!r}" for t in self.tex_errors[:5]]
         if self.page_overflow_px > TOLERANCE_PX:
@@ -349,8 +429,12 @@ def _local(url: str, base: str) -> bool:
     return url.startswith((base, "data:", "blob:", "about:", "chrome:", "devtools:"))
 
 
-def check_page(dt: DevTools, base: str, page: str, width: int, out_dir: Path | None) -> PageReport:
-    """Open ``page`` (a toc file, no extension) at ``width`` px, measure, screenshot."""
+def check_page(dt: DevTools, base: str, page: str, width: int, out_dir: Path | None,
+               html: Path | None = None) -> PageReport:
+    """Open ``page`` (a toc file, no extension) at ``width`` px, measure, screenshot.
+
+    ``html``: the directory served, where each figure's PNG is read for its resolution.
+    """
     target = dt.send("Target.createTarget", {"url": "about:blank"})["targetId"]
     session = dt.send("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
     try:
@@ -373,7 +457,8 @@ def check_page(dt: DevTools, base: str, page: str, width: int, out_dir: Path | N
                          and not _local(e["params"]["request"]["url"], base)})
         rep = PageReport(page, width, m["tables"], m["math"], m["nMath"], m["rawTex"],
                          m["texErrors"], m["pageScrollWidth"] - m["pageClientWidth"], remote,
-                         None, m["height"], m["code"])
+                         None, m["height"], m["code"],
+                         figure_reports(m.get("images", []), base, html))
         if out_dir is not None:
             # full page: a viewport as tall as the page, then an ordinary capture (Chromium's
             # captureBeyondViewport sometimes shifted the page sideways mid-capture)
@@ -413,7 +498,7 @@ def run(pages, widths, html: Path, out_dir: Path | None, chromium: str = "chromi
         try:
             for width in widths:
                 for page in pages:
-                    rep = check_page(dt, base, page, width, out_dir)
+                    rep = check_page(dt, base, page, width, out_dir, html)
                     reports.append(rep)
                     for line in rep.lines():
                         echo(line)

@@ -1,5 +1,7 @@
 """Sphinx extension of the book: the paper's tables and figures get no book number.
 
+(Also: link addresses with ``&`` are mended, :func:`unescape_link_ampersands`.)
+
 Sphinx numbers every captioned table and figure, here "Book table N" and "Book figure N"
 (``numfig_format`` in ``book/_config.yml``). A table or figure that regenerates one of the
 paper's carries the paper's number in its caption instead ("Song et al. (2011) Table 1",
@@ -96,9 +98,36 @@ def _merge(app, env, docnames, other) -> None:
             store[doc] = getattr(other, _ENV_KEY)[doc]
 
 
+def unescape_link_ampersands(doctree) -> int:
+    """Undo MyST's escaping of ``&`` in link addresses; returns the links mended.
+
+    myst-parser (3.0) stores a Markdown link's address HTML-escaped (``a?b=1&amp;c=2``)
+    and the HTML writer escapes it again, so the page's ``href`` reads ``&amp;amp;`` and
+    the link is broken (four source links of the real-missions page). Run on every
+    resolved document (``doctree-resolved``).
+
+    >>> from docutils import nodes
+    >>> ref = nodes.reference("", "x", refuri="http://a.org/?b=1&amp;c=2")
+    >>> unescape_link_ampersands(nodes.paragraph("", "", ref)), ref["refuri"]
+    (1, 'http://a.org/?b=1&c=2')
+    """
+    n = 0
+    for ref in doctree.findall(nodes.reference):
+        uri = ref.get("refuri", "")
+        if "&amp;" in uri:
+            ref["refuri"] = uri.replace("&amp;", "&")
+            n += 1
+    return n
+
+
+def _mend_links(app, doctree, docname) -> None:
+    unescape_link_ampersands(doctree)
+
+
 def setup(app):
     """Register the transform and the renumbering (Sphinx extension entry point)."""
     app.add_transform(NotePaperItems)
+    app.connect("doctree-resolved", _mend_links)
     app.connect("env-purge-doc", _purge)
     app.connect("env-merge-info", _merge)
     # after the toctree collector's assign_figure_numbers (env-get-updated), before writing

@@ -211,6 +211,26 @@ def test_prepare_for_book_sets_title_and_folds_code():
     assert nb2.cells[0].source == "# T"
 
 
+def test_prepare_for_book_puts_results_before_the_setup():
+    nb = nbformat.v4.new_notebook()
+    src = ["# T\nintro", "a = 1", "a = 2", "page = build(a)\npage.header()", "page.show('t')",
+           "page.glue()", "Prose after the first result."]
+    nb.cells = [nbformat.v4.new_markdown_cell(src[0])]
+    nb.cells += [nbformat.v4.new_code_cell(s) for s in src[1:6]]
+    nb.cells.append(nbformat.v4.new_markdown_cell(src[6]))
+    nb.cells[1].metadata["tags"] = ["parameters"]
+    nb.cells[2].metadata["tags"] = ["injected-parameters"]
+    nb.cells[5].metadata["tags"] = ["remove-cell"]
+    book.prepare_for_book(nb, "Title")
+    order = [c.source for c in nb.cells]
+    assert order[0] == "# Title\nintro"
+    assert order[1:4] == [src[4], src[5], src[6]]          # the results first
+    assert order[4].startswith(book.SETUP_HEADING)          # then the set-up, headed
+    assert order[5:] == [src[1], src[2], src[3]]
+    assert nb.cells[-1].metadata["tags"] == ["hide-input"]  # the build call stays folded
+    assert nb.cells[1].metadata["tags"] == ["remove-input"]  # a show cell: no toggle
+
+
 def test_stamp_changes_with_parameters_and_detects_missing_outputs(nbdir, tmp_path, monkeypatch):
     monkeypatch.setattr(paths, "GENERATED", tmp_path / "gen")
     (tmp_path / "gen").mkdir()

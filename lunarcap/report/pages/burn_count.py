@@ -110,7 +110,7 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
         "ΔV, its impulsive limit and loss (m/s), verification."),
         show_columns=BURN_SHOWN, floatfmt=".3f", columns={"n_burns": "N"})
     page.figure("loss", figures.plot_burn_count(table), caption=(
-        "Left: total finite-burn loss against the number of burns; right: time from the "
+        "Top: total finite-burn loss against the number of burns; bottom: time from the "
         "arrival perilune to the end of the last burn. One line per plan; a cross on the "
         "axis marks a count with no capture."),
         alt="Total loss and time to the final orbit against the number of burns")

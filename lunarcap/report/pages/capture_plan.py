@@ -19,12 +19,12 @@ import math
 from pathlib import Path
 
 import matplotlib.pyplot as plt
-import numpy as np
 import pandas as pd
 
 from lunarcap.mission.plan import PLAN_DIR, CapturePlan, load_plan, paper_plan
 from lunarcap.physics import constants as C
 from lunarcap.report import figdata, figures
+from lunarcap.report.display import verdict
 from lunarcap.report.labels import period_text
 from lunarcap.report.page import Page, solver_description
 from lunarcap.runs.chain import arrival_for, plan_result
@@ -91,7 +91,7 @@ def burn_table(result) -> pd.DataFrame:
     """Every column of each burn's row (:meth:`BurnResult.row`), the target described."""
     df = result.table()
     df.insert(1, "target_orbit", [b.describe() for b in result.plan.burns])
-    df["verified"] = np.where(df.verification_passed, "passed", "failed")
+    df["verified"] = df.verification_passed.map(verdict)
     df["verification_released"] = df.verification_released.map(
         lambda r: ", ".join(map(str, r)) if r else "")
     return df
@@ -369,8 +369,8 @@ def build(plan="lro-like-5burn", dynamics: str | None = None,
         caption=("The re-propagation gate of each burn (see the {doc}`verification` page): "
                  "the optimal steering flown again from the initial state by CVODES (rtol "
                  "1e-13). End position (m): distance between the flown and the optimiser's "
-                 "states at the next nominal perilune. r_p error (mm): perilune radius there "
-                 "nominal perilune − the target's. r_a error (mm): apolune radius − the "
+                 "states at the next nominal perilune. r_p error (mm): perilune radius at that "
+                 "perilune − the target's. r_a error (mm): apolune radius − the "
                  "circle's (circular target only). i error (deg): inclination − the plan's. "
                  "γ error (deg): flight-path angle at that epoch (ellipse targets only). "
                  "Gate: 50 m, 10 m, 1e-4 deg (and the end speed and objective, in the CSV); "

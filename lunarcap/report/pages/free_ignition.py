@@ -311,9 +311,9 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
     page.figure(
         "rule_figure", figures.plot_free_ignition_rule(rule), name="eq19_rule",
         caption=("Optimal ignition against half the Eq. (19) duration estimate, in min from "
-                 "the nominal perilune (left; filled markers: the free optimum, open: the best "
+                 "the nominal perilune (top; filled markers: the free optimum, open: the best "
                  "of the paper's grid on the same orbit; dashed: the rule exactly), and the "
-                 "optimum minus the rule against the Eq. (19) duration, min (right). Colours: "
+                 "optimum minus the rule against the Eq. (19) duration, min (bottom). Colours: "
                  "engines; markers: burns 1-3 (LOI 1-3)."),
         alt="Scatter plots of the optimal ignition time against minus half the Eq. 19 duration")
 

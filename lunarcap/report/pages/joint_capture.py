@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import inspect
 
-import numpy as np
 import pandas as pd
 
+from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page
 from lunarcap.runs import joint, sweeps
@@ -79,7 +79,7 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
         "gate": "re-propagation of each leg from the previous leg's verified end state"})
     legs = {engine_label(t, i): sweeps.chain_table(t, i, dynamics) for t, i in engines}
     per_leg = pd.concat([df.assign(engine=e) for e, df in legs.items()], ignore_index=True)
-    per_leg = per_leg.assign(joint_verified=np.where(per_leg.joint_verified, "yes", "no"))[[
+    per_leg = per_leg.assign(joint_verified=per_leg.joint_verified.map(verdict))[[
         "engine", "loi", "sequential_start_min", "joint_start_min",
         "sequential_burn_duration_min", "joint_burn_duration_min", "sequential_delta_v_mps",
         "joint_delta_v_mps", "difference_mps", "joint_verified"]]
@@ -143,7 +143,7 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
     page.value("max_start_shift_s", float(totals.largest_start_shift_s.max()))
     # headline checks: the book build fails if these drift
     page.expect("every joint leg passes the verification gate",
-                bool((per_leg.joint_verified == "yes").all()))
+                bool((per_leg.joint_verified == PASSED).all()))
     page.expect("every joint NLP converged", bool((totals.ipopt_status == "Solve_Succeeded")
                                                   .all()), str(totals.ipopt_status.tolist()))
     page.expect("the joint optimum is never worse (1 mm/s)",

@@ -18,6 +18,7 @@ import pandas as pd
 from lunarcap.mission.plan import paper_plan
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_ENGINES, paper_table_b1
 from lunarcap.physics import frames
+from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page
 from lunarcap.runs.chain import impulsive_limit, solve_plan
@@ -60,7 +61,7 @@ def effect_table(engines: dict, dynamics: str) -> pd.DataFrame:
                          "impulsive_effect_mps": imp_new - imp_old,
                          "loss_new_mps": dv_new - imp_new,
                          "loss_effect_mps": (dv_new - imp_new) - (dv_old - imp_old),
-                         "verified": "yes" if ok_new and ok_old else "NO"})
+                         "verified": verdict(ok_new and ok_old)})
     return pd.DataFrame(rows)
 
 
@@ -90,8 +91,8 @@ def build(dynamics: str = "full", thrusts_N: list | None = None,
     page.table("poles", poles,
                caption="The two lunar poles: right ascension and declination in ICRF (deg) "
                        "and the angle from the J2000 ecliptic pole (deg). iau2009-j2000 is "
-                       "the whole IAU (2009) expression at J2000 (Archinal et al. 2011, "
-                       "Table 2); iau-constant its constant terms only.",
+                       "the whole IAU (2009) expression at J2000 (Table 2 of "
+                       "{cite:t}`archinal2011`); iau-constant its constant terms only.",
                columns={"pole": "pole", "ra_deg": "α₀ (deg)", "dec_deg": "δ₀ (deg)",
                         "from_ecliptic_pole_deg": "from ecliptic pole (deg)"},
                floatfmt={"ra_deg": ".4f", "dec_deg": ".4f", "from_ecliptic_pole_deg": ".3f"})
@@ -127,7 +128,7 @@ def build(dynamics: str = "full", thrusts_N: list | None = None,
                for t in thrusts for n in (1, 2, 3)]
     page.value("median_abs_vs_paper_mps",
                float(np.median(np.abs(eff.dv_new_mps.to_numpy() - np.array(printed)))))
-    page.expect("every solve verified with both poles", bool((eff.verified == "yes").all()))
+    page.expect("every solve verified with both poles", bool((eff.verified == PASSED).all()))
     if dynamics == "two-body":  # a rotation of the frame cannot change a two-body capture
         page.expect("two-body: the pole changes no delta-V (< 1 mm/s)",
                     float(eff.dv_effect_mps.abs().max()) < 1e-3)

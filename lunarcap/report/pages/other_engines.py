@@ -31,6 +31,7 @@ from lunarcap.mission.plan import paper_plan
 from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
 from lunarcap.physics.constants import ARRIVAL_MASS_KG
 from lunarcap.report import figures
+from lunarcap.report.display import verdict
 from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import chain, sweeps
 
@@ -106,7 +107,7 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
     # ---- per burn: the cited engines
     burns = pd.concat([seqs[lab].assign(engine=lab, origin=o, thrust_N=t, isp_s=i)
                        for t, i, o, lab in rows if o != PAPER_ENGINE], ignore_index=True)
-    burns = burns.assign(verified=np.where(burns.verified, "yes", "no"))
+    burns = burns.assign(verified=burns.verified.map(verdict))
     cols = ["engine", "origin", "thrust_N", "isp_s", "loi", "start_min", "burn_duration_min",
             "delta_v_mps", "fuel_kg", "m_end_kg", "verified", "paper_impulsive_delta_v_mps",
             "loss_mps", "loss_percent"]
@@ -203,9 +204,9 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
     page.figure(
         "loss_figure",
         figures.plot_engine_loss(totals, loss_col, f"total ΔV loss vs {ref_short} (m/s)"),
-        caption=("Left: total ΔV loss of the capture (m/s) above "
+        caption=("Top: total ΔV loss of the capture (m/s) above "
                  + (REF_OURS if model_loss else REF_PAPER)
-                 + f". Right: propellant of LOI 1–3 (kg). Both against thrust (N), ignition "
+                 + f". Bottom: propellant of LOI 1–3 (kg). Both against thrust (N), ignition "
                  f"{ignition}; colours: specific impulse; diamonds: the engines cited in Sec. "
                  "3.1, circles: the paper's."),
         alt="Total delta-V loss and propellant against thrust for each engine", name="loss")

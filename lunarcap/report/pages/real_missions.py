@@ -158,7 +158,8 @@ SOURCES = {
            "1,984.0 kg.",
     "S13": "Y.-J. Song, J. Bae, Y.-R. Kim, B.-Y. Kim (KARI), \"Early Phase Contingency "
            "Trajectory Design for the Failure of the First Lunar Orbit Insertion Maneuver: "
-           "Direct Recovery Options\", Journal of Astronomy and Space Sciences 34, 331 (2017). "
+           "Direct Recovery Options\", Journal of Astronomy and Space Sciences 34(4), 331 (2017) "
+           "{cite:p}`song2017`. "
            "<https://janss.kr/archive/view_article?pid=jass-34-331>; Table 2, \"Expected event "
            "sequences and associated values for the nominal LOA phase\", "
            "<http://www.janss.kr/download/download_excel?pid=jass-34-331&tid=T2>. KPLO launch "
@@ -337,7 +338,7 @@ def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
                  "LOI, KPLO's and ours (our verified chain, "
                  f"{engines[0][0]:g} N / {engines[0][1]:g} s, {dynamics} dynamics; nearly the "
                  "same for every engine, since the orbits are targets), ours − KPLO in m/s; "
-                 "impulsive ΔV of each LOI (m/s), KPLO's and the paper's (Song et al. 2009c, "
+                 "impulsive ΔV of each LOI (m/s), KPLO's and the paper's ({cite:t}`song2009c`, "
                  "printed in Tables 1–5), KPLO − paper (m/s)."),
         columns={"point": "point", "kplo_speed_kmps": "speed, KPLO (km/s)",
                  "our_speed_kmps": "speed, ours (km/s)",

@@ -10,10 +10,10 @@ misses them.
 
 from __future__ import annotations
 
-import numpy as np
 import pandas as pd
 
 from lunarcap.report import figures
+from lunarcap.report.display import verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import sweeps
@@ -63,7 +63,7 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
         "gate": solver["gate"] + "; released targets reported, not gated"})
     page = Page(NOTEBOOK, params, output_name, quick, solver)
     steer = steering_rows(engines, dynamics)
-    table = steer.assign(verified=np.where(steer.verified, "yes", "no"))[[
+    table = steer.assign(verified=steer.verified.map(verdict))[[
         "engine", "loi", "steering", "start_min", "burn_duration_min", "delta_v_mps",
         "delta_v_penalty_mps", "objective_penalty_mps", "released_targets", "rp_miss_km",
         "inc_miss_deg", "verified"]]

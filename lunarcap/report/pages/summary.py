@@ -20,6 +20,7 @@ from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics.constants import ARRIVAL_MASS_KG, G0_MPS2
 from lunarcap.report import figures
+from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import sweeps
@@ -76,7 +77,7 @@ def b1_table(chains: dict) -> pd.DataFrame:
         burn_duration_diff_min=c.burn_duration_min - c.paper_burn_duration_min,
         delta_v_diff_mps=c.delta_v_mps - c.paper_delta_v_mps,
         delta_v_diff_percent=100 * (c.delta_v_mps / c.paper_delta_v_mps - 1),
-        verified=np.where(c.verified, "yes", "no"),
+        verified=c.verified.map(verdict),
     )
 
 
@@ -242,7 +243,7 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
     imp_txt = ", ".join(f"{x:.3f}" for x in paper.PAPER_IMPULSIVE_DV_MPS)
     start_txt = ("Start: ignition, min from the nominal perilune (the paper's best offsets)"
                  if same_starts else "Start: ignition, min from the nominal perilune")
-    n_ok = int((b1.verified == "yes").sum())
+    n_ok = int((b1.verified == PASSED).sum())
     verified_txt = (f"All {len(b1)} burns pass" if n_ok == len(b1)
                     else f"{n_ok} of {len(b1)} burns pass")
     heads = {"engine": "engine (thrust / Isp)",
@@ -302,7 +303,7 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
     page.table(
         "model_loss", model_loss_table(engines, chains, totals),
         caption=("Delta-V loss (m/s) measured two ways. The paper compares its finite burns "
-                 "with impulsive delta-Vs from another program (Song et al. 2009c); we also "
+                 "with impulsive delta-Vs from another program {cite:p}`song2009c`; we also "
                  "solve one impulse in our own dynamics from the same pre-burn orbit of each "
                  "chain (the limit of burns of about 4 s and 2 s, on the {doc}`verification` "
                  "page), so that the loss compares like with like. Imp.: impulsive. Delta-V "
@@ -375,8 +376,8 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
 
     # ---------------------------------------------------------------- headline checks
     page.expect("every burn of every chain passes the verification gate",
-                bool((b1.verified == "yes").all()),
-                str(b1[b1.verified != "yes"][["engine", "loi"]].values.tolist()))
+                bool((b1.verified == PASSED).all()),
+                str(b1[b1.verified != PASSED][["engine", "loi"]].values.tolist()))
     page.expect("the model-to-model loss of every chain is positive",
                 all(t["total_model_loss_mps"] > 0 for t in totals.values()))
     if dynamics == "full" and starts is None:

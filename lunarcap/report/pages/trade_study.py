@@ -179,7 +179,8 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
                  "(free ignition, verified) against the initial thrust-to-weight ratio "
                  "T/(m₀ g₀), m₀ = 524.895 kg, for each LOI and for the whole sequence, one "
                  f"curve per Isp (thrust in N on the top axis); {dynamics} dynamics. "
-                 f"{loss_def} Dashed: Robbins' (1966) estimate (1/24)(ω_s t_b)² ΔV with t_b "
+                 f"{loss_def} Dashed: the estimate of {{cite:t}}`robbins1966`, "
+                 "(1/24)(ω_s t_b)² ΔV with t_b "
                  "from Eq. (19) and ω_s the Schuler rate at the perilune, drawn where "
                  f"ω_s t_b ≤ {ROBBINS_VALID_OMEGA_T:g} rad (for the sequence: every burn). "
                  "Stars: the paper's three engines with their Table B1 losses (against the "
@@ -201,9 +202,10 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
         "duration", figures.plot_trade_study_duration(
             loi_ok, spec.isp_s, {p: PART_TITLES[p] for p in study.PARTS[:3]},
             newton_per_ratio),
-        caption=("Top: optimal burn duration divided by the Eq. (19) estimate (from the "
+        caption=("One row per burn. Left: optimal burn duration divided by the Eq. (19) "
+                 "estimate (from the "
                  "two-body impulsive ΔV and the mass at ignition), against the thrust-to-weight "
-                 "ratio T/(m₀ g₀) (thrust in N on the top axis). Bottom: optimal ignition "
+                 "ratio T/(m₀ g₀) (thrust in N on the top axis). Right: optimal ignition "
                  "offset from the nominal perilune (negative: before) divided by the Eq. (19) "
                  "duration; the paper's rule of thumb is to ignite half the estimated duration "
                  "before perilune (−½). Both ratios are dimensionless."),

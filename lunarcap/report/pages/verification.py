@@ -20,6 +20,7 @@ from lunarcap.optim.collocation import DEFAULT_MESHES, Mesh
 from lunarcap.optim.problem import burn_problem
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_ENGINES
 from lunarcap.report import figures
+from lunarcap.report.display import FAILED, PASSED, verdict
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.repro.cache import cached
@@ -99,7 +100,7 @@ def cases_table(case_list, dynamics: str) -> pd.DataFrame:
                            for (t, i, n, s, p), b in zip(case_list, b1)])
     ver.insert(5, "table_b1", b1)
     ver.insert(6, "previous_starts_min", [" ".join(f"{x:g}" for x in p) for *_, p in case_list])
-    ver["passed"] = np.where(ver.passed, "yes", "no")
+    ver["passed"] = ver.passed.map(verdict)
     ver["mesh"] = ver.mesh.str.replace("x", "×")
     ver["ra_error_m"] = pd.to_numeric(ver.ra_error_m, errors="coerce")  # NaN: not circular
     return ver
@@ -138,7 +139,7 @@ def impulsive_table(case_list, dynamics: str) -> pd.DataFrame:
                          "delta_v_short_mps": imp["delta_v_short_mps"],
                          "delta_v_mps": imp["delta_v_mps"],
                          "extrapolation_mps": imp["delta_v_mps"] - imp["delta_v_short_mps"],
-                         "verified": "yes" if imp["verification_passed"] else "no"})
+                         "verified": verdict(imp["verification_passed"])})
     return pd.DataFrame(rows)
 
 
@@ -196,9 +197,9 @@ def mesh_table(mesh_cases, meshes, dynamics: str) -> pd.DataFrame:
     m["mesh"] = [f"{a}×{b} LGR-{d}" + (" (default)" if dflt else "")
                  for a, b, d, dflt in zip(m.n_burn, m.n_coast, m.degree, is_default)]
     passed = m.passed if "passed" in m else pd.Series(False, index=m.index)
-    m["accepted"] = np.where(passed.astype("boolean").fillna(False).astype(bool), "yes", "no")
+    m["accepted"] = passed.astype("boolean").fillna(False).astype(bool).map(verdict)
     m["ipopt_status"] = m.ipopt_status.replace(IPOPT_OK)
-    m["outside_gate"] = [_outside_gate(r) if r.accepted == "no" else ""
+    m["outside_gate"] = [_outside_gate(r) if r.accepted == FAILED else ""
                          for _, r in m.iterrows()]
     cols = ["case", "mesh", "ipopt_status", "delta_v_mps", "delta_v_change_vs_finest_mps",
             "outside_gate", "accepted"]
@@ -240,7 +241,7 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
 
     # ---------------------------------------------------------------- every case
     ver = cases_table(case_list, dynamics)
-    n_passed = int((ver.passed == "yes").sum())
+    n_passed = int((ver.passed == PASSED).sum())
     engines = sorted({(t, i) for t, i, *_ in case_list})
     engines_txt = ", ".join(f"{t:g} N / {i:g} s" for t, i in engines)
     paper_txt = ", the paper's" if all(PAPER_ENGINES.get(int(t)) == i for t, i in engines) else ""
@@ -290,7 +291,7 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
 
     # ---------------------------------------------------------------- impulsive limits
     imp = impulsive_table(case_list, dynamics)
-    n_imp_ok = int((imp.verified == "yes").sum())
+    n_imp_ok = int((imp.verified == PASSED).sum())
     page.table(
         "impulsive", imp,
         caption=("The impulsive delta-V in our dynamics (used on the {doc}`summary` page) is "
@@ -332,7 +333,7 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
     page.table("mesh_full", mesh, caption="Mesh convergence, every column.")
     page.figure(
         "mesh_figure",
-        figures.plot_mesh_convergence(mesh.assign(accepted=mesh.accepted == "yes"),
+        figures.plot_mesh_convergence(mesh.assign(accepted=mesh.accepted == PASSED),
                                       verify.TOL_DV_MPS, default_points),
         caption=("Change of the delta-V (m/s, log scale) from its value on the finest mesh, "
                  "against the number of collocation points (log scale), for each case of the "
@@ -344,7 +345,7 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
 
     # ---------------------------------------------------------------- numbers for the prose
     ipopt_ok = mesh.ipopt_status.isin(IPOPT_OK.values())
-    fooled = mesh[ipopt_ok & (mesh.accepted == "no")]
+    fooled = mesh[ipopt_ok & (mesh.accepted == FAILED)]
     at_default = mesh[mesh.default == "yes"]
     values = {"tol_dv_mps": verify.TOL_DV_MPS, "tol_rp_m": verify.TOL_RP_M,
               "tol_angle_deg": verify.TOL_ANGLE_DEG, "tol_position_m": verify.TOL_POSITION_M,
@@ -365,9 +366,9 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
 
     # ---------------------------------------------------------------- headline checks
     page.expect("every solution passes the gate", n_passed == len(ver),
-                str(ver[ver.passed != "yes"].case.tolist()))
+                str(ver[ver.passed != PASSED].case.tolist()))
     page.expect("every impulsive limit passes the gate", n_imp_ok == len(imp))
-    page.expect("the default mesh is accepted", bool((at_default.accepted == "yes").all()))
+    page.expect("the default mesh is accepted", bool((at_default.accepted == PASSED).all()))
     # the prose: converged to well below the paper's printed 0.001 m/s
     page.expect("the default mesh within 0.1 mm/s of the finest",
                 bool((at_default.delta_v_change_vs_finest_mps.abs() < 1e-4).all()),

@@ -45,8 +45,17 @@ def test_tables_set_every_printed_number_beside_ours(page):
     np.testing.assert_allclose(b1.paper, [paper.paper_best(150.0, n)["delta_v_mps"]
                                           for n in (1, 2, 3)])
     assert long.verified.all()
-    shown = page.items["tables"]
-    assert len(shown.show_columns) <= 7 and set(shown.show_columns) <= set(shown.df.columns)
+    # shown in wide form: one row per row of the paper's tables, every number of the long
+    # form in it once
+    wide = page.items["tables"].df
+    main = long[long.quantity != "impulsive delta-V"]
+    assert len(wide) == len(main) // 3 + 3
+    numbers = wide.drop(columns=["source", "start", "best", "row"]).to_numpy(dtype=float)
+    assert np.isfinite(numbers).sum() == 3 * len(long)
+    np.testing.assert_allclose(np.sort(numbers[np.isfinite(numbers)]),
+                               np.sort(long[["paper", "ours", "difference"]].to_numpy().ravel()))
+    assert (wide.best != "").sum() == (long.paper_best | long.ours_best).sum() // 3
+    assert wide.row.str.endswith(")").sum() == (wide.best != "").sum()
     summary = page.items["tables_summary"].df
     assert list(summary.numbers) == [14, 14, 14]       # 6 + 4 + 4 rows of Tables 1-3
     assert page.values["tables_range"] == "Tables 1–3"

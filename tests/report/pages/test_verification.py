@@ -20,7 +20,7 @@ def page():
 def test_every_case_passes_the_gate_with_margin(page):
     ver = page.items["cases"].df
     assert list(ver.case) == ["450 N, LOI 1, -3 min, B1", "450 N, LOI 2, -2 min, B1"]
-    assert (ver.passed == "yes").all()
+    assert (ver.passed == "passed").all()
     assert (ver.final_position_diff_m.abs() < verify.TOL_POSITION_M).all()
     assert (ver.end_speed_diff_mps.abs() < verify.TOL_SPEED_MPS).all()
     assert (ver.objective_diff_mps.abs() < verify.TOL_DV_MPS).all()
@@ -48,7 +48,7 @@ def test_impulsive_limit_is_the_richardson_extrapolation(page):
     assert (imp.burn_long_s > 3.0).all() and (imp.burn_long_s < 5.0).all()
     # a burn of seconds is nearly an impulse: the extrapolation is far below the gate
     assert (imp.extrapolation_mps.abs() < 0.1 * verify.TOL_DV_MPS).all()
-    assert (imp.verified == "yes").all()
+    assert (imp.verified == "passed").all()
     # and any finite burn of the engine needs more
     fin = page.data["cases"].set_index("loi").delta_v_mps
     assert (imp.set_index("loi").delta_v_mps < fin).all()
@@ -61,7 +61,7 @@ def test_mesh_table(page):
     np.testing.assert_allclose(m.delta_v_change_vs_finest_mps,
                                m.delta_v_mps - m.delta_v_mps.iloc[-1])
     assert m.mesh.iloc[-1] == "8×16 LGR-5 (default)"
-    assert ((m.accepted == "yes") == (m.outside_gate == "")).all()  # a reason per rejection
+    assert ((m.accepted == "passed") == (m.outside_gate == "")).all()  # a reason per rejection
     v = page.values
     assert v["default_points"] == 120 and v["n_mesh_solves"] == 2
     assert v["n_cases"] == 2 and v["n_passed"] == 2
