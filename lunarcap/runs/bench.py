@@ -8,6 +8,19 @@ and 3 cases start from the paper's best earlier burns (Table B1), as in the pape
 distinct earlier burn is solved once per run (in memory,
 :func:`lunarcap.runs.chain.reuse_earlier_burns`), or again for every case with
 ``reuse=False``. NLP builds (once per shape and process) are part of the total.
+
+``lunarcap bench --studies`` (:func:`studies`) prints where the time goes instead: the
+build of each NLP shape with the size and call time of IPOPT's derivative functions,
+cold and cached ``lunarcap plan`` in fresh processes, one trade-study engine split into
+NLP builds, NLP solves and the rest, and the last logged wall of each study.
+
+Why NLPs are built per process and not loaded from disk (measured with CasADi 3.8.2 on
+the 2-core machine): the expanded IPOPT solver of the 8x16 LGR-5 shape serialises to
+103 MB and loads in 1.4 s, no faster than building it (1.0-1.5 s of CPU); the
+non-expanded one loads in 0.3 s but solves 3x slower (its derivatives run in the MX
+virtual machine), and compiling its generated C takes 27 s at -O0. So the build is made
+cheaper instead (a smaller expression graph: 32 % fewer Hessian instructions) and is
+never paid for a result already in the disk cache.
 """
 
 from __future__ import annotations
