@@ -304,6 +304,11 @@ def cmd_bench(args) -> int:
     """Solve and verify all 37 paper cases uncached; print timings and residuals."""
     from lunarcap.runs.bench import run, warm_solves
 
+    if args.studies:
+        from lunarcap.runs.bench import studies
+
+        studies(cold=not args.no_cold)
+        return 0
     if args.warm:
         rows = warm_solves(args.dynamics or "two-body", args.repeats)
         return 0 if all(r["verified"] for r in rows) else 3
@@ -474,6 +479,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--warm", action="store_true",
                    help="instead: warm verified solves of the dymos peer benchmark's cases")
     p.add_argument("--repeats", type=int, default=5, help="warm solves per case (--warm)")
+    p.add_argument("--studies", action="store_true",
+                   help="instead: figures on where the time goes (NLP builds per shape, cold "
+                        "and cached `lunarcap plan`, a trade-study engine, study walls)")
+    p.add_argument("--no-cold", action="store_true",
+                   help="with --studies: skip the cold `lunarcap plan` runs")
     p.add_argument("--resolve-earlier", action="store_true",
                    help="solve each case's earlier burns again (default: once per run)")
     p.set_defaults(func=cmd_bench)

@@ -149,13 +149,24 @@ def impulsive_limit(plan: CapturePlan, verbose: bool = False, use_cache: bool = 
     ignition offset or steering law: those are blanked from the cache key, and so is the
     thrust of a first burn (every engine of the same Isp shares its impulsive limit).
     """
+    key = impulsive_key(plan)
+    return (_impulsive_limit if use_cache else _impulsive_limit.uncached)(key, verbose=verbose)
+
+
+def impulsive_key(plan: CapturePlan) -> CapturePlan:
+    """The cache key of :func:`impulsive_limit` of the last burn of ``plan``.
+
+    The plan with that burn's ignition free and its steering optimal and, for a first
+    burn, the thrust replaced by the one sizing the 4 s burn (see :func:`impulsive_limit`).
+    :func:`prebuild_for` asks the cache with this same key.
+    """
     i = plan.n_burns - 1
     key = plan.with_start(i, "free").with_steering(i, "optimal")
     if i == 0:  # from the arrival: no earlier burn, so the engine's thrust cannot matter
         m0, dv = plan.arrival.mass_kg, plan.impulsive()[0].delta_v_mps
         key = key.with_engine(round(m0 * dv / IMPULSIVE_LIMIT_DURATIONS_S[0], 3),
                               plan.engine.isp_s)
-    return (_impulsive_limit if use_cache else _impulsive_limit.uncached)(key, verbose=verbose)
+    return key
 
 
 @cached(ignore=["verbose"])
@@ -337,8 +348,7 @@ def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
         if not (use_cache and _in_cache(solve_burn, key)):
             shapes.append((mesh, kind, b.free_start, b.steering, plan.dynamics, free_end))
         if impulsive:
-            ikey = key.with_start(n - 1, "free").with_steering(n - 1, "optimal")
-            if not (use_cache and _in_cache(_impulsive_limit, ikey)):
+            if not (use_cache and _in_cache(_impulsive_limit, impulsive_key(key))):
                 shapes += [(mesh, kind, True, "optimal", plan.dynamics, free_end),
                            (mesh, kind, False, "optimal", plan.dynamics, free_end)]
     prebuild(shapes)

@@ -110,6 +110,23 @@ def test_third_body_accel_closed_form_on_axis():
     assert a[0] == pytest.approx(2 * mu * x / D ** 3, rel=0.01)
 
 
+def test_third_body_rtn_equals_projected_cartesian():
+    # two formulations of Eq. (6) in RTN: from the body's RTN components (what the
+    # dynamics use) and the Cartesian acceleration at r i_r projected on i_r, i_t, i_n
+    rng = np.random.default_rng(11)
+    for x in _random_states(rng, 100):
+        rtn = dyn.rtn_from_mee(x[3], x[4], x[5])
+        r_sc, _ = el.rv_from_mee(*x[:6], MU)
+        r = np.linalg.norm(r_sc)
+        for dist, mu in ((384_400.0, C.MU_EARTH), (1.496e8, C.MU_SUN)):
+            rj = rng.normal(size=3)
+            rj *= dist / np.linalg.norm(rj)
+            a = np.array(dyn.third_body_accel(r_sc, rj, mu))
+            want = np.array([np.dot(i, a) for i in rtn])
+            got = np.array(dyn.third_body_rtn(r, rtn, rj, mu))
+            np.testing.assert_allclose(got, want, rtol=0, atol=1e-9 * np.abs(a).max())
+
+
 def test_rtn_from_mee_equals_rtn_basis():
     # two formulations of Eq. (A5): from MEE directly and from the Cartesian state
     rng = np.random.default_rng(9)

@@ -1,0 +1,31 @@
+"""``lunarcap bench --studies`` prints figures (no timing is asserted): its parts run."""
+
+import json
+
+from lunarcap.repro import paths
+from lunarcap.runs import bench
+
+
+def test_nlp_builds_reports_each_shape():
+    lines = []
+    rows = bench.nlp_builds("two-body", out=lines.append)
+    assert len(rows) == 4 and len(lines) == 5
+    assert all(r["build_s"] > 0 and r["hess_l_instructions"] > 0 for r in rows)
+    # a free start adds the pre-ignition coast: more variables, a larger Hessian
+    assert rows[1]["n_vars"] > rows[0]["n_vars"]
+    assert rows[1]["hess_l_instructions"] > rows[0]["hess_l_instructions"]
+
+
+def test_study_walls_reads_the_run_logs(tmp_path, monkeypatch):
+    monkeypatch.setattr(paths, "CACHE", tmp_path)
+    lines = []
+    assert bench.study_walls(out=lines.append) == []
+    assert "no study run recorded" in lines[-1]
+    (tmp_path / "study").mkdir()
+    log = {"started_utc": "2026-11-25 12:00:00 UTC", "wall_s": 218.0, "cases": 90,
+           "computed": 90, "reused": 0, "workers": 2}
+    (tmp_path / "study" / "engine_trade.runs.json").write_text(json.dumps([log]))
+    lines.clear()
+    rows = bench.study_walls(out=lines.append)
+    assert [r["wall_s"] for r in rows] == [218.0]
+    assert "engine_trade" in lines[0] and "218.0 s" in lines[0]
