@@ -81,6 +81,9 @@ class BurnProblem:
     start_bounds_min: tuple = (-60.0, 30.0)
     steering: str = "optimal"
     t1_max_s: float | None = None
+    #: Lower bound of the burn duration, s (None: Eq. 10's, min(1 s, half of Eq. 19));
+    #: 0-ish lets a make-up burn vanish (lunarcap.runs.missed).
+    t1_min_s: float | None = None
 
     def __post_init__(self):
         self.x0 = np.asarray(self.x0, float)
@@ -122,7 +125,8 @@ class BurnProblem:
         """(lower, upper) bounds of the burn duration, s (Eq. 10)."""
         t19 = self.eq19_duration_s
         hi = self.t1_max_s or min(3.0 * t19, 0.9 * (self.t_end_s - self.t_ign_s))
-        return min(1.0, 0.5 * t19), hi
+        lo = min(1.0, 0.5 * t19) if self.t1_min_s is None else self.t1_min_s
+        return lo, hi
 
 
 def steering_law_expr(steering: str, X, u_in=None):
