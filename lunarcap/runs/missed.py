@@ -128,11 +128,17 @@ def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_
     "legs": [Solution]}``.
     """
     free_plan = plan.with_starts(["free"] * plan.n_burns)
-    seq = solve_plan(free_plan)
     i = burn - 1
     if free_plan.targets[i].kind != PERILUNE:
-        res = solve_joint(free_plan, seq, free_plan.ephemeris_model())
+        res = solve_joint(free_plan, solve_plan(free_plan), free_plan.ephemeris_model())
         return {"plan": res.plan, "legs": res.legs}
+    if plan.dynamics != "two-body":
+        # warm start on the two-body optimum's orbit: a long free coast needs its mesh
+        # spaced for the orbit it ends on, not for the plan's
+        two = nominal(plan.with_dynamics("two-body"), burn, max_period_s, version)["plan"]
+        free_plan = free_plan.with_coasts([two.coast_s(k) if k == i else None
+                                           for k in range(plan.n_burns)])
+    seq = solve_plan(free_plan)
     flags = tuple(k == i for k in range(plan.n_burns))
     hi = max_period_s + 7200.0
     t = free_plan.nominal_perilunes_s
@@ -144,6 +150,20 @@ def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_
         coast_bounds_s=(lo, hi), max_period_s=max_period_s, fit=fit,
         warm=[_remeshed(warm_start(s), s.flight.coast, mesh) for s in seq]))
     return {"plan": res.plan, "legs": res.legs}
+
+
+#: In-process memo of nominals: (plan key, burn, max period s) -> :func:`nominal`'s dict.
+_NOMINALS: dict = {}
+
+
+def nominal_of(plan: CapturePlan, burn: int, max_period_s: float,
+               use_cache: bool = True) -> dict:
+    """:func:`nominal` of ``plan``, solved once per process (memo), cached on disk."""
+    key = (plan.key(), int(burn), float(max_period_s))
+    if key not in _NOMINALS:
+        fn = nominal if use_cache else nominal.uncached
+        _NOMINALS[key] = fn(plan.key(), int(burn), float(max_period_s), module_version())
+    return _NOMINALS[key]
 
 
 def _remeshed(warm: tuple, coast, mesh) -> tuple:
@@ -344,7 +364,9 @@ def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
         return solve_joint(rec_plan, None, eph, mesh, free_coasts=free,
                            coast_bounds_s=(MIN_FIRST_COAST_S, hi), fit=fit,
                            max_period_s=max_period_s, warm=warm)
-    return on_meshes(solve), est
+    res = on_meshes(solve)
+    est["first_coast_guess_s"] = first_coast
+    return res, est
 
 
 def nothing_left(nplan: CapturePlan, legs: list, i: int, t_cut: float, xc, fit,
@@ -380,7 +402,7 @@ def _window(plan: CapturePlan, i: int) -> tuple:
 # ---------------------------------------------------------------------- one case
 def _nominal_part(plan: CapturePlan, burn: int, max_period_s: float) -> tuple:
     """The nominal (plan, legs) and the case's nominal columns."""
-    nom = nominal(plan, burn, max_period_s, module_version())
+    nom = nominal_of(plan, burn, max_period_s)
     nplan, legs = nom["plan"], nom["legs"]
     i = burn - 1
     last = legs[-1]
@@ -420,6 +442,7 @@ def _solved(out: dict, res, est, burn: int, t_r: float, t_ref_i: float, partial:
                recovery_burns=rows, make_up_delta_v_mps=rows[0]["delta_v_mps"]
                if rows and free is not None else None,
                make_up_estimate_mps=None if est is None else est["delta_v_mps"],
+               make_up_estimate_h=None if est is None else est["first_coast_guess_s"] / 3600,
                first_coast_h=res.plan.coast_s(0) / 3600.0 if free else None,
                make_up_period_h=period,
                time_to_final_orbit_h=(end - t_ref_i) / 3600.0,
@@ -584,28 +607,34 @@ def check_case(plan: CapturePlan, burn, fraction, delay_min, what: str = "a dela
 
 
 # ====================================================================== the study on Dask
-#: Columns of the study's table (one row per (burn, fraction, delay); units in the names).
-COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "burn", "fraction",
-           "delay_min", "max_period_h", "status", "reason", "captured", "cutoff_orbit",
+#: Columns of the study's table (one row per case; units in the names). ``contingency``:
+#: "cut-off" (``fraction``, ``delay_min``; ``late_min`` 0) or "late ignition"
+#: (``late_min``; ``fraction`` and ``delay_min`` 0).
+COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "burn", "contingency",
+           "fraction", "delay_min", "late_min", "max_period_h", "status", "reason",
+           "captured", "cutoff_orbit",
            "cutoff_epoch", "cutoff_min_after_ignition", "nominal_burn_duration_min",
            "partial_delta_v_mps", "nominal_burn_delta_v_mps", "cutoff_energy_km2ps2",
            "cutoff_e", "cutoff_rp_km", "cutoff_ra_km", "cutoff_period_h",
            "cutoff_soi_radius_km", "recovery_start_e", "recovery_delta_v_mps",
            "total_delta_v_mps", "nominal_remaining_delta_v_mps", "penalty_mps",
+           "make_up_delta_v_mps", "make_up_estimate_mps", "make_up_period_h",
+           "nominal_period_after_burn_h",
            "first_coast_h", "make_up_estimate_h", "time_to_final_orbit_h",
            "nominal_time_to_final_orbit_h",
            "all_verified", "ipopt_status", "recovery_burns_json", "task_wall_s", "worker",
            "code_version", "completed_utc", "error")
-KEY = ("plan_id", "burn", "fraction", "delay_min", "max_period_h")
+KEY = ("plan_id", "burn", "contingency", "fraction", "delay_min", "late_min", "max_period_h")
 
 
 def table_format():
     """The campaign table format of this study."""
     from lunarcap.runs.campaign import TableFormat
 
-    return TableFormat(KEY, COLUMNS, text_columns=("plan", "plan_id", "dynamics", "reason",
-                                                   "cutoff_orbit", "cutoff_epoch",
-                                                   "ipopt_status", "recovery_burns_json"))
+    return TableFormat(KEY, COLUMNS, text_columns=("plan", "plan_id", "dynamics",
+                                                   "contingency", "reason", "cutoff_orbit",
+                                                   "cutoff_epoch", "ipopt_status",
+                                                   "recovery_burns_json"))
 
 
 def default_table_path():
@@ -616,14 +645,22 @@ def default_table_path():
 
 
 def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
-             max_period_h: float, use_cache: bool = True) -> dict:
-    """Dask task: one case as a row of the study's table (a failure is a status, not raised)."""
+             max_period_h: float, use_cache: bool = True, late_min: float | None = None,
+             nominal_result: dict | None = None) -> dict:
+    """Dask task: one case as a row of the study's table (a failure is a status, not raised).
+
+    ``nominal_result``: the nominal computed once by the caller (kept in this process's
+    memo, so no worker solves it again, with or without the disk cache).
+    """
     import json
 
     from lunarcap.runs import campaign
 
+    if nominal_result is not None:
+        _NOMINALS[(plan.key(), int(burn), float(max_period_h) * 3600.0)] = nominal_result
     r, error = campaign.guarded(
-        lambda: case_result(plan, burn, fraction, delay_min, max_period_h), use_cache)
+        lambda: case_result(plan, burn, fraction, delay_min, max_period_h,
+                            use_cache=use_cache, late_min=late_min), use_cache)
     if error:
         return error
     row = {k: v for k, v in r.items() if k in COLUMNS}
@@ -633,42 +670,67 @@ def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
     return row
 
 
+def _cases(plan: CapturePlan, burn: int, fractions, delays, late, max_period_h: float,
+           use_cache: bool, nom: dict) -> list:
+    """The campaign's (key, args) of every case: cut-offs (fractions major), then late."""
+    from lunarcap.runs.burns import plan_id
+
+    base = {"plan": plan.name, "plan_id": plan_id(plan), "thrust_N": plan.engine.thrust_N,
+            "isp_s": plan.engine.isp_s, "dynamics": plan.dynamics, "burn": int(burn)}
+    h = float(max_period_h)
+    cases = [({**base, "contingency": "cut-off", "fraction": f, "delay_min": d,
+               "late_min": 0.0, "max_period_h": h},
+              (plan, int(burn), f, d, h, use_cache, None, nom))
+             for f in fractions for d in delays]
+    cases += [({**base, "contingency": "late ignition", "fraction": 0.0, "delay_min": 0.0,
+                "late_min": m, "max_period_h": h},
+               (plan, int(burn), None, 0.0, h, use_cache, m, nom)) for m in late]
+    return cases
+
+
 def run_missed(plan: CapturePlan, burn: int, fractions, delays_min,
                max_period_h: float = DEFAULT_MAX_PERIOD_H, out=None, workers=2,
                scheduler=None, progress: bool = True, use_cache: bool = True,
-               processes: bool = True, task=None):
-    """Run (or resume) the study over fractions x delays on Dask (see the module).
+               processes: bool = True, task=None, late_min=None):
+    """Run (or resume) the study on Dask (see the module): cut-offs and late ignitions.
 
-    Returns a :class:`lunarcap.runs.campaign.CampaignResult` (one row per case, fractions
-    major). InputError (a burn the plan lacks, fractions outside (0, 1], negative delays,
-    an unusable ``out``, an unreachable scheduler) before any solve.
+    ``fractions`` x ``delays_min`` cut-off cases (none if ``fractions`` is None or
+    empty) and one late-ignition case per ``late_min``. The nominal is solved once, here,
+    before the cases. Returns a :class:`lunarcap.runs.campaign.CampaignResult` (one row
+    per case). InputError (a burn the plan lacks, fractions outside (0, 1], negative
+    delays, an unusable ``out``, an unreachable scheduler) before any solve.
     """
     from lunarcap.repro.cache import code_version
-    from lunarcap.runs.burns import plan_id
     from lunarcap.runs.campaign import parse_numbers, run_campaign
     from lunarcap.runs.study import check_workers
 
-    fractions = parse_numbers("--fractions", fractions, 0.0, False, 1.0)
+    fractions = parse_numbers("--fractions", fractions, 0.0, False, 1.0) \
+        if fractions not in (None, "", []) else []
     delays = parse_numbers("--delays-min", delays_min, 0.0, True)
-    check_case(plan, burn, fractions[0], delays[0])
+    late = parse_numbers("--late-min", late_min, 0.0, True) \
+        if late_min not in (None, "", []) else []
+    if not fractions and not late:
+        raise InputError("no case: give --fractions or --late-min")
+    check_case(plan, burn, fractions[0] if fractions else 1.0, delays[0])
     if isinstance(max_period_h, bool) or not isinstance(max_period_h, (int, float)) or \
             not math.isfinite(max_period_h) or max_period_h <= 0:
         raise InputError(f"--max-period-h must be a positive number of hours, got "
                          f"{max_period_h!r}")
     workers = check_workers(workers)
-    pid = plan_id(plan)
-    cases = [({"plan": plan.name, "plan_id": pid, "thrust_N": plan.engine.thrust_N,
-               "isp_s": plan.engine.isp_s, "dynamics": plan.dynamics, "burn": int(burn),
-               "fraction": f, "delay_min": d, "max_period_h": float(max_period_h)},
-              (plan, int(burn), f, d, float(max_period_h), use_cache))
-             for f in fractions for d in delays]
-    return run_campaign(cases, task or case_row, out or default_table_path(), table_format(),
+    nom = None
+    if task is None:   # the real study: its nominal, once, in this process
+        nom = nominal_of(plan, int(burn), float(max_period_h) * 3600.0, use_cache)
+    return run_campaign(_cases(plan, burn, fractions, delays, late, max_period_h, use_cache,
+                               nom),
+                        task or case_row, out or default_table_path(), table_format(),
                         f"{code_version()}:{module_version()}", workers=workers,
                         scheduler=scheduler, progress=progress, processes=processes,
                         desc="missed-thrust study", unit="case", recompute=not use_cache,
                         ok_statuses=("recovered", "no recovery"),
                         describe={"study": "missed", "burn": int(burn),
-                                  "fractions": list(fractions), "delays_min": list(delays)})
+                                  "fractions": list(fractions), "delays_min": list(delays),
+                                  "late_min": list(late),
+                                  "max_period_h": float(max_period_h)})
 
 
 def recovery_burns_of(row) -> list:
@@ -681,21 +743,25 @@ def recovery_burns_of(row) -> list:
 
 def format_rows(plan: CapturePlan, burn: int, rows: list, result) -> str:
     """The CLI's text: one line per case, then the run."""
-    lines = [f"Missed thrust in burn {burn} of plan {plan.name} ({plan.engine.thrust_N:g} N / "
-             f"{plan.engine.isp_s:g} s, {plan.dynamics} dynamics): the engine stops after a "
-             f"fraction of the burn, the fault lasts the delay, the rest of the capture is "
-             f"re-optimised to the same final orbit; penalty = partial + recovery delta-V "
-             f"minus the nominal burns {burn}..{plan.n_burns}",
-             f"{'fraction':>8} {'delay min':>9} | {'orbit at cut-off':<16} {'e':>6} "
-             f"{'apolune km':>10} | {'recovery m/s':>12} {'penalty m/s':>11} "
-             f"{'final orbit h':>13} | status"]
+    h = rows[0]["max_period_h"] if rows else DEFAULT_MAX_PERIOD_H
+    lines = [f"Burn {burn} of plan {plan.name} ({plan.engine.thrust_N:g} N / "
+             f"{plan.engine.isp_s:g} s, {plan.dynamics} dynamics) cut off (the engine stops "
+             f"after a fraction of the burn, the fault lasts the delay) or ignited late; the "
+             f"rest of the capture re-optimised to the same final orbit, the orbit after "
+             f"burn {burn} at most {h:g} h in the recovery and the nominal alike; "
+             f"penalty = partial + recovery delta-V minus the nominal burns "
+             f"{burn}..{plan.n_burns}",
+             f"{'contingency':<13} {'fraction':>8} {'delay min':>9} {'late min':>8} | "
+             f"{'orbit at cut-off':<16} {'e':>6} {'apolune km':>10} | {'recovery m/s':>12} "
+             f"{'penalty m/s':>11} {'final orbit h':>13} | status"]
     for r in rows:
         ra = r["cutoff_ra_km"]
         ra_txt = f"{ra:10.0f}" if isinstance(ra, float) and math.isfinite(ra) else f"{'inf':>10}"
         ok = r["status"] == "recovered"
         lines.append(
-            f"{r['fraction']:8.3g} {r['delay_min']:9.4g} | {str(r['cutoff_orbit']):<16} "
-            f"{r['cutoff_e']:6.3f} {ra_txt} | "
+            f"{str(r['contingency']):<13} {r['fraction']:8.3g} {r['delay_min']:9.4g} "
+            f"{r['late_min']:8.4g} | {str(r['cutoff_orbit']):<16} {r['cutoff_e']:6.3f} "
+            f"{ra_txt} | "
             + (f"{r['recovery_delta_v_mps']:12.3f} {r['penalty_mps']:11.3f} "
                f"{r['time_to_final_orbit_h']:13.2f} | recovered" if ok else
                f"{'—':>12} {'—':>11} {'—':>13} | {r['status']}: {r['reason'] or r['error']}"))
