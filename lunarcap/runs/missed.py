@@ -33,9 +33,9 @@ Before any solve, a recovery that physics forbids is answered as **no recovery**
 the reason (:func:`physical_bound`): the spacecraft has left the Moon's sphere of
 influence when the window opens, or every orbit through its position with the plan's
 perilune radius is longer than ``max_period_h`` (an orbit through radius r with perilune
-radius rp has a semi-major axis of at least (r + rp) / 2). If the cut-off comes within
-the last second of the burn (f = 1 included), nothing is made up: the recovery is the
-plan's later burns from the cut-off state, at their nominal perilunes.
+radius rp has a semi-major axis of at least (r + rp) / 2). A cut-off at the planned end
+(f = 1) is a case like the others: its make-up burn vanishes and the recovery is the
+nominal's later burns.
 
 The **penalty** is measured on one basis: the delta-V from the state before burn n to the
 final orbit, finite burns, same dynamics: (delta-V of the partial burn + the
@@ -81,8 +81,6 @@ from lunarcap.runs.chain import solve_plan
 DEFAULT_MAX_PERIOD_H = 24.0
 #: Window of the make-up burn's ignition after the fault is cleared, min.
 DEFAULT_WINDOW_MIN = (0.0, 30.0)
-#: A cut-off this close to the planned end of the burn leaves nothing to make up, s.
-NOTHING_LEFT_S = 1.0
 #: Shortest coast from the fault's end to the make-up orbit's perilune, s.
 MIN_FIRST_COAST_S = 600.0
 #: Lower bound of the make-up burn's duration, s: about nothing (0.003 m/s at 150 N and
@@ -292,6 +290,21 @@ def physical_bound(plan: CapturePlan, i: int, t_s: float, x, window_min: tuple,
 
 
 # ---------------------------------------------------------------------- the recovery
+def _sized(nplan: CapturePlan, i: int) -> CapturePlan:
+    """The plan with burn ``i``'s period between its own and the next orbit's (geometric mean).
+
+    A resumed plan's first burn needs a nonzero impulsive delta-V from the start state to
+    pass the plan's engine checks (its Eq. 19 duration), but the make-up orbit is free in
+    the NLP, so that period only sizes the checks: with the nominal's own period, a
+    cut-off at the planned end (nothing to make up) would be refused.
+    """
+    if nplan.targets[i].kind != PERILUNE or i + 1 >= nplan.n_burns:
+        return nplan
+    period = math.sqrt(nplan.coast_s(i) * nplan.coast_s(i + 1))
+    burn = replace(nplan.burns[i], period_s=period, apolune_altitude_km=None)
+    return replace(nplan, burns=nplan.burns[:i] + (burn,) + nplan.burns[i + 1:])
+
+
 def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
                         mesh_n_coast: int) -> tuple:
     """Problems and guesses of a recovery's legs, without solving any (see the module).
@@ -309,7 +322,9 @@ def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
     ve = prob.model.exhaust_speed_kmps * 1e3
     mdot = prob.model.thrust_N / ve
     t1 = max(prob.x0[6] * (1 - math.exp(-est["delta_v_mps"] / ve)) / mdot, 1.0)
-    prob = replace(prob, t1_min_s=MIN_MAKE_UP_S)
+    span = prob.t_end_s - prob.t_ign_s
+    prob = replace(prob, t1_min_s=MIN_MAKE_UP_S,
+                   t1_max_s=min(max(3 * t1, prob.burn_bounds_s[1]), 0.9 * span))
     guess = make_guess(prob, t1) if est["delta_v_mps"] > 1.0 else guess_arcs(prob, t1)
     warm = [(prob, guess, sundman_fractions(guess.coast.t, guess.coast.x, mesh_n_coast))]
     for k in range(1, rec_plan.n_burns):
@@ -350,7 +365,8 @@ def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
     estimate; raises SolveError (IPOPT or verification) or PlanError (no such plan).
     """
     first_coast = first_coast_guess_s(nplan, i, t_r, x_r, window_min, max_period_s, coast)
-    rec_plan = nplan.resumed(i, t_r, x_r, first_coast_s=first_coast, window_min=window_min)
+    rec_plan = _sized(nplan, i).resumed(i, t_r, x_r, first_coast_s=first_coast,
+                                        window_min=window_min)
     eph = plan_ephemeris(nplan.ephemeris)
     est = {}
 
@@ -367,36 +383,6 @@ def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
     res = on_meshes(solve)
     est["first_coast_guess_s"] = first_coast
     return res, est
-
-
-def nothing_left(nplan: CapturePlan, legs: list, i: int, t_cut: float, xc, fit,
-                 coast: Model):
-    """The plan's later burns from the cut-off state, at their nominal perilunes.
-
-    Warm-started from the nominal's own later burns (the same epochs). Returns the
-    JointResult, or None if burn ``i`` was the last.
-    """
-    if i == nplan.n_burns - 1:
-        return None
-    t_next = nplan.nominal_perilunes_s[i + 1]
-    x_next = propagate(coast, t_cut, xc[:7], t_next).final
-    rec_plan = nplan.resumed(i + 1, t_next, x_next, window_min=_window(nplan, i + 1))
-    eph = plan_ephemeris(nplan.ephemeris)
-    prob = burn_problem(rec_plan, 0, x_next, eph, fit=fit or legs[i + 1].problem.model.fit)
-    _, guess, mc = warm_start(legs[i + 1])
-    warm = [(prob, guess, mc)] + [warm_start(s) for s in legs[i + 2:]]
-    return solve_joint(rec_plan, None, eph, fit=fit, warm=warm)
-
-
-def _window(plan: CapturePlan, i: int) -> tuple:
-    """The free-ignition window of burn ``i`` around its nominal perilune, min.
-
-    The plan's default: +-2 Eq. (19) durations, within 120 min and 0.4 of the orbit before.
-    """
-    t19 = plan.impulsive()[i].eq19_duration_min
-    t = plan.nominal_perilunes_s
-    lim = min(120.0, 0.4 * (t[i] - t[i - 1]) / 60.0) if i else 120.0
-    return (max(-2 * t19, -lim), min(2 * t19, lim))
 
 
 # ---------------------------------------------------------------------- one case
@@ -419,35 +405,38 @@ def _nominal_part(plan: CapturePlan, burn: int, max_period_s: float) -> tuple:
 
 def _solved(out: dict, res, est, burn: int, t_r: float, t_ref_i: float, partial: float,
             free: bool) -> dict:
-    """Fill ``out`` with a verified recovery (``res``: JointResult, or None: nothing to do)."""
+    """Fill ``out`` with a verified recovery (its JointResult ``res``).
+
+    ``free``: the make-up orbit was free (an ellipse target).
+    """
     rows = []
-    for k, s in enumerate(res.legs if res is not None else []):
+    for k, s in enumerate(res.legs):
         sm = s.summary()
-        rows.append({"burn": burn + k + (0 if free is not None else 1),
+        rows.append({"burn": burn + k,
                      "target": res.plan.burns[k].describe(),
                      "ignition_epoch": sm["ignition_epoch"],
                      "ignition_min_after_fault": (s.problem.t_ign_s - t_r) / 60.0,
                      "burn_duration_min": sm["burn_duration_min"],
                      "delta_v_mps": sm["delta_v_mps"], "verified": s.verification.passed})
     rec_dv = sum(r["delta_v_mps"] for r in rows)
-    end = (res.legs[-1].problem.t_ign_s + res.legs[-1].raw.t1_s) if rows else t_r
+    end = res.legs[-1].problem.t_ign_s + res.legs[-1].raw.t1_s
     period = None
     if free:
         xf = res.legs[0].end_state
         a = xf[0] / (1 - xf[1] ** 2 - xf[2] ** 2)
         period = period_s(a) / 3600.0 if a > 0 else math.inf
+        rows[0]["target"] = f"ellipse, {period:.6g} h (free)"
     out.update(status="recovered", recovery_delta_v_mps=rec_dv,
                total_delta_v_mps=partial + rec_dv,
                penalty_mps=partial + rec_dv - out["nominal_remaining_delta_v_mps"],
-               recovery_burns=rows, make_up_delta_v_mps=rows[0]["delta_v_mps"]
-               if rows and free is not None else None,
+               recovery_burns=rows, make_up_delta_v_mps=rows[0]["delta_v_mps"],
                make_up_estimate_mps=None if est is None else est["delta_v_mps"],
                make_up_estimate_h=None if est is None else est["first_coast_guess_s"] / 3600,
                first_coast_h=res.plan.coast_s(0) / 3600.0 if free else None,
                make_up_period_h=period,
                time_to_final_orbit_h=(end - t_ref_i) / 3600.0,
                all_verified=all(r["verified"] for r in rows),
-               ipopt_status=res.ipopt_status if res is not None else "")
+               ipopt_status=res.ipopt_status)
     return out
 
 
@@ -511,17 +500,6 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
     rest = sum(nplan.coast_s(k) for k in range(burn, plan.n_burns))
     fit = _fit_for(plan, t_cut, delay_s + 60 * window_min[1] + max_period_s + 7200.0 + rest)
     coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
-    if raw.t1_s - t_cut_rel < NOTHING_LEFT_S:
-        out["recovery_start_e"] = cut["e"]
-        if delay_s > 0 and i < plan.n_burns - 1 and \
-                t_r >= t_ref[i + 1] - 0.4 * (t_ref[i + 1] - t_ref[i]):
-            out["wall_s"] = time.perf_counter() - t_start
-            return _refused(out, "no recovery", "the fault outlasts the time to the next "
-                            "burn's perilune")
-        out = _attempt(out, lambda: (nothing_left(nplan, legs, i, t_cut, xc, fit, coast),
-                                     None), burn, t_cut, t_ref[i], partial, None)
-        out["wall_s"] = time.perf_counter() - t_start
-        return out
     x_r = propagate(coast, t_cut, xc[:7], t_r).final if delay_s > 0 else xc[:7]
     out["recovery_start_e"] = float(math.hypot(x_r[1], x_r[2]))
     why = physical_bound(plan, i, t_r, x_r, window_min, max_period_s, coast)
