@@ -41,14 +41,23 @@ def plan():
 
 
 @pytest.fixture(scope="module")
-def grid(plan, tmp_path_factory):
-    """The book's grid in two-body dynamics, computed once (a private cache)."""
-    mp = pytest.MonkeyPatch()
-    mp.setenv("LUNARCAP_NO_CACHE", "1")
-    try:
-        yield {(f, d): case_result(plan, 1, f, d) for f in FRACTIONS for d in DELAYS_MIN}
-    finally:
-        mp.undo()
+def case(plan):
+    """case(fraction, delay_min): a cut-off of burn 1, computed afresh once per module."""
+    memo = {}
+
+    def get(f, d):
+        if (f, d) not in memo:
+            with pytest.MonkeyPatch.context() as mp:
+                mp.setenv("LUNARCAP_NO_CACHE", "1")
+                memo[(f, d)] = case_result(plan, 1, f, d)
+        return memo[(f, d)]
+    return get
+
+
+@pytest.fixture(scope="module")
+def grid(case):
+    """The book's grid in two-body dynamics."""
+    return {(f, d): case(f, d) for f in FRACTIONS for d in DELAYS_MIN}
 
 
 def test_fraction_one_or_the_last_second_gives_no_penalty(plan, monkeypatch):
@@ -83,8 +92,8 @@ def test_every_penalty_of_the_book_grid_is_non_negative(grid):
                for r in grid.values() if r.get("make_up_period_h") is not None)
 
 
-def test_a_longer_fault_on_a_hyperbola_costs_more(grid):
-    r, late = grid[(0.25, 0.0)], grid[(0.25, 30.0)]
+def test_a_longer_fault_on_a_hyperbola_costs_more(case):
+    r, late = case(0.25, 0.0), case(0.25, 30.0)
     assert r["cutoff_orbit"] == "escape" and not r["captured"]
     assert r["cutoff_e"] > 1 and r["cutoff_energy_km2ps2"] > 0 and math.isinf(r["cutoff_ra_km"])
     # the recovery starts from the state at the cut-off (no delay): the same hyperbola
