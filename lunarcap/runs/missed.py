@@ -40,8 +40,9 @@ nominal's later burns.
 The **penalty** is measured on one basis: the delta-V from the state before burn n to the
 final orbit, finite burns, same dynamics: (delta-V of the partial burn + the
 recovery's) minus (the nominal burns n, n+1, ...). Statuses: "recovered" (verified),
-"no recovery" (the bound above, or IPOPT proves the recovery NLP infeasible), "failed"
-(any other solver failure, with IPOPT's status).
+"no recovery" (the physical bound above, or a re-plan the plan's own checks refuse, with
+their message), "failed" (any solver failure, with IPOPT's status: a solver's verdict is
+not a physical reason, so it is never reported as "no recovery").
 """
 
 from __future__ import annotations
@@ -86,8 +87,6 @@ MIN_FIRST_COAST_S = 600.0
 #: Lower bound of the make-up burn's duration, s: about nothing (0.003 m/s at 150 N and
 #: 525 kg), so the optimiser may drop the burn; nonzero so the burn's mesh keeps its size.
 MIN_MAKE_UP_S = 0.01
-#: IPOPT statuses that mean "no solution exists within the bounds".
-INFEASIBLE = ("Infeasible_Problem_Detected",)
 #: The contingencies of a case.
 CONTINGENCIES = ("cut-off", "late ignition")
 
@@ -453,9 +452,6 @@ def _attempt(out: dict, solve, burn: int, t_r: float, t_ref_i: float, partial: f
     except PlanError as exc:
         return _refused(out, "no recovery", f"no plan from this state: {exc}")
     except SolveError as exc:
-        if exc.status in INFEASIBLE:
-            return _refused(out, "no recovery", "IPOPT proved the recovery infeasible within "
-                            f"the bounds ({exc.status})", exc.status)
         return _refused(out, "failed", str(exc).split("\n")[0], exc.status)
     except RuntimeError as exc:  # a guess's propagation failed (e.g. p -> 0)
         return _refused(out, "failed", f"no initial guess: {exc}".split("\n")[0])
