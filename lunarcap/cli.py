@@ -188,6 +188,8 @@ def _print_burn_row(plan, r: dict) -> None:
         ver += f", gamma {r['verification_gamma_error_deg']:.1g} deg"
     if r["verification_ra_error_m"] is not None:
         ver += f", ra {r['verification_ra_error_m']:.2g} m"
+    if r.get("verification_period_error_s") is not None:
+        ver += f", period {r['verification_period_error_s']:.2g} s"
     ver += ")"
     print(f"{r['burn']:>4}  {b.describe():<{_target_width(plan)}} {r['ignition_epoch']:<27} "
           f"{r['start_min']:9.3f} "
@@ -234,7 +236,25 @@ def cmd_plan(args) -> int:
             print(json.dumps(_jsonable(out), indent=2))
     if not args.json:
         _print_totals(res.totals())
+    if args.export:
+        if all(b.solution.verification.passed for b in res.burns):
+            _export_plan(res, args)
+        else:
+            print("lunarcap: error: not exported: a burn failed verification", file=sys.stderr)
+            return 3
     return 0 if res.totals()["all_verified"] else 3
+
+
+def _export_plan(res, args) -> None:
+    """Write the plan's OEM, SPK, attitude and maneuver files (``--export DIR``)."""
+    from lunarcap.runs.export import export_plan
+
+    ex = export_plan(res, args.export, time_system=args.time_system, object_id=args.spk_id)
+    out = sys.stderr if args.json else sys.stdout
+    print(f"Exported in {ex.seconds:.2f} s ({ex.time_system}, SPK object ID {ex.object_id}; "
+          f"OEM interpolation within {ex.max_interpolation_error_m:.2g} m):", file=out)
+    for kind, path in ex.files.items():
+        print(f"  {path}  {ex.sizes_bytes[kind]:,} bytes", file=out)
 
 
 def cmd_solve(args) -> int:
@@ -413,6 +433,16 @@ def build_parser() -> argparse.ArgumentParser:
                    help="skip the impulsive limits in the same dynamics (no loss column)")
     p.add_argument("--no-cache", action="store_true", help="recompute, ignoring the disk cache")
     p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+    p.add_argument("--export", default=None, metavar="DIR",
+                   help="write the verified capture to DIR for other tools: <name>.oem (CCSDS "
+                        "OEM), <name>.bsp (SPICE SPK), <name>_attitude.csv, "
+                        "<name>_maneuvers.csv (Moon-centred ICRF)")
+    p.add_argument("--time-system", choices=["TDB", "UTC"], default="TDB",
+                   type=str.upper, help="time scale of the exported epochs (default TDB; "
+                                        "the SPK is always in ET = TDB)")
+    p.add_argument("--spk-id", type=int, default=-310001, metavar="ID",
+                   help="NAIF ID of the spacecraft in the exported SPK and OEM (default "
+                        "-310001)")
     p.set_defaults(func=cmd_plan)
 
     p = sub.add_parser("solve", help="optimal finite burn of one burn of a plan, verified")

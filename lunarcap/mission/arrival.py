@@ -19,21 +19,61 @@ the hyperbola's speed or orientation. We reconstruct them:
 * **Plane.** The orbit plane contains the asymptote and has the requested inclination
   (90 deg); of the two such planes, ``hemisphere`` picks the one whose perilune lies over
   the northern or southern lunar hemisphere.
+
+An arrival may instead be a **state** (:class:`StateArrival`: a Moon-centred position and
+velocity at an epoch, in ICRF or M-MME2000, as a navigation team or a CCSDS OPM gives it).
+:func:`perilune_from_state` then derives the arrival perilune by propagating the state in
+the plan's dynamics to its next perilune (the first zero of the radial velocity); its
+epoch, altitude, inclination, hemisphere and the two-body v_inf of the perilune state
+replace the reconstruction, and the arrival state is that propagated perilune state.
 """
+
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
 from lunarcap.errors import InputError
 from lunarcap.mission.impulsive import v_inf_from_loi1
 from lunarcap.physics import constants as C
-from lunarcap.physics.elements import mee_from_rv
+from lunarcap.physics.elements import inclination, mee_from_rv, rv_from_mee
 from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
-from lunarcap.physics.epochs import seconds_from_calendar
+from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 from lunarcap.physics.rocket import check_engine, check_perilune_radius
+
+#: Frames a state arrival may be given in.
+STATE_FRAMES = ("ICRF", "M-MME2000")
+#: The longest a state may precede its perilune (the ephemeris fit's 4 days, less margins).
+MAX_TO_PERILUNE_S = 3.5 * 86400.0
+
+
+@dataclass(frozen=True)
+class StateArrival:
+    """An arrival given as a Moon-centred state (the ``arrival`` of a plan with a state).
+
+    Attributes
+    ----------
+    epoch : str
+        Calendar epoch with its scale (``"2017-02-20 03:11:26 UTC"`` or TDB).
+    frame : {"ICRF", "M-MME2000"}
+    position_km, velocity_kmps : tuple of 3 floats
+    opm : str or None
+        The CCSDS OPM file the state was read from, if any.
+    """
+
+    epoch: str
+    frame: str
+    position_km: tuple
+    velocity_kmps: tuple
+    opm: str | None = None
+
+    @property
+    def epoch_s(self) -> float:
+        """TDB seconds past J2000 of the epoch."""
+        return seconds_from_calendar(self.epoch)
 
 
 @dataclass(frozen=True)
@@ -53,14 +93,30 @@ class ArrivalSpec:
     v_inf_kmps: float | None = None
     hemisphere: str = "north"
     approach_dir: tuple | None = None
+    state: StateArrival | None = None     # a state arrival (the rest derived from it)
+    perilune_mee: tuple | None = None     # derived: (p, f, g, h, k, L) at ``epoch``
 
     @property
     def perilune_radius_km(self) -> float:
         """R_Moon + perilune altitude, km."""
         return C.R_MOON + self.perilune_altitude_km
 
+    def approach_direction(self, eph: Ephemeris | None = None) -> np.ndarray:
+        """Unit velocity direction of the incoming asymptote, M-MME2000 (see the module)."""
+        if self.approach_dir is not None:
+            s = np.asarray(self.approach_dir, float)
+            return s / np.linalg.norm(s)
+        eph = eph or default_ephemeris()
+        _, vm = eph.moon_geocentric_state(seconds_from_calendar(self.epoch))
+        return -vm[:, 0] / np.linalg.norm(vm[:, 0])
+
     def build(self, eph: Ephemeris | None = None) -> "Arrival":
         """The Arrival state of these parameters."""
+        if self.perilune_mee is not None:   # a state arrival: the propagated perilune
+            r, v = (np.array(a, float) for a in rv_from_mee(*self.perilune_mee, C.MU_MOON))
+            return Arrival(seconds_from_calendar(self.epoch), r, v, float(self.mass_kg),
+                           float(self.v_inf_kmps), np.array(self.approach_direction(eph)),
+                           self.hemisphere)
         approach = "anti-lunar-velocity" if self.approach_dir is None else self.approach_dir
         return arrival_state(self.epoch, self.perilune_altitude_km, self.inclination_deg,
                              self.mass_kg, self.v_inf_kmps, approach=approach,
@@ -154,3 +210,112 @@ def arrival_state(epoch: str = C.ARRIVAL_EPOCH_TDB, altitude_km: float = C.PERIL
     south = min(cands, key=lambda c: c[0] @ z)
     rhat, vhat = north if hemisphere == "north" else south
     return Arrival(t, rp * rhat, vp * vhat, float(mass_kg), vinf, s, hemisphere)
+
+
+# ---------------------------------------------------------------------- state arrivals
+def _radial_sign(x):
+    """Sign-carrying radial velocity of MEE states: f sin L - g cos L (r.v up to a factor)."""
+    return x[1] * np.sin(x[5]) - x[2] * np.cos(x[5])
+
+
+@lru_cache(maxsize=64)
+def perilune_from_state(state: StateArrival, mass_kg: float, dynamics: str,
+                        eph: Ephemeris, lunar_pole: str) -> dict:
+    """The arrival perilune of a state, propagated in ``dynamics`` (see the module docstring).
+
+    Returns
+    -------
+    dict
+        ``epoch`` (TDB calendar string, microseconds), ``epoch_s``, ``mee`` (6-tuple),
+        ``altitude_km``, ``inclination_deg`` (M-MME2000), ``hemisphere``, ``v_inf_kmps``,
+        ``approach_dir`` (the incoming asymptote, M-MME2000) and ``hours_to_perilune``.
+
+    Raises
+    ------
+    InputError
+        One line naming the cause: the epoch outside the ephemeris, a state inside the
+        Moon, moving away from it, bound to it, a perilune below the surface or too late.
+    """
+    from scipy.optimize import brentq
+
+    from lunarcap.physics.dynamics import Model
+    from lunarcap.physics.ephemeris import ChebyshevFit
+    from lunarcap.physics.frames import mme_from_icrf
+    from lunarcap.physics.propagate import propagate
+
+    mu = C.MU_MOON
+    t0 = state.epoch_s
+    a0, b0 = eph.span_s
+    if not a0 + 3600.0 <= t0 <= b0 - 3600.0:
+        raise InputError(f"the state's epoch {state.epoch} is outside the ephemeris "
+                         f"{eph.name} ({calendar_from_seconds(a0, 0)} to "
+                         f"{calendar_from_seconds(b0, 0)})")
+    r, v = np.array(state.position_km, float), np.array(state.velocity_kmps, float)
+    if state.frame == "ICRF":
+        r, v = mme_from_icrf(r, lunar_pole), mme_from_icrf(v, lunar_pole)
+    rn, vr = np.linalg.norm(r), float(r @ v) / np.linalg.norm(r)
+    if rn <= C.R_MOON:
+        raise InputError(f"the state is {rn:.1f} km from the Moon's centre, inside the Moon "
+                         f"(radius {C.R_MOON:g} km)")
+    energy = v @ v / 2 - mu / rn
+    if vr >= 0:
+        raise InputError(f"the state is not approaching the Moon: it moves away (radial "
+                         f"speed {vr:+.4f} km/s at {rn:.1f} km); an arrival state must "
+                         f"precede its perilune")
+    if energy <= 0:
+        raise InputError(f"the state is already bound to the Moon (specific energy "
+                         f"{energy:.4f} km^2/s^2 at {rn:.1f} km): an arrival is a hyperbolic "
+                         f"approach")
+    # two-body perilune and the time to it (hyperbolic Kepler equation)
+    a = -mu / (2 * energy)
+    e = np.linalg.norm(((v @ v - mu / rn) * r - (r @ v) * v) / mu)
+    rp2 = a * (1 - e)
+    if rp2 <= C.R_MOON:
+        raise InputError(f"the perilune lies below the lunar surface (two-body altitude "
+                         f"{rp2 - C.R_MOON:.1f} km): the state is on a collision course")
+    F = np.arccosh((1 + rn / abs(a)) / e)
+    t_peri = (e * np.sinh(F) - F) / np.sqrt(mu / abs(a) ** 3)
+    horizon = 1.3 * t_peri + 1800.0
+    if horizon > MAX_TO_PERILUNE_S:
+        raise InputError(f"the perilune is {t_peri / 86400:.1f} days after the state's "
+                         f"epoch (two-body): give a state within "
+                         f"{MAX_TO_PERILUNE_S / 86400 - 0.5:g} days of it")
+    if t0 + horizon > b0 - 3600.0:
+        raise InputError(f"the approach from {state.epoch} to its perilune leaves the "
+                         f"ephemeris {eph.name} (ends {calendar_from_seconds(b0, 0)})")
+    fit = ChebyshevFit.fit(eph, t0 - 3600.0, t0 + horizon + 3600.0) \
+        if dynamics == "full" else None
+    model = Model(dynamics, 0.0, 300.0, fit)
+    x0 = np.concatenate([mee_from_rv(r, v, mu), [mass_kg]])
+    traj = propagate(model, t0, x0, t0 + horizon, dense=True, dense_points=400)
+    s = _radial_sign(traj.x)
+    up = np.flatnonzero((s[:-1] < 0) & (s[1:] >= 0))
+    if not up.size:
+        raise InputError(f"no perilune within {horizon / 3600:.1f} h of the state in "
+                         f"{dynamics} dynamics")
+    j = up[0]
+    tp = brentq(lambda t: float(_radial_sign(traj(t))), traj.t[j], traj.t[j + 1],
+                xtol=1e-7, rtol=1e-15)
+    tp = round(tp, 6)
+    xp = propagate(model, t0, x0, tp).final if tp != t0 else x0
+    rp_vec, vp_vec = (np.array(q, float) for q in rv_from_mee(*xp[:6], mu))
+    rp = np.linalg.norm(rp_vec)
+    if rp <= C.R_MOON:
+        raise InputError(f"the perilune lies below the lunar surface (altitude "
+                         f"{rp - C.R_MOON:.1f} km in {dynamics} dynamics): the state is on a "
+                         f"collision course")
+    vinf2 = vp_vec @ vp_vec - 2 * mu / rp
+    if vinf2 <= 0:
+        raise InputError(f"the state reaches its perilune bound to the Moon (v^2 - 2 mu/r "
+                         f"= {vinf2:.4f} km^2/s^2 in {dynamics} dynamics): an arrival is a "
+                         f"hyperbolic approach")
+    # the incoming asymptote of the osculating hyperbola at the perilune (its velocity
+    # direction): s = r/(e r) + sqrt(1 - 1/e^2) v/v, rotated back by the asymptote angle
+    e_p = 1 + rp * vinf2 / mu
+    s_in = rp_vec / rp / e_p + np.sqrt(1 - 1 / e_p ** 2) * vp_vec / np.linalg.norm(vp_vec)
+    return {"epoch": calendar_from_seconds(tp, 6), "epoch_s": tp,
+            "approach_dir": tuple(float(q) for q in s_in / np.linalg.norm(s_in)),
+            "mee": tuple(float(q) for q in xp[:6]), "altitude_km": float(rp - C.R_MOON),
+            "inclination_deg": float(np.degrees(inclination(xp[3], xp[4]))),
+            "hemisphere": "north" if rp_vec[2] >= 0 else "south",
+            "v_inf_kmps": float(np.sqrt(vinf2)), "hours_to_perilune": (tp - t0) / 3600.0}

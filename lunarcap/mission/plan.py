@@ -20,20 +20,47 @@ spacecraft arrives, with which engine, in which dynamics, and which burns captur
 
 Burns
 -----
-Each burn ignites ``start_min`` minutes from the nominal perilune of the orbit it starts
-on (negative: before; ``free``: optimised) and is followed by a coast to the next nominal
-perilune, where the target must hold (:mod:`lunarcap.mission.targets`):
+Each burn ignites ``start_min`` minutes from the perilune of the orbit it starts on
+(negative: before; ``free``: optimised), and its target is the orbit it must leave
+(:mod:`lunarcap.mission.targets`). How a period or apolune is met is the plan's
+``formulation``:
 
-* ``target_period_h`` (or ``target_apolune_altitude_km``): an ellipse with the plan's
-  perilune radius and inclination; its period fixes the coast (next nominal perilune =
-  this one + the period, Song 2011 Sec. 2.2), and reaching perilune at that epoch with
-  that radius is what makes the orbit have that period.
-* ``target: circular``: the circle at the perilune radius, last burn only; the coast after
-  it lasts ``coast_min`` (default one period of the circle).
+* ``orbit`` (default): as asked. ``target_period_h`` or ``target_apolune_altitude_km`` is
+  an ellipse with the plan's perilune radius and inclination, and that period or apolune,
+  as the osculating orbit at the first perilune after the burn (its epoch free, within a
+  fifth of the period of the perilune the plan predicts); the next burn's ignition is
+  counted from that perilune. The last burn may instead name both altitudes,
+  ``target: {perilune_altitude_km: 100, apolune_altitude_km: 300}``.
+* ``song2011``: the paper's Eq. (17). The coast ends at the next nominal perilune (this
+  one + the period, Song 2011 Sec. 2.2), where perilune radius, inclination and gamma = 0
+  hold; the period is met only through that timing. The packaged ``song2011-*`` plans.
+
+``target: circular`` is the circle at the perilune radius, last burn only; the coast
+after it lasts ``coast_min`` (default one period of the circle).
 
 Optional keys per burn: ``steering`` (optimal | inertial | antivelocity) and
 ``start_bounds_min: [lo, hi]`` (the window of a free ignition; default +-2 Eq. (19)
 durations around perilune, within +-120 min and half the orbit before the burn).
+
+Arrival from a state
+--------------------
+Instead of ``v_inf_kmps`` and the reconstructed geometry, ``arrival`` may give a
+Moon-centred state, as a navigation team hands it over::
+
+    arrival:
+      epoch: "2017-02-20 03:11:26 UTC"     # UTC or TDB, the scale named in the string
+      frame: ICRF                          # ICRF (Moon-centred, ICRF axes) or M-MME2000
+      position_km: [x, y, z]
+      velocity_kmps: [vx, vy, vz]
+      mass_kg: 650
+
+or ``arrival: {opm: approach.opm}`` (a CCSDS OPM in KVN, relative to the plan's
+directory; ``mass_kg`` beside it if the OPM has no ``MASS``). The arrival perilune is
+derived from the state in the plan's dynamics (:func:`lunarcap.mission.arrival.
+perilune_from_state`): its epoch, altitude, inclination and hemisphere then act as a v_inf
+arrival's do (``start_min`` counts from that perilune; every target uses its altitude and
+inclination). A state that cannot be captured (moving away from the Moon, bound to it,
+perilune below the surface, outside the ephemeris) is refused with its cause.
 
 Nominal perilune epochs are the arrival epoch plus the coasts; with them the arrival
 epoch and every coast must lie inside the ephemeris. Every error names the field.
@@ -56,7 +83,7 @@ from pathlib import Path
 import numpy as np
 
 from lunarcap.errors import InputError
-from lunarcap.mission.arrival import ArrivalSpec
+from lunarcap.mission.arrival import STATE_FRAMES, ArrivalSpec, StateArrival, perilune_from_state
 from lunarcap.mission.impulsive import (
     PAPER_DV_LOI1_MPS,
     ImpulsiveBurn,
@@ -64,7 +91,7 @@ from lunarcap.mission.impulsive import (
     tangential_impulse_mps,
     v_inf_from_loi1,
 )
-from lunarcap.mission.targets import CIRCULAR, PERILUNE, Target
+from lunarcap.mission.targets import CIRCULAR, ELLIPSE, PERILUNE, Target, check_inclination
 from lunarcap.physics import constants as C
 from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
@@ -74,6 +101,11 @@ from lunarcap.physics.frames import DEFAULT_LUNAR_POLE, LUNAR_POLES
 PLAN_DIR = Path(__file__).resolve().parent / "plans"
 
 DYNAMICS = ("full", "j2", "two-body")
+#: How a burn's period or apolune target is met (:mod:`lunarcap.mission.targets`):
+#: ``orbit``, the orbit named, as osculating elements at the first perilune after the burn
+#: (its epoch free); ``song2011``, the paper's Eq. (17): perilune radius, inclination and
+#: gamma = 0 at the next nominal perilune (the period only through that timing).
+FORMULATIONS = ("orbit", "song2011")
 STEERING = ("optimal", "inertial", "antivelocity")
 HEMISPHERES = ("north", "south")
 
@@ -88,10 +120,11 @@ MIN_BURN_S = 0.5
 MAX_BURN_FRACTION = 0.5
 
 _TOP_KEYS = {"name", "description", "arrival", "engine", "dynamics", "burns", "ephemeris",
-             "lunar_pole", "start"}
+             "lunar_pole", "start", "formulation"}
 _START_KEYS = {"epoch", "mee", "mass_kg", "first_coast_min"}
 _ARRIVAL_KEYS = {"epoch", "perilune_altitude_km", "inclination_deg", "v_inf_kmps",
                  "impulsive_loi1_mps", "hemisphere", "approach_dir", "mass_kg"}
+_STATE_ARRIVAL_KEYS = {"epoch", "frame", "position_km", "velocity_kmps", "mass_kg"}
 _ENGINE_KEYS = {"thrust_N", "isp_s"}
 _BURN_KEYS = {"target", "target_period_h", "target_apolune_altitude_km", "start_min",
               "coast_min", "steering", "start_bounds_min"}
@@ -160,6 +193,13 @@ class Burn:
     steering : {"optimal", "inertial", "antivelocity"}
     start_bounds_min : (lo, hi) or None
         Window of a free ignition, min from the nominal perilune.
+    perilune_altitude_km : float or None
+        The perilune altitude of an explicit final ellipse (``target: {perilune_altitude_km,
+        apolune_altitude_km}``), km; None: the plan's.
+    nominal_timing : bool
+        The paper's formulation (Eq. 17 at the next nominal perilune) for this burn's
+        ellipse, whatever the plan's: the studies that optimise the orbits themselves move
+        the nominal perilunes (:meth:`CapturePlan.with_burn_count`).
     """
 
     target: str = PERILUNE
@@ -169,6 +209,8 @@ class Burn:
     apolune_altitude_km: float | None = None
     steering: str = "optimal"
     start_bounds_min: tuple | None = None
+    perilune_altitude_km: float | None = None
+    nominal_timing: bool = False
 
     @property
     def free_start(self) -> bool:
@@ -179,6 +221,9 @@ class Burn:
         """A few words on the target: 'ellipse, 12.235 h' or 'circle'."""
         if self.target == CIRCULAR:
             return "circle"
+        if self.perilune_altitude_km is not None:
+            return (f"ellipse, {self.perilune_altitude_km:g} x {self.apolune_altitude_km:g} "
+                    "km altitude")
         if self.apolune_altitude_km is not None:
             return f"ellipse, apolune altitude {self.apolune_altitude_km:g} km"
         return f"ellipse, {self.period_s / 3600:.6g} h"
@@ -255,12 +300,18 @@ class CapturePlan:
     description: str = field(default="", compare=False)
     lunar_pole: str = DEFAULT_LUNAR_POLE
     start: Start | None = None
+    formulation: str = "orbit"
 
     # ------------------------------------------------------------------ validation
     def __post_init__(self):
         object.__setattr__(self, "burns", tuple(self.burns))
         _validate_engine(self.engine)
+        if self.arrival.state is not None:
+            self._derive_state_arrival()
         _validate_arrival(self.arrival)
+        if self.formulation not in FORMULATIONS:
+            raise _err("formulation", f"must be one of {', '.join(FORMULATIONS)}, got "
+                                      f"{self.formulation!r}")
         if self.dynamics not in DYNAMICS:
             raise _err("dynamics", f"must be one of {', '.join(DYNAMICS)}, got {self.dynamics!r}")
         if self.lunar_pole not in LUNAR_POLES:
@@ -274,6 +325,8 @@ class CapturePlan:
             self._check_start()
         for i, b in enumerate(self.burns):
             _validate_burn(f"burns[{i}]", b, rp, period_before, last=i == len(self.burns) - 1)
+            if b.perilune_altitude_km is not None:
+                self._check_explicit_ellipse(i)
             period_before = b.period_s if b.target == PERILUNE else _circle_period_s(rp)
         if self.start is None and (self.impulsive_loi1_mps is not None
                                    or self.arrival.v_inf_kmps is None):
@@ -288,7 +341,36 @@ class CapturePlan:
                 raise _err("arrival.impulsive_loi1_mps", str(exc)) from None
             object.__setattr__(self, "arrival", replace(self.arrival, v_inf_kmps=vinf))
         self._check_ephemeris()
+        if self.start is None:
+            self._check_arrival_geometry()
         self._check_engine_fits()
+
+    def _derive_state_arrival(self) -> None:
+        """Replace the perilune numbers of a state arrival by those of its propagation."""
+        if self.dynamics not in DYNAMICS or self.lunar_pole not in LUNAR_POLES:
+            return  # refused below with the field named
+        a = self.arrival
+        try:
+            peri = perilune_from_state(a.state, float(a.mass_kg), self.dynamics,
+                                       self.ephemeris_model(), self.lunar_pole)
+        except InputError as exc:
+            where = "arrival.opm" if a.state.opm else "arrival"
+            raise _err(where, str(exc)) from None
+        object.__setattr__(self, "arrival", replace(
+            a, epoch=peri["epoch"], perilune_altitude_km=peri["altitude_km"],
+            inclination_deg=peri["inclination_deg"], hemisphere=peri["hemisphere"],
+            v_inf_kmps=peri["v_inf_kmps"], perilune_mee=peri["mee"],
+            approach_dir=peri["approach_dir"]))
+
+    def _check_explicit_ellipse(self, i: int) -> None:
+        """An ellipse given by both altitudes: the last burn, in the orbit formulation."""
+        if i != self.n_burns - 1:
+            raise _err(f"burns[{i}].target", "an ellipse given by both altitudes is a final "
+                                             "orbit: only the last burn may have it")
+        if self.formulation == "song2011":
+            raise _err(f"burns[{i}].target", "the song2011 formulation (Eq. 17) targets a "
+                                             "perilune and a timing, not an apolune: use "
+                                             "formulation: orbit for an ellipse by altitudes")
 
     def _check_start(self) -> None:
         st = self.start
@@ -304,6 +386,20 @@ class CapturePlan:
             raise _err("start.first_coast_min",
                        f"the first coast ({st.first_coast_s / 60:.1f} min) must end after the "
                        f"latest ignition ({latest:g} min)")
+
+    def _check_arrival_geometry(self) -> None:
+        """The arrival hyperbola can be built with this inclination (else PlanError)."""
+        a = self.arrival
+        s = a.approach_direction(self.ephemeris_model())
+        lat = math.degrees(math.asin(max(-1.0, min(1.0, float(s[2])))))
+        inc = a.inclination_deg
+        if min(inc, 180.0 - inc) < abs(lat) - 1e-9:
+            raise _err("arrival.inclination_deg",
+                       f"{inc:g} deg cannot be reached from this arrival: its approach "
+                       f"asymptote lies {abs(lat):.2f} deg from the lunar equator (M-MME2000) "
+                       f"on {a.epoch}, and an orbit containing it is inclined at least that "
+                       f"much (and at most 180 deg minus it); ask for {abs(lat):.2f} to "
+                       f"{180 - abs(lat):.2f} deg, or give approach_dir")
 
     def _check_ephemeris(self) -> None:
         eph = self.ephemeris_model()
@@ -347,9 +443,26 @@ class CapturePlan:
 
     @property
     def targets(self) -> tuple:
-        """The :class:`~lunarcap.mission.targets.Target` of each burn."""
-        return tuple(Target(b.target, self.perilune_radius_km, self.arrival.inclination_deg)
-                     for b in self.burns)
+        """The :class:`~lunarcap.mission.targets.Target` of each burn.
+
+        A period or apolune target is an ``ellipse`` (the orbit as asked, at its first
+        perilune) unless the plan's formulation is ``song2011`` or the burn keeps the
+        nominal timing, when it is the paper's ``perilune`` target (Eq. 17).
+        """
+        return tuple(self._target(b) for b in self.burns)
+
+    def _target(self, b: Burn) -> Target:
+        rp, inc = self.perilune_radius_km, self.arrival.inclination_deg
+        if b.target == CIRCULAR:
+            return Target(CIRCULAR, rp, inc)
+        if b.perilune_altitude_km is not None:
+            rp = C.R_MOON + b.perilune_altitude_km
+        if self.formulation == "song2011" or b.nominal_timing:
+            return Target(PERILUNE, rp, inc)
+        if b.apolune_altitude_km is not None:
+            return Target(ELLIPSE, rp, inc, C.R_MOON + b.apolune_altitude_km)
+        a = (C.MU_MOON * (b.period_s / (2 * math.pi)) ** 2) ** (1.0 / 3.0)
+        return Target(ELLIPSE, rp, inc, 2 * a - rp)
 
     def coast_s(self, i: int) -> float:
         """Time from the nominal perilune before burn ``i`` (0-based) to the next, s.
@@ -451,7 +564,8 @@ class CapturePlan:
             if i == 0 and start is not None:
                 start = replace(start, first_coast_s=c)
             elif burns[i].target == PERILUNE:
-                burns[i] = replace(burns[i], period_s=c, apolune_altitude_km=None)
+                burns[i] = replace(burns[i], period_s=c, apolune_altitude_km=None,
+                                   perilune_altitude_km=None, nominal_timing=True)
             else:
                 burns[i] = replace(burns[i], coast_s=c)
         return replace(self, burns=tuple(burns), start=start)
@@ -463,7 +577,8 @@ class CapturePlan:
         then the plan's last burn (its target and coast); every ignition free.
         """
         last = replace(self.burns[-1], start_min="free", start_bounds_min=None)
-        burns = tuple(Burn(PERILUNE, period_s=float(p), start_min="free") for p in periods_s)
+        burns = tuple(Burn(PERILUNE, period_s=float(p), start_min="free", nominal_timing=True)
+                      for p in periods_s)
         n = len(burns) + 1
         return replace(self, burns=burns + (last,), impulsive_loi1_mps=None,
                        name=name or f"{self.name} in {n} burn{'s' * (n > 1)}")
@@ -527,37 +642,9 @@ class CapturePlan:
         if not isinstance(name, str) or not name.strip():
             raise _err("name", f"must be a non-empty text, got {name!r}")
         a = d["arrival"]
-        _keys("arrival", a, _ARRIVAL_KEYS,
-              {"epoch", "perilune_altitude_km", "inclination_deg", "mass_kg"})
-        if ("v_inf_kmps" in a) == ("impulsive_loi1_mps" in a):
-            raise _err("arrival.v_inf_kmps", "give exactly one of v_inf_kmps and "
-                                             "impulsive_loi1_mps")
-        epoch = a["epoch"]
-        if not isinstance(epoch, str):
-            raise _err("arrival.epoch", f"must be a text like '2017-02-20 03:41:26 TDB', "
-                                        f"got {epoch!r}")
-        try:
-            seconds_from_calendar(epoch)
-        except InputError as exc:
-            raise _err("arrival.epoch", str(exc)) from None
-        approach = a.get("approach_dir")
-        if approach is not None:
-            if not isinstance(approach, (list, tuple)) or len(approach) != 3:
-                raise _err("arrival.approach_dir", f"must be a list of three numbers "
-                                                   f"(M-MME2000), got {approach!r}")
-            approach = tuple(_number(f"arrival.approach_dir[{j}]", x, "", positive=False)
-                             for j, x in enumerate(approach))
-        arrival = ArrivalSpec(
-            epoch=epoch,
-            perilune_altitude_km=_number("arrival.perilune_altitude_km",
-                                         a["perilune_altitude_km"], "km", positive=False),
-            inclination_deg=_number("arrival.inclination_deg", a["inclination_deg"], "deg",
-                                    positive=False),
-            mass_kg=_number("arrival.mass_kg", a["mass_kg"], "kg"),
-            v_inf_kmps=(_number("arrival.v_inf_kmps", a["v_inf_kmps"], "km/s")
-                        if "v_inf_kmps" in a else None),
-            hemisphere=a.get("hemisphere", "north"),
-            approach_dir=approach)
+        arrival = _state_arrival_from_dict(a, base_dir)
+        if arrival is None:
+            arrival = _perilune_arrival_from_dict(a)
         e = d["engine"]
         _keys("engine", e, _ENGINE_KEYS, _ENGINE_KEYS)
         engine = Engine(_number("engine.thrust_N", e["thrust_N"], "N"),
@@ -587,7 +674,8 @@ class CapturePlan:
                    impulsive_loi1_mps=(_number("arrival.impulsive_loi1_mps",
                                                a["impulsive_loi1_mps"], "m/s")
                                        if "impulsive_loi1_mps" in a else None),
-                   description=desc.strip(), start=start)
+                   description=desc.strip(), start=start,
+                   formulation=d.get("formulation", "orbit"))
 
     def to_dict(self) -> dict:
         """The plan as a mapping with the YAML file's keys (round-trips :meth:`from_dict`)."""
@@ -602,6 +690,12 @@ class CapturePlan:
         if a.approach_dir is not None:
             arrival["approach_dir"] = list(a.approach_dir)
         arrival["mass_kg"] = a.mass_kg
+        if a.state is not None:   # as given (the perilune is derived again on loading)
+            st = a.state
+            arrival = ({"opm": st.opm} if st.opm else
+                       {"epoch": st.epoch, "frame": st.frame,
+                        "position_km": list(st.position_km),
+                        "velocity_kmps": list(st.velocity_kmps)}) | {"mass_kg": a.mass_kg}
         burns = []
         for b in self.burns:
             row = {}
@@ -609,6 +703,9 @@ class CapturePlan:
                 row["target"] = CIRCULAR
                 if b.coast_s is not None:
                     row["coast_min"] = b.coast_s / 60.0
+            elif b.perilune_altitude_km is not None:
+                row["target"] = {"perilune_altitude_km": b.perilune_altitude_km,
+                                 "apolune_altitude_km": b.apolune_altitude_km}
             elif b.apolune_altitude_km is not None:
                 row["target_apolune_altitude_km"] = b.apolune_altitude_km
             else:
@@ -629,6 +726,8 @@ class CapturePlan:
             out["ephemeris"] = self.ephemeris
         if self.lunar_pole != DEFAULT_LUNAR_POLE:
             out["lunar_pole"] = self.lunar_pole
+        if self.formulation != "orbit":
+            out["formulation"] = self.formulation
         if self.start is not None:
             out["start"] = {"epoch": calendar_from_seconds(self.start.epoch_s, 6),
                             "mee": list(self.start.state[:6]), "mass_kg": self.start.mass_kg,
@@ -661,14 +760,36 @@ def _start_value(where: str, value):
     return v
 
 
+def _ellipse_from_dict(where: str, t) -> tuple:
+    """(perilune altitude, apolune altitude, period) of ``target: {perilune_altitude_km, ...}``."""
+    keys = {"perilune_altitude_km", "apolune_altitude_km"}
+    _keys(where, t, keys, keys)
+    rp = _number(f"{where}.perilune_altitude_km", t["perilune_altitude_km"], "km")
+    ra = _number(f"{where}.apolune_altitude_km", t["apolune_altitude_km"], "km")
+    if not ra > rp:
+        raise _err(f"{where}.apolune_altitude_km", f"{ra:g} km is not above the perilune "
+                                                   f"altitude {rp:g} km")
+    return rp, ra, _period_from_apolune_s(C.R_MOON + rp, C.R_MOON + ra)
+
+
 def _burn_from_dict(where: str, b, altitude_km: float) -> Burn:
     _keys(where, b, _BURN_KEYS, {"start_min"})
     given = [k for k in ("target_period_h", "target_apolune_altitude_km") if k in b]
+    if isinstance(b.get("target"), dict):
+        if given or "coast_min" in b:
+            raise _err(f"{where}.target", "an ellipse given by both altitudes takes no "
+                                          "period, apolune or coast_min of its own")
+        rp_alt, ra_alt, period = _ellipse_from_dict(f"{where}.target", b["target"])
+        return replace(_burn_from_dict(where, {k: v for k, v in b.items() if k != "target"}
+                                       | {"target_period_h": period / 3600.0}, altitude_km),
+                       period_s=period, apolune_altitude_km=ra_alt,
+                       perilune_altitude_km=rp_alt)
     kind = b.get("target", PERILUNE if given else None)
     if kind not in (PERILUNE, CIRCULAR):
-        raise _err(f"{where}.target", f"must be 'circular' or 'perilune' (or give "
-                                      f"target_period_h / target_apolune_altitude_km), got "
-                                      f"{kind!r}")
+        raise _err(f"{where}.target", f"must be 'circular', an ellipse "
+                                      f"{{perilune_altitude_km, apolune_altitude_km}}, or "
+                                      f"'perilune' (or give target_period_h / "
+                                      f"target_apolune_altitude_km), got {kind!r}")
     period = apo = coast = None
     if kind == CIRCULAR:
         if given:
@@ -708,6 +829,101 @@ def _burn_from_dict(where: str, b, altitude_km: float) -> Burn:
                 start_bounds_min=bounds)
 
 
+def _perilune_arrival_from_dict(a) -> ArrivalSpec:
+    """The ``arrival`` of a plan given by its perilune (v_inf and the reconstructed geometry)."""
+    _keys("arrival", a, _ARRIVAL_KEYS,
+          {"epoch", "perilune_altitude_km", "inclination_deg", "mass_kg"})
+    if ("v_inf_kmps" in a) == ("impulsive_loi1_mps" in a):
+        raise _err("arrival.v_inf_kmps", "give exactly one of v_inf_kmps and "
+                                         "impulsive_loi1_mps")
+    epoch = a["epoch"]
+    if not isinstance(epoch, str):
+        raise _err("arrival.epoch", f"must be a text like '2017-02-20 03:41:26 TDB', "
+                                    f"got {epoch!r}")
+    try:
+        seconds_from_calendar(epoch)
+    except InputError as exc:
+        raise _err("arrival.epoch", str(exc)) from None
+    approach = a.get("approach_dir")
+    if approach is not None:
+        if not isinstance(approach, (list, tuple)) or len(approach) != 3:
+            raise _err("arrival.approach_dir", f"must be a list of three numbers "
+                                               f"(M-MME2000), got {approach!r}")
+        approach = tuple(_number(f"arrival.approach_dir[{j}]", x, "", positive=False)
+                         for j, x in enumerate(approach))
+    return ArrivalSpec(
+        epoch=epoch,
+        perilune_altitude_km=_number("arrival.perilune_altitude_km",
+                                     a["perilune_altitude_km"], "km", positive=False),
+        inclination_deg=_number("arrival.inclination_deg", a["inclination_deg"], "deg",
+                                positive=False),
+        mass_kg=_number("arrival.mass_kg", a["mass_kg"], "kg"),
+        v_inf_kmps=(_number("arrival.v_inf_kmps", a["v_inf_kmps"], "km/s")
+                    if "v_inf_kmps" in a else None),
+        hemisphere=a.get("hemisphere", "north"),
+        approach_dir=approach)
+
+
+def _state_arrival_from_dict(a, base_dir) -> ArrivalSpec | None:
+    """The ``arrival`` of a plan given as a state or an OPM file (None: a perilune arrival).
+
+    The perilune numbers are placeholders until the plan derives them in its dynamics
+    (:meth:`CapturePlan._derive_state_arrival`).
+    """
+    if not isinstance(a, dict) or not ({"opm", "position_km", "velocity_kmps"} & set(a)):
+        return None
+    mass = a.get("mass_kg")
+    if "opm" in a:
+        _keys("arrival", a, {"opm", "mass_kg"}, {"opm"})
+        from lunarcap.exchange.ccsds import read_opm
+
+        path = a["opm"]
+        if not isinstance(path, str):
+            raise _err("arrival.opm", f"must be the path of a CCSDS OPM file, got {path!r}")
+        p = Path(path).expanduser()
+        if not p.is_absolute() and base_dir is not None:
+            p = Path(base_dir) / p
+        try:
+            sv = read_opm(p)
+        except InputError as exc:
+            raise _err("arrival.opm", str(exc)) from None
+        if mass is None:
+            if sv.mass_kg is None:
+                raise _err("arrival.mass_kg", f"missing: the OPM {p.name} gives no MASS")
+            mass = sv.mass_kg
+        state = StateArrival(sv.epoch_text, "ICRF", sv.r_km, sv.v_kmps, opm=str(path))
+    else:
+        unknown = sorted(set(a) - _STATE_ARRIVAL_KEYS)
+        if unknown:
+            raise _err(f"arrival.{unknown[0]}",
+                       f"a state arrival takes {', '.join(sorted(_STATE_ARRIVAL_KEYS))}; "
+                       f"{unknown[0]} belongs to an arrival given by its perilune")
+        _keys("arrival", a, _STATE_ARRIVAL_KEYS, _STATE_ARRIVAL_KEYS)
+        if not isinstance(a["epoch"], str):
+            raise _err("arrival.epoch", f"must be a text like '2017-02-20 03:11:26 UTC', "
+                                        f"got {a['epoch']!r}")
+        try:
+            seconds_from_calendar(a["epoch"])
+        except InputError as exc:
+            raise _err("arrival.epoch", str(exc)) from None
+        if a["frame"] not in STATE_FRAMES:
+            raise _err("arrival.frame", f"must be one of {', '.join(STATE_FRAMES)}, got "
+                                        f"{a['frame']!r}")
+        vecs = []
+        for key, unit in (("position_km", "km"), ("velocity_kmps", "km/s")):
+            val = a[key]
+            if not isinstance(val, (list, tuple)) or len(val) != 3:
+                raise _err(f"arrival.{key}", f"must be a list of three numbers ({unit}), got "
+                                             f"{val!r}")
+            vecs.append(tuple(_number(f"arrival.{key}[{j}]", x, unit, positive=False)
+                              for j, x in enumerate(val)))
+        state = StateArrival(a["epoch"], a["frame"], vecs[0], vecs[1])
+    mass = _number("arrival.mass_kg", mass, "kg")
+    # placeholders (a valid perilune), replaced by the derivation in the plan's dynamics
+    return ArrivalSpec(epoch=state.epoch, perilune_altitude_km=100.0, inclination_deg=90.0,
+                       mass_kg=mass, v_inf_kmps=1.0, state=state)
+
+
 def _start_from_dict(d) -> Start:
     _keys("start", d, _START_KEYS, _START_KEYS)
     if not isinstance(d["epoch"], str):
@@ -738,9 +954,10 @@ def _validate_arrival(a: ArrivalSpec) -> None:
                    f"{alt:g} km puts the perilune at or below the lunar surface "
                    f"(radius {C.R_MOON} km): the altitude must be positive")
     inc = _number("arrival.inclination_deg", a.inclination_deg, "deg", positive=False)
-    if not 0.0 < inc < 180.0:
-        raise _err("arrival.inclination_deg", f"must lie strictly between 0 and 180 deg, "
-                                              f"got {inc:g}")
+    try:
+        check_inclination("arrival.inclination_deg", inc)
+    except InputError as exc:
+        raise PlanError(str(exc)) from None
     _number("arrival.mass_kg", a.mass_kg, "kg")
     if a.v_inf_kmps is not None:
         _number("arrival.v_inf_kmps", a.v_inf_kmps, "km/s")

@@ -26,9 +26,22 @@ VU = LU / TU
 N_X = 7
 
 #: Box bounds of the scaled states (p LU, f, g, h, k, L rad, m / m_ref): wide, only to keep
-#: IPOPT away from nonsense (p > 0, a finite mass).
+#: IPOPT away from nonsense (p > 0, a finite mass). h and k, tan(i/2) times the cosine and
+#: sine of the node, are widened per problem to admit its inclination
+#: (:func:`hk_bound`): with +-3 for every plan, retrograde plans (i > 143 deg for some
+#: nodes) were infeasible from their first iterate.
 STATE_LB = np.array([0.2, -3, -3, -3, -3, -np.inf, 0.05])
 STATE_UB = np.array([200.0, 3, 3, 3, 3, np.inf, 1.0 + 1e-9])
+
+
+def hk_bound(*tan_half_inclinations) -> float:
+    """Bound of |h| and |k| for orbits of these tan(i/2): 3, or 1.5 times the largest + 1.
+
+    3 (the bound of every plan up to i = 90 deg, kept so that their optima are unchanged)
+    admits i <= 2 atan(3) = 143 deg only for some nodes; 1.5 tan(i/2) + 1 leaves room for
+    the inclination to move during a burn.
+    """
+    return max(3.0, 1.5 * max(tan_half_inclinations) + 1.0)
 
 
 @dataclass(frozen=True)

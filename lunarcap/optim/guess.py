@@ -40,6 +40,10 @@ def make_guess(prob: BurnProblem, t1_s: float | None = None, tune: bool = True) 
     """
     t1 = t1_s or prob.eq19_duration_s or 600.0
     t1 = min(t1, 0.9 * (prob.t_end_s - prob.t_ign_s), speed_stop_s(prob))
+    if tune and prob.free_end:
+        guess = guess_orbit_as_asked(prob, t1)
+        if guess is not None:
+            return guess
     if tune and not prob.circular:
         t1, guess = tune_duration(prob, t1)
         if guess is not None:
@@ -118,3 +122,46 @@ def guess_arcs(prob: BurnProblem, t1: float, coast: bool = True) -> Guess:
     arc = propagate(model, burn.t[-1], burn.x[:, -1], prob.t_end_s, u=None, dense=True,
                     rtol=GUESS_RTOL, atol=GUESS_ATOL)
     return Guess(t1, u_of_t, burn, arc)
+
+
+def guess_orbit_as_asked(prob: BurnProblem, t1: float) -> Guess | None:
+    """Guess for an ellipse as asked (free end epoch): its semi-major axis, then its perilune.
+
+    The anti-velocity burn lasts until the osculating semi-major axis reaches the target's
+    (the first crossing on a dense grid of the propagated burn, refined linearly); the
+    coast then runs to the perilune nearest the one the plan predicts (``t_end_s``, within
+    the end window), where the NLP's end epoch starts. Timing the guess on the predicted
+    perilune instead (the paper's tuning) asks a short burn to move a perilune passage
+    that the lunar J2 and the Earth shift by minutes: IPOPT then started far from any
+    solution (Maximum_Iterations_Exceeded on every mesh for a 20 s burn between 13.5 h
+    and 12.1 h orbits). Returns None if either step finds nothing.
+    """
+    a_target = prob.target.semi_major_axis_km
+    lo_end = prob.t_end_s + prob.end_window_s[0]
+    tmax = min(3.0 * t1, 0.9 * (lo_end - prob.t_ign_s), speed_stop_s(prob))
+    burn = guess_arcs(prob, tmax, coast=False).burn
+    ts = np.linspace(0.05 * t1, tmax, 400)
+    xs = burn(prob.t_ign_s + ts)
+    e2 = xs[1] ** 2 + xs[2] ** 2
+    a = np.where(e2 < 1, xs[0] / np.maximum(1 - e2, 1e-12), np.inf)
+    below = np.nonzero(a <= a_target)[0]
+    if below.size == 0 or below[0] == 0:
+        return None
+    i = below[0]
+    t1 = float(ts[i - 1] + (ts[i] - ts[i - 1]) * (a[i - 1] - a_target) /
+               (a[i - 1] - a[i] if np.isfinite(a[i - 1]) else 1.0))
+    g = guess_arcs(prob, t1, coast=False)
+    hi_end = prob.t_end_s + prob.end_window_s[1]
+    coast = propagate(prob.model, g.burn.t[-1], g.burn.x[:, -1], hi_end, u=None, dense=True,
+                      rtol=GUESS_RTOL, atol=GUESS_ATOL, dense_points=2000)
+    tt = np.linspace(max(lo_end, coast.t[0]), hi_end, 4000)
+    x = coast(tt)
+    radial = x[1] * np.sin(x[5]) - x[2] * np.cos(x[5])      # e sin(nu)
+    up = np.nonzero((radial[:-1] < 0) & (radial[1:] >= 0))[0]
+    if up.size == 0:
+        return None
+    j = up[np.argmin(np.abs(tt[up] - prob.t_end_s))]
+    t_peri = float(tt[j] - radial[j] * (tt[j + 1] - tt[j]) / (radial[j + 1] - radial[j]))
+    arc = propagate(prob.model, g.burn.t[-1], g.burn.x[:, -1], t_peri, u=None, dense=True,
+                    rtol=GUESS_RTOL, atol=GUESS_ATOL)
+    return Guess(t1, g.burn_u, g.burn, arc)

@@ -34,6 +34,7 @@ import numpy as np
 
 from lunarcap.errors import SolveError
 from lunarcap.mission.plan import CapturePlan
+from lunarcap.mission.targets import N_VALUES
 from lunarcap.optim.collocation import LU, N_X, TU, Mesh, state_scale
 from lunarcap.optim.guess import Guess
 from lunarcap.optim.nlp import (
@@ -43,7 +44,7 @@ from lunarcap.optim.nlp import (
     leg_solution,
     steering_function,
 )
-from lunarcap.optim.problem import burn_problem
+from lunarcap.optim.problem import END_WINDOW_FRACTION, burn_problem
 from lunarcap.optim.solution import Solution
 from lunarcap.optim.transcription import NLPBuilder, add_leg, dynamics_params
 from lunarcap.optim.verify import verify
@@ -102,7 +103,7 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
         pre = f"leg{k}."
         leg = add_leg(nlp, pre, mesh, kind, x_start, t[k], t[k + 1],
                       dynamics_params(nlp, pre + "dynamics"), nlp.param(pre + "mesh_burn", nb + 1),
-                      nlp.param(pre + "mesh_coast", nc + 1), nlp.param(pre + "target", 2), S,
+                      nlp.param(pre + "mesh_coast", nc + 1), nlp.param(pre + "target", N_VALUES), S,
                       mode, free_start=True)
         legs.append(leg)
         x_start = leg.xf
@@ -163,9 +164,12 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     mesh : Mesh
     free_coasts : tuple of bool, optional
         Per burn, whether its coast is optimised (see the module docstring; the plan's
-        coasts are the initial values).
+        coasts are the initial values). The coast of an ellipse as asked
+        (:attr:`lunarcap.mission.targets.Target.free_epoch`) is always free, within
+        :data:`lunarcap.optim.problem.END_WINDOW_FRACTION` of its period: it ends at the
+        perilune where the orbit holds, and the plan keeps its target.
     coast_bounds_s : (lo, hi), optional
-        Bounds of every free coast, s.
+        Bounds of every free coast the caller asked for, s.
     max_time_s : float, optional
         Upper bound of the time from the plan's first epoch to the end of its last burn, s.
     fit : ChebyshevFit, optional
@@ -185,9 +189,11 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         If IPOPT fails or a leg fails verification.
     """
     kinds = tuple(t.kind for t in plan.targets)
-    free = tuple(bool(f) for f in free_coasts)
+    asked = tuple(bool(f) for f in free_coasts) or (False,) * plan.n_burns
+    orbit = tuple(t.free_epoch for t in plan.targets)
+    free = tuple(a or o for a, o in zip(asked, orbit))
     warm = warm if warm is not None else [warm_start(s) for s in sequential]
-    period_rows = any(free) and max_period_s is not None
+    period_rows = any(asked) and max_period_s is not None
     nlp = build_joint_nlp(mesh, kinds, plan.dynamics, free if any(free) else (), period_rows)
     lay = nlp.compiled.layout
     S = state_scale(warm[0][0].x_ref[6])
@@ -198,14 +204,25 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         lo, hi = coast_bounds_s if coast_bounds_s is not None else (0.0, np.inf)
         for k in range(plan.n_burns):
             if free[k]:
-                lay.put(w0, f"leg{k}.coast", plan.coast_s(k) / TU)
-                lay.put(lbx, f"leg{k}.coast", lo / TU)
-                lay.put(ubx, f"leg{k}.coast", hi / TU)
+                c = plan.coast_s(k)
+                if orbit[k] and not asked[k]:   # from the perilune the warm start reached
+                    seq = warm[k][0]
+                    c = seq.t_end_s - seq.t_ref_s
+                    w = END_WINDOW_FRACTION * plan.targets[k].period_s()
+                    lo_k, hi_k = c - w, c + w
+                else:
+                    lo_k, hi_k = lo, hi
+                lay.put(w0, f"leg{k}.coast", c / TU)
+                lay.put(lbx, f"leg{k}.coast", lo_k / TU)
+                lay.put(ubx, f"leg{k}.coast", hi_k / TU)
         if max_time_s is not None:
             ubg[lay.rows("time_limit")] = max_time_s / TU
         if period_rows:  # E <= -mu / (2 a_max), a_max from Kepler's third law, VU^2
             a_max = (max_period_s / (2 * np.pi * TU)) ** (2.0 / 3.0)
-            ubg[lay.rows("energy_limit")] = -1.0 / (2 * a_max)
+            rows = np.flatnonzero(lay.rows("energy_limit"))   # one per free leg, in order
+            for row, k in zip(rows, [k for k in range(plan.n_burns) if free[k]]):
+                if asked[k]:
+                    ubg[row] = -1.0 / (2 * a_max)
     meshes = []
     for k, (prob, guess, mc) in enumerate(warm):
         if fit is not None and prob.model.fit is not None:
@@ -229,17 +246,21 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         raise SolveError(f"all-burns NLP of plan {plan.name!r}: IPOPT "
                          f"{stats['return_status']}", status=stats["return_status"])
     w = np.asarray(res["x"]).ravel()
-    if any(free):  # the optimum as a plan: its coasts, then its epochs
-        plan = plan.with_coasts([float(lay.get(w, f"leg{k}.coast")[0]) * TU if free[k]
-                                 else None for k in range(plan.n_burns)])
+    coasts = [float(lay.get(w, f"leg{k}.coast")[0]) * TU if free[k] else None
+              for k in range(plan.n_burns)]
+    if any(asked):  # the optimum as a plan: the coasts it chose (ellipses as asked keep theirs)
+        plan = plan.with_coasts([c if asked[k] else None for k, c in enumerate(coasts)])
+    t_ref = [plan.nominal_perilunes_s[0]]   # the perilunes reached
+    for k in range(plan.n_burns):
+        t_ref.append(t_ref[k] + (coasts[k] if coasts[k] is not None else plan.coast_s(k)))
     legs, x_peri = [], warm[0][0].x_ref
-    t_ref = plan.nominal_perilunes_s
     for k, (prob0, guess, _) in enumerate(warm):
         pre = f"leg{k}."
         t_ign = t_ref[k] + float(lay.get(w, pre + "ts")[0]) * TU
         # the leg as a fixed-ignition problem from the previous leg's verified end state
         prob = burn_problem(plan, k, x_peri, eph, start_min=(t_ign - t_ref[k]) / 60.0,
-                            fit=fit if fit is not None else prob0.model.fit)
+                            fit=fit if fit is not None else prob0.model.fit,
+                            t_perilune_s=t_ref[k], t_end_s=t_ref[k + 1])
         mb, mc = meshes[k]
         fixed = leg_solution(lay, pre, w, prob, mesh, mb, mc, S)
         xf = fixed["x_coast"][:, -1]

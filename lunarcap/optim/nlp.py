@@ -18,6 +18,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from lunarcap.mission.targets import N_VALUES
 from lunarcap.optim.collocation import (
     LU,
     N_PRE,
@@ -25,6 +26,7 @@ from lunarcap.optim.collocation import (
     TU,
     VU,
     Mesh,
+    hk_bound,
     node_epochs,
     radau_matrices,
     state_scale,
@@ -50,13 +52,17 @@ class BurnNLP:
 
 @lru_cache(maxsize=None)
 def build_burn_nlp(mesh: Mesh, target_kind: str, free_start: bool = False,
-                   steering: str = "optimal", mode: str = "full") -> BurnNLP:
+                   steering: str = "optimal", mode: str = "full",
+                   free_end: bool = False) -> BurnNLP:
     """Build (once per mesh shape, target kind, start mode, steering law, dynamics) the NLP.
 
     Parameters (by name): ``x_start`` (7, physical: the state at ignition, or at the
     nominal perilune with a free start), ``t_ref`` (its epoch), ``t_end``, ``dynamics``
     (N_PARAM), ``mesh_burn`` and ``mesh_coast`` (interval fractions), ``target``
-    (radius in LU, tan^2 of half the inclination).
+    (:meth:`lunarcap.mission.targets.Target.values` in LU).
+
+    With ``free_end`` the coast ends at ``t_end`` plus a variable ``te`` (TU): the
+    epoch of the perilune where an ellipse target holds is optimised.
     """
     nb, nc = mesh.n_burn, mesh.n_coast
     nlp = NLPBuilder()
@@ -66,14 +72,15 @@ def build_burn_nlp(mesh: Mesh, target_kind: str, free_start: bool = False,
     P_prm = nlp.param("dynamics", N_PARAM)
     P_mb = nlp.param("mesh_burn", nb + 1)
     P_mc = nlp.param("mesh_coast", nc + 1)
-    P_tar = nlp.param("target", 2)
+    P_tar = nlp.param("target", N_VALUES)
     import casadi as ca
 
     S = ca.vertcat(LU, 1, 1, 1, 1, 1, P_x0[6])
-    leg = add_leg(nlp, "", mesh, target_kind, P_x0 / S, P_tref, P_tend, P_prm, P_mb, P_mc,
+    t_end = P_tend + nlp.var("te", 1) * TU if free_end else P_tend
+    leg = add_leg(nlp, "", mesh, target_kind, P_x0 / S, P_tref, t_end, P_prm, P_mb, P_mc,
                   P_tar, S, mode, free_start, steering)
     name = (f"burn_{nb}_{nc}_{mesh.degree}_{target_kind}{'_free' if free_start else ''}"
-            f"_{steering}_{mode}").replace("-", "_")
+            f"{'_end' if free_end else ''}_{steering}_{mode}").replace("-", "_")
     return BurnNLP(nlp.compile(leg.dv + leg.v_end, name), leg)
 
 
@@ -130,8 +137,12 @@ def initial_point(layout, prefix: str, prob: BurnProblem, mesh: Mesh, guess: Gue
     """Write the guess of one leg into ``w0`` (scaled; names with ``prefix``)."""
     d = mesh.degree
     t1 = guess.t1_s
+    t_end = prob.t_end_s
+    if prob.free_end and prefix + "te" in layout.var_slices:   # the guess's perilune
+        t_end = float(guess.coast.t[-1])
+        layout.put(w0, prefix + "te", (t_end - prob.t_end_s) / TU)
     tb = node_epochs(prob.t_ign_s, t1, mb, d)
-    tc = node_epochs(prob.t_ign_s + t1, prob.t_end_s - prob.t_ign_s - t1, mc, d)[1:]
+    tc = node_epochs(prob.t_ign_s + t1, t_end - prob.t_ign_s - t1, mc, d)[1:]
     Xb = guess.burn(tb)[:N_X] / S[:, None]
     Xb[:, 0] = prob.x0 / S
     layout.put(w0, prefix + "t1", t1 / TU)
@@ -161,9 +172,25 @@ def leg_bounds(layout, prefix: str, prob: BurnProblem, lbx, ubx, lbg, ubg) -> No
         lo, hi = (prob.t_perilune_s + 60.0 * np.array(prob.start_bounds_min) - prob.t_ref_s) / TU
         layout.put(lbx, prefix + "ts", lo)
         layout.put(ubx, prefix + "ts", hi)
+    if prob.free_end and prefix + "te" in layout.var_slices:
+        layout.put(lbx, prefix + "te", prob.end_window_s[0] / TU)
+        layout.put(ubx, prefix + "te", prob.end_window_s[1] / TU)
     for kind in prob.released_targets:
         rows = layout.rows(prefix + kind)
         lbg[rows], ubg[rows] = -np.inf, np.inf
+    x = prob.x_ref if prob.free_start else prob.x0
+    bound = hk_bound(float(np.sqrt(prob.target.values()[1])), float(np.hypot(x[3], x[4])))
+    for name in ("Xb", "Xc", "X0"):
+        if prefix + name in layout.var_slices:
+            _state_rows(layout, lbx, prefix + name, (3, 4), -bound)
+            _state_rows(layout, ubx, prefix + name, (3, 4), bound)
+
+
+def _state_rows(layout, vec: np.ndarray, name: str, rows: tuple, value: float) -> None:
+    """Set rows ``rows`` of the (7 x n) state variable ``name`` to ``value`` in ``vec``."""
+    arr = layout.get(vec, name).copy()
+    arr[list(rows), :] = value
+    layout.put(vec, name, arr)
 
 
 def leg_solution(layout, prefix: str, w: np.ndarray, prob: BurnProblem, mesh: Mesh,
@@ -171,6 +198,10 @@ def leg_solution(layout, prefix: str, w: np.ndarray, prob: BurnProblem, mesh: Me
     """Physical burn and coast histories of one leg from a solution vector."""
     d = mesh.degree
     t1 = float(layout.get(w, prefix + "t1")[0]) * TU
+    if prob.free_end and prefix + "te" in layout.var_slices:
+        # the perilune where the orbit asked holds: the coast ends there, now fixed
+        t_end = prob.t_end_s + float(layout.get(w, prefix + "te")[0]) * TU
+        prob = replace(prob, t_end_s=t_end, end_window_s=None)
     if prob.free_start:
         # the ignition found; the verified flight starts from x_ref propagated to it
         t_ign = prob.t_ref_s + float(layout.get(w, prefix + "ts")[0]) * TU
@@ -192,7 +223,7 @@ def leg_solution(layout, prefix: str, w: np.ndarray, prob: BurnProblem, mesh: Me
 def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     """Solve the burn's NLP on one mesh from a guess; no verification here."""
     nlp = build_burn_nlp(mesh, prob.target.kind, prob.free_start, prob.steering,
-                         prob.model.mode)
+                         prob.model.mode, prob.free_end)
     lay = nlp.compiled.layout
     # meshes: burn uniform in time, coast equally spaced in the Sundman variable
     mb = np.linspace(0.0, 1.0, mesh.n_burn + 1)

@@ -20,7 +20,7 @@ import numpy as np
 
 from lunarcap.errors import InputError
 from lunarcap.mission.plan import MAX_START_MIN, CapturePlan
-from lunarcap.mission.targets import Target
+from lunarcap.mission.targets import ELLIPSE, Target
 from lunarcap.physics._ops import ops
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.ephemeris import ChebyshevFit
@@ -64,6 +64,11 @@ class BurnProblem:
         The ignition epoch is a decision variable in ``start_bounds_min``; ``x_ref`` at
         ``t_ref_s`` is the known state the pre-ignition coast starts from.
     steering : {"optimal", "inertial", "antivelocity"}
+    end_window_s : (lo, hi) or None
+        For a target of free epoch (:attr:`lunarcap.mission.targets.Target.free_epoch`):
+        the window of the coast's end around ``t_end_s`` (s, lo < 0 < hi); ``t_end_s`` is
+        then the perilune the plan predicts (the guess), and the solution's is the
+        perilune where the orbit asked holds. None: the coast ends at ``t_end_s``.
     """
 
     x0: np.ndarray
@@ -81,6 +86,7 @@ class BurnProblem:
     start_bounds_min: tuple = (-60.0, 30.0)
     steering: str = "optimal"
     t1_max_s: float | None = None
+    end_window_s: tuple | None = None
     #: Lower bound of the burn duration, s (None: Eq. 10's, min(1 s, half of Eq. 19));
     #: 0-ish lets a make-up burn vanish (lunarcap.runs.missed).
     t1_min_s: float | None = None
@@ -99,6 +105,11 @@ class BurnProblem:
         return self.target.circular
 
     @property
+    def free_end(self) -> bool:
+        """True if the coast's end epoch is a decision variable (``end_window_s``)."""
+        return self.end_window_s is not None
+
+    @property
     def released_targets(self) -> frozenset:
         """Terminal conditions a closed-form steering law cannot meet and therefore leaves free.
 
@@ -109,6 +120,8 @@ class BurnProblem:
         except, for a circle, its radius. What is released is reported, not gated.
         """
         if self.steering == "antivelocity":
+            if self.target.kind == ELLIPSE:   # the perilune radius kept, the apolune free
+                return frozenset({"inc", "e2"})
             return frozenset({"inc", "p"}) if self.circular else frozenset({"inc", "rp"})
         if self.steering == "inertial" and self.circular:
             return frozenset({"p"})
@@ -124,7 +137,8 @@ class BurnProblem:
     def burn_bounds_s(self) -> tuple:
         """(lower, upper) bounds of the burn duration, s (Eq. 10)."""
         t19 = self.eq19_duration_s
-        hi = self.t1_max_s or min(3.0 * t19, 0.9 * (self.t_end_s - self.t_ign_s))
+        span = self.t_end_s + (self.end_window_s[0] if self.free_end else 0.0) - self.t_ign_s
+        hi = self.t1_max_s or min(3.0 * t19, 0.9 * span)
         lo = min(1.0, 0.5 * t19) if self.t1_min_s is None else self.t1_min_s
         return lo, hi
 
@@ -146,15 +160,52 @@ def anti_velocity_u(x) -> np.ndarray:
     return law("antivelocity")(x)
 
 
-def burn_fit(plan: CapturePlan, i: int, eph) -> ChebyshevFit:
-    """The Earth/Sun ephemeris fit for burn ``i`` (0-based): its orbit and coast, +-6 h."""
+#: Least half-width of a free ignition window for an ellipse as asked, min. A short burn
+#: (Eq. 19: 25 s) that must also undo what the lunar J2, the Earth and the Sun do to the
+#: next perilune (5 km of perilune radius and 0.06 deg of inclination over a 12 h orbit
+#: of 10,500 km apolune) cannot from +-2 Eq. (19) durations around perilune: the
+#: perilune radius moves only with burns away from the perilune (IPOPT: Maximum_Iterations_
+#: Exceeded on every mesh; with +-30 min: solved, ignition 11.8 min after perilune).
+MIN_ORBIT_WINDOW_MIN = 30.0
+
+#: A target of free epoch (an ellipse as asked) holds at the perilune within this fraction
+#: of its period of the perilune the plan predicts: one perilune, whatever the shift.
+END_WINDOW_FRACTION = 0.2
+
+
+def burn_epochs(plan: CapturePlan, i: int, t_perilune_s: float | None = None) -> tuple:
+    """(perilune before burn ``i``, end of its coast, end window or None), s.
+
+    The perilune before the burn is the plan's nominal one unless ``t_perilune_s`` gives
+    the one reached (after an earlier burn whose target had a free epoch). The coast ends
+    at that perilune plus the burn's coast (:meth:`CapturePlan.coast_s`): exactly there for
+    the paper's formulation and a circle; for an ellipse as asked, at the perilune within
+    :data:`END_WINDOW_FRACTION` of its period from there.
+    """
     t = plan.nominal_perilunes_s
-    return ChebyshevFit.fit(eph, t[i] - FIT_MARGIN_S, t[i + 1] + FIT_MARGIN_S)
+    t_peri = t[i] if t_perilune_s is None else float(t_perilune_s)
+    if plan.start is not None and i == 0:
+        t_peri = t[0]
+    t_end = t_peri + plan.coast_s(i)
+    target = plan.targets[i]
+    if not target.free_epoch:
+        return t_peri, t_end, None
+    w = END_WINDOW_FRACTION * target.period_s()
+    return t_peri, t_end, (-w, w)
+
+
+def burn_fit(plan: CapturePlan, i: int, eph, t_perilune_s: float | None = None
+             ) -> ChebyshevFit:
+    """The Earth/Sun ephemeris fit for burn ``i`` (0-based): its orbit and coast, +-6 h."""
+    t_peri, t_end, window = burn_epochs(plan, i, t_perilune_s)
+    late = window[1] if window else 0.0
+    return ChebyshevFit.fit(eph, t_peri - FIT_MARGIN_S, t_end + late + FIT_MARGIN_S)
 
 
 def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
                  thrust_N: float | None = None, start_bounds_min: tuple | None = None,
-                 fit: ChebyshevFit | None = None, guess_start_min: float | None = None
+                 fit: ChebyshevFit | None = None, guess_start_min: float | None = None,
+                 t_perilune_s: float | None = None, t_end_s: float | None = None
                  ) -> BurnProblem:
     """The problem of burn ``i`` (0-based) of ``plan`` from the state at its perilune.
 
@@ -179,14 +230,22 @@ def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
     guess_start_min : float, optional
         Where a free ignition's guess ignites, min (default: half the Eq. (19) duration
         before perilune, the paper's rule; inside the bounds).
+    t_perilune_s : float, optional
+        Epoch of ``x_perilune`` when it is not the plan's nominal perilune (the perilune
+        reached after an earlier burn whose target had a free epoch), s.
+    t_end_s : float, optional
+        The end of the coast, fixed there (a leg of the all-burns NLP, verified at the
+        perilune it reached), s.
     """
     burn = plan.burns[i]
     thrust = plan.engine.thrust_N if thrust_N is None else float(thrust_N)
     start = burn.start_min if start_min is None else start_min
     t = plan.nominal_perilunes_s
-    t_peri = t[i]
+    t_peri, t_end, window = burn_epochs(plan, i, t_perilune_s)
+    if t_end_s is not None:
+        t_end, window = float(t_end_s), None
     model = Model(mode=plan.dynamics, thrust_N=thrust, isp_s=plan.engine.isp_s,
-                  fit=fit or burn_fit(plan, i, eph))
+                  fit=fit or burn_fit(plan, i, eph, t_peri))
     dv_imp = plan.impulsive()[i].delta_v_mps
     x_perilune = np.asarray(x_perilune, float)
     free = start == "free"
@@ -196,7 +255,10 @@ def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
         bounds = start_bounds_min or burn.start_bounds_min
         if bounds is None:
             lim = MAX_START_MIN if i == 0 else min(MAX_START_MIN, 0.4 * (t[i] - t[i - 1]) / 60)
-            bounds = (max(-2.0 * t19, -lim), min(2.0 * t19, lim))
+            half = 2.0 * t19
+            if plan.targets[i].free_epoch:
+                half = max(half, MIN_ORBIT_WINDOW_MIN)
+            bounds = (max(-half, -lim), min(half, lim))
         if not bounds[0] <= guess_min <= bounds[1]:
             guess_min = 0.5 * (bounds[0] + bounds[1])
     else:
@@ -204,7 +266,7 @@ def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
         bounds = (guess_min, guess_min)
     t_ign = t_peri + 60.0 * guess_min
     x0 = propagate(model, t_peri, x_perilune, t_ign).final
-    return BurnProblem(x0, t_ign, t[i + 1], model, plan.targets[i], dv_imp, index=i + 1,
+    return BurnProblem(x0, t_ign, t_end, model, plan.targets[i], dv_imp, index=i + 1,
                        start_min=guess_min, t_perilune_s=t_peri, free_start=free,
                        x_ref=x_perilune, t_ref_s=t_peri, start_bounds_min=tuple(bounds),
-                       steering=burn.steering)
+                       steering=burn.steering, end_window_s=window)

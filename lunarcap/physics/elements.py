@@ -183,6 +183,11 @@ def semi_major_axis_from_period(period_s, mu):
     return (mu * (np.asarray(period_s) / (2 * np.pi)) ** 2) ** (1.0 / 3.0)
 
 
+def period_from_semi_major_axis(a_km, mu):
+    """Kepler period (s) of an ellipse of semi-major axis ``a_km`` (km) about ``mu`` (km^3/s^2)."""
+    return 2 * np.pi * np.sqrt(np.asarray(a_km, float) ** 3 / mu)
+
+
 def period(p, f, g, mu):
     """Keplerian period (s) of an ellipse from MEE; a hyperbola has none (InputError)."""
     e = np.asarray(eccentricity(f, g))

@@ -19,6 +19,15 @@ The lunar pole (a frame property, chosen per plan with ``lunar_pole``, see
     Only the constant terms, alpha0 = 269.9949 deg, delta0 = 66.5392 deg: the centre of
     the pole's 18.6-year precession circle, 0.02 deg from the ecliptic pole and 1.56 deg
     from the pole at J2000. lunarcap used it before 2026-11; kept to show the effect.
+
+Everything lunarcap reads or writes for other tools (:mod:`lunarcap.exchange`: OPM, OEM,
+SPK, attitude and maneuver files) is Moon-centred ICRF; the one rotation between ICRF and
+M-MME2000 is :func:`icrf_to_mme` of the plan's ``lunar_pole`` (by default the IAU 2009
+pole at J2000, alpha0 = 266.8577 deg, delta0 = 65.6411 deg), applied to vectors by
+:func:`mme_from_icrf` and :func:`icrf_from_mme`. The rotation is constant (M-MME2000 is
+an inertial frame), so it applies to velocities as to positions. SPICE's ``J2000`` frame
+is taken as ICRF, as NAIF labels the DE ephemerides (the 17 mas frame bias between
+EME2000 and ICRF, 0.2 m at 2,000 km, is not applied).
 """
 
 from __future__ import annotations
@@ -89,6 +98,23 @@ def icrf_to_mme2000(ra_deg: float, dec_deg: float) -> np.ndarray:
 def icrf_to_mme(pole: str = DEFAULT_LUNAR_POLE) -> np.ndarray:
     """The rotation ICRF -> M-MME2000 for a lunar pole choice (see :data:`LUNAR_POLES`)."""
     return icrf_to_mme2000(*moon_pole_radec_deg(pole))
+
+
+def mme_from_icrf(vectors, pole: str = DEFAULT_LUNAR_POLE) -> np.ndarray:
+    """Vectors (3,) or (3, N) from Moon-centred ICRF axes to M-MME2000 (positions or velocities).
+
+    Examples
+    --------
+    >>> v = mme_from_icrf([0.0, 0.0, 1.0])   # the ICRF pole seen from M-MME2000
+    >>> round(float(v[2]), 5)                # sin(65.6411 deg), the pole's declination
+    0.91098
+    """
+    return icrf_to_mme(pole) @ np.asarray(vectors, float)
+
+
+def icrf_from_mme(vectors, pole: str = DEFAULT_LUNAR_POLE) -> np.ndarray:
+    """Vectors (3,) or (3, N) from M-MME2000 to Moon-centred ICRF (:func:`mme_from_icrf`)."""
+    return icrf_to_mme(pole).T @ np.asarray(vectors, float)
 
 
 def pole_angle_deg(pole_a: str, pole_b: str) -> float:

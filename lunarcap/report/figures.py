@@ -888,3 +888,40 @@ def plot_missed_penalty(cases):
     cb.set_ticks([np.log10(t + 1.0) for t in ticks], labels=[f"{t:g}" for t in ticks])
     cb.set_label("penalty (m/s)")
     return fig
+
+
+# =============================================================================== exchange
+def plot_exported_trajectory(arcs, r_moon_km: float):
+    """The exported trajectory, as read back from the OEM, in two ICRF projections.
+
+    Parameters
+    ----------
+    arcs : list of (name, xyz (3, N) km ICRF, is_burn)
+    r_moon_km : the Moon's radius, km (the grey disc)
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = plt.subplots(1, 2, figsize=(9.6, 4.8), layout="constrained")
+    burn_labelled = False
+    for (i, j), ax in zip(((0, 1), (0, 2)), axes):
+        _moon(ax, r_moon_km, label=False)
+        k = 0
+        for name, xyz, is_burn in arcs:
+            if is_burn:
+                ax.plot(xyz[i], xyz[j], color=burn_colour(1), lw=3.0, zorder=4,
+                        solid_capstyle="butt",
+                        label=None if burn_labelled or ax is axes[1] else "burns")
+                burn_labelled = True
+            else:
+                ax.plot(xyz[i], xyz[j], color=HYPERBOLA_COLOUR if name == "approach"
+                        else coast_colour(k), lw=1.1,
+                        label=name if ax is axes[0] else None)
+                k += name != "approach"
+        ax.set_aspect("equal")
+        ax.grid(alpha=0.3)
+        ax.set_xlabel(f"{'xyz'[i]} ICRF (km)")
+        ax.set_ylabel(f"{'xyz'[j]} ICRF (km)")
+    fig.legend(loc="outside lower center", ncols=6, fontsize=8.5)
+    return fig

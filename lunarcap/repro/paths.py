@@ -181,6 +181,11 @@ def figure_path(name: str, fmt: str = "png") -> Path:
     return FIGURES / f"{check_name(name)}.{fmt}"
 
 
+def export_dir(name: str) -> Path:
+    """``book/generated/export/<name>/``: the files a page exports for other tools."""
+    return GENERATED / "export" / check_name(name)
+
+
 def relative_to_page(path: Path, page: Path | None = None) -> str:
     """POSIX path of ``path`` relative to the directory of a book page.
 

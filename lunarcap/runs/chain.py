@@ -65,21 +65,34 @@ def reuse_earlier_burns():
 
 
 def perilune_state(plan: CapturePlan, i: int, verbose: bool = False) -> np.ndarray:
-    """State (p, f, g, h, k, L, m) at the nominal perilune before burn ``i`` (0-based).
+    """State (p, f, g, h, k, L, m) at the perilune before burn ``i`` (0-based).
 
-    For the first burn of a plan with a start (:class:`lunarcap.mission.plan.Start`), the
-    start's state at its epoch.
+    See :func:`perilune_epoch_state` (this is its state).
+    """
+    return perilune_epoch_state(plan, i, verbose)[1]
+
+
+def perilune_epoch_state(plan: CapturePlan, i: int, verbose: bool = False) -> tuple:
+    """(epoch s, state (p, f, g, h, k, L, m)) at the perilune before burn ``i`` (0-based).
+
+    The arrival perilune for the first burn (for a plan with a start,
+    :class:`lunarcap.mission.plan.Start`, the start's epoch and state); else the verified
+    end of the previous burn's coast: the nominal perilune in the paper's formulation, the
+    perilune where the orbit asked holds for an ellipse target.
     """
     if i == 0 and plan.start is not None:
-        return np.array(plan.start.state)
+        return plan.start.epoch_s, np.array(plan.start.state)
     if i == 0:  # the arrival state carries the plan's mass
-        return arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole).state
+        arr = arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole)
+        return plan.nominal_perilunes_s[0], arr.state
     key = plan.key(i)
     if _EARLIER is not None:
         if key not in _EARLIER:
-            _EARLIER[key] = solve_burn(key, verbose=verbose).end_state
+            sol = solve_burn(key, verbose=verbose)
+            _EARLIER[key] = (sol.problem.t_end_s, sol.end_state)
         return _EARLIER[key]
-    return solve_burn(key, verbose=verbose).end_state
+    sol = solve_burn(key, verbose=verbose)
+    return sol.problem.t_end_s, sol.end_state
 
 
 def _burn_label(plan: CapturePlan, i: int) -> str:
@@ -104,8 +117,8 @@ def solve_burn(plan: CapturePlan, verbose: bool = False) -> Solution:
         If no mesh gives a converged, verified solution.
     """
     i = plan.n_burns - 1
-    x_peri = perilune_state(plan, i, verbose)
-    prob = burn_problem(plan, i, x_peri, plan.ephemeris_model())
+    t_peri, x_peri = perilune_epoch_state(plan, i, verbose)
+    prob = burn_problem(plan, i, x_peri, plan.ephemeris_model(), t_perilune_s=t_peri)
     if verbose:
         _log(f"{_burn_label(plan, i)}:")
     sol = solve_burn_problem(prob, progress=_log if verbose else None)
@@ -169,7 +182,7 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     delta-Vs, the impulse's epoch offset (min), end speed (km/s) and the verdicts.
     """
     i = plan.n_burns - 1
-    x_peri = perilune_state(plan, i, verbose)
+    t_peri, x_peri = perilune_epoch_state(plan, i, verbose)
     eph = plan.ephemeris_model()
     dv_guess = plan.impulsive()[i].delta_v_mps
     d_long, d_short = IMPULSIVE_LIMIT_DURATIONS_S
@@ -179,18 +192,19 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     # side of the perilune (a few seconds before and after, differing by ~0.2 m/s in
     # delta-V and ~0.003 m/s in J): solve on each side and keep the lower objective.
     centre = -d_long / 120.0  # ignition (min) of a 4 s burn centred on the perilune
-    fit = burn_fit(plan, i, eph)
+    fit = burn_fit(plan, i, eph, t_peri)
     sides = []
     for bounds, guess in (((-10.0, centre), centre - 0.1), ((centre, 10.0), centre + 0.1)):
         prob = burn_problem(plan, i, x_peri, eph, start_min="free", thrust_N=big,
-                            start_bounds_min=bounds, guess_start_min=guess, fit=fit)
+                            start_bounds_min=bounds, guess_start_min=guess, fit=fit,
+                            t_perilune_s=t_peri)
         sides.append(solve_burn_problem(prob, progress=progress))
     s_long = min(sides, key=lambda s: s.raw.objective_kmps)
     # the short burn is centred on the same epoch, so both lie on one t^2 curve
     centre_min = s_long.problem.start_min + s_long.raw.t1_s / 120.0
     t_short_min = s_long.raw.t1_s * d_short / d_long / 60.0
     prob2 = burn_problem(plan, i, x_peri, eph, start_min=centre_min - t_short_min / 2,
-                         thrust_N=big * d_long / d_short, fit=fit)
+                         thrust_N=big * d_long / d_short, fit=fit, t_perilune_s=t_peri)
     s_short = solve_burn_problem(prob2, progress=progress)
     dv4, dv2 = s_long.delta_v_mps, s_short.delta_v_mps
     return {"burn": i + 1, "delta_v_mps": (4 * dv2 - dv4) / 3,
@@ -267,7 +281,8 @@ class PlanResult:
         imps = [r["impulsive_delta_v_mps"] for r in rows]
         imp = None if any(x is None for x in imps) else sum(imps)
         last = rows[-1]
-        t = self.plan.nominal_perilunes_s
+        # the perilunes reached (an ellipse as asked moves them), not the plan's estimate
+        t = (self.plan.nominal_perilunes_s[0], self.burns[-1].solution.problem.t_end_s)
         return {"total_delta_v_mps": dv, "total_impulsive_delta_v_mps": imp,
                 "total_loss_mps": None if imp is None else dv - imp,
                 "total_loss_percent": None if imp is None else 100 * (dv - imp) / imp,
@@ -307,13 +322,14 @@ def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
     for n in (burns or range(1, plan.n_burns + 1)):
         key, b = plan.key(n), plan.burns[n - 1]
         kind = plan.targets[n - 1].kind
+        free_end = plan.targets[n - 1].free_epoch
         if not (use_cache and _in_cache(solve_burn, key)):
-            shapes.append((mesh, kind, b.free_start, b.steering, plan.dynamics))
+            shapes.append((mesh, kind, b.free_start, b.steering, plan.dynamics, free_end))
         if impulsive:
             ikey = key.with_start(n - 1, "free").with_steering(n - 1, "optimal")
             if not (use_cache and _in_cache(_impulsive_limit, ikey)):
-                shapes += [(mesh, kind, True, "optimal", plan.dynamics),
-                           (mesh, kind, False, "optimal", plan.dynamics)]
+                shapes += [(mesh, kind, True, "optimal", plan.dynamics, free_end),
+                           (mesh, kind, False, "optimal", plan.dynamics, free_end)]
     prebuild(shapes)
 
 

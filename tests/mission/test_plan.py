@@ -149,7 +149,7 @@ BAD = [
     (("engine", "isp_s"), "fast", "engine.isp_s", "number"),
     (("arrival", "mass_kg"), 0, "arrival.mass_kg", "positive"),
     (("arrival", "perilune_altitude_km"), -10, "arrival.perilune_altitude_km", "surface"),
-    (("arrival", "inclination_deg"), 200, "arrival.inclination_deg", "between 0 and 180"),
+    (("arrival", "inclination_deg"), 200, "arrival.inclination_deg", "outside (0, 175]"),
     (("arrival", "epoch"), "2300-01-01 00:00:00 TDB", "arrival.epoch", "outside the ephemeris"),
     (("arrival", "epoch"), "yesterday", "arrival.epoch", "cannot read epoch"),
     (("arrival", "hemisphere"), "east", "arrival.hemisphere", "north or south"),

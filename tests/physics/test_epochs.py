@@ -31,9 +31,11 @@ def test_paper_epoch_form_parses():
     t_iso = epochs.seconds_from_calendar(ARRIVAL_EPOCH_TDB)
     expected = (datetime(2017, 2, 20, 3, 41, 26) - J2000).total_seconds()
     assert t_paper == t_iso == expected
-    # the variants the parser advertises: 'T' separator, no suffix, lower-case month
-    assert epochs.seconds_from_calendar("2017-02-20T03:41:26") == expected
-    assert epochs.seconds_from_calendar("20-feb-2017 03:41:26") == expected
+    # the variants the parser advertises: 'T' separator, lower-case month; a string without
+    # a scale only with the scale given apart (a CCSDS file's TIME_SYSTEM)
+    assert epochs.seconds_from_calendar("2017-02-20T03:41:26 TDB") == expected
+    assert epochs.seconds_from_calendar("20-feb-2017 03:41:26 TDB") == expected
+    assert epochs.seconds_from_calendar("2017-02-20T03:41:26", scale="TDB") == expected
 
 
 def test_paper_epoch_julian_date():
@@ -79,8 +81,9 @@ def test_calendar_from_seconds_rounds_fraction():
 
 def test_leap_day_and_century_rules():
     # 2000 is a leap year (divisible by 400), 1900 and 2100 are not: datetime agrees.
-    assert epochs.seconds_from_calendar("2000-02-29 12:00:00") == 59 * 86400.0
-    for bad in ("1900-02-29 00:00:00", "2100-02-29 00:00:00", "2017-02-30 00:00:00"):
+    assert epochs.seconds_from_calendar("2000-02-29 12:00:00 TDB") == 59 * 86400.0
+    for bad in ("1900-02-29 00:00:00 TDB", "2100-02-29 00:00:00 TDB",
+                "2017-02-30 00:00:00 TDB"):
         with pytest.raises(InputError):
             epochs.seconds_from_calendar(bad)
 
@@ -102,3 +105,47 @@ def test_malformed_epoch_raises_input_error(text):
 def test_non_string_epoch_raises_input_error():
     with pytest.raises(InputError):
         epochs.seconds_from_calendar(540834086.0)
+
+
+# ---------------------------------------------------------------------- UTC (issue 18)
+def test_epoch_without_scale_is_refused_with_the_reason():
+    # '2040-06-01T00:00:00' was silently read as TDB; the scales differ by 69 s.
+    with pytest.raises(InputError, match="names no time scale"):
+        epochs.seconds_from_calendar("2040-06-01T00:00:00")
+    with pytest.raises(InputError, match="names UTC but TDB"):
+        epochs.seconds_from_calendar("2040-06-01T00:00:00 UTC", scale="TDB")
+
+
+def test_utc_and_tdb_of_the_paper_arrival():
+    # TDB - UTC = 37 s (leap seconds since 1972, TAI - UTC from 2017-01-01) + 32.184 s
+    # (TT - TAI) + TDB - TT (-1.24 ms on 2017-02-20, eraDtdb at the geocentre).
+    t = epochs.seconds_from_calendar(ARRIVAL_EPOCH_TDB)
+    utc = epochs.calendar_from_seconds(t, 6, scale="UTC")
+    assert utc == "2017-02-20 03:40:16.814760 UTC"
+    assert epochs.seconds_from_calendar(utc) == t           # same instant: bit for bit
+    assert epochs.seconds_from_calendar("2017-02-20T03:40:16.814760Z") == t
+    assert epochs.calendar_from_seconds(t, 3, iso=True) == "2017-02-20T03:41:26.000"
+
+
+def test_utc_leap_second_and_table():
+    # 2016-12-31 23:59:60 UTC exists (TAI - UTC went 36 -> 37 s): it is one second after
+    # 23:59:59 and one before 2017-01-01 00:00:00, and is written back as 23:59:60.
+    a, b, c = (epochs.seconds_from_calendar(x) for x in (
+        "2016-12-31 23:59:59 UTC", "2016-12-31 23:59:60 UTC", "2017-01-01 00:00:00 UTC"))
+    assert b - a == pytest.approx(1.0, abs=1e-6) and c - b == pytest.approx(1.0, abs=1e-6)
+    assert epochs.calendar_from_seconds(b, 1, scale="UTC") == "2016-12-31 23:59:60.0 UTC"
+    table = epochs.leap_second_table()
+    assert table["source"].startswith("astropy-iers-data")
+    assert table["tai_minus_utc_s"] == 37.0 and table["expires"] >= "2027-01-01"
+    # before 1972-01-01 + the table: 2000-01-01 12:00 TDB = 11:58:55.816 UTC (32 s leap)
+    assert epochs.calendar_from_seconds(0.0, scale="UTC") == "2000-01-01 11:58:55.816 UTC"
+
+
+def test_utc_round_trip_random_epochs():
+    rng = np.random.default_rng(18)
+    for t in rng.uniform(-3e8, 1.3e9, 50).round(6):
+        # to the nanosecond in UTC: the same TDB microsecond, bit for bit
+        assert epochs.seconds_from_calendar(epochs.calendar_from_seconds(t, 9, "UTC")) == t
+        # to the microsecond: the same instant within the UTC string's rounding
+        back = epochs.seconds_from_calendar(epochs.calendar_from_seconds(t, 6, "UTC"))
+        assert abs(back - t) <= 1.01e-6

@@ -1,0 +1,132 @@
+"""The "Hand the plan to other tools" page (notebooks/exchange.ipynb).
+
+:func:`build` solves a plan (cached), exports it with :func:`lunarcap.runs.export.export_plan`
+into ``book/generated/export/<output_name>/`` and reads the files back: the OEM with
+lunarcap's reader for the picture, the SPK through SPICE against the OEM, the OEM in UTC
+against the OEM in TDB. Its tables list the files (size) and the OEM's segments (states,
+interpolation error); its values are the export time and the round trips' residuals.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from lunarcap.exchange import ccsds, spk
+from lunarcap.exchange.burns import read_maneuvers
+from lunarcap.mission.plan import load_plan
+from lunarcap.physics import constants as C
+from lunarcap.physics.epochs import calendar_from_seconds, leap_second_table
+from lunarcap.report.figures import plot_exported_trajectory
+from lunarcap.report.page import Page
+from lunarcap.repro import paths
+from lunarcap.runs.chain import plan_result
+from lunarcap.runs.export import export_plan
+
+NOTEBOOK = "notebooks/exchange.ipynb"
+
+#: What each exported file is, for the files table.
+FILE_KINDS = {"oem": "CCSDS OEM 2.0 (KVN): states, one segment per arc",
+              "spk": "SPICE SPK (type 9): the same states",
+              "attitude": "thrust direction (ICRF), thrust and mass every 1 s of each burn",
+              "maneuvers": "one row per burn: ignition, duration, ΔV and its mean direction"}
+
+
+def files_table(export) -> pd.DataFrame:
+    """The exported files: kind, name, size (kB) and what each holds."""
+    return pd.DataFrame([{"kind": k, "file": p.name, "size_kB": export.sizes_bytes[k] / 1e3,
+                          "what": FILE_KINDS[k]} for k, p in export.files.items()])
+
+
+def segments_table(export) -> pd.DataFrame:
+    """The OEM's segments: name, start and stop (TDB), states and interpolation error (m)."""
+    return pd.DataFrame([{"segment": s["name"],
+                          "start_tdb": calendar_from_seconds(s["start_s"], 0),
+                          "stop_tdb": calendar_from_seconds(s["stop_s"], 0),
+                          "states": s["states"],
+                          "interpolation_error_m": s["interpolation_error_m"]}
+                         for s in export.segments])
+
+
+def spk_against_oem_m(oem_path, spk_path, object_id: int = spk.DEFAULT_OBJECT_ID) -> float:
+    """Largest distance (m) between the SPK, read through SPICE, and the OEM's states."""
+    worst = 0.0
+    for seg in ccsds.read_oem(oem_path):
+        inner = seg.t_s[1:-1]   # inside the segment: SPICE may take a neighbour at its ends
+        x = spk.read_spk(spk_path, inner, object_id)
+        worst = max(worst, float(np.max(np.linalg.norm(x[:3] - seg.r_km[:, 1:-1], axis=0))))
+    return worst * 1e3
+
+
+def utc_against_tdb_s(oem_tdb, oem_utc) -> float:
+    """Largest difference (s) between the epochs of the same states written in TDB and UTC."""
+    a, b = ccsds.read_oem(oem_tdb), ccsds.read_oem(oem_utc)
+    return float(max(np.max(np.abs(x.t_s - y.t_s)) for x, y in zip(a, b)))
+
+
+def trajectory_arcs(oem_path) -> list:
+    """(name, xyz (3, N) km ICRF, is_burn) of each OEM segment, for the figure."""
+    return [(s.name, s.r_km, s.name.startswith("burn")) for s in ccsds.read_oem(oem_path)]
+
+
+def build(plan: str = "song2011-150N", dynamics: str | None = None,
+          output_name: str = "exchange", quick: bool = False) -> Page:
+    """The page (see the module docstring).
+
+    Parameters
+    ----------
+    plan : a packaged plan's name or a plan file
+    dynamics : overrides the plan's (None: the plan's)
+    output_name : prefix of the tables and figures, and the export directory's name
+    quick : recorded in the provenance only
+    """
+    p = load_plan(plan)
+    if dynamics is not None and dynamics != p.dynamics:
+        p = p.with_dynamics(dynamics)
+    page = Page(NOTEBOOK, dict(plan=plan, dynamics=p.dynamics), output_name, quick)
+    res = plan_result(p, impulsive=False)
+    out = paths.export_dir(output_name)
+    ex = export_plan(res, out)
+    ex_utc = export_plan(res, out / "utc", time_system="UTC")
+    page.table("files", files_table(ex),
+               caption=(f"The files `lunarcap plan {plan} --export DIR` writes "
+                        f"({p.dynamics} dynamics), their sizes (kB) and contents."),
+               columns={"kind": "kind", "file": "file", "size_kB": "size (kB)",
+                        "what": "contents"}, floatfmt={"size_kB": ".1f"})
+    page.table("segments", segments_table(ex),
+               caption=("The OEM's segments (TDB) and the largest error of the file's own "
+                        "interpolation (Lagrange, degree 7) half-way between its states, "
+                        "against the propagated trajectory (m)."),
+               columns={"segment": "segment", "start_tdb": "start (TDB)",
+                        "stop_tdb": "stop (TDB)", "states": "states",
+                        "interpolation_error_m": "interpolation error (m)"},
+               floatfmt={"interpolation_error_m": ".1e"})
+    page.figure("trajectory", plot_exported_trajectory(trajectory_arcs(ex.files["oem"]),
+                                                       C.R_MOON),
+                caption=(f"The capture of {p.name} as read back from the exported OEM: "
+                         "Moon-centred ICRF, x-y and x-z projections (km); burns in red."),
+                alt="Two projections of the exported capture trajectory around the Moon")
+    man = read_maneuvers(ex.files["maneuvers"])
+    leap = leap_second_table()
+    page.value("plan", p.name)
+    page.value("dynamics", p.dynamics)
+    page.value("export_s", ex.seconds)
+    page.value("total_kB", sum(ex.sizes_bytes.values()) / 1e3)
+    for k in ex.files:
+        page.value(f"{k}_kB", ex.sizes_bytes[k] / 1e3)
+    page.value("max_interpolation_error_m", ex.max_interpolation_error_m)
+    page.value("spk_vs_oem_m", spk_against_oem_m(ex.files["oem"], ex.files["spk"]))
+    page.value("utc_vs_tdb_s", utc_against_tdb_s(ex.files["oem"], ex_utc.files["oem"]))
+    page.value("object_id", ex.object_id)
+    page.value("n_segments", len(ex.segments))
+    page.value("first_ignition_tdb", calendar_from_seconds(man[0]["ignition_et_s"], 3))
+    page.value("first_ignition_utc", calendar_from_seconds(man[0]["ignition_et_s"], 3,
+                                                           scale="UTC"))
+    page.value("leap_expires", leap["expires"])
+    page.value("tai_utc_s", leap["tai_minus_utc_s"])
+    page.expect("the OEM's interpolation is within 1 m", ex.max_interpolation_error_m < 1.0)
+    page.expect("the SPK read through SPICE is within 1 m of the OEM",
+                page.values["spk_vs_oem_m"] < 1.0)
+    page.expect("UTC and TDB files hold the same instants (their microsecond roundings)",
+                page.values["utc_vs_tdb_s"] < 1.2e-6)
+    return page
