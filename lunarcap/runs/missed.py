@@ -283,10 +283,17 @@ def physical_bound(plan: CapturePlan, i: int, t_s: float, x, window_min: tuple,
     if plan.targets[i].kind == PERILUNE and all(e["min_period_s"] > max_period_s
                                                 for _, e, _ in ends):
         e = min((e for _, e, _ in ends), key=lambda e: e["min_period_s"])
+        now = orbit_summary(np.asarray(x, float), C.MU_MOON)
+        energy = now["v_kmps"] ** 2 / 2 - C.MU_MOON / now["r_km"]
+        still = ""
+        if energy < 0:   # bound: it will come back to its perilune
+            still = (f"; the spacecraft is still bound (period "
+                     f"{period_s(-C.MU_MOON / (2 * energy)) / 3600:.1f} h), so a make-up at a "
+                     f"later perilune or a longer --max-period-h could recover it")
         return (f"the spacecraft is {e['r_km']:,.0f} km from the Moon when the make-up burn "
                 f"can ignite: every orbit through there with a {plan.perilune_radius_km:,.0f}"
                 f" km perilune radius lasts at least {e['min_period_s'] / 3600:.1f} h, more "
-                f"than the {max_period_s / 3600:g} h allowed (--max-period-h)")
+                f"than the {max_period_s / 3600:g} h allowed (--max-period-h){still}")
     return ""
 
 
