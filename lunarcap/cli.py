@@ -8,6 +8,7 @@ written is lost.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import re
@@ -207,7 +208,8 @@ def _print_totals(tot: dict) -> None:
           f"{tot['total_burn_duration_min']:.2f} min; fuel {tot['total_fuel_kg']:.3f} kg, final "
           f"mass {tot['final_mass_kg']:.3f} kg; final orbit {tot['final_rp_km']:.1f} x "
           f"{tot['final_ra_km']:.1f} km, {tot['final_inc_deg']:.4f} deg, reached "
-          f"{tot['final_perilune_epoch']} ({tot['time_to_final_orbit_h']:.2f} h after arrival)")
+          f"{tot['final_orbit_epoch']} (end of the last burn, {tot['time_to_final_orbit_h']:.2f} h "
+          f"after the arrival perilune)")
 
 
 def cmd_plan(args) -> int:
@@ -563,12 +565,48 @@ def _join_negative_lists(argv: list) -> list:
     return out
 
 
+@contextlib.contextmanager
+def _interrupt_outside_casadi():
+    """Within the block, Ctrl-C raises KeyboardInterrupt, but never inside a CasADi call.
+
+    CasADi checks for Ctrl-C during IPOPT and CVODES, and turns the KeyboardInterrupt it
+    finds into a solver status (``NonIpopt_Exception_Thrown``) and a ``CasADi - WARNING``
+    line; the command then carried on with the next mesh, or ended in a "failed solve".
+    Here a SIGINT that arrives within a CasADi call (the handler's frame is CasADi's
+    Python wrapper) is raised 0.1 s after the call returns (SIGALRM rechecks). Main
+    thread only; the previous handlers are restored at the end.
+    """
+    import os
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def handler(signum, frame):
+        if frame is not None and f"{os.sep}casadi{os.sep}" in frame.f_code.co_filename:
+            signal.setitimer(signal.ITIMER_REAL, 0.1)  # again once the call has returned
+            return
+        signal.setitimer(signal.ITIMER_REAL, 0.0)
+        raise KeyboardInterrupt
+
+    old = {s: signal.signal(s, handler) for s in (signal.SIGINT, signal.SIGALRM)}
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0.0)
+        for s, h in old.items():
+            signal.signal(s, h)
+
+
 def main(argv=None) -> int:
     """Entry point; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(_join_negative_lists(sys.argv[1:] if argv is None else list(argv)))
     try:
-        return args.func(args)
+        with _interrupt_outside_casadi():
+            return args.func(args)
     except BrokenPipeError:  # e.g. `lunarcap impulsive --json | head`
         import os
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
@@ -582,3 +620,6 @@ def main(argv=None) -> int:
     except LunarcapError as exc:
         print(f"lunarcap: error: {exc}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:  # Ctrl-C (a study's says how to resume: _resumable)
+        print("lunarcap: interrupted", file=sys.stderr)
+        return 130

@@ -245,7 +245,8 @@ def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
     if t_end_s is not None:
         t_end, window = float(t_end_s), None
     model = Model(mode=plan.dynamics, thrust_N=thrust, isp_s=plan.engine.isp_s,
-                  fit=fit or burn_fit(plan, i, eph, t_peri))
+                  fit=fit or (burn_fit(plan, i, eph, t_peri) if plan.dynamics == "full"
+                              else None))
     dv_imp = plan.impulsive()[i].delta_v_mps
     x_perilune = np.asarray(x_perilune, float)
     free = start == "free"

@@ -53,6 +53,11 @@ class Solution:
         return self.raw.delta_v_mps
 
     @property
+    def burn_end_s(self) -> float:
+        """Epoch of the burn's cut-off, TDB s past J2000 (ignition + duration)."""
+        return float(self.problem.t_ign_s + self.raw.t1_s)
+
+    @property
     def end_state(self) -> np.ndarray:
         """Verified state (p, f, g, h, k, L, m) at the end of the coast."""
         return self.flight.end_state

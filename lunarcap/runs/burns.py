@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+import re
 import time
 from functools import lru_cache
 from pathlib import Path
@@ -49,7 +50,7 @@ from lunarcap.physics import constants as C
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.repro.cache import cached
-from lunarcap.runs.chain import impulsive_limit, solve_plan
+from lunarcap.runs.chain import impulsive_limit, solve_plan, time_to_final_orbit_h
 
 #: Longest intermediate period allowed by default, h (the paper's first ellipse: longer
 #: orbits are strongly perturbed by the Earth).
@@ -101,7 +102,11 @@ def count_guess(plan: CapturePlan, n: int, max_period_s: float) -> CapturePlan:
 
 
 def _fit_for(plan: CapturePlan, n: int, max_period_s: float, max_time_s: float):
-    """One Earth/Sun fit covering every epoch the free coasts allow (None if not needed)."""
+    """One Earth/Sun fit covering every epoch the free coasts allow (None if not needed).
+
+    Only full dynamics need one: two-body and J2 use no ephemeris, so neither the span
+    check nor a fit applies to them (see :func:`_without_fit`).
+    """
     if plan.dynamics != "full":
         return None
     t0 = plan.nominal_perilunes_s[0]
@@ -113,6 +118,25 @@ def _fit_for(plan: CapturePlan, n: int, max_period_s: float, max_time_s: float):
                          f"--max-days or --max-period-h")
     return ChebyshevFit.fit(plan_ephemeris(plan.ephemeris), t0 - FIT_MARGIN_S, t0 + span
                             - FIT_MARGIN_S)
+
+
+def _without_fit(sol):
+    """``sol`` with its problem's ephemeris fit dropped (two-body and J2 dynamics).
+
+    :func:`lunarcap.runs.chain.solve_plan` builds every burn with a fit of its own orbit
+    (unused outside full dynamics); :func:`lunarcap.optim.joint.solve_joint` keeps a warm
+    start's fit for each leg when it is given none, and the propagation then checks the
+    optimised legs' epochs against that window. Free coasts shortened by a binding
+    ``max_time_s`` move the epochs out of it ("propagation leaves the ephemeris-fit
+    window"), although no ephemeris is used. Without a fit, each leg gets its own.
+    """
+    from dataclasses import replace
+
+    prob = sol.raw.prob
+    if prob.model.fit is None:
+        return sol
+    return replace(sol, raw=replace(sol.raw, prob=replace(
+        prob, model=replace(prob.model, fit=None))))
 
 
 def _burn_rows(plan: CapturePlan, legs: list, imps: list | None) -> list[dict]:
@@ -144,6 +168,9 @@ def solve_count(plan: CapturePlan, n: int, max_period_s: float, max_time_s: floa
     """The capture of ``plan`` (pass ``plan.key()``) in ``n`` burns, periods optimised.
 
     See the module docstring. ``version`` is :func:`module_version` (part of the cache key).
+    Never raises for a count without a plan (status "infeasible", also when the optimum
+    found is no valid ``n``-burn plan, see :func:`_not_a_plan`) or a failed solve
+    ("failed").
 
     Returns
     -------
@@ -168,12 +195,12 @@ def solve_count(plan: CapturePlan, n: int, max_period_s: float, max_time_s: floa
     except PlanError as exc:
         out.update(status="infeasible", reason=str(exc), wall_s=time.perf_counter() - t_start)
         return out
-    eph = plan_ephemeris(plan.ephemeris)
     try:
-        seq = solve_plan(guess, verbose=verbose)
-        lo = circle_period_s(plan.perilune_radius_km) + MIN_PERIOD_MARGIN_S
-        res = solve_joint(guess, seq, eph, free_coasts=(True,) * (n - 1) + (False,),
-                          coast_bounds_s=(lo, max_period_s), max_time_s=max_time_s, fit=fit)
+        seq, res = _optimum(plan, guess, n, max_period_s, max_time_s, fit, verbose)
+    except PlanError as exc:  # raised by the optimum's plan, after IPOPT succeeded
+        out.update(status="infeasible", reason=_not_a_plan(n, exc),
+                   wall_s=time.perf_counter() - t_start)
+        return out
     except SolveError as exc:
         out.update(status="failed", reason=str(exc), ipopt_status=exc.status,
                    wall_s=time.perf_counter() - t_start)
@@ -182,37 +209,95 @@ def solve_count(plan: CapturePlan, n: int, max_period_s: float, max_time_s: floa
         out.update(status="failed", reason=f"no initial guess: {exc}".split("\n")[0],
                    wall_s=time.perf_counter() - t_start)
         return out
-    opt = res.plan
     imps = None
     if impulsive:
-        imps, t = [], opt.nominal_perilunes_s
-        x = [seq[0].problem.x_ref] + [leg.end_state for leg in res.legs[:-1]]
-        try:
-            for k in range(n):
-                rest = opt.resumed(k, t[k], x[k], window_min=(-10.0, 10.0))
-                imps.append(impulsive_limit(rest.key(1), verbose=verbose))
-        except (SolveError, PlanError) as exc:
-            out["reason"] = f"impulsive limit of burn {len(imps) + 1}: {exc}"
-            imps = None
+        imps, out["reason"] = _impulsive_limits(res, seq[0].problem.x_ref, verbose)
+    out.update(_totals(res, imps))
+    out["wall_s"] = time.perf_counter() - t_start
+    if not out["all_verified"]:
+        out.update(status="failed", reason="a burn failed verification")
+    return out
+
+
+def _optimum(plan: CapturePlan, guess: CapturePlan, n: int, max_period_s: float,
+             max_time_s: float, fit, verbose: bool):
+    """The chain solved burn by burn (the warm start) and the all-burns optimum from it.
+
+    Returns ``(seq, res)``: the list of Solution and the
+    :class:`lunarcap.optim.joint.JointResult`. Raises SolveError, PlanError (the
+    optimum's coasts make no valid plan) or RuntimeError (a guess's propagation).
+    """
+    seq = solve_plan(guess, verbose=verbose)
+    if plan.dynamics != "full":
+        seq = [_without_fit(sol) for sol in seq]
+    lo = circle_period_s(plan.perilune_radius_km) + MIN_PERIOD_MARGIN_S
+    res = solve_joint(guess, seq, plan_ephemeris(plan.ephemeris),
+                      free_coasts=(True,) * (n - 1) + (False,),
+                      coast_bounds_s=(lo, max_period_s), max_time_s=max_time_s, fit=fit)
+    return seq, res
+
+
+#: The plan checker's words for a burn of (next to) no delta-V: "burn 3 (0.0 m/s)".
+_VANISHED_BURN = re.compile(r"burn (\d+) \((-?\d+(?:\.\d+)?) m/s\)")
+
+
+def _not_a_plan(n: int, exc: PlanError) -> str:
+    """Why the all-burns optimum is no ``n``-burn plan (the reason of status "infeasible").
+
+    The NLP bounds each period below by the previous one and the circle's (+1 min), not
+    strictly: an optimum may put two consecutive periods on the same bound, so that the
+    burn between them does nothing (e.g. 4 burns within 0.29 days in two-body: both last
+    periods at the shortest allowed, burn 3 of 0.0 m/s). The plan checker then refuses the
+    optimum's plan, naming the engine ("too strong") or the period ("not shorter"); the
+    culprit is the count, one burn too many within the bounds.
+    """
+    m = _VANISHED_BURN.search(str(exc))
+    if m and abs(float(m.group(2))) < 0.05:
+        return (f"burn {m.group(1)} vanishes at the optimum ({m.group(2)} m/s: the orbits "
+                f"before and after it have the same period): within these bounds {n} burns "
+                f"do no better than {n - 1}; plan check: {exc}")
+    if "is not shorter than the orbit before" in str(exc):
+        return (f"two consecutive periods coincide at the optimum: within these bounds {n} "
+                f"burns do no better than {n - 1}; plan check: {exc}")
+    return f"the all-burns optimum is no valid {n}-burn plan: {exc}"
+
+
+def _impulsive_limits(res, x_arrival, verbose: bool) -> tuple:
+    """Each burn's impulsive limit from its verified pre-burn state at its nominal perilune.
+
+    Returns ``(limits, reason)``: the list of :func:`lunarcap.runs.chain.impulsive_limit`
+    dicts and "", or None and why one of them could not be computed.
+    """
+    opt, imps = res.plan, []
+    t = opt.nominal_perilunes_s
+    x = [x_arrival] + [leg.end_state for leg in res.legs[:-1]]
+    try:
+        for k in range(opt.n_burns):
+            rest = opt.resumed(k, t[k], x[k], window_min=(-10.0, 10.0))
+            imps.append(impulsive_limit(rest.key(1), verbose=verbose))
+    except (SolveError, PlanError) as exc:
+        return None, f"impulsive limit of burn {len(imps) + 1}: {exc}"
+    return imps, ""
+
+
+def _totals(res, imps: list | None) -> dict:
+    """The count's burn rows and totals (the keys of :func:`solve_count` after a solve)."""
+    opt = res.plan
     rows = _burn_rows(opt, res.legs, imps)
     dv = sum(r["delta_v_mps"] for r in rows)
     imp_total = None if imps is None else sum(r["impulsive_delta_v_mps"] for r in rows)
     last = res.legs[-1]
     t0 = opt.nominal_perilunes_s[0]
-    out.update(
+    return dict(
         periods_h=[b.period_s / 3600.0 for b in opt.burns[:-1]], burns=rows,
         total_delta_v_mps=dv, total_impulsive_delta_v_mps=imp_total,
         total_loss_mps=None if imp_total is None else dv - imp_total,
         fuel_kg=rows[0]["m_start_kg"] - rows[-1]["m_end_kg"],
         final_mass_kg=rows[-1]["m_end_kg"],
         total_burn_duration_min=sum(r["burn_duration_min"] for r in rows),
-        time_to_final_orbit_h=(last.problem.t_ign_s + last.raw.t1_s - t0) / 3600.0,
+        time_to_final_orbit_h=time_to_final_orbit_h(t0, last),
         all_verified=all(r["verified"] for r in rows),
-        ipopt_status=res.ipopt_status, iterations=res.iterations, nlp_solve_s=res.solve_s,
-        wall_s=time.perf_counter() - t_start)
-    if not out["all_verified"]:
-        out.update(status="failed", reason="a burn failed verification")
-    return out
+        ipopt_status=res.ipopt_status, iterations=res.iterations, nlp_solve_s=res.solve_s)
 
 
 def count_result(plan: CapturePlan, n: int, max_period_h: float = DEFAULT_MAX_PERIOD_H,

@@ -38,7 +38,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from lunarcap.errors import InputError
+from lunarcap.errors import InputError, LunarcapError
 from lunarcap.repro import paths
 
 
@@ -235,11 +235,111 @@ def dask_client(workers: int, scheduler: str | None, processes: bool = True):
         finally:
             client.close()
         return
-    # no dashboard; the scheduler's HTTP (health) server on a free port, not 8787
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=processes,
-                      dashboard_address=None, scheduler_kwargs={"dashboard_address": ":0"},
-                      silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+    cluster = client = None
+    if processes:  # started here, not by the first worker's thread (see _block_sigint_here)
+        from multiprocessing import resource_tracker
+
+        resource_tracker.ensure_running()
+    try:
+        with _sigint_deferred():
+            # no dashboard; the scheduler's HTTP (health) server on a free port, not 8787
+            cluster = LocalCluster(n_workers=0, threads_per_worker=1, processes=processes,
+                                   dashboard_address=None,
+                                   scheduler_kwargs={"dashboard_address": ":0"},
+                                   silence_logs=logging.ERROR)
+            cluster.sync(_block_sigint_here)  # in the thread that will start the workers
+        client = Client(cluster)
+        cluster.scale(workers)
+        try:
+            client.wait_for_workers(workers, timeout=WORKER_START_TIMEOUT_S)
+        except TimeoutError:
+            raise LunarcapError(f"the local Dask cluster did not start {workers} worker(s) "
+                                f"within {WORKER_START_TIMEOUT_S:g} s") from None
         yield client
+    except KeyboardInterrupt:
+        _close_quietly(client, cluster)
+        raise
+    finally:
+        for c in (client, cluster):
+            if c is not None:
+                c.close()
+
+
+#: How long a local cluster may take to start its workers, s.
+WORKER_START_TIMEOUT_S = 300.0
+#: Loggers that report a cluster's shutdown (silenced when it follows Ctrl-C).
+_SHUTDOWN_LOGGERS = ("distributed", "tornado", "asyncio")
+
+
+async def _block_sigint_here() -> None:
+    """Block SIGINT in the calling thread: run in a local cluster's event-loop thread.
+
+    That thread starts the worker processes (through threads of its own, which inherit
+    its signal mask), and a process keeps the mask of the thread that started it, across
+    exec. The workers so never see the SIGINT a terminal sends to the whole process group
+    on Ctrl-C: only this process is interrupted, and closes the cluster
+    (:func:`_close_quietly`). Interrupted themselves, workers die printing their
+    tracebacks (about 30 lines each, the nannies add more). This process's main thread
+    keeps SIGINT: a blocked signal goes to a thread that does not block it.
+
+    multiprocessing's resource tracker, when a spawn starts it, unblocks SIGINT in the
+    spawning thread afterwards (CPython bpo-33613 blocks it around its own spawn, the
+    same way); :func:`dask_client` starts it beforehand from the main thread.
+    """
+    import signal
+
+    signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+
+
+@contextlib.contextmanager
+def _sigint_deferred():
+    """Ctrl-C within the block is raised (as KeyboardInterrupt) at its end, not inside.
+
+    Around a local cluster's construction, so that a cluster object exists to be closed
+    quietly when Ctrl-C comes while it starts. Outside the main thread, nothing changes.
+    """
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    seen = []
+    old = signal.signal(signal.SIGINT, lambda signum, frame: seen.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)
+    if seen:
+        raise KeyboardInterrupt
+
+
+def _close_quietly(client, cluster) -> None:
+    """Close a local cluster after Ctrl-C without a line on stderr from any process.
+
+    While the workers are stopped (they never saw the SIGINT, see
+    :func:`_block_sigint_here`), the scheduler and the nannies, in this process, log the
+    cancelled tasks and lost connections (``distributed.nanny - ERROR`` with a
+    traceback, about 13 lines). Those loggers are silenced for the rest of the process,
+    which is ending; a failure to close is not reported either (the workers end with this
+    process: a nanny's worker exits when its parent does). The close takes a few seconds
+    (a busy worker is stopped after its nanny's timeout); SIGINT is ignored meanwhile.
+    """
+    import signal
+    import threading
+
+    for name in _SHUTDOWN_LOGGERS:
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+    main = threading.current_thread() is threading.main_thread()
+    old = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:  # a second Ctrl-C would interrupt the close with a traceback: ignored meanwhile
+        for c in (client, cluster):
+            with contextlib.suppress(Exception):
+                if c is not None:
+                    c.close(timeout=10)
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, old)
 
 
 # ====================================================================== the table
@@ -315,6 +415,40 @@ def append_rows(path: str | os.PathLike, rows: list[dict], columns) -> None:
     with paths.atomic_path(path) as tmp:
         tmp.write_bytes(old + text.encode())
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp's 0600 would hide the table
+
+
+def replace_case_rows(path: str | os.PathLike, rows: list[dict], fmt: TableFormat,
+                      version: str) -> None:
+    """Write a recomputed case's rows in place of its earlier rows of ``version``.
+
+    The rows of every other case (and this case's rows of other code versions) are kept
+    as written; the new rows go at the end. Atomic, as :func:`append_rows`. Without this,
+    ``--no-cache`` (compute every case again) after an interrupted run appended a second
+    row for each case the first run had finished.
+    """
+    path = Path(path)
+    old = pd.read_csv(path, dtype=str, keep_default_na=False) if path.exists() and \
+        path.stat().st_size else pd.DataFrame(columns=list(fmt.columns), dtype=str)
+    key = rows[0]
+    same = pd.Series(True, index=old.index)
+    for k in fmt.key:
+        same &= old[k].map(lambda text, v=key[k]: _key_text(text, v)) == _key_text(key[k], key[k])
+    same &= old["code_version"] == version
+    text = pd.concat([old[~same].reindex(columns=list(fmt.columns)),
+                      pd.DataFrame(rows).reindex(columns=list(fmt.columns))])
+    with paths.atomic_path(path) as tmp:
+        tmp.write_bytes(text.to_csv(index=False).encode())
+        os.chmod(tmp, 0o666 & ~_umask())
+
+
+def _key_text(value, like) -> str:
+    """A key value as :meth:`TableFormat.case_key` writes it, read as the type of ``like``."""
+    if isinstance(like, (int, float)) and not isinstance(like, bool):
+        try:
+            return f"{float(value):.6g}"
+        except (TypeError, ValueError):
+            return str(value)
+    return str(value)
 
 
 def latest(table: pd.DataFrame, fmt: TableFormat, version: str) -> dict:
@@ -419,7 +553,7 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
                     _compute(client, task, todo, fmt, version, path, counts, progress,
                              f"{desc} ({state['workers']} worker"
                              f"{'s' * (state['workers'] > 1)})", unit, ok_statuses,
-                             error_rows or _task_error_row)
+                             error_rows or _task_error_row, set(have))
         except KeyboardInterrupt:
             state["interrupted"] = True
             record()
@@ -431,8 +565,12 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
 
 
 def _compute(client, task, todo, fmt, version, path, counts, progress, desc, unit,
-             ok_statuses, error_rows) -> None:
-    """Submit one task per case; append each case's rows as its task completes."""
+             ok_statuses, error_rows, present=frozenset()) -> None:
+    """Submit one task per case; append each case's rows as its task completes.
+
+    ``present``: case keys with rows of ``version`` in the table already (a case
+    recomputed on request, or retried): their rows are replaced, not duplicated.
+    """
     from dask.distributed import as_completed
     from tqdm import tqdm
 
@@ -453,7 +591,11 @@ def _compute(client, task, todo, fmt, version, path, counts, progress, desc, uni
         rows = rows if isinstance(rows, list) else [rows]
         for row in rows:
             row["code_version"] = version  # the version this run scheduled under
-        append_rows(path, rows, fmt.columns)
+        ck = fmt.case_key(key)
+        if ck in present:
+            replace_case_rows(path, rows, fmt, version)
+        else:
+            append_rows(path, rows, fmt.columns)
         counts["computed"] += 1
         if any(row.get("status") not in ok_statuses for row in rows):
             counts["failed"] += 1

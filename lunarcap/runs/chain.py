@@ -219,6 +219,16 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
                                         and s_short.verification.passed)}
 
 
+def time_to_final_orbit_h(t_arrival_s: float, last: Solution) -> float:
+    """Time to the final orbit, h: from the arrival perilune to the end of the last burn.
+
+    The one definition every table and page uses: the spacecraft is on its final orbit
+    from the last burn's cut-off (the perilune after it is where that orbit's elements are
+    measured, one coast later).
+    """
+    return (last.burn_end_s - t_arrival_s) / 3600.0
+
+
 def burn_loss(finite: dict, impulsive: dict) -> dict:
     """The loss of a burn against its impulsive limit, in m/s and %, two ways.
 
@@ -292,7 +302,8 @@ class PlanResult:
                 "final_rp_km": last["rp_end_km"], "final_ra_km": last["ra_end_km"],
                 "final_inc_deg": last["inc_end_deg"],
                 "final_perilune_epoch": calendar_from_seconds(t[-1]),
-                "time_to_final_orbit_h": (t[-1] - t[0]) / 3600.0,
+                "final_orbit_epoch": calendar_from_seconds(self.burns[-1].solution.burn_end_s),
+                "time_to_final_orbit_h": time_to_final_orbit_h(t[0], self.burns[-1].solution),
                 "all_verified": all(r["verification_passed"] for r in rows)
                 and all(r["impulsive_verified"] is not False for r in rows)}
 

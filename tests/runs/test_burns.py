@@ -7,15 +7,19 @@
   the impulsive limits measured burn by burn add up to the closed form.
 * Freeing the intermediate periods can only help: the optimum is no worse than the same
   capture through the paper's fixed periods, and it respects its bounds.
+* The periods are optimised: in 2 burns the optimum leaves the equal-share start and
+  saves more than the solve tolerance over the same capture through it (a study whose
+  periods stayed fixed passed every other test here).
 * A count with no plan is reported as infeasible, not raised.
 """
 
 import numpy as np
 import pytest
 
+from lunarcap.mission.impulsive import equal_split_periods_s
 from lunarcap.mission.plan import load_plan
 from lunarcap.optim.joint import solve_joint
-from lunarcap.runs.burns import circle_period_s, count_result
+from lunarcap.runs.burns import circle_period_s, count_guess, count_result
 from lunarcap.runs.chain import solve_plan
 
 pytestmark = pytest.mark.slow
@@ -80,3 +84,43 @@ def test_a_count_with_no_plan_is_infeasible_not_an_error():
     r = count_result(_plan(150.0), 2, max_period_h=circle_period_s(1838.2) / 3600.0,
                      impulsive=False)
     assert r["status"] == "infeasible" and "no room" in r["reason"]
+
+
+@pytest.mark.parametrize("dynamics", ["two-body", "j2"])
+def test_a_binding_time_limit_needs_no_ephemeris_fit_outside_full_dynamics(dynamics):
+    # 3 burns within 0.3 days (7.2 h): the equal-share guess (periods of ~9 and ~3.5 h)
+    # ends later, so the time limit binds and the optimum's epochs leave the fit windows
+    # the guess's burns were solved with; two-body and J2 use no ephemeris and must not
+    # check one (was status "error": "propagation leaves the ephemeris-fit window")
+    plan = _plan(150.0).with_dynamics(dynamics)
+    r = count_result(plan, 3, max_days=0.3, impulsive=False)
+    assert r["status"] == "ok", r["reason"]
+    assert r["all_verified"]
+    assert r["time_to_final_orbit_h"] == pytest.approx(0.3 * 24.0, abs=1e-3)
+
+
+def test_an_optimum_that_is_no_plan_is_a_status_not_an_exception():
+    # 4 burns within 0.29 days in two-body: IPOPT converges with both last periods at the
+    # shortest allowed (the circle's + 1 min), so burn 3 does nothing and the optimum's
+    # plan is refused by the plan check (a PlanError that escaped solve_count before)
+    r = count_result(_plan(150.0), 4, max_days=0.29, impulsive=False)
+    assert r["status"] == "infeasible"
+    assert r["reason"].startswith("burn 3 vanishes at the optimum"), r["reason"]
+    assert "4 burns do no better than 3" in r["reason"]
+
+
+def test_the_free_period_is_optimised_not_left_at_the_equal_share_start():
+    # 150 N, 2 burns: the equal-share start is a 7.48 h ellipse, the optimum 8.28 h, and
+    # it saves 0.155 m/s over the same two burns through the start's ellipse (ignitions
+    # free in both); the verification gate on each leg's objective is 0.01 m/s
+    plan = _plan(150.0)
+    start = count_guess(plan, 2, 12.235 * 3600.0)
+    start_h = start.burns[0].period_s / 3600.0
+    assert start_h == pytest.approx(equal_split_periods_s(
+        plan.perilune_radius_km, plan.arrival.v_inf_kmps, 2, 12.235 * 3600.0)[0] / 3600.0)
+    through_start = solve_joint(start, solve_plan(start), None).total_delta_v_mps
+    r = count_result(plan, 2, max_period_h=12.235, impulsive=False)
+    assert r["status"] == "ok", r["reason"]
+    assert abs(r["periods_h"][0] - start_h) > 0.1, (r["periods_h"], start_h)
+    assert r["total_delta_v_mps"] < through_start - 0.05, (r["total_delta_v_mps"],
+                                                            through_start)

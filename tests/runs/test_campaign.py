@@ -146,3 +146,48 @@ def test_guarded_turns_a_bug_into_a_row_and_restores_the_cache_setting(monkeypat
     r, err = campaign.guarded(lambda: 1 / 0, use_cache=False)
     assert r is None and err == {"status": "error", "error": "ZeroDivisionError: division by zero"}
     assert os.environ["LUNARCAP_NO_CACHE"] == "0"
+
+
+#: Calls of the fake burns task below: (n_burns, use_cache).
+FAKE_CALLS = []
+
+
+def _fake_count_row(plan, n, max_period_h, max_days, use_cache=True):
+    FAKE_CALLS.append((n, use_cache))
+    return {"status": "ok", "reason": "", "total_delta_v_mps": 800.0 + n + len(FAKE_CALLS),
+            "error": ""}
+
+
+def test_no_cache_after_an_interrupted_study_replaces_rows_not_duplicates(tmp_path,
+                                                                         monkeypatch):
+    plan = load_plan("song2011-150N").with_dynamics("two-body")
+    out = tmp_path / "burns.csv"
+    real = campaign._compute
+
+    def compute_then_ctrl_c(client, task, todo, *args):
+        real(client, task, todo[:2], *args)  # counts 1 and 2 finish, then Ctrl-C
+        raise KeyboardInterrupt
+
+    kw = dict(out=out, task=_fake_count_row, progress=False, processes=False, workers=1)
+    monkeypatch.setattr(campaign, "_compute", compute_then_ctrl_c)
+    with pytest.raises(KeyboardInterrupt):
+        burns.run_burns([plan], "1,2,3", **kw)
+    monkeypatch.setattr(campaign, "_compute", real)
+    before = burns.table_format()
+    assert len(campaign.read_table(out, before)) == 2
+    FAKE_CALLS.clear()
+    res = burns.run_burns([plan], "1,2,3", use_cache=False, **kw)  # --no-cache
+    assert sorted(FAKE_CALLS) == [(1, False), (2, False), (3, False)]
+    table = campaign.read_table(out, before)
+    assert sorted(table.n_burns) == [1, 2, 3], table[["n_burns", "total_delta_v_mps"]]
+    # each row is the recomputed one (its value counts this run's calls, 1 to 3)
+    new = dict(zip(res.table.n_burns, res.table.total_delta_v_mps))
+    assert dict(zip(table.n_burns, table.total_delta_v_mps)) == new
+    assert all(v - 800.0 - n in (1, 2, 3) for n, v in new.items()), new
+    # a row of another code version is history, not a duplicate: kept
+    text = out.read_text().splitlines()
+    old = text[1].replace(res.table.code_version.iloc[0], "older-version")
+    out.write_text("\n".join([text[0], old, *text[1:]]) + "\n")
+    burns.run_burns([plan], "1,2,3", use_cache=False, **kw)
+    table = campaign.read_table(out, before)
+    assert len(table) == 4 and list(table.code_version).count("older-version") == 1

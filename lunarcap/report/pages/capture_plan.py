@@ -128,7 +128,7 @@ TOTALS = [
     ("total_fuel_kg", "propellant", "kg"),
     ("final_mass_kg", "mass in the final orbit", "kg"),
     ("total_burn_duration_min", "burn time", "min"),
-    ("time_to_final_orbit_h", "time from the arrival perilune to the final orbit", "h"),
+    ("time_to_final_orbit_h", "from the arrival perilune to the end of the last burn", "h"),
     ("final_rp_altitude_km", "final orbit, perilune altitude", "km"),
     ("final_ra_altitude_km", "final orbit, apolune altitude", "km"),
     ("final_inc_deg", "final orbit, inclination", "deg"),

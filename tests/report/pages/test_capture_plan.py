@@ -87,9 +87,9 @@ def test_two_burns_beside_the_papers_three(two):
     # two-body chain: exactly), so the difference is the finite-burn loss
     assert abs(diff.total_impulsive_delta_v_mps) < 0.5
     assert diff.total_loss_mps > 0          # two longer burns lose more than three
-    # the 8 h ellipse is met as asked at the perilune it reaches: the finite burn moves
-    # that passage by seconds, not minutes, from the nominal 8 h + the final coast
-    assert ours.time_to_final_orbit_h == pytest.approx(8.0 + 117.848 / 60, abs=1 / 60)
+    # the final orbit is entered at the last burn's cut-off: one 8 h orbit after the
+    # arrival perilune, within the second burn's duration (Eq. 19: ~20 min) of it
+    assert 8.0 - 0.5 < ours.time_to_final_orbit_h < 8.0 + 0.5
     assert paper.time_to_final_orbit_h == pytest.approx(12.235 + 3.525 + 117.848 / 60)
     np.testing.assert_allclose(diff.iloc[1:].astype(float),
                                (ours.iloc[1:] - paper.iloc[1:]).astype(float))
