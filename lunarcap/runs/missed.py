@@ -72,7 +72,7 @@ from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.propagate import propagate
 from lunarcap.repro.cache import cached
 from lunarcap.runs.burns import MAX_FIT_SPAN_S
-from lunarcap.runs.chain import solve_plan
+from lunarcap.runs.chain import solve_plan, time_to_final_orbit_h
 
 #: Longest period of the orbit after burn n, in the recovery and in the nominal alike, h.
 #: About twice the paper's 12.235 h. For the paper's 150 N plan the nominal's own optimum
@@ -404,15 +404,14 @@ def _nominal_part(plan: CapturePlan, burn: int, max_period_s: float) -> tuple:
     cols = {"nominal_burn_duration_min": legs[i].raw.t1_s / 60.0,
             "nominal_burn_delta_v_mps": legs[i].delta_v_mps,
             "nominal_remaining_delta_v_mps": sum(s.delta_v_mps for s in legs[i:]),
-            "nominal_time_to_final_orbit_h": (last.problem.t_ign_s + last.raw.t1_s
-                                              - t_ref[i]) / 3600.0,
+            "nominal_time_to_final_orbit_h": time_to_final_orbit_h(t_ref[0], last),
             "nominal_period_after_burn_h": (nplan.coast_s(i) / 3600.0
                                             if i < plan.n_burns - 1 else None)}
     return nplan, legs, cols
 
 
-def _solved(out: dict, res, est, burn: int, t_r: float, t_ref_i: float, partial: float,
-            free: bool) -> dict:
+def _solved(out: dict, res, est, burn: int, t_r: float, t_arrival_s: float,
+            partial: float, free: bool) -> dict:
     """Fill ``out`` with a verified recovery (its JointResult ``res``).
 
     ``free``: the make-up orbit was free (an ellipse target).
@@ -427,7 +426,6 @@ def _solved(out: dict, res, est, burn: int, t_r: float, t_ref_i: float, partial:
                      "burn_duration_min": sm["burn_duration_min"],
                      "delta_v_mps": sm["delta_v_mps"], "verified": s.verification.passed})
     rec_dv = sum(r["delta_v_mps"] for r in rows)
-    end = res.legs[-1].problem.t_ign_s + res.legs[-1].raw.t1_s
     period = None
     if free:
         xf = res.legs[0].end_state
@@ -442,7 +440,7 @@ def _solved(out: dict, res, est, burn: int, t_r: float, t_ref_i: float, partial:
                make_up_estimate_h=None if est is None else est["first_coast_guess_s"] / 3600,
                first_coast_h=res.plan.coast_s(0) / 3600.0 if free else None,
                make_up_period_h=period,
-               time_to_final_orbit_h=(end - t_ref_i) / 3600.0,
+               time_to_final_orbit_h=time_to_final_orbit_h(t_arrival_s, res.legs[-1]),
                all_verified=all(r["verified"] for r in rows),
                ipopt_status=res.ipopt_status)
     return out
@@ -453,7 +451,7 @@ def _refused(out: dict, status: str, reason: str, ipopt_status: str = "") -> dic
     return out
 
 
-def _attempt(out: dict, solve, burn: int, t_r: float, t_ref_i: float, partial: float,
+def _attempt(out: dict, solve, burn: int, t_r: float, t_arrival_s: float, partial: float,
              free) -> dict:
     """Run ``solve()`` -> (JointResult, estimate) and record its outcome in ``out``."""
     try:
@@ -464,7 +462,7 @@ def _attempt(out: dict, solve, burn: int, t_r: float, t_ref_i: float, partial: f
         return _refused(out, "failed", str(exc).split("\n")[0], exc.status)
     except RuntimeError as exc:  # a guess's propagation failed (e.g. p -> 0)
         return _refused(out, "failed", f"no initial guess: {exc}".split("\n")[0])
-    return _solved(out, res, est, burn, t_r, t_ref_i, partial, free)
+    return _solved(out, res, est, burn, t_r, t_arrival_s, partial, free)
 
 
 @cached(ignore=["verbose"])
@@ -483,7 +481,8 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
         estimate ``make_up_estimate_mps``, ``make_up_period_h`` (osculating, at its
         perilune), ``total_delta_v_mps`` (partial + recovery), ``penalty_mps``,
         ``recovery_burns``, ``first_coast_h``, ``time_to_final_orbit_h`` and the
-        nominal's (from the nominal perilune before burn n to the end of the last burn),
+        nominal's (:func:`lunarcap.runs.chain.time_to_final_orbit_h`: from the arrival
+        perilune to the end of the last burn),
         ``ipopt_status``, ``all_verified``, ``wall_s``.
     """
     t_start = time.perf_counter()
@@ -513,7 +512,7 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
     else:
         out = _attempt(out, lambda: recover(nplan, i, t_r, x_r, window_min, max_period_s,
                                             fit, coast),
-                       burn, t_r, t_ref[i], partial, nplan.targets[i].kind == PERILUNE)
+                       burn, t_r, t_ref[0], partial, nplan.targets[i].kind == PERILUNE)
     out["wall_s"] = time.perf_counter() - t_start
     return out
 
@@ -551,7 +550,7 @@ def late_case(plan: CapturePlan, burn: int, late_s: float, max_period_s: float,
     else:
         out = _attempt(out, lambda: recover(nplan, i, t_r, x_r, window, max_period_s, fit,
                                             coast),
-                       burn, t_r, t_ref[i], 0.0, nplan.targets[i].kind == PERILUNE)
+                       burn, t_r, t_ref[0], 0.0, nplan.targets[i].kind == PERILUNE)
     out["wall_s"] = time.perf_counter() - t_start
     return out
 
@@ -753,8 +752,8 @@ def format_rows(plan: CapturePlan, burn: int, rows: list, result) -> str:
         lines.append(f"nominal: burns {burn}..{plan.n_burns} need "
                      f"{r0['nominal_remaining_delta_v_mps']:.3f} m/s; burn {burn} lasts "
                      f"{r0['nominal_burn_duration_min']:.2f} min; final orbit "
-                     f"{r0['nominal_time_to_final_orbit_h']:.2f} h after the perilune "
-                     f"before burn {burn}")
+                     f"{r0['nominal_time_to_final_orbit_h']:.2f} h after the arrival "
+                     f"perilune")
     run = result.run
     lines.append(f"{run['computed']} case(s) computed, {run['reused']} taken from the table; "
                  f"wall time {run['wall_s']:.1f} s ({run['scheduler']}, {run['workers']} "

@@ -145,7 +145,7 @@ def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75
         "Every cut-off: the orbit at cut-off (escape: hyperbola; captured: apolune inside the "
         "Moon's sphere of influence), ΔV of the partial burn and of the recovery, penalty "
         "(m/s), the make-up burn's ΔV and its orbit's period (h), the time from the "
-        "perilune before the burn to the end of the last burn (h), and why a case has no "
+        "arrival perilune to the end of the last burn (h), and why a case has no "
         "recovery."),
         show_columns=CASE_SHOWN,
         floatfmt={"fraction": ".2f", "delay_min": ".0f", "cutoff_ra_km": ".0f"},  # else .3f
