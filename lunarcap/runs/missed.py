@@ -80,7 +80,9 @@ from lunarcap.runs.chain import solve_plan, time_to_final_orbit_h
 #: delta-V more evenly between burns 1 and 2), and presses against it in full dynamics
 #: (coast 23.8 h), as do the recoveries: both sides carry the same bound, so the penalty
 #: compares like with like. Its apolune (about 17,700 km at 100 km perilune) stays far
-#: inside the Moon's sphere of influence (about 63,000 km).
+#: inside the Moon's sphere of influence (about 63,000 km). Known limitation: in full
+#: dynamics that nominal (935.8 m/s, coast 23.8 h) is a local optimum costlier than the
+#: paper's 12.235 h plan (872.6 m/s), which the bound allows (see the README).
 DEFAULT_MAX_PERIOD_H = 24.0
 #: Window of the make-up burn's ignition after the fault is cleared, min.
 DEFAULT_WINDOW_MIN = (0.0, 30.0)
