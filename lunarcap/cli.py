@@ -405,15 +405,19 @@ def cmd_missed(args) -> int:
     except ValueError:
         raise InputError(f"--burn must be a burn number from 1, got {args.burn!r}") from None
     max_period_h = _number_arg("--max-period-h", args.max_period_h, "hours")
+    fractions = args.fractions
+    if fractions is None:   # the default cut-offs, unless only late ignitions are asked
+        fractions = None if args.late_min else "0.25,0.5,0.75,0.9"
     res, status = _resumable(lambda: missed.run_missed(
-        plan, burn, args.fractions, args.delays_min, max_period_h, out=args.out,
+        plan, burn, fractions, args.delays_min, max_period_h, out=args.out,
         workers=args.workers, scheduler=args.scheduler, progress=not args.no_progress,
-        use_cache=not args.no_cache), "cases")
+        use_cache=not args.no_cache, late_min=args.late_min), "cases")
     if status:
         return status
     rows = res.table.to_dict("records")
     if args.json:
-        out = {"plan": plan.to_dict(), "burn": burn, "table": str(res.path), "run": res.run,
+        out = {"plan": plan.to_dict(), "burn": burn, "max_period_h": max_period_h,
+               "table": str(res.path), "run": res.run,
                "cases": [dict({k: v for k, v in r.items() if k != "recovery_burns_json"},
                               recovery_burns=missed.recovery_burns_of(r)) for r in rows]}
         print(json.dumps(_jsonable(out), indent=2))
@@ -519,17 +523,21 @@ def build_parser() -> argparse.ArgumentParser:
     _add_dask_options(p, "count")
     p.set_defaults(func=cmd_burns)
 
-    p = sub.add_parser("missed", help="missed thrust: a burn cut short, the capture re-planned")
+    p = sub.add_parser("missed", help="missed thrust or late ignition: a burn gone wrong, "
+                                      "the capture re-planned")
     _add_plan_options(p, plan_positional=True)
     p.add_argument("--burn", default="1", metavar="N", help="the burn cut short (1)")
-    p.add_argument("--fractions", default="0.25,0.5,0.75,0.9", metavar="F1,F2,...",
+    p.add_argument("--fractions", default=None, metavar="F1,F2,...",
                    help="fractions of the burn flown before the engine stops, in (0, 1] "
-                        "(0.25,0.5,0.75,0.9)")
+                        "(0.25,0.5,0.75,0.9; none if only --late-min is given)")
     p.add_argument("--delays-min", default="0,30,120,720", metavar="D1,D2,...",
                    help="minutes from the cut-off to the recovery window (0,30,120,720)")
-    p.add_argument("--max-period-h", default="12.235", metavar="H",
-                   help="longest coast from the end of the fault to the make-up orbit's "
-                        "perilune, h (12.235)")
+    p.add_argument("--late-min", default=None, metavar="L1,L2,...",
+                   help="late ignition: the burn ignites these minutes after its planned "
+                        "ignition, is re-optimised from there and the later burns re-planned")
+    p.add_argument("--max-period-h", default="24", metavar="H",
+                   help="longest period of the orbit after the burn, in the recovery and "
+                        "in the nominal it is compared with, h (24)")
     _add_dask_options(p, "case")
     p.set_defaults(func=cmd_missed)
     return parser

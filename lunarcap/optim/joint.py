@@ -61,7 +61,7 @@ class JointNLP:
 
 @lru_cache(maxsize=None)
 def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
-                    free_coasts: tuple = ()) -> JointNLP:
+                    free_coasts: tuple = (), period_rows: bool = False) -> JointNLP:
     """The NLP of N legs (one per target kind), each with a free ignition, linked end to start.
 
     Parameters (by name): ``x_start`` (the state at the first nominal perilune, physical),
@@ -74,6 +74,11 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
     (coast_k - coast_{k+1} >= 0 for consecutive free legs; the solver may release them)
     and ``time_limit`` (end of the last burn minus t_0, TU; its upper bound set by the
     solver).
+
+    ``period_rows`` (with free coasts): one more row per free leg, ``energy_limit``, the
+    specific orbital energy at the end of its coast, -(1 - f^2 - g^2) / (2 p) (VU^2, the
+    osculating orbit at the perilune where its target holds); the solver bounds it above
+    to bound that orbit's period.
     """
     nb, nc = mesh.n_burn, mesh.n_coast
     n = len(target_kinds)
@@ -109,7 +114,13 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
                 nlp.constrain(coasts[k] - coasts[k + 1], "coast_order", 0.0, np.inf)
         last = legs[-1]
         nlp.constrain((last.t_ign + last.t1 - t[0]) / TU, "time_limit", 0.0, np.inf)
+        for k in range(n) if period_rows else ():
+            if free[k]:
+                xf = legs[k].xf
+                nlp.constrain(-(1 - xf[1] ** 2 - xf[2] ** 2) / (2 * xf[0]), "energy_limit",
+                              -np.inf, np.inf)
     tag = "" if not any(free) else "_free" + "".join("1" if f else "0" for f in free)
+    tag += "_period" if period_rows and any(free) else ""
     name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{mode}{tag}".replace("-", "_")
     return JointNLP(nlp.compile(J, name), legs)
 
@@ -130,9 +141,18 @@ class JointResult:
         return sum(s.delta_v_mps for s in self.legs)
 
 
+def warm_start(sol: Solution) -> tuple:
+    """(problem, Guess, coast mesh fractions) of one leg, from a solved burn."""
+    u_fn, burn = steering_function(sol.raw), sol.flight.burn
+    guess = Guess(sol.raw.t1_s, lambda t, u_fn=u_fn, b=burn: u_fn(t, b(t)), burn,
+                  sol.flight.coast)
+    return sol.problem, guess, sol.raw.mesh_coast
+
+
 def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 16, 5),
                 free_coasts: tuple = (), coast_bounds_s: tuple | None = None,
-                max_time_s: float | None = None, fit=None) -> JointResult:
+                max_time_s: float | None = None, fit=None, max_period_s: float | None = None,
+                warm: list | None = None) -> JointResult:
     """Solve all burns of ``plan`` as one NLP, warm-started from a one-at-a-time chain.
 
     Parameters
@@ -155,6 +175,13 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     fit : ChebyshevFit, optional
         One ephemeris fit for every leg (required in full dynamics with free coasts: it
         must cover every epoch the coasts allow); default each leg's own.
+    max_period_s : float, optional
+        With free coasts: the longest osculating period of each free leg's orbit at the
+        perilune where its target holds, s (rows ``energy_limit``; default none).
+    warm : list of (BurnProblem, Guess, coast mesh fractions), optional
+        Per leg, instead of ``sequential`` (then None): the problem (its bounds, ignition
+        window, dynamics) and the guess the NLP starts from (:func:`warm_start` of a solved
+        burn is one).
 
     Raises
     ------
@@ -165,19 +192,21 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     asked = tuple(bool(f) for f in free_coasts) or (False,) * plan.n_burns
     orbit = tuple(t.free_epoch for t in plan.targets)
     free = tuple(a or o for a, o in zip(asked, orbit))
-    nlp = build_joint_nlp(mesh, kinds, plan.dynamics, free if any(free) else ())
+    warm = warm if warm is not None else [warm_start(s) for s in sequential]
+    period_rows = any(asked) and max_period_s is not None
+    nlp = build_joint_nlp(mesh, kinds, plan.dynamics, free if any(free) else (), period_rows)
     lay = nlp.compiled.layout
-    S = state_scale(sequential[0].problem.x_ref[6])
+    S = state_scale(warm[0][0].x_ref[6])
     w0 = np.zeros(lay.nv)
     lbx, ubx, lbg, ubg = lay.bounds()
-    params = {"x_start": sequential[0].problem.x_ref, "t_ref": plan.nominal_perilunes_s}
+    params = {"x_start": warm[0][0].x_ref, "t_ref": plan.nominal_perilunes_s}
     if any(free):
         lo, hi = coast_bounds_s if coast_bounds_s is not None else (0.0, np.inf)
         for k in range(plan.n_burns):
             if free[k]:
                 c = plan.coast_s(k)
                 if orbit[k] and not asked[k]:   # from the perilune the warm start reached
-                    seq = sequential[k].problem
+                    seq = warm[k][0]
                     c = seq.t_end_s - seq.t_ref_s
                     w = END_WINDOW_FRACTION * plan.targets[k].period_s()
                     lo_k, hi_k = c - w, c + w
@@ -188,22 +217,23 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
                 lay.put(ubx, f"leg{k}.coast", hi_k / TU)
         if max_time_s is not None:
             ubg[lay.rows("time_limit")] = max_time_s / TU
+        if period_rows:  # E <= -mu / (2 a_max), a_max from Kepler's third law, VU^2
+            a_max = (max_period_s / (2 * np.pi * TU)) ** (2.0 / 3.0)
+            rows = np.flatnonzero(lay.rows("energy_limit"))   # one per free leg, in order
+            for row, k in zip(rows, [k for k in range(plan.n_burns) if free[k]]):
+                if asked[k]:
+                    ubg[row] = -1.0 / (2 * a_max)
     meshes = []
-    for k, sol in enumerate(sequential):
-        prob, raw = sol.problem, sol.raw
+    for k, (prob, guess, mc) in enumerate(warm):
         if fit is not None and prob.model.fit is not None:
             from dataclasses import replace
 
             prob = replace(prob, model=replace(prob.model, fit=fit))
         pre = f"leg{k}."
         mb = np.linspace(0, 1, mesh.n_burn + 1)
-        mc = raw.mesh_coast if len(raw.mesh_coast) == mesh.n_coast + 1 else \
-            np.linspace(0, 1, mesh.n_coast + 1)
+        mc = mc if len(mc) == mesh.n_coast + 1 else np.linspace(0, 1, mesh.n_coast + 1)
         meshes.append((mb, mc))
-        u_fn, burn = steering_function(raw), sol.flight.burn
-        warm = Guess(raw.t1_s, lambda t, u_fn=u_fn, b=burn: u_fn(t, b(t)), burn,
-                     sol.flight.coast)
-        initial_point(lay, pre, prob, mesh, warm, w0, mb, mc, S)
+        initial_point(lay, pre, prob, mesh, guess, w0, mb, mc, S)
         leg_bounds(lay, pre, prob, lbx, ubx, lbg, ubg)
         params.update({pre + "dynamics": prob.model.params(), pre + "mesh_burn": mb,
                        pre + "mesh_coast": mc, pre + "target": prob.target.values(LU)})
@@ -223,13 +253,13 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     t_ref = [plan.nominal_perilunes_s[0]]   # the perilunes reached
     for k in range(plan.n_burns):
         t_ref.append(t_ref[k] + (coasts[k] if coasts[k] is not None else plan.coast_s(k)))
-    legs, x_peri = [], sequential[0].problem.x_ref
-    for k, sol in enumerate(sequential):
+    legs, x_peri = [], warm[0][0].x_ref
+    for k, (prob0, guess, _) in enumerate(warm):
         pre = f"leg{k}."
         t_ign = t_ref[k] + float(lay.get(w, pre + "ts")[0]) * TU
         # the leg as a fixed-ignition problem from the previous leg's verified end state
         prob = burn_problem(plan, k, x_peri, eph, start_min=(t_ign - t_ref[k]) / 60.0,
-                            fit=fit if fit is not None else sol.problem.model.fit,
+                            fit=fit if fit is not None else prob0.model.fit,
                             t_perilune_s=t_ref[k], t_end_s=t_ref[k + 1])
         mb, mc = meshes[k]
         fixed = leg_solution(lay, pre, w, prob, mesh, mb, mc, S)
@@ -246,7 +276,7 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
             raise SolveError(f"all-burns NLP of plan {plan.name!r}: leg {k + 1} failed "
                              "verification: " + "; ".join(ver.failures()),
                              status="verification failed", details=ver.to_dict())
-        legs.append(Solution(raw, ver, flight, [], solve_s, sol.raw.t1_s))
+        legs.append(Solution(raw, ver, flight, [], solve_s, guess.t1_s))
         x_peri = flight.end_state
     return JointResult(legs, stats["return_status"], int(stats["iter_count"]), solve_s, plan)
 

@@ -87,6 +87,9 @@ class BurnProblem:
     steering: str = "optimal"
     t1_max_s: float | None = None
     end_window_s: tuple | None = None
+    #: Lower bound of the burn duration, s (None: Eq. 10's, min(1 s, half of Eq. 19));
+    #: 0-ish lets a make-up burn vanish (lunarcap.runs.missed).
+    t1_min_s: float | None = None
 
     def __post_init__(self):
         self.x0 = np.asarray(self.x0, float)
@@ -136,7 +139,8 @@ class BurnProblem:
         t19 = self.eq19_duration_s
         span = self.t_end_s + (self.end_window_s[0] if self.free_end else 0.0) - self.t_ign_s
         hi = self.t1_max_s or min(3.0 * t19, 0.9 * span)
-        return min(1.0, 0.5 * t19), hi
+        lo = min(1.0, 0.5 * t19) if self.t1_min_s is None else self.t1_min_s
+        return lo, hi
 
 
 def steering_law_expr(steering: str, X, u_in=None):

@@ -1,34 +1,48 @@
-"""Missed thrust: the engine stops during a capture burn; the rest of the capture, re-planned.
+"""Missed thrust and late ignition: a capture burn goes wrong; the rest of the capture, re-planned.
 
-The **nominal** capture is the plan's all-burns optimum with every ignition free and the
-plan's periods (:func:`lunarcap.runs.joint.solve_plan_jointly`, verified leg by leg).
-In a case (burn n, fraction f, delay d):
+Two contingencies of burn n of a plan (``contingency`` in the table):
 
-1. **Cut-off.** Burn n is flown as planned (its optimal steering, re-propagated from its
-   ignition state, :func:`lunarcap.optim.verify.fly_burn_until`) and the engine stops
-   after ``f`` of its duration. The orbit at cut-off is classified: an **escape**
-   (hyperbola, specific energy >= 0), a **capture** (ellipse) whose apolune lies inside
-   the Moon's sphere of influence (Laplace's radius a (m_Moon/m_Earth)^(2/5), a the
-   Earth-Moon distance at that epoch from the ephemeris), or a **weak capture** beyond it.
-2. **Delay.** The spacecraft coasts for ``d`` (the fault being cleared), in the plan's
-   dynamics.
-3. **Recovery.** The rest of the capture is re-planned from that state
-   (:meth:`lunarcap.mission.plan.CapturePlan.resumed`) and re-optimised as one NLP
-   (:func:`lunarcap.optim.joint.solve_joint`, objective the total delta-V, verified leg by
-   leg): a make-up burn with burn n's target, igniting within ``window_min`` after the
-   fault is cleared, whose coast to its perilune is free (between 10 min and
-   ``max_period_h``: the orbit it reaches is chosen, and the capture's timeline moves with
-   it), then burns n+1, ... with the plan's periods and free ignition, to the same final
-   orbit. Its warm start is the same plan solved burn by burn. If the cut-off comes within
-   the last second of the burn (f = 1 included), nothing is made up: the recovery is the
-   plan's later burns from the cut-off state, at their nominal perilunes.
+* **cut-off** (fraction f, delay d): burn n is flown as planned (its optimal steering,
+  re-propagated from its ignition state, :func:`lunarcap.optim.verify.fly_burn_until`)
+  and the engine stops after ``f`` of its duration; the spacecraft coasts for ``d`` (the
+  fault being cleared).
+* **late ignition** (``late_min`` L, as studied for KPLO's LOI burns by Bae et al. 2017,
+  JASS 34(4)): burn n ignites L minutes after its planned ignition; nothing of it has been
+  flown before.
+
+The **nominal** is the plan's all-burns optimum (:func:`lunarcap.optim.joint.solve_joint`)
+with every ignition free and the orbit after burn n free (its coast a decision variable)
+up to the same longest period ``max_period_h`` the recovery has: the same freedoms, so a
+penalty measures the contingency and not a difference of bounds.
+
+**Recovery** (one function for both contingencies, :func:`recover`): from the state at
+the end of the delay (cut-off) or at the late ignition, a make-up burn with burn n's
+target, igniting within ``window_min`` after that epoch (late ignition: exactly then),
+whose orbit is free up to ``max_period_h`` (osculating period at its perilune, where its
+target holds; default :data:`DEFAULT_MAX_PERIOD_H`), then burns n+1, ... with the plan's
+periods and free ignitions, to the same final orbit, re-optimised as one NLP (total
+delta-V) and verified leg by leg. The make-up burn may vanish (its duration bounded
+below by :data:`MIN_MAKE_UP_S`, not by Eq. 10): a cut-off already on an orbit inside the
+bounds needs nothing more than the later burns. The NLP starts from guesses, not from a
+burn-by-burn solve: the make-up burn sized from the two-body delta-V actually needed
+(:func:`make_up_estimate`: a tangential impulse bringing the period down to the bound, 0
+if it is already below), each later burn the plan's anti-velocity guess chained from the
+one before.
+
+Before any solve, a recovery that physics forbids is answered as **no recovery**, with
+the reason (:func:`physical_bound`): the spacecraft has left the Moon's sphere of
+influence when the window opens, or every orbit through its position with the plan's
+perilune radius is longer than ``max_period_h`` (an orbit through radius r with perilune
+radius rp has a semi-major axis of at least (r + rp) / 2). A cut-off at the planned end
+(f = 1) is a case like the others: its make-up burn vanishes and the recovery is the
+nominal's later burns.
 
 The **penalty** is measured on one basis: the delta-V from the state before burn n to the
-final orbit, finite burns, same dynamics: (delta-V of the partial burn + the recovery's)
-minus (the nominal burns n, n+1, ...). A recovery whose NLP IPOPT reports infeasible, or
-whose make-up orbit would need a coast longer than ``max_period_h``, is "no recovery
-within the plan's bounds"; any other solver failure is "failed" with IPOPT's status.
-Neither is an error of the study.
+final orbit, finite burns, same dynamics: (delta-V of the partial burn + the
+recovery's) minus (the nominal burns n, n+1, ...). Statuses: "recovered" (verified),
+"no recovery" (the physical bound above, or a re-plan the plan's own checks refuse, with
+their message), "failed" (any solver failure, with IPOPT's status: a solver's verdict is
+not a physical reason, so it is never reported as "no recovery").
 """
 
 from __future__ import annotations
@@ -36,6 +50,7 @@ from __future__ import annotations
 import hashlib
 import math
 import time
+from dataclasses import replace
 from functools import lru_cache
 from pathlib import Path
 
@@ -44,8 +59,10 @@ import numpy as np
 from lunarcap.errors import InputError, SolveError
 from lunarcap.mission.plan import CapturePlan, PlanError, plan_ephemeris
 from lunarcap.mission.targets import PERILUNE
-from lunarcap.optim.guess import mean_motion_and_anomaly
-from lunarcap.optim.joint import solve_joint
+from lunarcap.optim.collocation import DEFAULT_MESHES, sundman_fractions
+from lunarcap.optim.guess import guess_arcs, make_guess, mean_motion_and_anomaly
+from lunarcap.optim.joint import solve_joint, warm_start
+from lunarcap.optim.problem import burn_problem
 from lunarcap.optim.verify import fly_burn_until
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model
@@ -54,18 +71,28 @@ from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.propagate import propagate
 from lunarcap.repro.cache import cached
-from lunarcap.runs.burns import DEFAULT_MAX_PERIOD_H, MAX_FIT_SPAN_S
-from lunarcap.runs.chain import solve_plan
-from lunarcap.runs.joint import solve_plan_jointly
+from lunarcap.runs.burns import MAX_FIT_SPAN_S
+from lunarcap.runs.chain import solve_plan, time_to_final_orbit_h
 
+#: Longest period of the orbit after burn n, in the recovery and in the nominal alike, h.
+#: About twice the paper's 12.235 h. For the paper's 150 N plan the nominal's own optimum
+#: lies inside it in two-body dynamics (22.6 h: a longer first ellipse shares the capture's
+#: delta-V more evenly between burns 1 and 2), and presses against it in full dynamics
+#: (coast 23.8 h), as do the recoveries: both sides carry the same bound, so the penalty
+#: compares like with like. Its apolune (about 17,700 km at 100 km perilune) stays far
+#: inside the Moon's sphere of influence (about 63,000 km). Known limitation: in full
+#: dynamics that nominal (935.8 m/s, coast 23.8 h) is a local optimum costlier than the
+#: paper's 12.235 h plan (872.6 m/s), which the bound allows (see the README).
+DEFAULT_MAX_PERIOD_H = 24.0
 #: Window of the make-up burn's ignition after the fault is cleared, min.
 DEFAULT_WINDOW_MIN = (0.0, 30.0)
-#: A cut-off this close to the planned end of the burn leaves nothing to make up, s.
-NOTHING_LEFT_S = 1.0
 #: Shortest coast from the fault's end to the make-up orbit's perilune, s.
 MIN_FIRST_COAST_S = 600.0
-#: IPOPT statuses that mean "no solution exists within the bounds".
-INFEASIBLE = ("Infeasible_Problem_Detected", "Restoration_Failed")
+#: Lower bound of the make-up burn's duration, s: about nothing (0.003 m/s at 150 N and
+#: 525 kg), so the optimiser may drop the burn; nonzero so the burn's mesh keeps its size.
+MIN_MAKE_UP_S = 0.01
+#: The contingencies of a case.
+CONTINGENCIES = ("cut-off", "late ignition")
 
 STATUSES = ("recovered", "no recovery", "failed", "error")
 
@@ -77,16 +104,89 @@ def module_version() -> str:
 
 
 # ---------------------------------------------------------------------- the nominal
-@cached
-def nominal(plan: CapturePlan, version: str = "") -> dict:
-    """The plan's all-burns optimum (free ignition), verified: legs and the plan solved.
+def _fit_for(plan: CapturePlan, t0_s: float, span_s: float):
+    """One Earth/Sun fit from ``t0_s`` - 1 h over ``span_s`` + 6 h for every leg and coast.
 
-    Pass ``plan.key()``. Returns ``{"plan": CapturePlan (free ignitions), "legs": [Solution]}``.
+    (Made in every dynamics: a model's epochs are checked against its fit's window.)
     """
-    r = solve_plan_jointly(plan)
-    return {"plan": plan.with_starts(["free"] * plan.n_burns), "legs": r.joint.legs}
+    if span_s + 7 * 3600.0 > MAX_FIT_SPAN_S:
+        raise InputError(f"the recovery would span {span_s / 3600:.0f} h, more than the 4 "
+                         f"days an ephemeris fit covers: shorten the delay or --max-period-h")
+    return ChebyshevFit.fit(plan_ephemeris(plan.ephemeris), t0_s - 3600.0,
+                            t0_s + span_s + 6 * 3600.0)
 
 
+@cached
+def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_PERIOD_H *
+            3600.0, version: str = "") -> dict:
+    """The plan's all-burns optimum, the orbit after ``burn`` free up to ``max_period_s``.
+
+    Pass ``plan.key()``. Every ignition free; burn n's coast (from the perilune before it
+    to the one after) a decision variable between the next orbit's coast and
+    ``max_period_s`` + 2 h, the osculating period at that perilune at most
+    ``max_period_s`` (the recovery's bounds). The last burn (a circle) has no orbit to
+    free. Returns ``{"plan": CapturePlan (free ignitions, the optimal coasts),
+    "legs": [Solution]}``.
+    """
+    free_plan = plan.with_starts(["free"] * plan.n_burns)
+    i = burn - 1
+    if free_plan.targets[i].kind != PERILUNE:
+        res = solve_joint(free_plan, solve_plan(free_plan), free_plan.ephemeris_model())
+        return {"plan": res.plan, "legs": res.legs}
+    if plan.dynamics != "two-body":
+        # warm start on the two-body optimum's orbit: a long free coast needs its mesh
+        # spaced for the orbit it ends on, not for the plan's
+        two = nominal(plan.with_dynamics("two-body"), burn, max_period_s, version)["plan"]
+        free_plan = free_plan.with_coasts([two.coast_s(k) if k == i else None
+                                           for k in range(plan.n_burns)])
+    seq = solve_plan(free_plan)
+    flags = tuple(k == i for k in range(plan.n_burns))
+    hi = max_period_s + 7200.0
+    t = free_plan.nominal_perilunes_s
+    span = (t[-1] - t[0]) - free_plan.coast_s(i) + hi
+    lo = free_plan.coast_s(i + 1) if i + 1 < plan.n_burns else MIN_FIRST_COAST_S
+    fit = _fit_for(free_plan, t[0], span)
+    res = on_meshes(lambda mesh: solve_joint(
+        free_plan, None, free_plan.ephemeris_model(), mesh, free_coasts=flags,
+        coast_bounds_s=(lo, hi), max_period_s=max_period_s, fit=fit,
+        warm=[_remeshed(warm_start(s), s.flight.coast, mesh) for s in seq]))
+    return {"plan": res.plan, "legs": res.legs}
+
+
+#: In-process memo of nominals: (plan key, burn, max period s) -> :func:`nominal`'s dict.
+_NOMINALS: dict = {}
+
+
+def nominal_of(plan: CapturePlan, burn: int, max_period_s: float,
+               use_cache: bool = True) -> dict:
+    """:func:`nominal` of ``plan``, solved once per process (memo), cached on disk."""
+    key = (plan.key(), int(burn), float(max_period_s))
+    if key not in _NOMINALS:
+        fn = nominal if use_cache else nominal.uncached
+        _NOMINALS[key] = fn(plan.key(), int(burn), float(max_period_s), module_version())
+    return _NOMINALS[key]
+
+
+def _remeshed(warm: tuple, coast, mesh) -> tuple:
+    """A leg's warm start with its coast mesh made for ``mesh`` (Sundman-spaced)."""
+    prob, guess, mc = warm
+    if len(mc) != mesh.n_coast + 1:
+        mc = sundman_fractions(coast.t, coast.x, mesh.n_coast)
+    return prob, guess, mc
+
+
+def on_meshes(solve, meshes=DEFAULT_MESHES[:2]):
+    """``solve(mesh)`` on each mesh in turn until its solution passes verification.
+
+    A finer mesh is tried only when the coarse one converged but failed verification
+    (a long free coast resolved too coarsely); any other failure is raised at once.
+    """
+    for j, mesh in enumerate(meshes):
+        try:
+            return solve(mesh)
+        except SolveError as exc:
+            if exc.status != "verification failed" or j == len(meshes) - 1:
+                raise
 # ---------------------------------------------------------------------- orbits
 def classify(x, t_s: float, ephemeris: str | None = None) -> dict:
     """The orbit of state ``x`` (p, f, g, h, k, L, m) at epoch ``t_s`` about the Moon.
@@ -98,8 +198,7 @@ def classify(x, t_s: float, ephemeris: str | None = None) -> dict:
     """
     o = orbit_summary(np.asarray(x, float), C.MU_MOON)
     energy = o["v_kmps"] ** 2 / 2 - C.MU_MOON / o["r_km"]
-    rm, _ = plan_ephemeris(ephemeris).moon_geocentric_state(t_s)
-    soi = float(np.linalg.norm(rm[:, 0])) * (C.MU_MOON / C.MU_EARTH) ** 0.4
+    soi = soi_radius_km(t_s, ephemeris)
     if energy >= 0:
         kind, period_h = "escape", math.inf
     else:
@@ -111,20 +210,32 @@ def classify(x, t_s: float, ephemeris: str | None = None) -> dict:
             "soi_radius_km": soi}
 
 
+def soi_radius_km(t_s: float, ephemeris: str | None = None) -> float:
+    """Laplace's sphere-of-influence radius of the Moon, a (m_Moon/m_Earth)^(2/5), km.
+
+    ``a``: the Earth-Moon distance at epoch ``t_s`` from the ephemeris.
+    """
+    rm, _ = plan_ephemeris(ephemeris).moon_geocentric_state(t_s)
+    return float(np.linalg.norm(rm[:, 0])) * (C.MU_MOON / C.MU_EARTH) ** 0.4
+
+
+def period_s(a_km: float, mu: float = C.MU_MOON) -> float:
+    """Kepler's third law: the period of an ellipse of semi-major axis ``a_km``, s."""
+    return 2 * math.pi * math.sqrt(a_km ** 3 / mu)
+
+
 def time_to_perilune_after_impulse_s(x, dv_mps: float, after_s: float = 0.0,
                                      mu: float = C.MU_MOON) -> float:
     """Two-body time to the first perilune later than ``after_s``, after an impulse ``dv``.
 
     The impulse is opposite the velocity at the state ``x``; inf if the orbit after it is
-    open. Seeds the make-up burn's free coast (``after_s``: the end of the burn, whose
-    target is the perilune after it).
+    open.
     """
     r, v = (np.array(a, float) for a in rv_from_mee(*np.asarray(x, float)[:6], mu))
     vn = np.linalg.norm(v)
     if dv_mps * 1e-3 >= vn:   # the impulse would stop the spacecraft: no such orbit
         return math.inf
-    v2 = v * (vn - dv_mps * 1e-3) / vn
-    mee = mee_from_rv(r, v2, mu)
+    mee = mee_from_rv(r, v * (vn - dv_mps * 1e-3) / vn, mu)
     if math.hypot(mee[1], mee[2]) >= 1:
         return math.inf
     n, M = mean_motion_and_anomaly(mee, mu)
@@ -134,162 +245,331 @@ def time_to_perilune_after_impulse_s(x, dv_mps: float, after_s: float = 0.0,
     return t
 
 
+def make_up_estimate(x, rp_km: float, max_period_s: float, mu: float = C.MU_MOON) -> dict:
+    """Two-body delta-V a make-up burn needs at state ``x`` to reach the period bound.
+
+    A tangential impulse opposite the velocity bringing the orbit's period down to
+    ``max_period_s`` (0 if it is already shorter). ``min_period_s``: the shortest period
+    of any orbit through the position with perilune radius ``rp_km`` (semi-major axis
+    (r + rp) / 2): above ``max_period_s``, no recovery is possible from here. Returns
+    ``delta_v_mps``, ``min_period_s``, ``r_km``.
+    """
+    r, v = (np.array(a, float) for a in rv_from_mee(*np.asarray(x, float)[:6], mu))
+    rn, vn = float(np.linalg.norm(r)), float(np.linalg.norm(v))
+    a_max = (mu * (max_period_s / (2 * math.pi)) ** 2) ** (1 / 3)
+    v_max2 = mu * (2 / rn - 1 / a_max)
+    dv = vn - math.sqrt(v_max2) if v_max2 > 0 else vn
+    return {"delta_v_mps": max(dv, 0.0) * 1e3, "r_km": rn,
+            "min_period_s": period_s((rn + min(rp_km, rn)) / 2, mu)}
+
+
+def physical_bound(plan: CapturePlan, i: int, t_s: float, x, window_min: tuple,
+                   max_period_s: float, coast: Model) -> str:
+    """Why no recovery can start from ``x`` at ``t_s`` (empty text if one may).
+
+    Checked at the opening and the close of the make-up burn's window: the spacecraft
+    outside the Moon's sphere of influence at both, or every orbit through its position
+    with the plan's perilune radius longer than ``max_period_s`` at both (an elliptic
+    target only).
+    """
+    ends = []
+    for w in sorted(set(window_min)):
+        t = t_s + 60.0 * w
+        xw = propagate(coast, t_s, x, t).final if t > t_s else np.asarray(x, float)
+        ends.append((w, make_up_estimate(xw, plan.perilune_radius_km, max_period_s),
+                     soi_radius_km(t, plan.ephemeris)))
+    if all(e["r_km"] > soi for _, e, soi in ends):
+        w, e, soi = ends[0]
+        return (f"the spacecraft is {e['r_km']:,.0f} km from the Moon when the window "
+                f"opens, outside its sphere of influence ({soi:,.0f} km)")
+    if plan.targets[i].kind == PERILUNE and all(e["min_period_s"] > max_period_s
+                                                for _, e, _ in ends):
+        e = min((e for _, e, _ in ends), key=lambda e: e["min_period_s"])
+        now = orbit_summary(np.asarray(x, float), C.MU_MOON)
+        energy = now["v_kmps"] ** 2 / 2 - C.MU_MOON / now["r_km"]
+        still = ""
+        if energy < 0:   # bound: it will come back to its perilune
+            still = (f"; the spacecraft is still bound (period "
+                     f"{period_s(-C.MU_MOON / (2 * energy)) / 3600:.1f} h), so a make-up at a "
+                     f"later perilune or a longer --max-period-h could recover it")
+        return (f"the spacecraft is {e['r_km']:,.0f} km from the Moon when the make-up burn "
+                f"can ignite: every orbit through there with a {plan.perilune_radius_km:,.0f}"
+                f" km perilune radius lasts at least {e['min_period_s'] / 3600:.1f} h, more "
+                f"than the {max_period_s / 3600:g} h allowed (--max-period-h){still}")
+    return ""
+
+
+# ---------------------------------------------------------------------- the recovery
+def _sized(nplan: CapturePlan, i: int) -> CapturePlan:
+    """The plan with burn ``i``'s period between its own and the next orbit's (geometric mean).
+
+    A resumed plan's first burn needs a nonzero impulsive delta-V from the start state to
+    pass the plan's engine checks (its Eq. 19 duration), but the make-up orbit is free in
+    the NLP, so that period only sizes the checks: with the nominal's own period, a
+    cut-off at the planned end (nothing to make up) would be refused.
+    """
+    if nplan.targets[i].kind != PERILUNE or i + 1 >= nplan.n_burns:
+        return nplan
+    period = math.sqrt(nplan.coast_s(i) * nplan.coast_s(i + 1))
+    burn = replace(nplan.burns[i], period_s=period, apolune_altitude_km=None)
+    return replace(nplan, burns=nplan.burns[:i] + (burn,) + nplan.burns[i + 1:])
+
+
+def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
+                        mesh_n_coast: int) -> tuple:
+    """Problems and guesses of a recovery's legs, without solving any (see the module).
+
+    The make-up leg ignites at the window's opening, thrusts opposite the velocity for the
+    duration of :func:`make_up_estimate`'s delta-V (at least 1 s), its lower duration
+    bound :data:`MIN_MAKE_UP_S`; each later leg is the plan's guess (anti-velocity, tuned
+    to reach its perilune on time) from the end of the leg before. Returns (warm list,
+    estimate dict).
+    """
+    x_r = np.array(rec_plan.start.state)
+    lo_min = rec_plan.burns[0].start_bounds_min[0]
+    prob = burn_problem(rec_plan, 0, x_r, eph, fit=fit, guess_start_min=lo_min)
+    est = make_up_estimate(prob.x0, rec_plan.perilune_radius_km, max_period_s)
+    ve = prob.model.exhaust_speed_kmps * 1e3
+    mdot = prob.model.thrust_N / ve
+    t1 = max(prob.x0[6] * (1 - math.exp(-est["delta_v_mps"] / ve)) / mdot, 1.0)
+    span = prob.t_end_s - prob.t_ign_s
+    prob = replace(prob, t1_min_s=MIN_MAKE_UP_S,
+                   t1_max_s=min(max(3 * t1, prob.burn_bounds_s[1]), 0.9 * span))
+    guess = make_guess(prob, t1) if est["delta_v_mps"] > 1.0 else guess_arcs(prob, t1)
+    warm = [(prob, guess, sundman_fractions(guess.coast.t, guess.coast.x, mesh_n_coast))]
+    for k in range(1, rec_plan.n_burns):
+        x_peri = guess.coast.x[:, -1]
+        prob = burn_problem(rec_plan, k, x_peri, eph, fit=fit)
+        guess = make_guess(prob)
+        warm.append((prob, guess, sundman_fractions(guess.coast.t, guess.coast.x,
+                                                    mesh_n_coast)))
+    return warm, est
+
+
+def first_coast_guess_s(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
+                        max_period_s: float, coast: Model) -> float:
+    """The make-up leg's coast (window opening to its perilune) the NLP starts from, s.
+
+    Elliptic target: the two-body time to the perilune after the make-up impulse of
+    :func:`make_up_estimate` at the window's opening (at least past the window and the
+    burn); a circle: the window, twice the Eq. (19) duration and one circle.
+    """
+    t_ig = t_r + 60.0 * window_min[0]
+    x_ig = propagate(coast, t_r, x_r, t_ig).final if t_ig > t_r else np.asarray(x_r, float)
+    est = make_up_estimate(x_ig, nplan.perilune_radius_km, max_period_s)
+    if nplan.burns[i].target == PERILUNE:
+        after = 60.0 * (window_min[1] - window_min[0]) + 2 * est["delta_v_mps"] / (
+            nplan.engine.thrust_N / x_ig[6])
+        t = time_to_perilune_after_impulse_s(x_ig, est["delta_v_mps"], after)
+        t = min(t, max_period_s) if math.isfinite(t) else max_period_s
+        return max(t + t_ig - t_r, 60.0 * window_min[1] + MIN_FIRST_COAST_S)
+    t19 = 2 * est["delta_v_mps"] / (nplan.engine.thrust_N / x_ig[6])
+    return 60.0 * window_min[1] + t19 + nplan.coast_s(i)
+
+
+def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
+            max_period_s: float, fit, coast: Model):
+    """Re-plan the capture from burn ``i`` (0-based) at ``t_r`` from ``x_r`` (see the module).
+
+    Returns the :class:`~lunarcap.optim.joint.JointResult` (verified) and the make-up
+    estimate; raises SolveError (IPOPT or verification) or PlanError (no such plan).
+    """
+    first_coast = first_coast_guess_s(nplan, i, t_r, x_r, window_min, max_period_s, coast)
+    rec_plan = _sized(nplan, i).resumed(i, t_r, x_r, first_coast_s=first_coast,
+                                        window_min=window_min)
+    eph = plan_ephemeris(nplan.ephemeris)
+    est = {}
+
+    def solve(mesh):
+        warm, e = recovery_warm_start(rec_plan, eph, fit, max_period_s, mesh.n_coast)
+        est.update(e)
+        if nplan.targets[i].kind != PERILUNE:   # a circle: its coast stays the plan's
+            return solve_joint(rec_plan, None, eph, mesh, fit=fit, warm=warm)
+        free = (True,) + (False,) * (rec_plan.n_burns - 1)
+        hi = 60.0 * window_min[1] + max_period_s + 7200.0
+        return solve_joint(rec_plan, None, eph, mesh, free_coasts=free,
+                           coast_bounds_s=(MIN_FIRST_COAST_S, hi), fit=fit,
+                           max_period_s=max_period_s, warm=warm)
+    res = on_meshes(solve)
+    est["first_coast_guess_s"] = first_coast
+    return res, est
+
+
 # ---------------------------------------------------------------------- one case
+def _nominal_part(plan: CapturePlan, burn: int, max_period_s: float) -> tuple:
+    """The nominal (plan, legs) and the case's nominal columns."""
+    nom = nominal_of(plan, burn, max_period_s)
+    nplan, legs = nom["plan"], nom["legs"]
+    i = burn - 1
+    last = legs[-1]
+    t_ref = nplan.nominal_perilunes_s
+    cols = {"nominal_burn_duration_min": legs[i].raw.t1_s / 60.0,
+            "nominal_burn_delta_v_mps": legs[i].delta_v_mps,
+            "nominal_remaining_delta_v_mps": sum(s.delta_v_mps for s in legs[i:]),
+            "nominal_time_to_final_orbit_h": time_to_final_orbit_h(t_ref[0], last),
+            "nominal_period_after_burn_h": (nplan.coast_s(i) / 3600.0
+                                            if i < plan.n_burns - 1 else None)}
+    return nplan, legs, cols
+
+
+def _solved(out: dict, res, est, burn: int, t_r: float, t_arrival_s: float,
+            partial: float, free: bool) -> dict:
+    """Fill ``out`` with a verified recovery (its JointResult ``res``).
+
+    ``free``: the make-up orbit was free (an ellipse target).
+    """
+    rows = []
+    for k, s in enumerate(res.legs):
+        sm = s.summary()
+        rows.append({"burn": burn + k,
+                     "target": res.plan.burns[k].describe(),
+                     "ignition_epoch": sm["ignition_epoch"],
+                     "ignition_min_after_fault": (s.problem.t_ign_s - t_r) / 60.0,
+                     "burn_duration_min": sm["burn_duration_min"],
+                     "delta_v_mps": sm["delta_v_mps"], "verified": s.verification.passed})
+    rec_dv = sum(r["delta_v_mps"] for r in rows)
+    period = None
+    if free:
+        xf = res.legs[0].end_state
+        a = xf[0] / (1 - xf[1] ** 2 - xf[2] ** 2)
+        period = period_s(a) / 3600.0 if a > 0 else math.inf
+        rows[0]["target"] = f"ellipse, {period:.6g} h (free)"
+    out.update(status="recovered", recovery_delta_v_mps=rec_dv,
+               total_delta_v_mps=partial + rec_dv,
+               penalty_mps=partial + rec_dv - out["nominal_remaining_delta_v_mps"],
+               recovery_burns=rows, make_up_delta_v_mps=rows[0]["delta_v_mps"],
+               make_up_estimate_mps=None if est is None else est["delta_v_mps"],
+               make_up_estimate_h=None if est is None else est["first_coast_guess_s"] / 3600,
+               first_coast_h=res.plan.coast_s(0) / 3600.0 if free else None,
+               make_up_period_h=period,
+               time_to_final_orbit_h=time_to_final_orbit_h(t_arrival_s, res.legs[-1]),
+               all_verified=all(r["verified"] for r in rows),
+               ipopt_status=res.ipopt_status)
+    return out
+
+
+def _refused(out: dict, status: str, reason: str, ipopt_status: str = "") -> dict:
+    out.update(status=status, reason=reason, ipopt_status=ipopt_status)
+    return out
+
+
+def _attempt(out: dict, solve, burn: int, t_r: float, t_arrival_s: float, partial: float,
+             free) -> dict:
+    """Run ``solve()`` -> (JointResult, estimate) and record its outcome in ``out``."""
+    try:
+        res, est = solve()
+    except PlanError as exc:
+        return _refused(out, "no recovery", f"no plan from this state: {exc}")
+    except SolveError as exc:
+        return _refused(out, "failed", str(exc).split("\n")[0], exc.status)
+    except RuntimeError as exc:  # a guess's propagation failed (e.g. p -> 0)
+        return _refused(out, "failed", f"no initial guess: {exc}".split("\n")[0])
+    return _solved(out, res, est, burn, t_r, t_arrival_s, partial, free)
+
+
 @cached(ignore=["verbose"])
 def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
                 max_period_s: float, window_min: tuple = DEFAULT_WINDOW_MIN,
                 version: str = "", verbose: bool = False) -> dict:
-    """One case of the study (see the module docstring); pass ``plan.key()``.
+    """A cut-off case (see the module docstring); pass ``plan.key()``.
 
     Returns
     -------
     dict
         ``status`` ("recovered", "no recovery", "failed"), ``reason``; the cut-off:
         ``cutoff_epoch``, ``partial_delta_v_mps``, ``cutoff_*`` orbit (see
-        :func:`classify`), ``captured``; the recovery: ``recovery_start_e`` (eccentricity
-        of the state it starts from), ``recovery_delta_v_mps`` (its burns),
-        ``total_delta_v_mps`` (partial + recovery), ``nominal_remaining_delta_v_mps``,
-        ``penalty_mps``, ``recovery_burns`` (per burn: ignition, duration, delta-V),
-        ``first_coast_h`` (the make-up orbit's coast to its perilune, optimised) and
-        ``make_up_estimate_h`` (its two-body estimate, the NLP's start; inf: none),
-        ``time_to_final_orbit_h`` and the nominal's
-        (``nominal_time_to_final_orbit_h``), both from the nominal perilune before burn n
-        to the end of the last burn; ``ipopt_status``, ``all_verified``.
+        :func:`classify`), ``captured``; the recovery: ``recovery_start_e``,
+        ``recovery_delta_v_mps`` (its burns), ``make_up_delta_v_mps`` and its two-body
+        estimate ``make_up_estimate_mps``, ``make_up_period_h`` (osculating, at its
+        perilune), ``total_delta_v_mps`` (partial + recovery), ``penalty_mps``,
+        ``recovery_burns``, ``first_coast_h``, ``time_to_final_orbit_h`` and the
+        nominal's (:func:`lunarcap.runs.chain.time_to_final_orbit_h`: from the arrival
+        perilune to the end of the last burn),
+        ``ipopt_status``, ``all_verified``, ``wall_s``.
     """
     t_start = time.perf_counter()
-    nom = nominal(plan, module_version())
-    nplan, legs = nom["plan"], nom["legs"]
+    nplan, legs, nom_cols = _nominal_part(plan, burn, max_period_s)
     i = burn - 1
-    leg = legs[i]
-    raw = leg.raw
+    raw = legs[i].raw
     t_ref = nplan.nominal_perilunes_s
     t_cut_rel = fraction * raw.t1_s
     xc = fly_burn_until(raw, t_cut_rel)
-    t_cut = leg.problem.t_ign_s + t_cut_rel
+    t_cut = legs[i].problem.t_ign_s + t_cut_rel
     partial = float(xc[7]) * 1e3
-    nominal_rest = sum(s.delta_v_mps for s in legs[i:])
-    last = legs[-1]
-    nominal_time = last.problem.t_ign_s + last.raw.t1_s - t_ref[i]
     cut = classify(xc[:7], t_cut, plan.ephemeris)
-    out = {"status": "recovered", "reason": "", "cutoff_epoch": calendar_from_seconds(t_cut),
-           "cutoff_min_after_ignition": t_cut_rel / 60.0,
-           "nominal_burn_duration_min": raw.t1_s / 60.0, "partial_delta_v_mps": partial,
-           "nominal_burn_delta_v_mps": leg.delta_v_mps,
-           "nominal_remaining_delta_v_mps": nominal_rest,
-           "nominal_time_to_final_orbit_h": nominal_time / 3600.0,
-           "captured": cut["orbit"] != "escape",
+    out = {"contingency": "cut-off", "status": "recovered", "reason": "",
+           "cutoff_epoch": calendar_from_seconds(t_cut),
+           "cutoff_min_after_ignition": t_cut_rel / 60.0, "partial_delta_v_mps": partial,
+           **nom_cols, "captured": cut["orbit"] != "escape",
            **{f"cutoff_{k}": v for k, v in cut.items()}}
-    remaining_s = raw.t1_s - t_cut_rel
-    eph = plan_ephemeris(plan.ephemeris)
     t_r = t_cut + delay_s
-    # one Earth/Sun fit over the fault and the whole recovery (full dynamics)
-    horizon = delay_s + max_period_s + sum(nplan.coast_s(k) for k in range(burn, plan.n_burns))
-    fit = None
-    if plan.dynamics == "full":
-        if horizon + 7 * 3600.0 > MAX_FIT_SPAN_S:
-            raise InputError(f"a delay of {delay_s / 3600:g} h leaves the recovery more than "
-                             f"the 4 days an ephemeris fit covers")
-        fit = ChebyshevFit.fit(eph, t_cut - 3600.0, t_cut + horizon + 6 * 3600.0)
+    rest = sum(nplan.coast_s(k) for k in range(burn, plan.n_burns))
+    fit = _fit_for(plan, t_cut, delay_s + 60 * window_min[1] + max_period_s + 7200.0 + rest)
     coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
-    if remaining_s < NOTHING_LEFT_S:
-        if i == plan.n_burns - 1:   # the last burn ended: the capture is done
-            out.update(recovery_start_e=cut["e"], recovery_delta_v_mps=0.0,
-                       total_delta_v_mps=partial, penalty_mps=partial - nominal_rest,
-                       recovery_burns=[], first_coast_h=None,
-                       time_to_final_orbit_h=(t_cut - t_ref[i]) / 3600.0,
-                       all_verified=True, ipopt_status="")
-            out["wall_s"] = time.perf_counter() - t_start
-            return out
-        t_next = t_ref[i + 1]
-        if t_r >= t_next - 0.4 * (t_next - t_ref[i]):
-            out.update(status="no recovery",
-                       reason="the fault outlasts the time to the next burn's perilune")
-            out["wall_s"] = time.perf_counter() - t_start
-            return out
-        x_next = propagate(coast, t_cut, xc[:7], t_next).final
-        rec_plan = nplan.resumed(i + 1, t_next, x_next, window_min=_window(nplan, i + 1))
-        free = ()
+    x_r = propagate(coast, t_cut, xc[:7], t_r).final if delay_s > 0 else xc[:7]
+    out["recovery_start_e"] = float(math.hypot(x_r[1], x_r[2]))
+    why = physical_bound(plan, i, t_r, x_r, window_min, max_period_s, coast)
+    if why:
+        out = _refused(out, "no recovery", why)
     else:
-        x_r = propagate(coast, t_cut, xc[:7], t_r).final if delay_s > 0 else xc[:7]
-        probe = nplan.resumed(i, t_r, x_r, first_coast_s=max_period_s, window_min=window_min)
-        first = nplan.burns[i]
-        if first.target == PERILUNE:
-            est = probe.impulsive()[0]
-            burn_end = (window_min[1] + 2 * est.eq19_duration_min) * 60.0
-            guess = time_to_perilune_after_impulse_s(x_r, est.delta_v_mps, burn_end)
-            out["make_up_estimate_h"] = guess / 3600.0
-            if not math.isfinite(guess) or guess > max_period_s:
-                guess = max_period_s
-            first_coast = max(guess, window_min[1] * 60.0 + MIN_FIRST_COAST_S)
-        else:  # a circle: any coast; one circle period after the window
-            first_coast = window_min[1] * 60.0 + 2 * probe.impulsive()[0].eq19_duration_min \
-                * 60.0 + nplan.coast_s(i)
-        try:
-            rec_plan = nplan.resumed(i, t_r, x_r, first_coast_s=first_coast,
-                                     window_min=window_min)
-        except PlanError as exc:
-            out.update(status="no recovery", reason=f"no plan from the cut-off state: {exc}")
-            out["wall_s"] = time.perf_counter() - t_start
-            return out
-        free = (first.target == PERILUNE,) + (False,) * (rec_plan.n_burns - 1)
-    out["recovery_start_e"] = float(math.hypot(rec_plan.start.state[1],
-                                               rec_plan.start.state[2]))
-    try:
-        seq = solve_plan(rec_plan, verbose=verbose)
-        res = solve_joint(rec_plan, seq, eph, free_coasts=free if any(free) else (),
-                          coast_bounds_s=(MIN_FIRST_COAST_S, max_period_s), fit=fit)
-    except RuntimeError as exc:  # the guess's propagation failed (e.g. p -> 0)
-        if not isinstance(exc, SolveError):
-            out.update(status="failed", reason=f"no initial guess: {exc}".split("\n")[0])
-            out["wall_s"] = time.perf_counter() - t_start
-            return out
-        infeasible = exc.status in INFEASIBLE
-        hint = ""
-        if not math.isfinite(out.get("make_up_estimate_h", 0.0)):
-            hint = (" (two-body estimate: no make-up orbit, a tangential impulse of the "
-                    "estimated size would stop the spacecraft or leave it unbound)")
-        out.update(status="no recovery" if infeasible else "failed",
-                   reason=("IPOPT found no recovery within the plan's bounds "
-                           f"({exc.status})" if infeasible else str(exc)) + hint,
-                   ipopt_status=exc.status)
-        out["wall_s"] = time.perf_counter() - t_start
-        return out
-    rec = res.plan
-    rows = []
-    for k, s in enumerate(res.legs):
-        sm = s.summary()
-        rows.append({"burn": burn + k, "target": rec.burns[k].describe(),
-                     "ignition_epoch": sm["ignition_epoch"],
-                     "ignition_min_after_fault": (s.problem.t_ign_s - t_r) / 60.0,
-                     "burn_duration_min": sm["burn_duration_min"],
-                     "delta_v_mps": sm["delta_v_mps"], "verified": s.verification.passed})
-    rec_dv = sum(r["delta_v_mps"] for r in rows)
-    end = res.legs[-1]
-    out.update(recovery_delta_v_mps=rec_dv, total_delta_v_mps=partial + rec_dv,
-               penalty_mps=partial + rec_dv - nominal_rest, recovery_burns=rows,
-               first_coast_h=rec.coast_s(0) / 3600.0 if any(free) else None,
-               time_to_final_orbit_h=(end.problem.t_ign_s + end.raw.t1_s - t_ref[i]) / 3600.0,
-               all_verified=all(r["verified"] for r in rows), ipopt_status=res.ipopt_status,
-               wall_s=time.perf_counter() - t_start)
+        out = _attempt(out, lambda: recover(nplan, i, t_r, x_r, window_min, max_period_s,
+                                            fit, coast),
+                       burn, t_r, t_ref[0], partial, nplan.targets[i].kind == PERILUNE)
+    out["wall_s"] = time.perf_counter() - t_start
     return out
 
 
-def _window(plan: CapturePlan, i: int) -> tuple:
-    """The free-ignition window of burn ``i`` around its nominal perilune, min.
+@cached(ignore=["verbose"])
+def late_case(plan: CapturePlan, burn: int, late_s: float, max_period_s: float,
+              version: str = "", verbose: bool = False) -> dict:
+    """A late-ignition case (see the module docstring); pass ``plan.key()``.
 
-    The plan's default: +-2 Eq. (19) durations, within 120 min and 0.4 of the orbit before.
+    Burn n ignites ``late_s`` after the nominal's ignition, at that epoch exactly (from
+    the nominal's state there), its duration and steering re-optimised, the later burns
+    re-planned. Returns the dict of :func:`missed_case` (no partial burn: 0 m/s).
     """
-    t19 = plan.impulsive()[i].eq19_duration_min
-    t = plan.nominal_perilunes_s
-    lim = min(120.0, 0.4 * (t[i] - t[i - 1]) / 60.0) if i else 120.0
-    return (max(-2 * t19, -lim), min(2 * t19, lim))
+    t_start = time.perf_counter()
+    nplan, legs, nom_cols = _nominal_part(plan, burn, max_period_s)
+    i = burn - 1
+    t_ref = nplan.nominal_perilunes_s
+    prob = legs[i].problem
+    t_r = prob.t_ign_s + late_s
+    rest = sum(nplan.coast_s(k) for k in range(burn, plan.n_burns))
+    fit = _fit_for(plan, prob.t_ign_s, late_s + max_period_s + 7200.0 + rest)
+    coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
+    x_r = propagate(coast, prob.t_ign_s, prob.x0, t_r).final if late_s > 0 else prob.x0
+    cut = classify(x_r, t_r, plan.ephemeris)
+    out = {"contingency": "late ignition", "status": "recovered", "reason": "",
+           "late_min": late_s / 60.0, "cutoff_epoch": calendar_from_seconds(t_r),
+           "cutoff_min_after_ignition": late_s / 60.0, "partial_delta_v_mps": 0.0,
+           **nom_cols, "captured": cut["orbit"] != "escape",
+           **{f"cutoff_{k}": v for k, v in cut.items()},
+           "recovery_start_e": cut["e"]}
+    window = (0.0, 0.0)
+    why = physical_bound(plan, i, t_r, x_r, window, max_period_s, coast)
+    if why:
+        out = _refused(out, "no recovery", why)
+    else:
+        out = _attempt(out, lambda: recover(nplan, i, t_r, x_r, window, max_period_s, fit,
+                                            coast),
+                       burn, t_r, t_ref[0], 0.0, nplan.targets[i].kind == PERILUNE)
+    out["wall_s"] = time.perf_counter() - t_start
+    return out
 
 
-def case_result(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
-                max_period_h: float = DEFAULT_MAX_PERIOD_H,
+def case_result(plan: CapturePlan, burn: int, fraction: float | None = None,
+                delay_min: float = 0.0, max_period_h: float = DEFAULT_MAX_PERIOD_H,
                 window_min: tuple = DEFAULT_WINDOW_MIN, use_cache: bool = True,
-                verbose: bool = False) -> dict:
-    """:func:`missed_case` with checked inputs (InputError) in the CLI's units."""
+                verbose: bool = False, late_min: float | None = None) -> dict:
+    """One case with checked inputs (InputError) in the CLI's units.
+
+    A cut-off (``fraction``, ``delay_min``), or with ``late_min`` a late ignition.
+    """
+    if late_min is not None:
+        check_case(plan, burn, 1.0, late_min, "a late ignition")
+        fn = late_case if use_cache else late_case.uncached
+        return fn(plan.key(), int(burn), float(late_min) * 60.0,
+                  float(max_period_h) * 3600.0, module_version(), verbose=verbose)
     check_case(plan, burn, fraction, delay_min)
     fn = missed_case if use_cache else missed_case.uncached
     return fn(plan.key(), int(burn), float(fraction), float(delay_min) * 60.0,
@@ -297,7 +577,7 @@ def case_result(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
               module_version(), verbose=verbose)
 
 
-def check_case(plan: CapturePlan, burn, fraction, delay_min) -> None:
+def check_case(plan: CapturePlan, burn, fraction, delay_min, what: str = "a delay") -> None:
     """InputError for a burn the plan lacks, a fraction outside (0, 1], a negative delay."""
     if isinstance(burn, bool) or not isinstance(burn, (int, np.integer)) or \
             not 1 <= burn <= plan.n_burns:
@@ -306,33 +586,39 @@ def check_case(plan: CapturePlan, burn, fraction, delay_min) -> None:
             not 0 < fraction <= 1:
         raise InputError(f"a fraction of the burn must lie in (0, 1], got {fraction!r}")
     if not isinstance(delay_min, (int, float)) or not math.isfinite(delay_min) or delay_min < 0:
-        raise InputError(f"a delay must be a non-negative number of minutes, got "
+        raise InputError(f"{what} must be a non-negative number of minutes, got "
                          f"{delay_min!r}")
 
 
 # ====================================================================== the study on Dask
-#: Columns of the study's table (one row per (burn, fraction, delay); units in the names).
-COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "burn", "fraction",
-           "delay_min", "max_period_h", "status", "reason", "captured", "cutoff_orbit",
+#: Columns of the study's table (one row per case; units in the names). ``contingency``:
+#: "cut-off" (``fraction``, ``delay_min``; ``late_min`` 0) or "late ignition"
+#: (``late_min``; ``fraction`` and ``delay_min`` 0).
+COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "burn", "contingency",
+           "fraction", "delay_min", "late_min", "max_period_h", "status", "reason",
+           "captured", "cutoff_orbit",
            "cutoff_epoch", "cutoff_min_after_ignition", "nominal_burn_duration_min",
            "partial_delta_v_mps", "nominal_burn_delta_v_mps", "cutoff_energy_km2ps2",
            "cutoff_e", "cutoff_rp_km", "cutoff_ra_km", "cutoff_period_h",
            "cutoff_soi_radius_km", "recovery_start_e", "recovery_delta_v_mps",
            "total_delta_v_mps", "nominal_remaining_delta_v_mps", "penalty_mps",
+           "make_up_delta_v_mps", "make_up_estimate_mps", "make_up_period_h",
+           "nominal_period_after_burn_h",
            "first_coast_h", "make_up_estimate_h", "time_to_final_orbit_h",
            "nominal_time_to_final_orbit_h",
            "all_verified", "ipopt_status", "recovery_burns_json", "task_wall_s", "worker",
            "code_version", "completed_utc", "error")
-KEY = ("plan_id", "burn", "fraction", "delay_min", "max_period_h")
+KEY = ("plan_id", "burn", "contingency", "fraction", "delay_min", "late_min", "max_period_h")
 
 
 def table_format():
     """The campaign table format of this study."""
     from lunarcap.runs.campaign import TableFormat
 
-    return TableFormat(KEY, COLUMNS, text_columns=("plan", "plan_id", "dynamics", "reason",
-                                                   "cutoff_orbit", "cutoff_epoch",
-                                                   "ipopt_status", "recovery_burns_json"))
+    return TableFormat(KEY, COLUMNS, text_columns=("plan", "plan_id", "dynamics",
+                                                   "contingency", "reason", "cutoff_orbit",
+                                                   "cutoff_epoch", "ipopt_status",
+                                                   "recovery_burns_json"))
 
 
 def default_table_path():
@@ -343,14 +629,22 @@ def default_table_path():
 
 
 def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
-             max_period_h: float, use_cache: bool = True) -> dict:
-    """Dask task: one case as a row of the study's table (a failure is a status, not raised)."""
+             max_period_h: float, use_cache: bool = True, late_min: float | None = None,
+             nominal_result: dict | None = None) -> dict:
+    """Dask task: one case as a row of the study's table (a failure is a status, not raised).
+
+    ``nominal_result``: the nominal computed once by the caller (kept in this process's
+    memo, so no worker solves it again, with or without the disk cache).
+    """
     import json
 
     from lunarcap.runs import campaign
 
+    if nominal_result is not None:
+        _NOMINALS[(plan.key(), int(burn), float(max_period_h) * 3600.0)] = nominal_result
     r, error = campaign.guarded(
-        lambda: case_result(plan, burn, fraction, delay_min, max_period_h), use_cache)
+        lambda: case_result(plan, burn, fraction, delay_min, max_period_h,
+                            use_cache=use_cache, late_min=late_min), use_cache)
     if error:
         return error
     row = {k: v for k, v in r.items() if k in COLUMNS}
@@ -360,42 +654,67 @@ def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
     return row
 
 
+def _cases(plan: CapturePlan, burn: int, fractions, delays, late, max_period_h: float,
+           use_cache: bool, nom: dict) -> list:
+    """The campaign's (key, args) of every case: cut-offs (fractions major), then late."""
+    from lunarcap.runs.burns import plan_id
+
+    base = {"plan": plan.name, "plan_id": plan_id(plan), "thrust_N": plan.engine.thrust_N,
+            "isp_s": plan.engine.isp_s, "dynamics": plan.dynamics, "burn": int(burn)}
+    h = float(max_period_h)
+    cases = [({**base, "contingency": "cut-off", "fraction": f, "delay_min": d,
+               "late_min": 0.0, "max_period_h": h},
+              (plan, int(burn), f, d, h, use_cache, None, nom))
+             for f in fractions for d in delays]
+    cases += [({**base, "contingency": "late ignition", "fraction": 0.0, "delay_min": 0.0,
+                "late_min": m, "max_period_h": h},
+               (plan, int(burn), None, 0.0, h, use_cache, m, nom)) for m in late]
+    return cases
+
+
 def run_missed(plan: CapturePlan, burn: int, fractions, delays_min,
                max_period_h: float = DEFAULT_MAX_PERIOD_H, out=None, workers=2,
                scheduler=None, progress: bool = True, use_cache: bool = True,
-               processes: bool = True, task=None):
-    """Run (or resume) the study over fractions x delays on Dask (see the module).
+               processes: bool = True, task=None, late_min=None):
+    """Run (or resume) the study on Dask (see the module): cut-offs and late ignitions.
 
-    Returns a :class:`lunarcap.runs.campaign.CampaignResult` (one row per case, fractions
-    major). InputError (a burn the plan lacks, fractions outside (0, 1], negative delays,
-    an unusable ``out``, an unreachable scheduler) before any solve.
+    ``fractions`` x ``delays_min`` cut-off cases (none if ``fractions`` is None or
+    empty) and one late-ignition case per ``late_min``. The nominal is solved once, here,
+    before the cases. Returns a :class:`lunarcap.runs.campaign.CampaignResult` (one row
+    per case). InputError (a burn the plan lacks, fractions outside (0, 1], negative
+    delays, an unusable ``out``, an unreachable scheduler) before any solve.
     """
     from lunarcap.repro.cache import code_version
-    from lunarcap.runs.burns import plan_id
     from lunarcap.runs.campaign import parse_numbers, run_campaign
     from lunarcap.runs.study import check_workers
 
-    fractions = parse_numbers("--fractions", fractions, 0.0, False, 1.0)
+    fractions = parse_numbers("--fractions", fractions, 0.0, False, 1.0) \
+        if fractions not in (None, "", []) else []
     delays = parse_numbers("--delays-min", delays_min, 0.0, True)
-    check_case(plan, burn, fractions[0], delays[0])
+    late = parse_numbers("--late-min", late_min, 0.0, True) \
+        if late_min not in (None, "", []) else []
+    if not fractions and not late:
+        raise InputError("no case: give --fractions or --late-min")
+    check_case(plan, burn, fractions[0] if fractions else 1.0, delays[0])
     if isinstance(max_period_h, bool) or not isinstance(max_period_h, (int, float)) or \
             not math.isfinite(max_period_h) or max_period_h <= 0:
         raise InputError(f"--max-period-h must be a positive number of hours, got "
                          f"{max_period_h!r}")
     workers = check_workers(workers)
-    pid = plan_id(plan)
-    cases = [({"plan": plan.name, "plan_id": pid, "thrust_N": plan.engine.thrust_N,
-               "isp_s": plan.engine.isp_s, "dynamics": plan.dynamics, "burn": int(burn),
-               "fraction": f, "delay_min": d, "max_period_h": float(max_period_h)},
-              (plan, int(burn), f, d, float(max_period_h), use_cache))
-             for f in fractions for d in delays]
-    return run_campaign(cases, task or case_row, out or default_table_path(), table_format(),
+    nom = None
+    if task is None:   # the real study: its nominal, once, in this process
+        nom = nominal_of(plan, int(burn), float(max_period_h) * 3600.0, use_cache)
+    return run_campaign(_cases(plan, burn, fractions, delays, late, max_period_h, use_cache,
+                               nom),
+                        task or case_row, out or default_table_path(), table_format(),
                         f"{code_version()}:{module_version()}", workers=workers,
                         scheduler=scheduler, progress=progress, processes=processes,
                         desc="missed-thrust study", unit="case", recompute=not use_cache,
                         ok_statuses=("recovered", "no recovery"),
                         describe={"study": "missed", "burn": int(burn),
-                                  "fractions": list(fractions), "delays_min": list(delays)})
+                                  "fractions": list(fractions), "delays_min": list(delays),
+                                  "late_min": list(late),
+                                  "max_period_h": float(max_period_h)})
 
 
 def recovery_burns_of(row) -> list:
@@ -408,21 +727,25 @@ def recovery_burns_of(row) -> list:
 
 def format_rows(plan: CapturePlan, burn: int, rows: list, result) -> str:
     """The CLI's text: one line per case, then the run."""
-    lines = [f"Missed thrust in burn {burn} of plan {plan.name} ({plan.engine.thrust_N:g} N / "
-             f"{plan.engine.isp_s:g} s, {plan.dynamics} dynamics): the engine stops after a "
-             f"fraction of the burn, the fault lasts the delay, the rest of the capture is "
-             f"re-optimised to the same final orbit; penalty = partial + recovery delta-V "
-             f"minus the nominal burns {burn}..{plan.n_burns}",
-             f"{'fraction':>8} {'delay min':>9} | {'orbit at cut-off':<16} {'e':>6} "
-             f"{'apolune km':>10} | {'recovery m/s':>12} {'penalty m/s':>11} "
-             f"{'final orbit h':>13} | status"]
+    h = rows[0]["max_period_h"] if rows else DEFAULT_MAX_PERIOD_H
+    lines = [f"Burn {burn} of plan {plan.name} ({plan.engine.thrust_N:g} N / "
+             f"{plan.engine.isp_s:g} s, {plan.dynamics} dynamics) cut off (the engine stops "
+             f"after a fraction of the burn, the fault lasts the delay) or ignited late; the "
+             f"rest of the capture re-optimised to the same final orbit, the orbit after "
+             f"burn {burn} at most {h:g} h in the recovery and the nominal alike; "
+             f"penalty = partial + recovery delta-V minus the nominal burns "
+             f"{burn}..{plan.n_burns}",
+             f"{'contingency':<13} {'fraction':>8} {'delay min':>9} {'late min':>8} | "
+             f"{'orbit at cut-off':<16} {'e':>6} {'apolune km':>10} | {'recovery m/s':>12} "
+             f"{'penalty m/s':>11} {'final orbit h':>13} | status"]
     for r in rows:
         ra = r["cutoff_ra_km"]
         ra_txt = f"{ra:10.0f}" if isinstance(ra, float) and math.isfinite(ra) else f"{'inf':>10}"
         ok = r["status"] == "recovered"
         lines.append(
-            f"{r['fraction']:8.3g} {r['delay_min']:9.4g} | {str(r['cutoff_orbit']):<16} "
-            f"{r['cutoff_e']:6.3f} {ra_txt} | "
+            f"{str(r['contingency']):<13} {r['fraction']:8.3g} {r['delay_min']:9.4g} "
+            f"{r['late_min']:8.4g} | {str(r['cutoff_orbit']):<16} {r['cutoff_e']:6.3f} "
+            f"{ra_txt} | "
             + (f"{r['recovery_delta_v_mps']:12.3f} {r['penalty_mps']:11.3f} "
                f"{r['time_to_final_orbit_h']:13.2f} | recovered" if ok else
                f"{'—':>12} {'—':>11} {'—':>13} | {r['status']}: {r['reason'] or r['error']}"))
@@ -431,8 +754,8 @@ def format_rows(plan: CapturePlan, burn: int, rows: list, result) -> str:
         lines.append(f"nominal: burns {burn}..{plan.n_burns} need "
                      f"{r0['nominal_remaining_delta_v_mps']:.3f} m/s; burn {burn} lasts "
                      f"{r0['nominal_burn_duration_min']:.2f} min; final orbit "
-                     f"{r0['nominal_time_to_final_orbit_h']:.2f} h after the perilune "
-                     f"before burn {burn}")
+                     f"{r0['nominal_time_to_final_orbit_h']:.2f} h after the arrival "
+                     f"perilune")
     run = result.run
     lines.append(f"{run['computed']} case(s) computed, {run['reused']} taken from the table; "
                  f"wall time {run['wall_s']:.1f} s ({run['scheduler']}, {run['workers']} "

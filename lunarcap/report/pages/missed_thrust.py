@@ -1,9 +1,10 @@
-"""The missed-thrust page (notebooks/missed_thrust.ipynb): a capture burn cut short.
+"""The missed-thrust page (notebooks/missed_thrust.ipynb): a capture burn cut short or late.
 
-The engine stops after a fraction of burn n of the plan; after a delay the rest of the
-capture is re-planned and re-optimised to the same final orbit (:mod:`lunarcap.runs.missed`,
-run on Dask and resumed from ``<cache>/study/<output_name>.csv``). :func:`build` shows the
-penalty map (fraction × delay), the table of every case and the recovery's burns.
+The engine stops after a fraction of burn n of the plan, or burn n ignites late; the rest
+of the capture is re-planned and re-optimised to the same final orbit
+(:mod:`lunarcap.runs.missed`, run on Dask and resumed from
+``<cache>/study/<output_name>.csv``). :func:`build` shows the penalty map (fraction ×
+delay), the table of every cut-off, the late ignitions and the recoveries' burns.
 """
 
 from __future__ import annotations
@@ -20,8 +21,9 @@ from lunarcap.runs import missed
 NOTEBOOK = "notebooks/missed_thrust.ipynb"
 
 CASE_SHOWN = ["fraction", "delay_min", "cutoff_orbit", "cutoff_ra_km",  # e: in the CSV
-              "partial_delta_v_mps", "recovery_delta_v_mps", "penalty_mps", "first_coast_h",
-              "time_to_final_orbit_h", "status"]
+              "partial_delta_v_mps", "recovery_delta_v_mps", "penalty_mps",
+              "make_up_delta_v_mps", "make_up_period_h", "time_to_final_orbit_h", "status",
+              "reason"]
 
 
 def recovery_rows(table: pd.DataFrame) -> pd.DataFrame:
@@ -29,13 +31,51 @@ def recovery_rows(table: pd.DataFrame) -> pd.DataFrame:
     rows = []
     for r in table.to_dict("records"):
         for b in missed.recovery_burns_of(r):
-            rows.append({"fraction": r["fraction"], "delay_min": r["delay_min"], **b})
+            rows.append({"contingency": r.get("contingency", "cut-off"),
+                         "fraction": r["fraction"], "delay_min": r["delay_min"],
+                         "late_min": r.get("late_min", 0.0), **b})
     return pd.DataFrame(rows)
 
 
-def reading(t: pd.DataFrame) -> str:
+LATE_SHOWN = ["late_min", "cutoff_orbit", "recovery_delta_v_mps", "make_up_period_h",
+              "penalty_mps", "time_to_final_orbit_h", "status", "reason"]
+
+
+def cut_offs(table: pd.DataFrame) -> pd.DataFrame:
+    """The cut-off cases of a study's table (a table without ``contingency``: all)."""
+    if "contingency" not in table:
+        return table
+    return table[table.contingency.fillna("cut-off") == "cut-off"].reset_index(drop=True)
+
+
+def late_ignitions(table: pd.DataFrame) -> pd.DataFrame:
+    """The late-ignition cases of a study's table, by lateness."""
+    if "contingency" not in table:
+        return table.iloc[0:0]
+    t = table[table.contingency == "late ignition"]
+    return t.sort_values("late_min").reset_index(drop=True)
+
+
+def late_reading(t: pd.DataFrame) -> str:
+    """What the late ignitions say, in sentences computed from them."""
+    ok = t[t.status == "recovered"]
+    if not len(t):
+        return ""
+    parts = [f"{r.late_min:g} min: {r.penalty_mps:+.2f} m/s" for r in ok.itertuples()]
+    out = [f"Igniting late costs ({'; '.join(parts)})." if parts else ""]
+    monotone = bool(np.all(np.diff(ok.penalty_mps.to_numpy()) > -0.05))
+    if len(ok) > 1:
+        out.append("The later, the dearer: each minute of lateness moves the burn away "
+                   "from the perilune, where it changes the orbit's energy most cheaply."
+                   if monotone else "The penalty is not monotone in the lateness here.")
+    bad = t[t.status != "recovered"]
+    out += [f"Late by {r.late_min:g} min: {r.status} ({r.reason})." for r in bad.itertuples()]
+    return " ".join(x for x in out if x)
+
+
+def reading(t: pd.DataFrame, max_period_h: float | None = None) -> str:
     """What the table says for mission planning, in sentences computed from it."""
-    t = t.reset_index(drop=True)
+    t = cut_offs(t).reset_index(drop=True)
     ok = t[t.status == "recovered"]
     out = []
     for d, g in t.groupby("delay_min", sort=True):
@@ -52,79 +92,103 @@ def reading(t: pd.DataFrame) -> str:
             first = (f"With a delay of {d:g} min, {len(rec)} of {len(g)} cut-offs "
                      f"{'is' if len(rec) == 1 else 'are'} recovered{span}; the "
                      f"{'other has' if len(g) - len(rec) == 1 else 'others have'} no verified "
-                     f"recovery (see the table).")
+                     f"recovery (see the table for the reason).")
         out.append(first)
     if len(ok):
         worst = ok.loc[ok.penalty_mps.idxmax()]
-        out.append(f"Waiting is what costs: the worst recovered "
-                   f"case (fraction {worst.fraction:g}, {worst.delay_min:g} min) costs "
-                   f"{worst.penalty_mps:.1f} m/s, because the make-up burn is flown ever "
-                   f"farther from the perilune, where a burn changes the orbit's energy most "
-                   f"cheaply.")
-        bound = ok.first_coast_h.dropna()
-        if len(bound):
-            out.append(f"In {int((bound >= bound.max() - 1e-6).sum())} of {len(bound)} "
-                       f"recoveries the make-up orbit's coast sits at its upper bound "
-                       f"({bound.max():.3f} h): the longest orbit allowed is what the "
-                       f"recovery wants, so that bound shapes these penalties.")
+        out.append(f"The worst recovered case (fraction {worst.fraction:g}, "
+                   f"{worst.delay_min:g} min) costs {worst.penalty_mps:.1f} m/s.")
+    if len(ok) and max_period_h is not None and "make_up_period_h" in ok:
+        per = ok.make_up_period_h.dropna()
+        at = int((per >= max_period_h - 1e-3).sum())
+        out.append(f"In {at} of {len(per)} recoveries with a make-up orbit its period sits "
+                   f"at the {max_period_h:g} h bound" + (
+                       ": for those, a longer bound would lower the penalty." if at else
+                       ": the bound shapes none of these penalties."))
+    refused = t[t.status != "recovered"]
+    for r in refused.itertuples():
+        out.append(f"Fraction {r.fraction:g}, {r.delay_min:g} min: {r.status}, "
+                   f"{r.reason}.")
     return " ".join(out)
 
 
 def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75, 0.9),
           delays_min=(0.0, 30.0, 120.0, 720.0), dynamics: str | None = None, workers: int = 2,
-          output_name: str = "missed_thrust", quick: bool = False) -> Page:
+          output_name: str = "missed_thrust", quick: bool = False, late_min=(1.0, 5.0, 10.0),
+          max_period_h: float = missed.DEFAULT_MAX_PERIOD_H) -> Page:
     """The page (see the module docstring); ``dynamics`` None keeps the plan's own."""
     p = load_plan(plan)
     if dynamics is not None and dynamics != p.dynamics:
         p = p.with_dynamics(dynamics)
     params = dict(plan=plan, burn=burn, fractions=list(fractions),
-                  delays_min=list(delays_min), dynamics=dynamics, workers=workers)
+                  delays_min=list(delays_min), dynamics=dynamics, workers=workers,
+                  late_min=list(late_min), max_period_h=max_period_h)
     page = Page(NOTEBOOK, params, output_name, quick, solver_description(**{
-        "recovery NLP": "8×16 LGR-5 per leg, free ignitions, the make-up orbit's coast free"}))
-    res = missed.run_missed(p, burn, list(fractions), list(delays_min),
+        "recovery NLP": "8×16 LGR-5 per leg (12×24 if verification asks), free ignitions, "
+                        f"the make-up orbit free up to {max_period_h:g} h"}))
+    res = missed.run_missed(p, burn, list(fractions), list(delays_min), float(max_period_h),
                             out=paths.CACHE / "study" / f"{output_name}.csv", workers=workers,
-                            progress=False)
-    t = res.table
-    page.data.update(table=t, run=res.run)
+                            progress=False, late_min=list(late_min))
+    everything = res.table
+    t, late = cut_offs(everything), late_ignitions(everything)
+    page.data.update(table=everything, run=res.run)
     r0 = t.iloc[0]
     page.figure("penalty", figures.plot_missed_penalty(t), caption=(
         f"Penalty (m/s) of a cut-off in burn {burn} of {p.name} ({p.engine.thrust_N:g} N / "
         f"{p.engine.isp_s:g} s, {p.dynamics} dynamics): ΔV of the partial burn plus the "
         f"recovery's, minus the nominal burns {burn}–{p.n_burns} "
-        f"({r0.nominal_remaining_delta_v_mps:.1f} m/s). “esc.”: the cut-off left a "
-        f"hyperbola; “none”: no recovery within the plan's bounds (or the solver failed: "
-        f"see the table)."), alt="Penalty map of a missed capture burn")
+        f"({r0.nominal_remaining_delta_v_mps:.1f} m/s), both with the orbit after burn "
+        f"{burn} free up to {max_period_h:g} h. “esc.”: the cut-off left a hyperbola; "
+        f"“none”: no recovery (the reason is in the table)."),
+        alt="Penalty map of a missed capture burn")
     page.table("cases", t, caption=(
-        "Every case: the orbit at cut-off (escape: hyperbola; captured: apolune inside the "
+        "Every cut-off: the orbit at cut-off (escape: hyperbola; captured: apolune inside the "
         "Moon's sphere of influence), ΔV of the partial burn and of the recovery, penalty "
-        "(m/s), the make-up orbit's coast to its perilune (h) and the time from the "
-        "perilune before the burn to the end of the last burn (h)."),
+        "(m/s), the make-up burn's ΔV and its orbit's period (h), the time from the "
+        "arrival perilune to the end of the last burn (h), and why a case has no "
+        "recovery."),
         show_columns=CASE_SHOWN,
         floatfmt={"fraction": ".2f", "delay_min": ".0f", "cutoff_ra_km": ".0f"},  # else .3f
         columns={"cutoff_orbit": "orbit at cut-off",
                  "cutoff_ra_km": "apolune at cut-off (km)"})
-    page.table("recovery", recovery_rows(t), caption=(
-        "The recovery's burns: ignition (min after the fault is cleared), duration, ΔV."),
-        floatfmt=".3f")
+    page.table("late", late, caption=(
+        f"Late ignition: burn {burn} ignites the given minutes after its planned ignition, "
+        f"is re-optimised from there (its orbit free up to {max_period_h:g} h) and the later "
+        f"burns re-planned; penalty against the same nominal."),
+        show_columns=LATE_SHOWN, floatfmt={"late_min": ".0f"},
+        columns={"cutoff_orbit": "orbit at ignition"})
+    page.table("recovery", recovery_rows(everything), caption=(
+        "The recovery's burns: ignition (min after the fault is cleared, or after the late "
+        "ignition), duration, ΔV."), floatfmt=".3f")
+    _values(page, p, burn, t, late, res.run, max_period_h)
+    return page
+
+
+def _values(page: Page, p, burn: int, t: pd.DataFrame, late: pd.DataFrame, run: dict,
+            max_period_h: float) -> None:
+    """The page's glued numbers, notes and checks."""
     ok = t[t.status == "recovered"]
+    r0 = t.iloc[0]
     page.value("plan_name", p.name)
     page.value("burn", int(burn))
+    page.value("max_period_h", float(max_period_h))
     page.value("nominal_rest_mps", float(r0.nominal_remaining_delta_v_mps))
     page.value("nominal_burn_min", float(r0.nominal_burn_duration_min))
+    page.value("nominal_period_h", float(r0.nominal_period_after_burn_h)
+               if pd.notna(r0.nominal_period_after_burn_h) else np.nan)
     page.value("n_cases", int(len(t)))
     page.value("n_recovered", int(len(ok)))
+    page.value("n_no_recovery", int((t.status == "no recovery").sum()))
     page.value("n_escape", int((t.cutoff_orbit == "escape").sum()))
-    page.value("wall_s", float(res.run["wall_s"]))
-    prompt = ok[ok.delay_min == ok.delay_min.min()] if len(ok) else ok
-    page.value("max_prompt_penalty_mps", float(prompt.penalty_mps.max()) if len(prompt)
-               else np.nan)
+    page.value("wall_s", float(run["wall_s"]))
     page.value("max_penalty_mps", float(ok.penalty_mps.max()) if len(ok) else np.nan)
-    late = ok[ok.delay_min == ok.delay_min.max()] if len(ok) else ok
-    page.value("max_delay_min", float(t.delay_min.max()))
-    page.value("n_late_recovered", int(len(late)))
-    page.note("reading", reading(t))
+    page.value("min_penalty_mps", float(ok.penalty_mps.min()) if len(ok) else np.nan)
+    page.value("n_failed", int((~t.status.isin(["recovered", "no recovery"])).sum()))
+    page.note("reading", reading(t, max_period_h))
+    page.note("late_reading", late_reading(late))
     bugs = t[~t.status.isin(["recovered", "no recovery", "failed"])]
-    page.value("n_failed", int((t.status == "failed").sum()))
     page.expect("no case ended in an unexpected error (failures are reported, not hidden)",
                 bugs.empty, "; ".join(bugs.error.astype(str)))
-    return page
+    page.expect("every penalty is >= -0.05 m/s (the nominal has the recovery's freedoms)",
+                ok.empty or ok.penalty_mps.min() >= -0.05,
+                f"min penalty {ok.penalty_mps.min() if len(ok) else 0:.3f} m/s")

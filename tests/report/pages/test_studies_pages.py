@@ -31,20 +31,32 @@ def test_burn_rows_decode_every_burn_and_reading_names_infeasible_counts():
 
 
 def test_missed_reading_counts_recoveries_per_delay_and_signs_penalties():
-    def case(f, d, status, penalty, orbit="captured", coast=12.235):
-        return {"fraction": f, "delay_min": d, "status": status, "penalty_mps": penalty,
-                "cutoff_orbit": orbit, "first_coast_h": coast}
+    def case(f, d, status, penalty, orbit="captured", period=24.0, reason=""):
+        return {"contingency": "cut-off", "fraction": f, "delay_min": d, "late_min": 0.0,
+                "status": status, "penalty_mps": penalty, "cutoff_orbit": orbit,
+                "make_up_period_h": period, "reason": reason}
+    far = "the spacecraft is 43,688 km from the Moon when the make-up burn can ignite"
     t = pd.DataFrame([case(0.5, 0, "recovered", 0.01, "escape"),
-                      case(0.9, 0, "recovered", -0.03),
-                      case(0.5, 720, "failed", None, "escape", None),
-                      case(0.9, 720, "recovered", -0.5, coast=5.0)])
-    text = missed_thrust.reading(t)
+                      case(0.9, 0, "recovered", 0.03, period=20.0),
+                      case(0.5, 720, "no recovery", None, "escape", None, far),
+                      case(0.9, 720, "recovered", 0.5)])
+    text = missed_thrust.reading(t, 24.0)
     assert "With a delay of 0 min every cut-off is recovered, at a penalty of at most " \
-           "0.01 m/s (including 1 that left a hyperbola)." in text
-    assert "With a delay of 720 min, 1 of 2 cut-offs is recovered (penalty -0.5 m/s); the " \
+           "0.03 m/s (including 1 that left a hyperbola)." in text
+    assert "With a delay of 720 min, 1 of 2 cut-offs is recovered (penalty +0.5 m/s); the " \
            "other has no verified recovery" in text
+    assert f"Fraction 0.5, 720 min: no recovery, {far}." in text
     t2 = pd.concat([t, pd.DataFrame([case(0.75, 720, "recovered", 12.0),
                                      case(0.25, 720, "failed", None, "escape", None)])])
-    assert "With a delay of 720 min, 2 of 4 cut-offs are recovered (penalty -0.5 to +12.0 " \
-           "m/s); the others have no verified recovery" in missed_thrust.reading(t2)
-    assert "In 2 of 3 recoveries the make-up orbit's coast sits at its upper bound" in text
+    assert "With a delay of 720 min, 2 of 4 cut-offs are recovered (penalty +0.5 to +12.0 " \
+           "m/s); the others have no verified recovery" in missed_thrust.reading(t2, 24.0)
+    assert "In 2 of 3 recoveries with a make-up orbit its period sits at the 24 h bound" in text
+    # late ignitions are read apart, and not mixed into the cut-offs' map
+    late = pd.DataFrame([dict(case(0, 0, "recovered", p), contingency="late ignition",
+                              late_min=m) for m, p in ((1.0, 0.3), (5.0, 8.9), (10.0, 34.8))])
+    both = pd.concat([t, late])
+    assert len(missed_thrust.cut_offs(both)) == 4
+    assert list(missed_thrust.late_ignitions(both).late_min) == [1.0, 5.0, 10.0]
+    lt = missed_thrust.late_reading(missed_thrust.late_ignitions(both))
+    assert "1 min: +0.30 m/s; 5 min: +8.90 m/s; 10 min: +34.80 m/s" in lt
+    assert "The later, the dearer" in lt
