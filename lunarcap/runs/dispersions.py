@@ -82,7 +82,11 @@ SOI_RADIUS_KM = EARTH_MOON_KM * (C.MU_MOON / C.MU_EARTH) ** 0.4
 #: Percentiles of the budget reported.
 PERCENTILES = (50.0, 90.0, 95.0, 99.0)
 
+#: IPOPT statuses meaning "no solution within the bounds".
+INFEASIBLE = ("Infeasible_Problem_Detected", "Restoration_Failed")
+
 STATUSES = ("ok", "not captured", "correction failed", "error")
+#: Statuses of a sample computed as it should be (the failures are physical outcomes).
 OK_STATUSES = ("ok", "not captured", "correction failed")
 
 
@@ -446,14 +450,32 @@ def _replan(plan: CapturePlan, i: int, t_p: float, x_p, nom) -> object:
     b = plan.burns[i]
     if plan.formulation == "song2011":
         first_coast = None   # the plan's timeline: the coast ends at its nominal perilune
+        left = plan.nominal_perilunes_s[i + 1] - t_p
+        if left < 0.5 * plan.coast_s(i):
+            raise Uncorrectable(
+                f"the perilune before burn {i + 1} is reached "
+                f"{(t_p - plan.nominal_perilunes_s[i]) / 60:+.1f} min off the plan's, leaving "
+                f"{left / 60:.1f} min to the epoch where the plan's next orbit must hold "
+                f"(less than half its {plan.coast_s(i) / 60:.1f} min period)")
     else:
         first_coast = plan.coast_s(i)   # the orbit asked, one period (or the circle's coast)
     window = nom.problem.start_bounds_min if b.free_start else (b.start_min, b.start_min)
-    rp = plan.resumed(i, t_p, x_p, first_coast_s=first_coast, window_min=window)
-    if not b.free_start:
-        rp = rp.with_start(0, b.start_min)
+    try:
+        rp = plan.resumed(i, t_p, x_p, first_coast_s=first_coast, window_min=window)
+        if not b.free_start:
+            rp = rp.with_start(0, b.start_min)
+    except PlanError as exc:
+        why = str(exc)
+        if "too weak" in why:
+            why = "the engine is too weak for the orbit reached: " + why.split(": ", 2)[-1]
+        raise Uncorrectable(f"the plan's rules refuse a re-plan from the orbit reached ({why})"
+                            ) from None
     prob = burn_problem(rp, 0, x_p, rp.ephemeris_model())
     return solve_burn_problem(prob, guess=warm_guess(nom.raw, prob))
+
+
+class Uncorrectable(Exception):
+    """A re-plan that the plan's rules or timeline cannot accept (its message says why)."""
 
 
 def _fail(out: dict, status: str, reason: str) -> dict:
@@ -482,14 +504,19 @@ def fly_sample(plan: CapturePlan, z, model: ErrorModel, use_cache: bool = True) 
             try:
                 sol = _replan(plan, i, t_ref, x_ref, noms[i])
             except SolveError as exc:
-                status = getattr(exc, "status", "") or ""
+                status = getattr(exc, "status", "") or "no status"
+                what = ("no burn meets the target from the orbit reached"
+                        if status in INFEASIBLE else "no verified solution")
                 return _fail(out, "correction failed",
-                             f"burn {i + 1} could not be re-planned from the dispersed orbit "
-                             f"(IPOPT {status}): {str(exc).split(':', 1)[-1].strip()[:300]}")
-            except (PlanError, InputError) as exc:
+                             f"burn {i + 1} cannot be re-planned: {what} (IPOPT {status} on "
+                             f"the last of {len(exc.details.get('attempts', [])) or 'its'} "
+                             f"meshes)")
+            except Uncorrectable as exc:
+                return _fail(out, "correction failed", f"burn {i + 1} cannot be re-planned: "
+                                                       f"{exc}")
+            except InputError as exc:
                 return _fail(out, "correction failed",
-                             f"burn {i + 1} could not be re-planned from the dispersed orbit: "
-                             f"{exc}")
+                             f"burn {i + 1} cannot be re-planned from the orbit reached: {exc}")
             except RuntimeError as exc:   # a guess propagation that fails (p -> 0)
                 return _fail(out, "correction failed",
                              f"burn {i + 1}: no trajectory to start the re-plan from ({exc})"
@@ -513,8 +540,14 @@ def fly_sample(plan: CapturePlan, z, model: ErrorModel, use_cache: bool = True) 
             return _fail(out, "not captured", f"after burn {i + 1}, {why}")
         model_i = sol.problem.model
         if i < plan.n_burns - 1:
-            t_ref, x_ref = next_perilune(model_i, flown.t_end_s, flown.x_end,
-                                         sol.problem.t_end_s + e.ignition_s)
+            try:
+                t_ref, x_ref = next_perilune(model_i, flown.t_end_s, flown.x_end,
+                                             sol.problem.t_end_s + e.ignition_s)
+            except InputError as exc:   # beyond the burn's ephemeris fit (+-6 h)
+                out["burns_json"] = json.dumps(burns)
+                return _fail(out, "correction failed",
+                             f"the perilune after burn {i + 1} is not found within 6 h of the "
+                             f"plan's ({exc})")
         else:   # the final orbit, at the end of the plan's last coast
             x_f = propagate(model_i, flown.t_end_s, flown.x_end, sol.problem.t_end_s).final
             err = sol.problem.target.errors(x_f[:6])
