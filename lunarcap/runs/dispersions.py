@@ -59,7 +59,7 @@ from pathlib import Path
 import numpy as np
 
 from lunarcap.errors import InputError, SolveError
-from lunarcap.mission.plan import CapturePlan, PlanError, plan_ephemeris
+from lunarcap.mission.plan import CapturePlan, PlanError
 from lunarcap.optim.guess import Guess, mean_motion_and_anomaly
 from lunarcap.optim.nlp import interval_steering
 from lunarcap.optim.problem import burn_problem
