@@ -17,6 +17,7 @@ which do not depend on the perturbations.
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from lunarcap.cli import main
@@ -267,3 +268,41 @@ def test_distributed_scheduler_gives_the_local_numbers_bit_for_bit(plan, dask_cl
                                   local.table[NUMBERS].to_numpy(float))
     assert list(remote.table.burns_json) == list(local.table.burns_json)
     assert remote.table.worker.iloc[0] != local.table.worker.iloc[0]
+
+
+def _synthetic_table(n=400, fail=(3, 7)):
+    rng = np.random.default_rng(0)
+    dv = 870.0 + rng.exponential(2.0, size=n)
+    status = ["ok"] * n
+    for k in fail:
+        status[k] = "correction failed"
+    return pd.DataFrame({
+        "sample": range(n), "status": status,
+        "reason": ["" if s == "ok" else "burn 2 cannot be re-planned: test" for s in status],
+        "error": [""] * n, "total_delta_v_mps": dv, "propellant_kg": dv / 5,
+        "nominal_delta_v_mps": 870.0, "nominal_propellant_kg": 174.0,
+        "final_rp_error_km": rng.normal(size=n), "final_ra_error_km": rng.normal(size=n),
+        "final_inc_error_deg": rng.normal(size=n) * 0.01, "task_wall_s": 1.0,
+        "impulsive_two_body_mps": 852.36})
+
+
+def test_summary_and_page_data_count_failures_as_the_most_expensive():
+    from lunarcap.report.pages import dispersions as page
+
+    t = _synthetic_table()
+    s = D.summarise(t)
+    assert s["samples"] == 400 and s["p_correction_failed"] == 2 / 400
+    ok = np.sort(t.total_delta_v_mps[t.status == "ok"])
+    # 99 % of 400: rank 396; the 2 failures sit above every captured sample
+    assert s["delta_v_p99_mps"] == ok[395]
+    lo, hi = s["budget_p99_ci_mps"]
+    # the interval's upper rank (400) is a failed sample: unbounded, as it should be
+    assert math.isfinite(lo) and lo <= s["budget_p99_above_nominal_mps"] <= hi == math.inf
+    c = D.convergence(t)
+    assert len(c) == 400 and c.estimate_mps.iloc[-1] == pytest.approx(s["delta_v_p99_mps"] - 870)
+    assert D.settled_after(c, 1.0) <= 400
+    plan = load_plan("song2011-150N")
+    row = page.budget_row(plan, t)
+    assert row["p_failure"] == 2 / 400 and row["samples"] == 400
+    f = page.failure_rows({"150 N / 200 s": t})
+    assert list(f["sample"]) == [3, 7] and set(f.status) == {"correction failed"}
