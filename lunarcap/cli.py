@@ -411,6 +411,10 @@ def cmd_dispersions(args) -> int:
     from lunarcap.runs import dispersions as disp
 
     plan = _plan_from_args(args)
+    if args.formulation is not None and args.formulation != plan.formulation:
+        from dataclasses import replace
+
+        plan = replace(plan, formulation=args.formulation)
     samples, seed = disp.check_samples(args.samples, args.seed)
     cov = None
     if args.arrival_cov is not None:
@@ -558,6 +562,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--arrival-cov", default=None, metavar="FILE",
                    help="instead of --arrival-sigma-*: a 6x6 covariance of the arrival state "
                         "in its RTN frame, km and km/s (36 numbers, whitespace or commas)")
+    p.add_argument("--formulation", choices=["orbit", "song2011"], default=None,
+                   help="how the re-planned burns meet a period: orbit (the orbit asked, its "
+                        "perilune epoch free) or song2011 (the paper's: at the plan's nominal "
+                        "perilune epochs, a fixed timeline); default the plan's")
     _add_dask_options(p, "sample")
     p.set_defaults(func=cmd_dispersions)
     return parser

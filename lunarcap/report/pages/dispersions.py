@@ -126,8 +126,11 @@ def failure_rows(tables: dict) -> pd.DataFrame:
 
 def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: int = 10,
           seed: int = 2011, sigmas: dict | None = None, dynamics: str | None = None,
-          workers: int = 2, output_name: str = "dispersions", quick: bool = False) -> Page:
-    """The page (see the module docstring); ``dynamics`` None keeps the plans' own."""
+          workers: int = 2, output_name: str = "dispersions", quick: bool = False,
+          formulation: str | None = None) -> Page:
+    """The page (see the module docstring); ``dynamics``, ``formulation`` None: the plans'."""
+    from dataclasses import replace
+
     sig = dict(DEFAULT_SIGMAS, **(sigmas or {}))
     model = disp.ErrorModel(**sig)
     params = dict(plans=list(plans), samples=samples, seed=seed, sigmas=sig,
@@ -140,6 +143,8 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
         p = load_plan(name)
         if dynamics is not None and dynamics != p.dynamics:
             p = p.with_dynamics(dynamics)
+        if formulation is not None and formulation != p.formulation:
+            p = replace(p, formulation=formulation)
         res = disp.run_dispersions(p, samples, seed, model,
                                    out=paths.CACHE / "study" / f"{output_name}.csv",
                                    workers=workers, progress=False)
