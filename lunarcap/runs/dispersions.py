@@ -640,8 +640,9 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
                     first: int = 0, task=None):
     """Run (or resume) ``samples`` samples (indices ``first``...) of the capture on Dask.
 
+    ``plan`` may be a list of plans: their samples run as one campaign (one cluster).
     Returns a :class:`lunarcap.runs.campaign.CampaignResult` (one row per sample, in
-    index order). InputError (a bad count, seed or sigma, a plan with more than
+    index order, plan by plan). InputError (a bad count, seed or sigma, a plan with more than
     :data:`MAX_BURNS` burns, an unusable ``out``, an unreachable scheduler) before any
     sample.
     """
@@ -651,19 +652,22 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
     from lunarcap.runs.study import check_workers
 
     samples, seed = check_samples(samples, seed)
-    if plan.n_burns > MAX_BURNS:
-        raise InputError(f"plan {plan.name} has {plan.n_burns} burns; the dispersions study "
-                         f"draws errors for at most {MAX_BURNS}")
-    if model.pointing_sigma_deg and any(b.steering != "optimal" for b in plan.burns):
-        raise InputError("--pointing-sigma-deg needs every burn's steering optimal (a "
-                         "polynomial per mesh interval to tilt)")
+    plans = list(plan) if isinstance(plan, (list, tuple)) else [plan]
+    for p in plans:
+        if p.n_burns > MAX_BURNS:
+            raise InputError(f"plan {p.name} has {p.n_burns} burns; the dispersions study "
+                             f"draws errors for at most {MAX_BURNS}")
+        if model.pointing_sigma_deg and any(b.steering != "optimal" for b in p.burns):
+            raise InputError("--pointing-sigma-deg needs every burn's steering optimal (a "
+                             "polynomial per mesh interval to tilt)")
     workers = check_workers(workers)
-    pid = plan_id(plan)
-    base = {"plan": plan.name, "plan_id": pid, "thrust_N": plan.engine.thrust_N,
-            "isp_s": plan.engine.isp_s, "dynamics": plan.dynamics, "seed": seed,
-            "antithetic": bool(antithetic), **model.key()}
-    cases = [(dict(base, sample=k), (plan, seed, k, model, bool(antithetic), use_cache))
-             for k in range(int(first), int(first) + samples)]
+    cases = []
+    for p in plans:   # one campaign: one cluster, whose workers build each NLP shape once
+        base = {"plan": p.name, "plan_id": plan_id(p), "thrust_N": p.engine.thrust_N,
+                "isp_s": p.engine.isp_s, "dynamics": p.dynamics, "seed": seed,
+                "antithetic": bool(antithetic), **model.key()}
+        cases += [(dict(base, sample=k), (p, seed, k, model, bool(antithetic), use_cache))
+                  for k in range(int(first), int(first) + samples)]
     return run_campaign(cases, task or sample_row, out or default_table_path(),
                         table_format(), f"{code_version()}:{module_version()}",
                         workers=workers, scheduler=scheduler, progress=progress,
