@@ -306,3 +306,5 @@ def test_summary_and_page_data_count_failures_as_the_most_expensive():
     assert row["p_failure"] == 2 / 400 and row["samples"] == 400
     f = page.failure_rows({"150 N / 200 s": t})
     assert list(f["sample"]) == [3, 7] and set(f.status) == {"correction failed"}
+    none = page.failure_rows({"150 N / 200 s": t[t.status == "ok"]})
+    assert list(none.status) == ["none"]   # one row saying so: a table is never empty
