@@ -426,6 +426,56 @@ def cmd_missed(args) -> int:
     return 0 if all(r["status"] in ("recovered", "no recovery") for r in rows) else 3
 
 
+def _sigma_arg(option: str, text) -> float:
+    """A non-negative finite number from an option's text, else InputError naming it."""
+    try:
+        val = float(text)
+    except (TypeError, ValueError):
+        raise InputError(f"{option} must be a non-negative number, got {text!r}") from None
+    if not math.isfinite(val) or val < 0:
+        raise InputError(f"{option} must be a non-negative number, got {text!r}")
+    return val
+
+
+def cmd_dispersions(args) -> int:
+    """Dispersions: the capture flown with errors, re-planned after each burn; the budget."""
+    from lunarcap.runs import dispersions as disp
+
+    plan = _plan_from_args(args)
+    if args.formulation is not None and args.formulation != plan.formulation:
+        from dataclasses import replace
+
+        plan = replace(plan, formulation=args.formulation)
+    samples, seed = disp.check_samples(args.samples, args.seed)
+    cov = None
+    if args.arrival_cov is not None:
+        cov = disp.read_covariance(args.arrival_cov)
+    model = disp.ErrorModel(**{name: _sigma_arg("--" + name.replace("_", "-"),
+                                                 getattr(args, name))
+                               for name in ("thrust_sigma_pct", "isp_sigma_pct",
+                                            "pointing_sigma_deg", "ignition_sigma_s",
+                                            "arrival_sigma_km", "arrival_sigma_mps")},
+                            arrival_cov=cov)
+    res, status = _resumable(lambda: disp.run_dispersions(
+        plan, samples, seed, model, out=args.out, workers=args.workers,
+        scheduler=args.scheduler, progress=not args.no_progress,
+        use_cache=not args.no_cache), "samples")
+    if status:
+        return status
+    rows = res.table.to_dict("records")
+    summary = disp.summarise(rows)
+    if args.json:
+        out = {"plan": plan.to_dict(), "error_model": model.key() | {
+                   "description": model.describe()},
+               "seed": seed, "table": str(res.path), "run": res.run, "summary": summary,
+               "samples": [dict({k: v for k, v in r.items() if k != "burns_json"},
+                                burns=disp.burns_of(r)) for r in rows]}
+        print(json.dumps(_jsonable(out), indent=2))
+    else:
+        print(disp.format_summary(plan, model, summary, res))
+    return 0 if all(r["status"] in disp.OK_STATUSES for r in rows) else 3
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of every subcommand."""
     parser = argparse.ArgumentParser(prog="lunarcap", description=__doc__.splitlines()[0])
@@ -540,6 +590,34 @@ def build_parser() -> argparse.ArgumentParser:
                         "in the nominal it is compared with, h (24)")
     _add_dask_options(p, "case")
     p.set_defaults(func=cmd_missed)
+
+    p = sub.add_parser("dispersions", help="the capture's delta-V budget under execution and "
+                                           "arrival errors (Monte Carlo, closed loop)")
+    _add_plan_options(p, plan_positional=True)
+    p.add_argument("--samples", default="100", metavar="N", help="samples (100)")
+    p.add_argument("--seed", default="0", metavar="S",
+                   help="seed: sample k draws its errors from numpy's generator seeded by "
+                        "(S, k), the same whatever the sigmas (0)")
+    for opt, unit, what in (
+            ("--thrust-sigma-pct", "%", "thrust, per burn"),
+            ("--isp-sigma-pct", "%", "specific impulse, per burn"),
+            ("--pointing-sigma-deg", "deg", "each of two tilt angles of the thrust "
+                                            "direction, fixed over a burn"),
+            ("--ignition-sigma-s", "s", "ignition epoch, per burn"),
+            ("--arrival-sigma-km", "km", "arrival position, per RTN axis"),
+            ("--arrival-sigma-mps", "m/s", "arrival velocity, per RTN axis")):
+        p.add_argument(opt, default="0", metavar=unit.upper().replace("/", "").replace("%",
+                                                                                        "PCT"),
+                       help=f"1-sigma error of the {what}, {unit} (0)")
+    p.add_argument("--arrival-cov", default=None, metavar="FILE",
+                   help="instead of --arrival-sigma-*: a 6x6 covariance of the arrival state "
+                        "in its RTN frame, km and km/s (36 numbers, whitespace or commas)")
+    p.add_argument("--formulation", choices=["orbit", "song2011"], default=None,
+                   help="how the re-planned burns meet a period: orbit (the orbit asked, its "
+                        "perilune epoch free) or song2011 (the paper's: at the plan's nominal "
+                        "perilune epochs, a fixed timeline); default the plan's")
+    _add_dask_options(p, "sample")
+    p.set_defaults(func=cmd_dispersions)
     return parser
 
 
@@ -557,7 +635,10 @@ def _add_dask_options(p: argparse.ArgumentParser, what: str) -> None:
 
 
 _LIST_OPTIONS = ("--starts", "--previous-starts", "--start", "--counts", "--fractions",
-                 "--delays-min", "--max-period-h", "--max-days", "--burn", "--workers")
+                 "--delays-min", "--max-period-h", "--max-days", "--burn", "--workers",
+                 "--samples", "--seed", "--thrust-sigma-pct", "--isp-sigma-pct",
+                 "--pointing-sigma-deg", "--ignition-sigma-s", "--arrival-sigma-km",
+                 "--arrival-sigma-mps")
 
 
 def _join_negative_lists(argv: list) -> list:

@@ -1,0 +1,832 @@
+"""Dispersions: the capture's delta-V budget under execution and navigation errors.
+
+A Monte Carlo of the whole capture, corrected in closed loop. In one **sample**:
+
+1. **Arrival.** The arrival perilune state is dispersed: a position and velocity error in
+   the arrival frame (RTN at the arrival perilune: radial, transverse, normal), isotropic
+   (``arrival_sigma_km``, ``arrival_sigma_mps`` per axis) or from a 6x6 covariance (km,
+   km/s). It is a navigation error: burn 1 is not re-planned for it.
+2. **Burn 1** is flown open loop: the nominal optimal steering (the collocated polynomial
+   of each mesh interval, :func:`lunarcap.optim.nlp.interval_steering`), re-propagated
+   from the dispersed state with the burn's own errors: thrust scaled by (1 + dT), Isp by
+   (1 + dIsp), the thrust direction tilted by a fixed random rotation in the local RTN
+   frame (two angles perpendicular to the burn's mean direction, each of standard
+   deviation ``pointing_sigma_deg``), and the ignition late or early by ``dt_ign`` (the
+   steering follows the time since ignition). The engine is cut off on the timer: the
+   burn lasts its planned duration, so a weak engine delivers less delta-V.
+3. **Correction.** The orbit reached is classified (open, or an apolune beyond the Moon's
+   sphere of influence: *not captured*); the spacecraft coasts to its actual next
+   perilune (found by Newton on r.v in the plan's dynamics), and the next burn is
+   re-planned from that state to the plan's target (:meth:`CapturePlan.resumed`, then the
+   burn's optimal-control problem, verified by re-propagation), warm-started from the
+   nominal burn's steering. The paper's formulation keeps the plan's timeline (each coast
+   ends at the plan's nominal perilune); the orbit formulation targets the orbit asked.
+   A burn of fixed ignition offset ignites at that offset from the perilune actually
+   reached; a free one within its nominal window. The re-planned burn is flown with its
+   own errors, and so on. Burns are solved one at a time, as the plan is (each burn's
+   optimum depends on its own state only, so re-solving the later burns at every step
+   would be discarded work).
+4. **Final orbit.** After the last burn, the coast to the plan's end is flown and the
+   final orbit compared with the target (perilune and apolune radius, inclination: the
+   target's own error functions, :meth:`lunarcap.mission.targets.Target.errors`).
+
+A sample that cannot be corrected (the re-plan has no verified solution, a re-plan that
+the plan's rules refuse) or that is not captured is a row with the reason in physical
+terms, counted in the failure probability; it is never dropped.
+
+**Common random numbers.** Sample ``k`` of seed ``s`` draws a fixed block of
+:data:`BLOCK` standard normals from ``numpy.random.default_rng([s, k])`` (PCG64, seeded
+by the pair), then scales them by the sigmas: the same seed gives the same numbers for
+any sigmas (doubling a sigma doubles every error), locally and on a cluster, whatever the
+order samples run in. ``antithetic`` pairs sample 2j+1 with the negated numbers of 2j.
+
+The **budget** is what the tanks must hold: the delta-V flown (the quadrature of T/m
+along every re-propagated burn) and the propellant used, summarised by percentiles and a
+distribution-free confidence interval on the 99 % quantile from order statistics
+(:func:`quantile_ci`).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import time
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from lunarcap.errors import InputError, SolveError
+from lunarcap.mission.plan import CapturePlan, PlanError
+from lunarcap.optim.guess import Guess, mean_motion_and_anomaly
+from lunarcap.optim.nlp import interval_steering
+from lunarcap.optim.problem import burn_problem
+from lunarcap.optim.solve import solve_burn as solve_burn_problem
+from lunarcap.physics import constants as C
+from lunarcap.physics.elements import mee_from_rv, orbit_summary, rv_from_mee
+from lunarcap.physics.propagate import Trajectory, propagate
+from lunarcap.physics.steering import Steering, polynomial
+
+#: Most burns a plan may have in this study (the draws' block is sized for it).
+MAX_BURNS = 8
+#: Standard normals per burn: thrust, Isp, two pointing angles, ignition offset.
+PER_BURN = 5
+#: Standard normals drawn per sample, whatever the sigmas: 6 (arrival) + 5 per burn.
+BLOCK = 6 + PER_BURN * MAX_BURNS
+#: Mean Earth-Moon distance, km (IAU 2009 / JPL: 384,400 km), for the Moon's sphere of
+#: influence (Laplace's radius a (m_Moon/m_Earth)^(2/5) = 66,200 km).
+EARTH_MOON_KM = 384400.0
+SOI_RADIUS_KM = EARTH_MOON_KM * (C.MU_MOON / C.MU_EARTH) ** 0.4
+#: Percentiles of the budget reported.
+PERCENTILES = (50.0, 90.0, 95.0, 99.0)
+
+#: IPOPT statuses meaning "no solution within the bounds".
+INFEASIBLE = ("Infeasible_Problem_Detected", "Restoration_Failed")
+
+STATUSES = ("ok", "not captured", "correction failed", "error")
+#: Statuses of a sample computed as it should be (the failures are physical outcomes).
+OK_STATUSES = ("ok", "not captured", "correction failed")
+
+
+@lru_cache(maxsize=1)
+def module_version() -> str:
+    """Hash of this module's source: part of the table's code version."""
+    return hashlib.sha256(Path(__file__).read_bytes()).hexdigest()[:16]
+
+
+# ====================================================================== error model
+@dataclass(frozen=True)
+class ErrorModel:
+    """One-sigma execution and navigation errors (every default 0: nothing assumed).
+
+    Attributes
+    ----------
+    thrust_sigma_pct, isp_sigma_pct : float
+        Thrust and specific impulse, % of nominal, drawn per burn.
+    pointing_sigma_deg : float
+        Each of two tilt angles of the thrust direction (perpendicular to the burn's mean
+        direction, fixed over the burn), deg, drawn per burn.
+    ignition_sigma_s : float
+        Ignition epoch, s, per burn (the steering follows the time since ignition).
+    arrival_sigma_km, arrival_sigma_mps : float
+        Arrival position (km) and velocity (m/s) errors per axis of the arrival RTN frame.
+    arrival_cov : tuple of 36 floats, optional
+        Instead: the 6x6 covariance (km, km/s; RTN at the arrival perilune), row-major.
+    """
+
+    thrust_sigma_pct: float = 0.0
+    isp_sigma_pct: float = 0.0
+    pointing_sigma_deg: float = 0.0
+    ignition_sigma_s: float = 0.0
+    arrival_sigma_km: float = 0.0
+    arrival_sigma_mps: float = 0.0
+    arrival_cov: tuple | None = None
+
+    def __post_init__(self):
+        for name in ("thrust_sigma_pct", "isp_sigma_pct", "pointing_sigma_deg",
+                     "ignition_sigma_s", "arrival_sigma_km", "arrival_sigma_mps"):
+            v = getattr(self, name)
+            opt = "--" + name.replace("_", "-")
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or \
+                    not math.isfinite(v) or v < 0:
+                raise InputError(f"{opt} must be a non-negative number, got {v!r}")
+            object.__setattr__(self, name, float(v))
+        if self.thrust_sigma_pct >= 30 or self.isp_sigma_pct >= 30:
+            raise InputError("thrust and Isp sigmas must be below 30 % (a 3-sigma draw would "
+                             "stop or reverse the engine)")
+        if self.pointing_sigma_deg > 30:
+            raise InputError(f"--pointing-sigma-deg must be at most 30 deg, got "
+                             f"{self.pointing_sigma_deg:g}")
+        if self.arrival_cov is not None:
+            if self.arrival_sigma_km or self.arrival_sigma_mps:
+                raise InputError("give --arrival-cov or --arrival-sigma-km/-mps, not both")
+            cov = np.asarray(self.arrival_cov, float)
+            object.__setattr__(self, "arrival_cov", tuple(float(v) for v in cov.ravel()))
+            arrival_factor(self.arrival_cov)  # checks it
+
+    @property
+    def is_zero(self) -> bool:
+        """True if no error is dispersed."""
+        return not any((self.thrust_sigma_pct, self.isp_sigma_pct, self.pointing_sigma_deg,
+                        self.ignition_sigma_s, self.arrival_sigma_km, self.arrival_sigma_mps,
+                        self.arrival_cov is not None and any(self.arrival_cov)))
+
+    def key(self) -> dict:
+        """The error model as the table's key columns."""
+        cov = "" if self.arrival_cov is None else \
+            hashlib.sha256(np.asarray(self.arrival_cov).tobytes()).hexdigest()[:12]
+        return {"thrust_sigma_pct": self.thrust_sigma_pct, "isp_sigma_pct": self.isp_sigma_pct,
+                "pointing_sigma_deg": self.pointing_sigma_deg,
+                "ignition_sigma_s": self.ignition_sigma_s,
+                "arrival_sigma_km": self.arrival_sigma_km,
+                "arrival_sigma_mps": self.arrival_sigma_mps, "arrival_cov": cov}
+
+    def describe(self) -> str:
+        """One line: the one-sigma errors."""
+        arr = ("arrival covariance from a file" if self.arrival_cov is not None else
+               f"arrival {self.arrival_sigma_km:g} km / {self.arrival_sigma_mps:g} m/s per axis")
+        return (f"1-sigma: thrust {self.thrust_sigma_pct:g} %, Isp {self.isp_sigma_pct:g} %, "
+                f"pointing {self.pointing_sigma_deg:g} deg per axis, ignition "
+                f"{self.ignition_sigma_s:g} s, {arr}")
+
+
+def arrival_factor(cov) -> np.ndarray:
+    """L with L L^T = the 6x6 covariance (km, km/s); InputError if it is not one."""
+    c = np.asarray(cov, float)
+    if c.size != 36 or not np.all(np.isfinite(c)):
+        raise InputError(f"--arrival-cov must be 36 finite numbers (a 6x6 matrix, km and "
+                         f"km/s), got {c.size}")
+    c = c.reshape(6, 6)
+    if not np.allclose(c, c.T, rtol=1e-9, atol=1e-15):
+        raise InputError("--arrival-cov is not symmetric")
+    w, v = np.linalg.eigh(c)
+    if w.min() < -1e-9 * max(1.0, abs(w).max()):
+        raise InputError(f"--arrival-cov is not positive semi-definite (eigenvalue "
+                         f"{w.min():.3g})")
+    return v * np.sqrt(np.clip(w, 0.0, None))
+
+
+def read_covariance(path) -> tuple:
+    """A 6x6 covariance from a text file (whitespace or commas; '#' comments), row-major."""
+    p = Path(path).expanduser()
+    try:
+        text = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"--arrival-cov {p}: cannot read it ({exc})") from None
+    vals = []
+    for line in text.splitlines():
+        line = line.split("#", 1)[0].replace(",", " ")
+        try:
+            vals += [float(t) for t in line.split()]
+        except ValueError:
+            raise InputError(f"--arrival-cov {p}: not numbers: {line.strip()!r}") from None
+    if len(vals) != 36:
+        raise InputError(f"--arrival-cov {p}: a 6x6 matrix has 36 numbers, the file has "
+                         f"{len(vals)}")
+    arrival_factor(vals)
+    return tuple(vals)
+
+
+# ====================================================================== draws
+def draws(seed: int, index: int) -> np.ndarray:
+    """The sample's :data:`BLOCK` standard normals, from ``default_rng([seed, index])``."""
+    return np.random.default_rng([int(seed), int(index)]).standard_normal(BLOCK)
+
+
+def sample_draws(seed: int, index: int, antithetic: bool = False) -> np.ndarray:
+    """:func:`draws`, or with ``antithetic`` the negated draws of the pair's first sample."""
+    if antithetic and index % 2:
+        return -draws(seed, index - 1)
+    return draws(seed, index)
+
+
+@dataclass(frozen=True)
+class BurnErrors:
+    """The errors of one burn: thrust and Isp factors, tilt (rad, 2), ignition offset (s)."""
+
+    thrust_factor: float = 1.0
+    isp_factor: float = 1.0
+    tilt_rad: tuple = (0.0, 0.0)
+    ignition_s: float = 0.0
+
+
+def realise(z: np.ndarray, model: ErrorModel, n_burns: int) -> tuple:
+    """(arrival error (6,) km and km/s in RTN, [BurnErrors per burn]) from the draws."""
+    z = np.asarray(z, float)
+    if model.arrival_cov is not None:
+        d_arr = arrival_factor(model.arrival_cov) @ z[:6]
+    else:
+        d_arr = np.concatenate([model.arrival_sigma_km * z[:3],
+                                model.arrival_sigma_mps * 1e-3 * z[3:6]])
+    out = []
+    for i in range(n_burns):
+        b = z[6 + PER_BURN * i: 6 + PER_BURN * (i + 1)]
+        out.append(BurnErrors(1.0 + model.thrust_sigma_pct / 100 * b[0],
+                              1.0 + model.isp_sigma_pct / 100 * b[1],
+                              (math.radians(model.pointing_sigma_deg) * b[2],
+                               math.radians(model.pointing_sigma_deg) * b[3]),
+                              model.ignition_sigma_s * b[4]))
+    return d_arr, out
+
+
+# ====================================================================== flying with errors
+def rotation(axis_angle) -> np.ndarray:
+    """Rotation matrix of a rotation vector (rad), Rodrigues."""
+    w = np.asarray(axis_angle, float)
+    th = float(np.linalg.norm(w))
+    if th == 0.0:
+        return np.eye(3)
+    k = w / th
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + math.sin(th) * K + (1 - math.cos(th)) * K @ K
+
+
+def tilt_matrix(raw, tilt_rad) -> np.ndarray:
+    """The RTN rotation tilting a burn's thrust by ``tilt_rad`` (two angles, rad).
+
+    The rotation vector lies perpendicular to the burn's mean thrust direction (the mean
+    of its collocated controls): e1 = mean x n / |.|, e2 = mean x e1 with n the orbit
+    normal (or the radial axis if the mean is nearly normal); its length is the tilt.
+    """
+    if not any(tilt_rad):
+        return np.eye(3)
+    u = np.asarray(raw.u, float)
+    u = u / np.linalg.norm(u, axis=0)
+    m = u.mean(axis=1)
+    m /= np.linalg.norm(m)
+    ref = np.array([0.0, 0.0, 1.0]) if abs(m[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+    e1 = np.cross(m, ref)
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(m, e1)
+    return rotation(tilt_rad[0] * e1 + tilt_rad[1] * e2)
+
+
+def tilted_steering(raw, j: int, R: np.ndarray) -> Steering:
+    """Interval ``j``'s steering rotated by R (RTN): the polynomial of R U, same nodes.
+
+    The direction of a polynomial steering is U l(tau) / |U l(tau)|, so rotating the
+    controls rotates the direction: (R U) l / |R U l| = R (U l / |U l|).
+    """
+    s = interval_steering(raw, j)
+    if np.array_equal(R, np.eye(3)):
+        return s
+    if s.kind != "polynomial":
+        raise InputError(f"pointing errors need the optimal steering (a polynomial per mesh "
+                         f"interval); burn {raw.prob.index} uses {raw.prob.steering!r}")
+    d = len(s.nodes)
+    U = np.asarray(s.params, float).reshape(3, d, order="F")
+    return polynomial(s.nodes, R @ U)
+
+
+@dataclass
+class FlownBurn:
+    """A burn flown with its errors: ignition and end epochs, end state, delta-V, trajectory."""
+
+    t_ign_s: float
+    t_end_s: float
+    x_end: np.ndarray        # (p, f, g, h, k, L, m)
+    delta_v_mps: float       # int T/m dt along the flight, actual thrust and mass
+    burn: Trajectory
+
+
+def fly_with_errors(raw, x_ref, t_ref_s: float, err: BurnErrors, dense: bool = False
+                    ) -> FlownBurn:
+    """Fly a solved burn's steering from the state ``x_ref`` at ``t_ref_s`` with its errors.
+
+    The coast from ``t_ref_s`` to the ignition (the solution's, plus ``err.ignition_s``)
+    in the solution's dynamics; then the mesh intervals of the burn, each with its
+    collocated steering tilted by ``err.tilt_rad``, with thrust and Isp scaled, for the
+    planned duration (a timer cut-off). With no errors this is the verification's flight
+    (:func:`lunarcap.optim.verify.fly`) from the same state.
+    """
+    prob = raw.prob
+    model = replace(prob.model, thrust_N=prob.model.thrust_N * err.thrust_factor,
+                    isp_s=prob.model.isp_s * err.isp_factor)
+    t_ign = prob.t_ign_s + err.ignition_s
+    x0 = propagate(prob.model, t_ref_s, np.asarray(x_ref, float)[:7], t_ign).final
+    R = tilt_matrix(raw, err.tilt_rad)
+    x, arcs = np.append(x0, 0.0), []
+    rel = raw.t1_s * raw.mesh_burn
+    for j in range(len(rel) - 1):
+        arcs.append(propagate(model, t_ign + rel[j], x[:7], None, u=tilted_steering(raw, j, R),
+                              dense=dense, dense_points=24, delta_v=True, dv0_kmps=x[7],
+                              duration_s=rel[j + 1] - rel[j]))
+        x = arcs[-1].final
+    return FlownBurn(t_ign, t_ign + raw.t1_s, x[:7].copy(), float(x[7]) * 1e3,
+                     Trajectory.join(arcs) if dense else arcs[-1])
+
+
+def orbit_check(x) -> str:
+    """'' if the orbit of state ``x`` is captured, else why not (physical terms)."""
+    o = orbit_summary(np.asarray(x, float), C.MU_MOON)
+    energy = o["v_kmps"] ** 2 / 2 - C.MU_MOON / o["r_km"]
+    if energy >= 0:
+        return f"the orbit is open (e = {o['e']:.3f}): the spacecraft escapes the Moon"
+    if o["ra_km"] > SOI_RADIUS_KM:
+        return (f"apolune {o['ra_km']:.0f} km lies beyond the Moon's sphere of influence "
+                f"({SOI_RADIUS_KM:.0f} km)")
+    if o["rp_km"] < C.R_MOON:
+        return (f"perilune {o['rp_km'] - C.R_MOON:.0f} km below the surface: the spacecraft "
+                "would hit the Moon")
+    return ""
+
+
+def next_perilune(model, t_s: float, x, t_guess_s: float, tol_s: float = 1e-3) -> tuple:
+    """(epoch, state) of the perilune nearest ``t_guess_s`` on the arc from (t_s, x).
+
+    Propagates to the guess, jumps by the osculating mean anomaly, then Newton on
+    r.v = 0 (rate v^2 - mu/r), in the model's dynamics.
+    """
+    t, xx = float(t_s), np.asarray(x, float)[:7]
+    target = float(t_guess_s)
+    xx = propagate(model, t, xx, target).final
+    t = target
+    n, M = mean_motion_and_anomaly(xx)
+    dt = -float(M) / float(n)
+    for _ in range(8):
+        if abs(dt) < tol_s:
+            break
+        xx = propagate(model, t, xx, t + dt).final
+        t += dt
+        r, v = (np.array(a, float) for a in rv_from_mee(*xx[:6], C.MU_MOON))
+        rv = float(r @ v)
+        rate = float(v @ v) - C.MU_MOON / float(np.linalg.norm(r))
+        dt = -rv / rate
+    return t, xx
+
+
+def warm_guess(nominal_raw, prob) -> Guess:
+    """The nominal burn's steering flown from the re-planned problem's ignition: its guess.
+
+    The nominal duration and collocated steering (shifted to the new ignition), the burn
+    and the coast to the problem's end propagated from the problem's initial state: a
+    guess that is the nominal solution where the dispersion is zero.
+    """
+    raw = replace(nominal_raw, prob=replace(nominal_raw.prob, x0=prob.x0, t_ign_s=prob.t_ign_s,
+                                            model=prob.model))
+    flown = fly_with_errors(raw, prob.x0, prob.t_ign_s, BurnErrors(), dense=True)
+    bounds = prob.t_ign_s + raw.t1_s * raw.mesh_burn
+    pieces = [interval_steering(raw, j) for j in range(len(bounds) - 1)]
+
+    def u(t):
+        j = int(np.clip(np.searchsorted(bounds, t, side="right") - 1, 0, len(pieces) - 1))
+        tau = (t - bounds[j]) / (bounds[j + 1] - bounds[j])
+        return pieces[j](flown.burn(t)[:7], tau)
+
+    coast = propagate(prob.model, flown.t_end_s, flown.x_end, prob.t_end_s, dense=True,
+                      rtol=1e-8, atol=1e-10)
+    return Guess(raw.t1_s, u, flown.burn, coast)
+
+
+# ====================================================================== nominal
+_NOMINAL: dict = {}
+
+
+def nominal(plan: CapturePlan, use_cache: bool = True) -> list:
+    """The plan's verified burns (solved in order, :func:`lunarcap.runs.chain.solve_plan`).
+
+    Memoised per process (a worker solves or loads it once for all its samples).
+    """
+    from lunarcap.runs.chain import solve_plan
+
+    key = (plan.key(), use_cache)
+    if key not in _NOMINAL:
+        _NOMINAL[key] = solve_plan(plan, use_cache=use_cache)
+    return _NOMINAL[key]
+
+
+def nominal_totals(plan: CapturePlan, use_cache: bool = True) -> dict:
+    """Nominal delta-V (m/s), propellant (kg) and the two-body impulsive delta-V (m/s)."""
+    sols = nominal(plan, use_cache)
+    return {"nominal_delta_v_mps": float(sum(s.delta_v_mps for s in sols)),
+            "nominal_propellant_kg": float(plan.initial_mass_kg - sols[-1].end_state[6]),
+            "impulsive_two_body_mps": float(sum(b.delta_v_mps for b in plan.impulsive()))}
+
+
+# ====================================================================== one sample
+def _arrival_state(plan: CapturePlan, d_arr) -> tuple:
+    """(epoch, state) of the arrival perilune, dispersed by ``d_arr`` (RTN, km and km/s)."""
+    from lunarcap.runs.chain import perilune_epoch_state
+
+    t0, x0 = perilune_epoch_state(plan, 0)
+    if not np.any(d_arr):
+        return t0, np.array(x0, float)
+    r, v = (np.array(a, float) for a in rv_from_mee(*x0[:6], C.MU_MOON))
+    ir = r / np.linalg.norm(r)
+    i_n = np.cross(r, v)
+    i_n /= np.linalg.norm(i_n)
+    it = np.cross(i_n, ir)
+    Q = np.column_stack([ir, it, i_n])
+    mee = mee_from_rv(r + Q @ d_arr[:3], v + Q @ d_arr[3:6], C.MU_MOON)
+    x = np.array([*np.asarray(mee, float).ravel()[:6], x0[6]])
+    x[5] = x0[5] + math.remainder(x[5] - x0[5], 2 * math.pi)  # keep L's revolution
+    return t0, x
+
+
+def _replan(plan: CapturePlan, i: int, t_p: float, x_p, nom) -> object:
+    """Burn ``i`` (0-based) re-planned from the perilune reached (t_p, x_p): a Solution."""
+    b = plan.burns[i]
+    if plan.formulation == "song2011":
+        first_coast = None   # the plan's timeline: the coast ends at its nominal perilune
+        left = plan.nominal_perilunes_s[i + 1] - t_p
+        if left < 0.5 * plan.coast_s(i):
+            raise Uncorrectable(
+                f"the perilune before burn {i + 1} is reached "
+                f"{(t_p - plan.nominal_perilunes_s[i]) / 60:+.1f} min off the plan's, leaving "
+                f"{left / 60:.1f} min to the epoch where the plan's next orbit must hold "
+                f"(less than half its {plan.coast_s(i) / 60:.1f} min period)")
+    else:
+        first_coast = plan.coast_s(i)   # the orbit asked, one period (or the circle's coast)
+    window = nom.problem.start_bounds_min if b.free_start else (b.start_min, b.start_min)
+    try:
+        rp = plan.resumed(i, t_p, x_p, first_coast_s=first_coast, window_min=window)
+        if not b.free_start:
+            rp = rp.with_start(0, b.start_min)
+    except PlanError as exc:
+        why = str(exc)
+        if "too weak" in why:
+            why = "the engine is too weak for the orbit reached: " + why.split(": ", 2)[-1]
+        raise Uncorrectable(f"the plan's rules refuse a re-plan from the orbit reached ({why})"
+                            ) from None
+    prob = burn_problem(rp, 0, x_p, rp.ephemeris_model())
+    return solve_burn_problem(prob, guess=warm_guess(nom.raw, prob))
+
+
+class Uncorrectable(Exception):
+    """A re-plan that the plan's rules or timeline cannot accept (its message says why)."""
+
+
+def _fail(out: dict, status: str, reason: str) -> dict:
+    out.update(status=status, reason=reason)
+    out["sample_wall_s"] = time.perf_counter() - out.pop("_t0")
+    out["sample_cpu_s"] = time.process_time() - out.pop("_c0")
+    return out
+
+
+def fly_sample(plan: CapturePlan, z, model: ErrorModel, use_cache: bool = True) -> dict:
+    """One sample of the capture with the errors of the draws ``z`` (see the module).
+
+    Returns a dict: status ("ok", "not captured", "correction failed"), reason, the total
+    delta-V flown (m/s) and propellant (kg), per-burn delta-Vs and errors, the final
+    orbit's errors, its wall and CPU time (s; the nominal, solved or loaded once per
+    process, is left out).
+    """
+    noms = nominal(plan, use_cache)
+    t_start, c_start = time.perf_counter(), time.process_time()
+    d_arr, errs = realise(z, model, plan.n_burns)
+    out = {"status": "ok", "reason": "", "burns_flown": 0, "_t0": t_start, "_c0": c_start,
+           "arrival_dr_km": float(np.linalg.norm(d_arr[:3])),
+           "arrival_dv_mps": float(np.linalg.norm(d_arr[3:6])) * 1e3}
+    burns = []
+    t_ref, x_ref = _arrival_state(plan, d_arr)
+    sol = noms[0]
+    for i in range(plan.n_burns):
+        if i > 0:
+            try:
+                sol = _replan(plan, i, t_ref, x_ref, noms[i])
+            except SolveError as exc:
+                status = getattr(exc, "status", "") or "no status"
+                what = ("no burn meets the target from the orbit reached"
+                        if status in INFEASIBLE else "no verified solution")
+                return _fail(out, "correction failed",
+                             f"burn {i + 1} cannot be re-planned: {what} (IPOPT {status} on "
+                             f"the last of {len(exc.details.get('attempts', [])) or 'its'} "
+                             f"meshes)")
+            except Uncorrectable as exc:
+                return _fail(out, "correction failed", f"burn {i + 1} cannot be re-planned: "
+                                                       f"{exc}")
+            except InputError as exc:
+                return _fail(out, "correction failed",
+                             f"burn {i + 1} cannot be re-planned from the orbit reached: {exc}")
+            except RuntimeError as exc:   # a guess propagation that fails (p -> 0)
+                return _fail(out, "correction failed",
+                             f"burn {i + 1}: no trajectory to start the re-plan from ({exc})"
+                             .split("\n")[0])
+        e = errs[i]
+        flown = fly_with_errors(sol.raw, x_ref, t_ref, e)
+        burns.append({"burn": i + 1, "delta_v_mps": flown.delta_v_mps,
+                      "planned_delta_v_mps": sol.delta_v_mps,
+                      "ignition_min": (flown.t_ign_s - t_ref) / 60.0,
+                      "duration_min": sol.raw.t1_s / 60.0,
+                      "thrust_error_pct": 100 * (e.thrust_factor - 1),
+                      "isp_error_pct": 100 * (e.isp_factor - 1),
+                      "pointing_error_deg": math.degrees(math.hypot(*e.tilt_rad)),
+                      "ignition_error_s": e.ignition_s})
+        out["burns_flown"] = i + 1
+        out["propellant_kg"] = float(plan.initial_mass_kg - flown.x_end[6])
+        out["total_delta_v_mps"] = float(sum(b["delta_v_mps"] for b in burns))
+        why = orbit_check(flown.x_end)
+        if why:
+            out["burns_json"] = json.dumps(burns)
+            return _fail(out, "not captured", f"after burn {i + 1}, {why}")
+        model_i = sol.problem.model
+        if i < plan.n_burns - 1:
+            try:
+                t_ref, x_ref = next_perilune(model_i, flown.t_end_s, flown.x_end,
+                                             sol.problem.t_end_s + e.ignition_s)
+            except InputError as exc:   # beyond the burn's ephemeris fit (+-6 h)
+                out["burns_json"] = json.dumps(burns)
+                return _fail(out, "correction failed",
+                             f"the perilune after burn {i + 1} is not found within 6 h of the "
+                             f"plan's ({exc})")
+        else:   # the final orbit, at the end of the plan's last coast
+            x_f = propagate(model_i, flown.t_end_s, flown.x_end, sol.problem.t_end_s).final
+            err = sol.problem.target.errors(x_f[:6])
+            o = orbit_summary(x_f, C.MU_MOON)
+            out.update(final_rp_error_km=err["rp_error_m"] / 1e3,
+                       final_ra_error_km=(err["ra_error_m"] / 1e3
+                                          if err["ra_error_m"] is not None else math.nan),
+                       final_inc_error_deg=err["inc_error_deg"],
+                       final_rp_altitude_km=o["rp_km"] - C.R_MOON,
+                       final_ra_altitude_km=o["ra_km"] - C.R_MOON)
+    out["burns_json"] = json.dumps(burns)
+    out["sample_wall_s"] = time.perf_counter() - out.pop("_t0")
+    out["sample_cpu_s"] = time.process_time() - out.pop("_c0")
+    return out
+
+
+# ====================================================================== the study on Dask
+COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "seed", "sample",
+           "antithetic", "thrust_sigma_pct", "isp_sigma_pct", "pointing_sigma_deg",
+           "ignition_sigma_s", "arrival_sigma_km", "arrival_sigma_mps", "arrival_cov",
+           "status", "reason", "burns_flown", "total_delta_v_mps", "propellant_kg",
+           "nominal_delta_v_mps", "nominal_propellant_kg", "delta_v_above_nominal_mps",
+           "final_rp_error_km", "final_ra_error_km", "final_inc_error_deg",
+           "final_rp_altitude_km", "final_ra_altitude_km", "arrival_dr_km", "arrival_dv_mps",
+           "burns_json", "task_wall_s", "task_cpu_s", "worker", "code_version",
+           "completed_utc", "error")
+KEY = ("plan_id", "seed", "sample", "antithetic", "thrust_sigma_pct", "isp_sigma_pct",
+       "pointing_sigma_deg", "ignition_sigma_s", "arrival_sigma_km", "arrival_sigma_mps",
+       "arrival_cov")
+
+
+def table_format():
+    """The campaign table format of this study."""
+    from lunarcap.runs.campaign import TableFormat
+
+    return TableFormat(KEY, COLUMNS, text_columns=("plan", "plan_id", "dynamics", "reason",
+                                                   "arrival_cov", "burns_json"),
+                       name="dispersions table")
+
+
+def default_table_path():
+    """``<cache>/study/dispersions.csv``."""
+    from lunarcap.repro import paths
+
+    return paths.CACHE / "study" / "dispersions.csv"
+
+
+def sample_row(plan: CapturePlan, seed: int, index: int, model: ErrorModel,
+               antithetic: bool = False, use_cache: bool = True) -> dict:
+    """Dask task: one sample as a row of the table (a failure is a status, not raised)."""
+    from lunarcap.runs import campaign
+
+    def compute():
+        r = fly_sample(plan, sample_draws(seed, index, antithetic), model, use_cache)
+        r.update(nominal_totals(plan, use_cache))
+        if "total_delta_v_mps" in r:
+            r["delta_v_above_nominal_mps"] = r["total_delta_v_mps"] - r["nominal_delta_v_mps"]
+        return r
+
+    r, error = campaign.guarded(compute, use_cache)
+    if error:
+        return error
+    row = {k: v for k, v in r.items() if k in COLUMNS}
+    row["task_wall_s"] = r.get("sample_wall_s")
+    row["task_cpu_s"] = r.get("sample_cpu_s")
+    row["error"] = ""
+    return row
+
+
+def check_samples(samples, seed) -> tuple:
+    """(samples, seed) as integers (samples >= 1, seed >= 0), else InputError."""
+    out = []
+    for opt, v, lo in (("--samples", samples, 1), ("--seed", seed, 0)):
+        try:
+            f = float(v)
+        except (TypeError, ValueError):
+            raise InputError(f"{opt} must be an integer, got {v!r}") from None
+        if isinstance(v, bool) or not math.isfinite(f) or f != int(f) or f < lo:
+            raise InputError(f"{opt} must be an integer >= {lo}, got {v!r}")
+        out.append(int(f))
+    return tuple(out)
+
+
+def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorModel,
+                    out=None, workers=2, scheduler=None, progress: bool = True,
+                    use_cache: bool = True, processes: bool = True, antithetic: bool = False,
+                    first: int = 0, task=None):
+    """Run (or resume) ``samples`` samples (indices ``first``...) of the capture on Dask.
+
+    ``plan`` may be a list of plans: their samples run as one campaign (one cluster).
+    Returns a :class:`lunarcap.runs.campaign.CampaignResult` (one row per sample, in
+    index order, plan by plan). InputError (a bad count, seed or sigma, a plan with more than
+    :data:`MAX_BURNS` burns, an unusable ``out``, an unreachable scheduler) before any
+    sample.
+    """
+    from lunarcap.repro.cache import code_version
+    from lunarcap.runs.burns import plan_id
+    from lunarcap.runs.campaign import run_campaign
+    from lunarcap.runs.study import check_workers
+
+    samples, seed = check_samples(samples, seed)
+    plans = list(plan) if isinstance(plan, (list, tuple)) else [plan]
+    for p in plans:
+        if p.n_burns > MAX_BURNS:
+            raise InputError(f"plan {p.name} has {p.n_burns} burns; the dispersions study "
+                             f"draws errors for at most {MAX_BURNS}")
+        if model.pointing_sigma_deg and any(b.steering != "optimal" for b in p.burns):
+            raise InputError("--pointing-sigma-deg needs every burn's steering optimal (a "
+                             "polynomial per mesh interval to tilt)")
+    workers = check_workers(workers)
+    cases = []
+    for p in plans:   # one campaign: one cluster, whose workers build each NLP shape once
+        base = {"plan": p.name, "plan_id": plan_id(p), "thrust_N": p.engine.thrust_N,
+                "isp_s": p.engine.isp_s, "dynamics": p.dynamics, "seed": seed,
+                "antithetic": bool(antithetic), **model.key()}
+        cases += [(dict(base, sample=k), (p, seed, k, model, bool(antithetic), use_cache))
+                  for k in range(int(first), int(first) + samples)]
+    return run_campaign(cases, task or sample_row, out or default_table_path(),
+                        table_format(), f"{code_version()}:{module_version()}",
+                        workers=workers, scheduler=scheduler, progress=progress,
+                        processes=processes, desc="dispersions", unit="sample",
+                        recompute=not use_cache, ok_statuses=OK_STATUSES,
+                        describe={"study": "dispersions", "seed": seed, "samples": samples,
+                                  "error_model": model.describe()})
+
+
+# ====================================================================== the answer
+def quantile_ci(n: int, q: float, level: float = 0.95) -> tuple:
+    """Ranks (1-based, inclusive) (lo, hi) of order statistics bracketing the q-quantile.
+
+    Distribution-free: P(X_(lo) <= x_q <= X_(hi)) >= ``level`` for any continuous
+    distribution (binomial(n, q) counts of samples below x_q), the interval as nearly
+    symmetric in probability as possible. A rank of 0 or n + 1 means that side is
+    unbounded at this n (too few samples).
+    """
+    from scipy.stats import binom
+
+    a = (1 - level) / 2
+    lo = int(binom.ppf(a, n, q))          # P(B <= lo - 1) <= a
+    hi = int(binom.ppf(1 - a, n, q)) + 1  # P(B >= hi) <= a
+    while lo > 0 and binom.cdf(hi - 1, n, q) - binom.cdf(lo - 1, n, q) < level:
+        lo -= 1
+    while hi <= n and binom.cdf(hi - 1, n, q) - binom.cdf(lo - 1, n, q) < level:
+        hi += 1
+    return max(lo, 0), min(hi, n + 1)
+
+
+def summarise(rows, level: float = 0.95) -> dict:
+    """The planner's answer from a table's rows (a DataFrame or list of dicts).
+
+    Percentiles of the total delta-V and propellant over every sample (a sample not
+    captured, or not corrected, counts as needing more than any captured one: its value
+    is +inf, so failures push the percentiles up rather than vanishing), the 99 % budget
+    above the nominal with its distribution-free confidence interval, the failure
+    probabilities (with a 95 % Clopper-Pearson upper bound) and the failed samples with
+    their reasons, and the final-orbit errors (RMS and max over the captured samples).
+    """
+    import pandas as pd
+    from scipy.stats import beta
+
+    df = pd.DataFrame(rows)
+    n = len(df)
+    ok = df[df.status == "ok"]
+    nom = float(df.nominal_delta_v_mps.dropna().iloc[0]) if \
+        df.nominal_delta_v_mps.notna().any() else math.nan
+    nom_kg = float(df.nominal_propellant_kg.dropna().iloc[0]) if \
+        df.nominal_propellant_kg.notna().any() else math.nan
+    dv = np.sort(np.where(df.status == "ok", df.total_delta_v_mps.astype(float), np.inf))
+    kg = np.sort(np.where(df.status == "ok", df.propellant_kg.astype(float), np.inf))
+    out = {"samples": n, "captured_and_corrected": len(ok),
+           "nominal_delta_v_mps": nom, "nominal_propellant_kg": nom_kg}
+    for q in PERCENTILES:
+        out[f"delta_v_p{q:g}_mps"] = _quantile(dv, q / 100)
+        out[f"propellant_p{q:g}_kg"] = _quantile(kg, q / 100)
+    lo, hi = quantile_ci(n, 0.99, level) if n else (0, 1)
+    out["budget_p99_above_nominal_mps"] = out["delta_v_p99_mps"] - nom
+    out["budget_p99_ci_mps"] = (dv[lo - 1] - nom if lo >= 1 else -math.inf,
+                                dv[hi - 1] - nom if hi <= n else math.inf)
+    out["budget_p99_ci_ranks"] = (lo, hi)
+    out["ci_level"] = level
+    for status, name in (("not captured", "p_not_captured"),
+                         ("correction failed", "p_correction_failed")):
+        k = int((df.status == status).sum())
+        out[name] = k / n if n else math.nan
+        out[name + "_upper95"] = float(beta.ppf(0.95, k + 1, n - k)) if n else math.nan
+    bad = df[df.status != "ok"]
+    out["failures"] = [{"sample": int(r["sample"]), "status": r["status"],
+                        "reason": r["reason"] or r.get("error", "")}
+                       for r in bad.to_dict("records")]
+    for c in ("final_rp_error_km", "final_ra_error_km", "final_inc_error_deg"):
+        v = ok[c].astype(float).dropna().to_numpy()
+        out[c.replace("final_", "final_rms_")] = float(np.sqrt(np.mean(v ** 2))) if v.size \
+            else math.nan
+        out[c.replace("final_", "final_max_abs_")] = float(np.abs(v).max()) if v.size \
+            else math.nan
+    return out
+
+
+def _quantile(sorted_values: np.ndarray, q: float) -> float:
+    """The q-quantile as the order statistic of rank ceil(q n) (inf if that sample failed)."""
+    n = sorted_values.size
+    if n == 0:
+        return math.nan
+    return float(sorted_values[max(1, math.ceil(q * n)) - 1])
+
+
+def convergence(rows, q: float = 0.99) -> "object":
+    """The q-quantile of the delta-V above nominal after the first N samples, N = 1..n.
+
+    A pandas DataFrame (samples, estimate_mps, ci_lo_mps, ci_hi_mps): how the estimate
+    and its distribution-free 95 % interval settle with N, in sample order.
+    """
+    import pandas as pd
+
+    df = pd.DataFrame(rows).sort_values("sample")
+    nom = float(df.nominal_delta_v_mps.dropna().iloc[0])
+    vals = np.where(df.status == "ok", df.total_delta_v_mps.astype(float), np.inf) - nom
+    recs = []
+    for n in range(1, len(vals) + 1):
+        s = np.sort(vals[:n])
+        lo, hi = quantile_ci(n, q)
+        recs.append({"samples": n, "estimate_mps": _quantile(s, q),
+                     "ci_lo_mps": s[lo - 1] if lo >= 1 else -math.inf,
+                     "ci_hi_mps": s[hi - 1] if hi <= n else math.inf})
+    return pd.DataFrame(recs)
+
+
+def settled_after(conv, tol_mps: float = 1.0) -> int | None:
+    """Fewest samples N after which the estimate stays within ``tol_mps`` of its last value."""
+    est = conv.estimate_mps.to_numpy()
+    if not est.size or not np.isfinite(est[-1]):
+        return None
+    off = ~(np.abs(est - est[-1]) <= tol_mps)
+    idx = np.nonzero(off)[0]
+    return int(conv.samples.iloc[idx[-1] + 1]) if idx.size else int(conv.samples.iloc[0])
+
+
+def burns_of(row) -> list:
+    """The per-burn records of a table row (decoded ``burns_json``)."""
+    text = row["burns_json"] if isinstance(row, dict) else row.burns_json
+    return json.loads(text) if isinstance(text, str) and text else []
+
+
+def format_summary(plan: CapturePlan, model: ErrorModel, s: dict, result) -> str:
+    """The CLI's text: the error model, the budget, failures, final orbit, the run."""
+    run = result.run
+    lo, hi = s["budget_p99_ci_mps"]
+    lines = [
+        f"Dispersions of plan {plan.name} ({plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} "
+        f"s, {plan.dynamics} dynamics): {s['samples']} sample(s), closed-loop re-planning "
+        f"after each burn",
+        f"  errors: {model.describe()}",
+        f"  nominal: {s['nominal_delta_v_mps']:.3f} m/s, {s['nominal_propellant_kg']:.3f} kg "
+        f"of propellant",
+        f"  {'percentile':>10} | {'delta-V m/s':>11} {'above nominal':>13} | "
+        f"{'propellant kg':>13}"]
+    for q in PERCENTILES:
+        d = s[f"delta_v_p{q:g}_mps"]
+        lines.append(f"  {q:>9g}% | {d:11.3f} {d - s['nominal_delta_v_mps']:13.3f} | "
+                     f"{s[f'propellant_p{q:g}_kg']:13.3f}")
+    lines.append(f"  99 % budget above nominal: {s['budget_p99_above_nominal_mps']:.3f} m/s, "
+                 f"{100 * s['ci_level']:g} % interval [{lo:.3f}, {hi:.3f}] m/s "
+                 f"(order statistics, distribution-free; inf: too few samples)")
+    lines.append(f"  not captured: {s['p_not_captured']:.4g} (95 % upper bound "
+                 f"{s['p_not_captured_upper95']:.3g}); correction failed: "
+                 f"{s['p_correction_failed']:.4g} (upper bound "
+                 f"{s['p_correction_failed_upper95']:.3g})")
+    for f in s["failures"]:
+        lines.append(f"    sample {f['sample']}: {f['status']}: {f['reason']}")
+    lines.append(f"  final orbit (RMS / max): perilune {s['final_rms_rp_error_km']:.3g} / "
+                 f"{s['final_max_abs_rp_error_km']:.3g} km, apolune "
+                 f"{s['final_rms_ra_error_km']:.3g} / {s['final_max_abs_ra_error_km']:.3g} km, "
+                 f"inclination {s['final_rms_inc_error_deg']:.3g} / "
+                 f"{s['final_max_abs_inc_error_deg']:.3g} deg")
+    lines.append(f"{run['computed']} sample(s) computed, {run['reused']} taken from the table; "
+                 f"wall time {run['wall_s']:.1f} s ({run['scheduler']}, {run['workers']} "
+                 f"worker(s), cache: {run['cache']})")
+    lines.append(f"table: {result.path}")
+    return "\n".join(lines)
