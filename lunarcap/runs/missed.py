@@ -139,7 +139,9 @@ def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_
         # for the orbit it ends on, not for the plan's. The full-dynamics problem has
         # several local optima (from that start alone the 150 N plan's nominal ended on a
         # 23.8 h orbit at 935.8 m/s, 63 m/s above the plan's own 12.235 h orbit, which its
-        # bounds allow): both starts are solved and the cheaper verified optimum kept.
+        # bounds allow): both starts are solved and the cheaper verified optimum kept,
+        # each on every mesh up to the finest (the plan's start passed verification only
+        # there: 869.96 m/s, a 23.8 h orbit, gamma off by 2e-4 deg on the coarser ones).
         two = nominal(plan.with_dynamics("two-body"), burn, max_period_s, version)["plan"]
         starts.append(free_plan.with_coasts([two.coast_s(k) if k == i else None
                                              for k in range(plan.n_burns)]))
@@ -166,7 +168,7 @@ def _nominal_from(free_plan: CapturePlan, i: int, max_period_s: float):
     span = (t[-1] - t[0]) - free_plan.coast_s(i) + hi
     lo = free_plan.coast_s(i + 1) if i + 1 < free_plan.n_burns else MIN_FIRST_COAST_S
     fit = _fit_for(free_plan, t[0], span)
-    return on_meshes(lambda mesh: solve_joint(
+    return on_meshes(meshes=DEFAULT_MESHES, solve=lambda mesh: solve_joint(
         free_plan, None, free_plan.ephemeris_model(), mesh, free_coasts=flags,
         coast_bounds_s=(lo, hi), max_period_s=max_period_s, fit=fit,
         warm=[_remeshed(warm_start(s), s.flight.coast, mesh) for s in seq]))
