@@ -1,9 +1,16 @@
-"""Shared fixtures: the paper's mission window and arrival state.
+"""Shared fixtures: the paper's mission window and arrival state, and a loopback Dask cluster.
 
 The window is the one a capture of the paper's plan spans: from 6 h before the first
 perilune (2017-02-20 03:41:26 TDB) to 6 h after the last (12.235 h + 3.525 h +
 117.848 min later), the margin every burn's ephemeris fit keeps.
 """
+
+import os
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
 
 import pytest
 
@@ -13,6 +20,11 @@ from lunarcap.physics.epochs import seconds_from_calendar
 
 T_ARRIVAL_S = seconds_from_calendar(ARRIVAL_EPOCH_TDB)
 T_LAST_PERILUNE_S = T_ARRIVAL_S + sum(CAPTURE_PERIODS_S)
+
+
+#: The repository and the venv's dask command (the loopback cluster of the Dask tests).
+ROOT = Path(__file__).resolve().parents[1]
+DASK = Path(sys.executable).parent / "dask"
 
 
 @pytest.fixture(scope="session")
@@ -28,3 +40,46 @@ def paper_arrival():
     from lunarcap.mission.arrival import arrival_state
 
     return arrival_state()
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture
+def dask_cluster(tmp_path):
+    """A dask scheduler and one worker on 127.0.0.1 (processes of the shared venv)."""
+    port = _free_port()
+    env = dict(os.environ, PYTHONPATH=str(ROOT), LUNARCAP_NO_CACHE="1")
+    log = open(tmp_path / "dask.log", "w")
+    sched = subprocess.Popen([str(DASK), "scheduler", "--host", "127.0.0.1", "--port",
+                              str(port), "--no-dashboard"], env=env, stdout=log, stderr=log)
+    addr = f"tcp://127.0.0.1:{port}"
+    worker = subprocess.Popen([str(DASK), "worker", addr, "--nworkers", "1",
+                               "--nthreads", "1", "--no-dashboard", "--host", "127.0.0.1"],
+                              env=env, stdout=log, stderr=log)
+    try:
+        from dask.distributed import Client
+
+        deadline = time.monotonic() + 60
+        while True:
+            try:
+                with Client(addr, timeout="5s") as c:
+                    if c.scheduler_info()["workers"]:
+                        break
+            except OSError:
+                pass
+            assert time.monotonic() < deadline, (tmp_path / "dask.log").read_text()
+            time.sleep(0.5)
+        yield addr
+    finally:
+        for p in (worker, sched):
+            p.terminate()
+        for p in (worker, sched):
+            try:
+                p.wait(10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+        log.close()

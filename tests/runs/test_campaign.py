@@ -9,10 +9,7 @@
 """
 
 import os
-import socket
-import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -22,8 +19,6 @@ from lunarcap.errors import InputError
 from lunarcap.mission.plan import load_plan
 from lunarcap.runs import burns, campaign, missed, study
 
-ROOT = Path(__file__).resolve().parents[2]
-BIN = Path(sys.executable).parent
 
 
 def _bad_paths(tmp_path):
@@ -46,49 +41,6 @@ def test_unwritable_table_paths_are_input_errors_before_any_work(tmp_path):
             study.run_study(study.StudySpec(100, 200, 2, (250,), "two-body"), out=bad,
                             task=never, progress=False)
     assert campaign.check_output_path(tmp_path / "new" / "t.csv") == tmp_path / "new" / "t.csv"
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-@pytest.fixture
-def dask_cluster(tmp_path):
-    """A dask scheduler and one worker on 127.0.0.1 (processes of the shared venv)."""
-    port = _free_port()
-    env = dict(os.environ, PYTHONPATH=str(ROOT), LUNARCAP_NO_CACHE="1")
-    log = open(tmp_path / "dask.log", "w")
-    sched = subprocess.Popen([str(BIN / "dask"), "scheduler", "--host", "127.0.0.1", "--port",
-                              str(port), "--no-dashboard"], env=env, stdout=log, stderr=log)
-    addr = f"tcp://127.0.0.1:{port}"
-    worker = subprocess.Popen([str(BIN / "dask"), "worker", addr, "--nworkers", "1",
-                               "--nthreads", "1", "--no-dashboard", "--host", "127.0.0.1"],
-                              env=env, stdout=log, stderr=log)
-    try:
-        from dask.distributed import Client
-
-        deadline = time.monotonic() + 60
-        while True:
-            try:
-                with Client(addr, timeout="5s") as c:
-                    if c.scheduler_info()["workers"]:
-                        break
-            except OSError:
-                pass
-            assert time.monotonic() < deadline, (tmp_path / "dask.log").read_text()
-            time.sleep(0.5)
-        yield addr
-    finally:
-        for p in (worker, sched):
-            p.terminate()
-        for p in (worker, sched):
-            try:
-                p.wait(10)
-            except subprocess.TimeoutExpired:
-                p.kill()
-        log.close()
 
 
 NUMBERS_BURNS = ["total_delta_v_mps", "total_impulsive_delta_v_mps", "fuel_kg",

@@ -200,60 +200,6 @@ def test_a_weak_first_burn_with_no_second_burn_meeting_the_timeline(plan):
 
 
 # ---------------------------------------------------------------------- a real cluster
-def _free_port() -> int:
-    import socket
-
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-@pytest.fixture
-def dask_cluster(tmp_path):
-    """A dask scheduler and one worker on 127.0.0.1 (processes of this venv's commands)."""
-    import os
-    import subprocess
-    import sys
-    import time
-    from pathlib import Path
-
-    root = Path(__file__).resolve().parents[2]
-    bin_ = Path(sys.executable).parent
-    port = _free_port()
-    env = dict(os.environ, PYTHONPATH=str(root), LUNARCAP_NO_CACHE="1")
-    log = open(tmp_path / "dask.log", "w")
-    sched = subprocess.Popen([str(bin_ / "dask"), "scheduler", "--host", "127.0.0.1",
-                              "--port", str(port), "--no-dashboard"], env=env, stdout=log,
-                             stderr=log)
-    addr = f"tcp://127.0.0.1:{port}"
-    worker = subprocess.Popen([str(bin_ / "dask"), "worker", addr, "--nworkers", "1",
-                               "--nthreads", "1", "--no-dashboard", "--host", "127.0.0.1"],
-                              env=env, stdout=log, stderr=log)
-    try:
-        from dask.distributed import Client
-
-        deadline = time.monotonic() + 60
-        while True:
-            try:
-                with Client(addr, timeout="5s") as c:
-                    if c.scheduler_info()["workers"]:
-                        break
-            except OSError:
-                pass
-            assert time.monotonic() < deadline, (tmp_path / "dask.log").read_text()
-            time.sleep(0.5)
-        yield addr
-    finally:
-        for p in (worker, sched):
-            p.terminate()
-        for p in (worker, sched):
-            try:
-                p.wait(10)
-            except subprocess.TimeoutExpired:
-                p.kill()
-        log.close()
-
-
 @pytest.mark.slow
 def test_distributed_scheduler_gives_the_local_numbers_bit_for_bit(plan, dask_cluster,
                                                                    tmp_path, monkeypatch):
