@@ -9,7 +9,6 @@
 """
 
 import os
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -18,7 +17,6 @@ import pytest
 from lunarcap.errors import InputError
 from lunarcap.mission.plan import load_plan
 from lunarcap.runs import burns, campaign, missed, study
-
 
 
 def _bad_paths(tmp_path):
