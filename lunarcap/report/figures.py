@@ -923,7 +923,7 @@ def plot_exported_trajectory(arcs, r_moon_km: float):
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = plt.subplots(1, 2, figsize=(9.6, 4.8), layout="constrained")
+    fig, axes = plt.subplots(1, 2, figsize=(FIG_WIDTH_IN, 3.8), layout="constrained")
     burn_labelled = False
     for (i, j), ax in zip(((0, 1), (0, 2)), axes):
         _moon(ax, r_moon_km, label=False)

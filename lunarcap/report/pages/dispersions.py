@@ -27,11 +27,11 @@ NOTEBOOK = "notebooks/dispersions.ipynb"
 DEFAULT_SIGMAS = {"thrust_sigma_pct": 1.0, "isp_sigma_pct": 0.5, "pointing_sigma_deg": 0.3,
                   "ignition_sigma_s": 1.0, "arrival_sigma_km": 1.0, "arrival_sigma_mps": 1.0}
 
+#: Shown on the page (fits the 688 px column at 1280 px; make screenshots measured the
+#: full set 349 px too wide): propellant, final-orbit errors and timings stay in the CSV.
 BUDGET_SHOWN = ["engine", "samples", "nominal_delta_v_mps", "impulsive_two_body_mps",
-                "delta_v_p50_mps", "delta_v_p90_mps", "delta_v_p99_mps",
-                "budget_p99_above_nominal_mps", "ci_lo_mps", "ci_hi_mps",
-                "propellant_p99_kg", "p_failure", "final_rms_rp_error_km",
-                "final_rms_inc_error_deg", "median_sample_s", "median_sample_cpu_s"]
+                "delta_v_p50_mps", "delta_v_p99_mps", "budget_p99_above_nominal_mps",
+                "ci_lo_mps", "p_failure"]
 BUDGET_HEADS = {"engine": "engine", "samples": "samples",
                 "nominal_delta_v_mps": "nominal ΔV (m/s)",
                 "impulsive_two_body_mps": "impulsive ΔV, two-body (m/s)",
