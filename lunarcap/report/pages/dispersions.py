@@ -170,10 +170,10 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
         f"engine, seed {seed}, {p.dynamics} dynamics): the nominal finite-burn ΔV (the plan "
         f"solved burn by burn), the two-body impulsive ΔV of the same capture, percentiles "
         f"of the ΔV flown (a failed sample counts as infinite), the 99 % budget above the "
-        f"nominal with its distribution-free 95 % interval from order statistics (inf: too "
-        f"few samples to bound it), the 99 % propellant, the probability that a sample is "
-        f"not captured or not corrected, the final orbit's RMS errors and the median wall "
-        f"and CPU time of one sample (wall time is noisy on a shared machine)."),
+        f"nominal with the low end of its distribution-free 95 % interval from order "
+        f"statistics (the high end is infinite with fewer than 299 samples), and the "
+        f"probability that a sample is not captured or not corrected. The 99 % propellant, "
+        f"the final orbit's RMS errors and the time per sample are in the CSV."),
         show_columns=BUDGET_SHOWN, columns=BUDGET_HEADS,
         floatfmt={c: ".2f" for c in BUDGET_SHOWN} | {"final_rms_inc_error_deg": ".4f",
                                                      "p_failure": ".3f",

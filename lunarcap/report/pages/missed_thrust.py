@@ -20,9 +20,11 @@ from lunarcap.runs import missed
 
 NOTEBOOK = "notebooks/missed_thrust.ipynb"
 
-CASE_SHOWN = ["fraction", "delay_min", "cutoff_orbit", "cutoff_ra_km",  # e: in the CSV
-              "partial_delta_v_mps", "recovery_delta_v_mps", "penalty_mps",
-              "make_up_delta_v_mps", "make_up_period_h", "status", "reason"]  # time: CSV
+#: Shown (the rest in the CSV: e at cut-off, the partial burn's ΔV, the make-up orbit's
+#: period, the time to the final orbit): with them the column broke words ("esca pe").
+CASE_SHOWN = ["fraction", "delay_min", "cutoff_orbit", "cutoff_ra_km",
+              "recovery_delta_v_mps", "penalty_mps", "make_up_delta_v_mps", "status",
+              "reason"]
 
 
 def recovery_rows(table: pd.DataFrame) -> pd.DataFrame:
@@ -142,10 +144,9 @@ def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75
         alt="Penalty map of a missed capture burn")
     page.table("cases", t, caption=(
         "Every cut-off: the orbit at cut-off (escape: hyperbola; captured: apolune inside the "
-        "Moon's sphere of influence), ΔV of the partial burn and of the recovery, penalty "
-        "(m/s), the make-up burn's ΔV and its orbit's period (h), the time from the "
-        "arrival perilune to the end of the last burn (h), and why a case has no "
-        "recovery."),
+        "Moon's sphere of influence), ΔV of the recovery, penalty (m/s), the make-up "
+        "burn's ΔV (m/s), and why a case has no recovery (the partial burn's ΔV, the "
+        "make-up orbit's period and the time to the final orbit are in the CSV)."),
         show_columns=CASE_SHOWN,
         floatfmt={"fraction": ".2f", "delay_min": ".0f", "cutoff_ra_km": ".0f"},  # else .3f
         columns={"cutoff_orbit": "orbit at cut-off",
@@ -184,7 +185,9 @@ def _values(page: Page, p, burn: int, t: pd.DataFrame, late: pd.DataFrame, run: 
     page.value("n_escape", int((t.cutoff_orbit == "escape").sum()))
     page.value("wall_s", float(run["wall_s"]))
     page.value("max_penalty_mps", float(ok.penalty_mps.max()) if len(ok) else np.nan)
-    page.value("min_penalty_mps", float(ok.penalty_mps.min()) if len(ok) else np.nan)
+    # + 0.0: a penalty of -0.0003 m/s is shown as 0.00, not -0.00
+    page.value("min_penalty_mps", round(float(ok.penalty_mps.min()), 2) + 0.0 if len(ok)
+               else np.nan)
     page.value("n_failed", int((~t.status.isin(["recovered", "no recovery"])).sum()))
     page.note("reading", reading(t, max_period_h))
     page.note("late_reading", late_reading(late))
