@@ -76,6 +76,33 @@ def reading(table: pd.DataFrame) -> str:
     return "\n\n".join(f"* {x}" for x in out)
 
 
+#: How finely the impulsive limit's delta-V is resolved along its flat objective, m/s
+#: (:func:`lunarcap.runs.chain._impulsive_limit`: near-equal optima a few seconds apart
+#: differ by ~0.2 m/s in delta-V and ~0.003 m/s in the objective).
+IMPULSIVE_DV_RESOLUTION_MPS = 0.2
+
+
+def negative_losses(rows: pd.DataFrame) -> str:
+    """A sentence on per-burn delta-V losses below zero, or "" if there is none.
+
+    A finite burn cannot beat an impulse from the same orbit; a per-burn delta-V loss
+    below zero but within the impulsive limit's resolution is that resolution, not a
+    gain; one beyond it would be a defect (said so).
+    """
+    neg = rows[rows.loss_mps < 0] if "loss_mps" in rows else rows.iloc[:0]
+    if neg.empty:
+        return ""
+    worst = float(neg.loss_mps.min())
+    within = worst > -IMPULSIVE_DV_RESOLUTION_MPS
+    return (f"{len(neg)} burn(s) show a ΔV loss below zero (down to {worst:.3f} m/s): "
+            + ("within the ~0.2 m/s to which the impulsive limit's ΔV is resolved along "
+               "its nearly flat objective (near-equal optima a few seconds apart), so not a "
+               "gain over an impulse; the totals, where these differences cancel, are the "
+               "quantities to compare." if within else
+               "beyond the impulsive limit's resolution (~0.2 m/s): treat these rows as "
+               "suspect."))
+
+
 def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5burn"),
           counts=(1, 2, 3, 4, 5), max_period_h: float = burns.DEFAULT_MAX_PERIOD_H,
           max_days: float = burns.DEFAULT_MAX_DAYS, dynamics: str | None = None,
@@ -139,7 +166,8 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
         page.value("last_step_gain_mps", float(-steps[-1]))
         page.expect("the loss falls as burns are added (reference plan)", bool(np.all(steps < 0)),
                     f"losses {list(np.round(ok.total_loss_mps, 3))}")
-    page.note("reading", reading(table))
+    negative = negative_losses(burn_rows(table))
+    page.note("reading", reading(table) + (f"\n\n* {negative}" if negative else ""))
     bugs = table[~table.status.isin(["ok", "infeasible", "failed"])]
     page.expect("no count ended in an unexpected error (failures are reported, not hidden)",
                 bugs.empty, "; ".join(bugs.error.astype(str)))

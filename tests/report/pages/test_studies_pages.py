@@ -30,6 +30,14 @@ def test_burn_rows_decode_every_burn_and_reading_names_infeasible_counts():
     assert "-20.00 m/s" in text and "P: N = 1: infeasible (burn 1 too long)" in text
 
 
+def test_negative_per_burn_losses_are_explained_or_flagged():
+    rows = pd.DataFrame({"loss_mps": [0.3, -0.057, 2.0]})
+    text = burn_count.negative_losses(rows)
+    assert "1 burn(s)" in text and "-0.057" in text and "not a gain" in text
+    assert "suspect" in burn_count.negative_losses(pd.DataFrame({"loss_mps": [-0.5]}))
+    assert burn_count.negative_losses(pd.DataFrame({"loss_mps": [0.1, 2.0]})) == ""
+
+
 def test_missed_reading_counts_recoveries_per_delay_and_signs_penalties():
     def case(f, d, status, penalty, orbit="captured", period=24.0, reason=""):
         return {"contingency": "cut-off", "fraction": f, "delay_min": d, "late_min": 0.0,
