@@ -201,28 +201,8 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     lbx, ubx, lbg, ubg = lay.bounds()
     params = {"x_start": warm[0][0].x_ref, "t_ref": plan.nominal_perilunes_s}
     if any(free):
-        lo, hi = coast_bounds_s if coast_bounds_s is not None else (0.0, np.inf)
-        for k in range(plan.n_burns):
-            if free[k]:
-                c = plan.coast_s(k)
-                if orbit[k] and not asked[k]:   # from the perilune the warm start reached
-                    seq = warm[k][0]
-                    c = seq.t_end_s - seq.t_ref_s
-                    w = END_WINDOW_FRACTION * plan.targets[k].period_s()
-                    lo_k, hi_k = c - w, c + w
-                else:
-                    lo_k, hi_k = lo, hi
-                lay.put(w0, f"leg{k}.coast", c / TU)
-                lay.put(lbx, f"leg{k}.coast", lo_k / TU)
-                lay.put(ubx, f"leg{k}.coast", hi_k / TU)
-        if max_time_s is not None:
-            ubg[lay.rows("time_limit")] = max_time_s / TU
-        if period_rows:  # E <= -mu / (2 a_max), a_max from Kepler's third law, VU^2
-            a_max = (max_period_s / (2 * np.pi * TU)) ** (2.0 / 3.0)
-            rows = np.flatnonzero(lay.rows("energy_limit"))   # one per free leg, in order
-            for row, k in zip(rows, [k for k in range(plan.n_burns) if free[k]]):
-                if asked[k]:
-                    ubg[row] = -1.0 / (2 * a_max)
+        _free_coast_bounds(plan, lay, warm, asked, orbit, (w0, lbx, ubx, ubg),
+                           coast_bounds_s, max_time_s, max_period_s if period_rows else None)
     meshes = []
     for k, (prob, guess, mc) in enumerate(warm):
         if fit is not None and prob.model.fit is not None:
@@ -253,11 +233,58 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     t_ref = [plan.nominal_perilunes_s[0]]   # the perilunes reached
     for k in range(plan.n_burns):
         t_ref.append(t_ref[k] + (coasts[k] if coasts[k] is not None else plan.coast_s(k)))
+    legs = _verified_legs(plan, lay, w, warm, meshes, mesh, S, eph, fit, t_ref,
+                          (stats, solve_s, nlp.compiled.build_s))
+    return JointResult(legs, stats["return_status"], int(stats["iter_count"]), solve_s, plan)
+
+
+def _free_coast_bounds(plan: CapturePlan, lay, warm: list, asked: tuple, orbit: tuple,
+                       vectors: tuple, coast_bounds_s, max_time_s, max_period_s) -> None:
+    """Initial values and bounds of the free coasts, the time limit and the period rows.
+
+    ``vectors``: (w0, lbx, ubx, ubg), written in place. A coast the caller freed takes
+    ``coast_bounds_s``; an ellipse as asked starts from the perilune its warm start reached,
+    within :data:`lunarcap.optim.problem.END_WINDOW_FRACTION` of its period.
+    ``max_period_s`` (or None) bounds the energy of each caller-freed leg's orbit.
+    """
+    w0, lbx, ubx, ubg = vectors
+    lo, hi = coast_bounds_s if coast_bounds_s is not None else (0.0, np.inf)
+    free = [k for k in range(plan.n_burns) if asked[k] or orbit[k]]
+    for k in free:
+        c = plan.coast_s(k)
+        if orbit[k] and not asked[k]:   # from the perilune the warm start reached
+            seq = warm[k][0]
+            c = seq.t_end_s - seq.t_ref_s
+            w = END_WINDOW_FRACTION * plan.targets[k].period_s()
+            lo_k, hi_k = c - w, c + w
+        else:
+            lo_k, hi_k = lo, hi
+        lay.put(w0, f"leg{k}.coast", c / TU)
+        lay.put(lbx, f"leg{k}.coast", lo_k / TU)
+        lay.put(ubx, f"leg{k}.coast", hi_k / TU)
+    if max_time_s is not None:
+        ubg[lay.rows("time_limit")] = max_time_s / TU
+    if max_period_s is not None:  # E <= -mu / (2 a_max), a_max from Kepler's third law, VU^2
+        a_max = (max_period_s / (2 * np.pi * TU)) ** (2.0 / 3.0)
+        rows = np.flatnonzero(lay.rows("energy_limit"))   # one per free leg, in order
+        for row, k in zip(rows, free):
+            if asked[k]:
+                ubg[row] = -1.0 / (2 * a_max)
+
+
+def _verified_legs(plan: CapturePlan, lay, w, warm: list, meshes: list, mesh: Mesh, S,
+                   eph, fit, t_ref: list, run: tuple) -> list:
+    """Each leg of the joint optimum verified by re-propagation, in order (Solutions).
+
+    Leg k is the fixed-ignition problem from the previous leg's verified end state at the
+    perilune reached ``t_ref[k]``, its coast ending at ``t_ref[k + 1]``. ``run``: (IPOPT
+    stats, solve time s, build time s). SolveError if a leg fails verification.
+    """
+    stats, solve_s, build_s = run
     legs, x_peri = [], warm[0][0].x_ref
     for k, (prob0, guess, _) in enumerate(warm):
         pre = f"leg{k}."
         t_ign = t_ref[k] + float(lay.get(w, pre + "ts")[0]) * TU
-        # the leg as a fixed-ignition problem from the previous leg's verified end state
         prob = burn_problem(plan, k, x_peri, eph, start_min=(t_ign - t_ref[k]) / 60.0,
                             fit=fit if fit is not None else prob0.model.fit,
                             t_perilune_s=t_ref[k], t_end_s=t_ref[k + 1])
@@ -270,7 +297,7 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         raw = RawSolution(mesh=mesh, mesh_burn=mb, mesh_coast=mc, objective_kmps=J_leg,
                           status=stats["return_status"], success=True,
                           iterations=int(stats["iter_count"]), solve_s=solve_s,
-                          build_s=nlp.compiled.build_s, max_defect=float("nan"), **fixed)
+                          build_s=build_s, max_defect=float("nan"), **fixed)
         ver, flight = verify(raw, return_flight=True)
         if not ver.passed:
             raise SolveError(f"all-burns NLP of plan {plan.name!r}: leg {k + 1} failed "
@@ -278,5 +305,4 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
                              status="verification failed", details=ver.to_dict())
         legs.append(Solution(raw, ver, flight, [], solve_s, guess.t1_s))
         x_peri = flight.end_state
-    return JointResult(legs, stats["return_status"], int(stats["iter_count"]), solve_s, plan)
-
+    return legs
