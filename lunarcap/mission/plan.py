@@ -93,6 +93,7 @@ from lunarcap.mission.impulsive import (
 )
 from lunarcap.mission.targets import CIRCULAR, ELLIPSE, PERILUNE, Target, check_inclination
 from lunarcap.physics import constants as C
+from lunarcap.physics.elements import semi_major_axis_from_period
 from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 from lunarcap.physics.frames import DEFAULT_LUNAR_POLE, LUNAR_POLES
@@ -461,7 +462,7 @@ class CapturePlan:
             return Target(PERILUNE, rp, inc)
         if b.apolune_altitude_km is not None:
             return Target(ELLIPSE, rp, inc, C.R_MOON + b.apolune_altitude_km)
-        a = (C.MU_MOON * (b.period_s / (2 * math.pi)) ** 2) ** (1.0 / 3.0)
+        a = float(semi_major_axis_from_period(b.period_s, C.MU_MOON))
         return Target(ELLIPSE, rp, inc, 2 * a - rp)
 
     def coast_s(self, i: int) -> float:

@@ -21,6 +21,7 @@ from lunarcap.optim.nlp import solve_nlp
 from lunarcap.optim.problem import BurnProblem
 from lunarcap.optim.solution import Solution
 from lunarcap.optim.verify import verify
+from lunarcap.physics.elements import period
 
 
 def solve_burn(prob: BurnProblem, meshes=DEFAULT_MESHES, guess=None, progress=None) -> Solution:
@@ -71,11 +72,9 @@ def widened(prob: BurnProblem) -> BurnProblem | None:
         return None
     lo, hi = prob.start_bounds_min
     x = prob.x_ref
-    e2 = x[1] ** 2 + x[2] ** 2
     lim = 120.0
-    if e2 < 1:
-        a = x[0] / (1 - e2)
-        lim = min(lim, 0.4 * 2 * np.pi * np.sqrt(a ** 3 / prob.model.mu) / 60.0)
+    if np.hypot(x[1], x[2]) < 1:   # the orbit the burn starts on: 0.4 of its period at most
+        lim = min(lim, 0.4 * float(period(x[0], x[1], x[2], prob.model.mu)) / 60.0)
     new = (max(3.0 * lo, -lim), min(2.0 * hi, lim))
     if not (new[0] < lo or new[1] > hi):
         return None
