@@ -36,6 +36,15 @@ STEERING_LAWS = ("optimal", "inertial", "antivelocity")
 FIT_MARGIN_S = 6 * 3600.0
 
 
+#: Delta-V (m/s) whose burn duration is the least upper bound of any burn's duration.
+#: Three times Eq. (19) bounds the burns of the paper, whose impulses are 245-353 m/s. A
+#: small burn on a long orbit is not bounded by its two-body impulse: from 12.446 to
+#: 12.182 h at 38.2 deg (2.6 m/s two-body) the Earth lowers the next perilune by 11.8 km
+#: and turns the plane by 0.22 deg, and meeting the orbit asked costs 11.3 m/s in full
+#: dynamics. Bounded at 3 x 2.6 m/s, IPOPT reported the problem infeasible on every mesh.
+MIN_BOUND_DELTA_V_MPS = 30.0
+
+
 @dataclass
 class BurnProblem:
     """One burn: initial state, engine and dynamics, epochs, target, steering.
@@ -135,10 +144,17 @@ class BurnProblem:
 
     @property
     def burn_bounds_s(self) -> tuple:
-        """(lower, upper) bounds of the burn duration, s (Eq. 10)."""
+        """(lower, upper) bounds of the burn duration, s (Eq. 10).
+
+        The upper bound is three times Eq. (19), and never below the duration of
+        :data:`MIN_BOUND_DELTA_V_MPS`: a burn whose two-body impulse is a few m/s must
+        also undo what the Earth and the Sun do to the next perilune over its orbit.
+        """
         t19 = self.eq19_duration_s
         span = self.t_end_s + (self.end_window_s[0] if self.free_end else 0.0) - self.t_ign_s
-        hi = self.t1_max_s or min(3.0 * t19, 0.9 * span)
+        floor = burn_duration_estimate_s(self.x0[6], MIN_BOUND_DELTA_V_MPS,
+                                         self.model.thrust_N, self.model.isp_s)
+        hi = self.t1_max_s or min(max(3.0 * t19, floor), 0.9 * span)
         lo = min(1.0, 0.5 * t19) if self.t1_min_s is None else self.t1_min_s
         return lo, hi
 

@@ -153,3 +153,28 @@ def test_every_generated_plan_accepted_at_load_solves_and_meets_its_targets():
         assert abs(inc - plan.arrival.inclination_deg) < 1e-4, plan.name
         expected_ra = target.apolune_radius_km if not target.circular else target.radius_km
         assert abs(ra - expected_ra) < 0.1, plan.name
+
+
+def test_a_small_burn_that_must_also_turn_the_plane_is_not_bounded_by_its_impulse():
+    # Family-9 of the full-dynamics family (seed 77): burn 3, 12.446 -> 12.182 h at 584 N,
+    # starts from the perilune the Earth left 11.8 km low and 0.215 deg off the asked plane.
+    # The same geometry in two-body: from that perilune state to the orbit asked (the
+    # two-body impulse, 2.6 m/s, only changes the period). Bounded by 3 x Eq. (19) the
+    # burn could give 7.9 m/s and IPOPT reported the problem infeasible on every mesh.
+    from lunarcap.optim.problem import burn_problem
+    from lunarcap.optim.solve import solve_burn
+    from lunarcap.physics.elements import mee_from_coe
+    plan = plan_of([{"target_period_h": 12.446, "start_min": "free"},
+                    {"target_period_h": 12.182, "start_min": "free"}],
+                   inclination=38.2, thrust=584.0, mass=1000.0)
+    x = np.array([*mee_from_coe(6293.208, 0.7097802, math.radians(38.415143), -0.1423593,
+                                2.4489780, 0.0), 923.25])
+    t_peri = plan.nominal_perilunes_s[1]
+    prob = burn_problem(plan, 1, x, plan.ephemeris_model(), t_perilune_s=t_peri)
+    sol = solve_burn(prob)
+    assert sol.verification.passed
+    rp, _, period_s, inc = osculating(sol.end_state)
+    assert abs(rp - (C.R_MOON + 100)) < 0.01 and abs(inc - 38.2) < 1e-4
+    assert abs(period_s - 12.182 * 3600) < 1.0
+    # more than three times the two-body impulse: what the old bound cut off
+    assert sol.verification.delta_v_mps > 3 * prob.dv_impulsive_mps
