@@ -5,8 +5,8 @@ import math
 import pandas as pd
 import pytest
 
-from lunarcap.runs import study
 from lunarcap.report.pages import trade_study as ts
+from lunarcap.runs import study
 
 
 def _ok():
