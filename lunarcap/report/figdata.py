@@ -313,6 +313,114 @@ def _wrap180(a):
     return (np.asarray(a, float) + 180.0) % 360.0 - 180.0
 
 
+def _hyperbola_arc(basis, arrival, p1, hyperbola_hours: float) -> DrawnArc:
+    """The arrival hyperbola, propagated backward from the arrival perilune, to ignition 1."""
+    model = p1.model
+    t_peri = float(arrival.epoch_s)
+    # arrival hyperbola: backward from the arrival perilune, drawn up to LOI-1 ignition
+    t_start = t_peri - 3600.0 * float(hyperbola_hours)
+    if not t_start < p1.t_ign_s:
+        raise ValueError("hyperbola_hours must reach back before the first ignition")
+    x_peri = np.asarray(arrival.state, float)
+    t_back = np.linspace(p1.t_ign_s, t_start, 1500)
+    if p1.t_ign_s < t_peri:
+        tr = propagate(model, t_peri, x_peri, t_start, u=None, t_eval=t_back)
+        t_h, x_h = tr.t[::-1], tr.x[:, ::-1]
+    else:  # ignition at or after the arrival perilune
+        tr = propagate(model, t_peri, x_peri, t_start, u=None,
+                       t_eval=np.linspace(t_peri, t_start, 1500))
+        fw = propagate(model, t_peri, x_peri, p1.t_ign_s, u=None,
+                       t_eval=np.linspace(t_peri, p1.t_ign_s, 200)[1:])
+        t_h = np.concatenate([tr.t[::-1], fw.t])
+        x_h = np.column_stack([tr.x[:, ::-1], fw.x])
+    return _make_arc(basis, "hyperbola", 0, "arrival hyperbola", t_h, x_h)
+
+
+def _burn_and_coast_arcs(basis, sols: list, n_burn: int, n_coast: int) -> list:
+    """Each burn's arc and the coast after it, up to the next ignition (or the last end)."""
+    arcs = []
+    coasts_end = [s.problem.t_ign_s for s in sols[1:]] + [sols[-1].problem.t_end_s]
+    for i, sol in enumerate(sols):
+        prob = sol.problem
+        k = prob.index
+        hist = sol.history(n_burn=n_burn, n_coast=2)
+        b = hist[hist.phase == "burn"]
+        xb = b[["p_km", "f", "g", "h", "k", "L_rad", "m_kg"]].to_numpy().T
+        arcs.append(_make_arc(basis, "burn", k, f"burn {k}", b.t_s.to_numpy(), xb))
+        t_cut = float(b.t_s.iloc[-1])
+        tc = _dense_grid(t_cut, coasts_end[i], n_coast)
+        arcs.append(_make_arc(basis, "coast", k, orbit_name(prob), tc, sol.flight.coast(tc)))
+    return arcs
+
+
+def _extra_arcs(basis, sols: list, arrival, final_revolutions: float,
+                uncaptured_hours: float) -> list:
+    """One more revolution of a final circle, and the hyperbola flown on without burn 1."""
+    arcs = []
+    last, p1 = sols[-1], sols[0].problem
+    if final_revolutions > 0 and last.problem.target.circular:
+        t0 = last.problem.t_end_s
+        t1 = t0 + final_revolutions * (t0 - last.problem.t_perilune_s)
+        tf = np.linspace(t0, t1, max(int(600 * final_revolutions), 50))
+        tr = propagate(last.problem.model, t0, last.end_state, t1, u=None, t_eval=tf)
+        arcs.append(_make_arc(basis, "final", last.problem.index,
+                              "final orbit, one more revolution", tr.t, tr.x))
+    if uncaptured_hours and uncaptured_hours > 0:
+        t1 = float(arrival.epoch_s) + 3600.0 * float(uncaptured_hours)
+        tu = np.linspace(p1.t_ign_s, t1, 1500)
+        tr = propagate(p1.model, p1.t_ign_s, p1.x0, t1, u=None, t_eval=tu)
+        arcs.append(_make_arc(basis, "uncaptured", 0, "arrival hyperbola without burn 1",
+                              tr.t, tr.x))
+    return arcs
+
+
+def flown_perilune(t_s, r_km, xy, t_nominal_s: float, window_s: float) -> tuple:
+    """The flown point of least radius within ``window_s`` of a nominal perilune epoch.
+
+    ``t_s`` (n,), ``r_km`` (3, n) and ``xy`` (2, n, the drawing plane) sample the flight.
+    Returns its epoch (s), radius (km) and polar angle in the drawing plane (deg).
+    """
+    near = np.abs(t_s - t_nominal_s) <= window_s
+    rad = np.linalg.norm(r_km[:, near], axis=0)
+    j = int(np.argmin(rad))
+    ang = float(np.degrees(np.arctan2(xy[1, near][j], xy[0, near][j])))
+    return float(t_s[near][j]), float(rad[j]), ang
+
+
+def _burn_rows(arcs: list, sols: list, perilune_window_s: float):
+    """One row per burn: timing, the flown perilune, angles and radii of the burn arc."""
+    import pandas as pd
+
+    flown = [a for a in arcs if a.kind != "uncaptured"]
+    t_all = np.concatenate([a.t_s for a in flown])
+    r_all = np.concatenate([a.r_km for a in flown], axis=1)
+    xy_all = np.concatenate([a.xy_LU for a in flown], axis=1)
+    rows = []
+    for sol in sols:
+        prob = sol.problem
+        burn = [a for a in arcs if a.kind == "burn" and a.burn == prob.index][0]
+        t_p, r_p, ang_p = flown_perilune(t_all, r_all, xy_all, prob.t_perilune_s,
+                                         perilune_window_s)
+        ang = burn.angle_deg
+        rows.append({
+            "burn": prob.index, "ignition_s": float(burn.t_s[0]), "cutoff_s": float(burn.t_s[-1]),
+            "burn_duration_min": float(burn.t_s[-1] - burn.t_s[0]) / 60.0,
+            "ignition_from_nominal_perilune_min": (burn.t_s[0] - prob.t_perilune_s) / 60.0,
+            "perilune_from_ignition_min": (t_p - burn.t_s[0]) / 60.0,
+            "perilune_radius_km": r_p,
+            "perilune_angle_deg": ang_p,
+            "ignition_angle_deg": float(ang[0]), "cutoff_angle_deg": float(ang[-1]),
+            "ignition_from_perilune_deg": float(_wrap180(ang[0] - ang_p)),
+            "cutoff_from_perilune_deg": float(_wrap180(ang[-1] - ang_p)),
+            "ignition_radius_km": float(burn.radius_km[0]),
+            "cutoff_radius_km": float(burn.radius_km[-1]),
+            "min_radius_km": float(burn.radius_km.min()),
+        })
+    burns = pd.DataFrame(rows)
+    burns["arc_asymmetry_deg"] = burns.cutoff_from_perilune_deg + burns.ignition_from_perilune_deg
+    return burns
+
+
 def capture_geometry(solutions, arrival, hyperbola_hours: float = 3.0,
                      uncaptured_hours: float | None = None, n_coast: int = 3000,
                      n_burn: int = 241, final_revolutions: float = 1.0,
@@ -345,90 +453,15 @@ def capture_geometry(solutions, arrival, hyperbola_hours: float = 3.0,
     -------
     CaptureGeometry
     """
-    import pandas as pd
-
     sols = list(solutions)
     if not sols or [s.problem.index for s in sols] != list(range(1, len(sols) + 1)):
         raise ValueError("solutions must be a plan's burns 1, 2, ... in order")
     basis = orbit_plane_basis(arrival.r_km, arrival.v_kmps)
-    arcs = []
-    p1 = sols[0].problem
-    model = p1.model
-    t_peri = float(arrival.epoch_s)
-    # arrival hyperbola: backward from the arrival perilune, drawn up to LOI-1 ignition
-    t_start = t_peri - 3600.0 * float(hyperbola_hours)
-    if not t_start < p1.t_ign_s:
-        raise ValueError("hyperbola_hours must reach back before the first ignition")
-    x_peri = np.asarray(arrival.state, float)
-    t_back = np.linspace(p1.t_ign_s, t_start, 1500)
-    if p1.t_ign_s < t_peri:
-        tr = propagate(model, t_peri, x_peri, t_start, u=None, t_eval=t_back)
-        t_h, x_h = tr.t[::-1], tr.x[:, ::-1]
-    else:  # ignition at or after the arrival perilune
-        tr = propagate(model, t_peri, x_peri, t_start, u=None,
-                       t_eval=np.linspace(t_peri, t_start, 1500))
-        fw = propagate(model, t_peri, x_peri, p1.t_ign_s, u=None,
-                       t_eval=np.linspace(t_peri, p1.t_ign_s, 200)[1:])
-        t_h = np.concatenate([tr.t[::-1], fw.t])
-        x_h = np.column_stack([tr.x[:, ::-1], fw.x])
-    arcs.append(_make_arc(basis, "hyperbola", 0, "arrival hyperbola", t_h, x_h))
-    # burns and coasts
-    coasts_end = [s.problem.t_ign_s for s in sols[1:]] + [sols[-1].problem.t_end_s]
-    rows = []
-    for i, sol in enumerate(sols):
-        prob = sol.problem
-        k = prob.index
-        hist = sol.history(n_burn=n_burn, n_coast=2)
-        b = hist[hist.phase == "burn"]
-        xb = b[["p_km", "f", "g", "h", "k", "L_rad", "m_kg"]].to_numpy().T
-        arcs.append(_make_arc(basis, "burn", k, f"burn {k}", b.t_s.to_numpy(), xb))
-        t_cut = float(b.t_s.iloc[-1])
-        tc = _dense_grid(t_cut, coasts_end[i], n_coast)
-        arcs.append(_make_arc(basis, "coast", k, orbit_name(prob), tc, sol.flight.coast(tc)))
-    last = sols[-1]
-    if final_revolutions > 0 and last.problem.target.circular:
-        t0 = last.problem.t_end_s
-        t1 = t0 + final_revolutions * (t0 - last.problem.t_perilune_s)
-        tf = np.linspace(t0, t1, max(int(600 * final_revolutions), 50))
-        tr = propagate(last.problem.model, t0, last.end_state, t1, u=None, t_eval=tf)
-        arcs.append(_make_arc(basis, "final", last.problem.index,
-                              "final orbit, one more revolution", tr.t, tr.x))
     hu = hyperbola_hours if uncaptured_hours is None else uncaptured_hours
-    if hu and hu > 0:
-        t1 = t_peri + 3600.0 * float(hu)
-        tu = np.linspace(p1.t_ign_s, t1, 1500)
-        tr = propagate(model, p1.t_ign_s, p1.x0, t1, u=None, t_eval=tu)
-        arcs.append(_make_arc(basis, "uncaptured", 0, "arrival hyperbola without burn 1",
-                              tr.t, tr.x))
-    flown = [a for a in arcs if a.kind != "uncaptured"]
-    t_all = np.concatenate([a.t_s for a in flown])
-    r_all = np.concatenate([a.r_km for a in flown], axis=1)
-    xy_all = np.concatenate([a.xy_LU for a in flown], axis=1)
-    for sol in sols:
-        prob = sol.problem
-        burn = [a for a in arcs if a.kind == "burn" and a.burn == prob.index][0]
-        near = np.abs(t_all - prob.t_perilune_s) <= perilune_window_s
-        rad = np.linalg.norm(r_all[:, near], axis=0)
-        j = int(np.argmin(rad))
-        t_p = float(t_all[near][j])
-        ang_p = float(np.degrees(np.arctan2(xy_all[1, near][j], xy_all[0, near][j])))
-        ang = burn.angle_deg
-        rows.append({
-            "burn": prob.index, "ignition_s": float(burn.t_s[0]), "cutoff_s": float(burn.t_s[-1]),
-            "burn_duration_min": float(burn.t_s[-1] - burn.t_s[0]) / 60.0,
-            "ignition_from_nominal_perilune_min": (burn.t_s[0] - prob.t_perilune_s) / 60.0,
-            "perilune_from_ignition_min": (t_p - burn.t_s[0]) / 60.0,
-            "perilune_radius_km": float(rad[j]),
-            "perilune_angle_deg": ang_p,
-            "ignition_angle_deg": float(ang[0]), "cutoff_angle_deg": float(ang[-1]),
-            "ignition_from_perilune_deg": float(_wrap180(ang[0] - ang_p)),
-            "cutoff_from_perilune_deg": float(_wrap180(ang[-1] - ang_p)),
-            "ignition_radius_km": float(burn.radius_km[0]),
-            "cutoff_radius_km": float(burn.radius_km[-1]),
-            "min_radius_km": float(burn.radius_km.min()),
-        })
-    burns = pd.DataFrame(rows)
-    burns["arc_asymmetry_deg"] = burns.cutoff_from_perilune_deg + burns.ignition_from_perilune_deg
+    arcs = ([_hyperbola_arc(basis, arrival, sols[0].problem, hyperbola_hours)]
+            + _burn_and_coast_arcs(basis, sols, n_burn, n_coast)
+            + _extra_arcs(basis, sols, arrival, final_revolutions, hu))
+    burns = _burn_rows(arcs, sols, perilune_window_s)
     return CaptureGeometry(basis, arcs, burns, float(hyperbola_hours))
 
 

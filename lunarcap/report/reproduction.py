@@ -125,34 +125,12 @@ def paper_chain_rows(summaries) -> list[dict]:
     return out
 
 
-def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
-                      best_starts: dict | None = None, fig4=None,
-                      audit_values: dict | None = None) -> dict:
-    """Our number equivalent to each number of the paper's prose, where one exists.
+def _key(thrust_N: float) -> str:
+    return f"{int(thrust_N)}N"
 
-    Parameters
-    ----------
-    chains : dict
-        ``{thrust_N: [row_1, row_2, row_3]}``: the best chain of each engine (the paper's
-        best ignition offsets), :meth:`Solution.summary` dicts with the paper's losses
-        and Eq. (19) set by :func:`paper_chain_rows`.
-    impulsive_final_mass_kg : dict, optional
-        ``{thrust_N: kg}``: mass after our impulsive sequence (same arrival mass and Isp).
-    best_starts : dict, optional
-        ``{(thrust_N, loi): min}``: our best ignition offset among the paper's.
-    fig4 : Fig4Steering, optional
-        The 150 N LOI-1 steering (:func:`fig4_steering`).
-    audit_values : dict, optional
-        ``{finding id: computed value}`` from :func:`lunarcap.paper.audit.audit_findings`
-        (used for the two-body period of the 100 km orbit).
 
-    Returns
-    -------
-    dict
-        ``{quote name: (value, note)}`` in the quote's unit; names missing have no
-        equivalent (or were not computed in this run).
-    """
-    from lunarcap.paper import printed as P
+def _input_equivalents(audit_values: dict | None) -> dict:
+    """The paper's inputs, which we take as given (periods, constants, engines)."""
     out: dict = {}
     per = C.CAPTURE_PERIODS_S
     inp = "input (the paper's value)"
@@ -183,76 +161,126 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
         out[n] = (np.nan, "no equivalent number: the same bounds are used (lunarcap.optim.nlp), "
                           "with |u| = 1 imposed")
 
-    def key(t):
-        return f"{int(t)}N"
+    return out
 
-    totals_pct = {}
+
+def _chain_equivalents(t: float, s: list, impulsive_final_mass_kg: dict | None) -> dict:
+    """Our equivalents of the totals and per-burn numbers of one engine's best chain."""
+    from lunarcap.paper import printed as P
+    out: dict = {}
+    k = _key(t)
     m0 = C.ARRIVAL_MASS_KG
     imp_total = float(sum(P.PAPER_IMPULSIVE_DV_MPS))
-    fuel_fin = {}
+    loss = [x["loss_mps"] for x in s]
+    pct = [x["loss_percent"] for x in s]
+    dur = [x["burn_duration_min"] for x in s]
+    total_pct = 100.0 * sum(loss) / imp_total
+    mean_pct = float(np.mean(pct))
+    fin = m0 - s[2]["m_end_kg"]
+    pct_note = (f"total loss / total impulsive delta-V; the mean of our per-burn "
+                f"percentages (the paper's way) is {mean_pct:.2f} %")
+    for n in (f"loss_total_{k}_mps", f"loss_total_{k}_mps_recalled"):
+        out[n] = (float(sum(loss)), "sum of the three losses vs the paper's impulsive "
+                                    "delta-Vs")
+    for n in (f"loss_total_{k}_percent", f"loss_total_{k}_percent_recalled",
+              f"conclusion_loss_{k}_percent"):
+        out[n] = (total_pct, pct_note)
+    for n in (f"burn_total_{k}_min",):
+        out[n] = (float(sum(dur)), "sum of the three burn durations")
+    for n in (f"fuel_finite_{k}_kg", f"fuel_finite_{k}_about_kg"):
+        out[n] = (fin, "arrival mass minus our mass after LOI 3")
+    out[f"mass_final_{k}_kg"] = (s[2]["m_end_kg"], "mass after LOI 3")
+    if impulsive_final_mass_kg and t in impulsive_final_mass_kg:
+        imp = m0 - impulsive_final_mass_kg[t]
+        out[f"fuel_impulsive_{k}_kg"] = (imp, "two-body impulsive sequence from the "
+                                              "arrival mass (rocket equation)")
+        out[f"fuel_difference_{k}_kg"] = (fin - imp, "finite minus impulsive propellant")
+        out[f"fuel_difference_{k}_percent"] = (100.0 * (fin - imp) / imp,
+                                               "100 (finite - impulsive) / impulsive")
+    for n in (1, 2, 3):
+        x = s[n - 1]
+        out[f"loss_loi{n}_{k}_mps"] = (x["loss_mps"], "vs the paper's impulsive delta-V")
+        out[f"loss_loi{n}_{k}_percent"] = (x["loss_percent"],
+                                           "vs the paper's impulsive delta-V")
+        out[f"loss_pct_loi{n}_{k}_summary"] = (x["loss_percent"],
+                                               "vs the paper's impulsive delta-V")
+        for nm in (f"burn_loi{n}_{k}_min", f"burn_loi{n}_{k}_summary_min",
+                   f"burn_loi{n}_{k}_about_min"):
+            out[nm] = (x["burn_duration_min"], "burn duration")
+        out[f"mass_after_loi{n}_{k}_kg"] = (x["m_end_kg"], f"mass after LOI {n}")
+        out[f"fuel_loi{n}_{k}_about_kg"] = (x["fuel_kg"], f"propellant of LOI {n}")
+        if x.get("eq19_duration_min") is not None:
+            e19 = float(x["eq19_duration_min"])
+            out[f"eq19_loi{n}_{k}_min"] = (e19, "Eq. (19) (corrected 19a) with the "
+                                                "paper's impulsive delta-V and our "
+                                                "ignition mass")
+            out[f"eq19_half_loi{n}_{k}_min"] = (e19 / 2.0, "half of our Eq. (19) estimate")
+    if t == 150.0:
+        out.update(_chain_150N_equivalents(s))
+    return out
+
+
+def _chain_150N_equivalents(s: list) -> dict:
+    """The numbers the paper quotes for its 150 N chain only (Fig. 4, the final orbit)."""
+    out: dict = {}
+    fin = C.ARRIVAL_MASS_KG - s[2]["m_end_kg"]
+    dur = [x["burn_duration_min"] for x in s]
+    out["fuel_150N_recalled_kg"] = (fin, "arrival mass minus our mass after LOI 3")
+    out["fig4_burn_loi1_150N_min"] = (dur[0], "LOI 1 burn duration")
+    out["fig4_mass_end_kg"] = (s[2]["m_end_kg"],
+                               f"our mass after LOI 3; Fig. 4 shows LOI 1 only, "
+                               f"which ends at {s[0]['m_end_kg']:.3f} kg")
+    alt = s[2]["rp_end_km"] - C.R_MOON
+    for n in ("abstract_final_altitude_km", "final_altitude_km"):
+        out[n] = (alt, "perilune altitude reached by LOI 3 (150 N), verified")
+    for n in ("abstract_final_inclination_deg", "final_inclination_deg"):
+        out[n] = (s[2]["inc_end_deg"], "inclination reached by LOI 3 (150 N)")
+    return out
+
+
+def chain_totals_percent(s: list) -> float:
+    """Total loss of a chain over the paper's total impulsive delta-V, %."""
+    from lunarcap.paper import printed as P
+    return 100.0 * sum(x["loss_mps"] for x in s) / float(sum(P.PAPER_IMPULSIVE_DV_MPS))
+
+
+def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
+                      best_starts: dict | None = None, fig4=None,
+                      audit_values: dict | None = None) -> dict:
+    """Our number equivalent to each number of the paper's prose, where one exists.
+
+    Parameters
+    ----------
+    chains : dict
+        ``{thrust_N: [row_1, row_2, row_3]}``: the best chain of each engine (the paper's
+        best ignition offsets), :meth:`Solution.summary` dicts with the paper's losses
+        and Eq. (19) set by :func:`paper_chain_rows`.
+    impulsive_final_mass_kg : dict, optional
+        ``{thrust_N: kg}``: mass after our impulsive sequence (same arrival mass and Isp).
+    best_starts : dict, optional
+        ``{(thrust_N, loi): min}``: our best ignition offset among the paper's.
+    fig4 : Fig4Steering, optional
+        The 150 N LOI-1 steering (:func:`fig4_steering`).
+    audit_values : dict, optional
+        ``{finding id: computed value}`` from :func:`lunarcap.paper.audit.audit_findings`
+        (used for the two-body period of the 100 km orbit).
+
+    Returns
+    -------
+    dict
+        ``{quote name: (value, note)}`` in the quote's unit; names missing have no
+        equivalent (or were not computed in this run).
+    """
+    from lunarcap.paper import printed as P
+    out = _input_equivalents(audit_values)
+    totals_pct, fuel_fin = {}, {}
     for t, chain in chains.items():
-        t = float(t)
-        k = key(t)
-        s = list(chain)
+        t, s = float(t), list(chain)
         if len(s) != 3:
             continue
-        loss = [x["loss_mps"] for x in s]
-        pct = [x["loss_percent"] for x in s]
-        dur = [x["burn_duration_min"] for x in s]
-        total_pct = 100.0 * sum(loss) / imp_total
-        totals_pct[t] = total_pct
-        mean_pct = float(np.mean(pct))
-        fin = m0 - s[2]["m_end_kg"]
-        fuel_fin[t] = fin
-        pct_note = (f"total loss / total impulsive delta-V; the mean of our per-burn "
-                    f"percentages (the paper's way) is {mean_pct:.2f} %")
-        for n in (f"loss_total_{k}_mps", f"loss_total_{k}_mps_recalled"):
-            out[n] = (float(sum(loss)), "sum of the three losses vs the paper's impulsive "
-                                        "delta-Vs")
-        for n in (f"loss_total_{k}_percent", f"loss_total_{k}_percent_recalled",
-                  f"conclusion_loss_{k}_percent"):
-            out[n] = (total_pct, pct_note)
-        for n in (f"burn_total_{k}_min",):
-            out[n] = (float(sum(dur)), "sum of the three burn durations")
-        for n in (f"fuel_finite_{k}_kg", f"fuel_finite_{k}_about_kg"):
-            out[n] = (fin, "arrival mass minus our mass after LOI 3")
-        out[f"mass_final_{k}_kg"] = (s[2]["m_end_kg"], "mass after LOI 3")
-        if impulsive_final_mass_kg and t in impulsive_final_mass_kg:
-            imp = m0 - impulsive_final_mass_kg[t]
-            out[f"fuel_impulsive_{k}_kg"] = (imp, "two-body impulsive sequence from the "
-                                                  "arrival mass (rocket equation)")
-            out[f"fuel_difference_{k}_kg"] = (fin - imp, "finite minus impulsive propellant")
-            out[f"fuel_difference_{k}_percent"] = (100.0 * (fin - imp) / imp,
-                                                   "100 (finite - impulsive) / impulsive")
-        for n in (1, 2, 3):
-            x = s[n - 1]
-            out[f"loss_loi{n}_{k}_mps"] = (x["loss_mps"], "vs the paper's impulsive delta-V")
-            out[f"loss_loi{n}_{k}_percent"] = (x["loss_percent"],
-                                               "vs the paper's impulsive delta-V")
-            out[f"loss_pct_loi{n}_{k}_summary"] = (x["loss_percent"],
-                                                   "vs the paper's impulsive delta-V")
-            for nm in (f"burn_loi{n}_{k}_min", f"burn_loi{n}_{k}_summary_min",
-                       f"burn_loi{n}_{k}_about_min"):
-                out[nm] = (x["burn_duration_min"], "burn duration")
-            out[f"mass_after_loi{n}_{k}_kg"] = (x["m_end_kg"], f"mass after LOI {n}")
-            out[f"fuel_loi{n}_{k}_about_kg"] = (x["fuel_kg"], f"propellant of LOI {n}")
-            if x.get("eq19_duration_min") is not None:
-                e19 = float(x["eq19_duration_min"])
-                out[f"eq19_loi{n}_{k}_min"] = (e19, "Eq. (19) (corrected 19a) with the "
-                                                    "paper's impulsive delta-V and our "
-                                                    "ignition mass")
-                out[f"eq19_half_loi{n}_{k}_min"] = (e19 / 2.0, "half of our Eq. (19) estimate")
-        if t == 150.0:
-            out["fuel_150N_recalled_kg"] = (fin, "arrival mass minus our mass after LOI 3")
-            out["fig4_burn_loi1_150N_min"] = (dur[0], "LOI 1 burn duration")
-            out["fig4_mass_end_kg"] = (s[2]["m_end_kg"],
-                                       f"our mass after LOI 3; Fig. 4 shows LOI 1 only, "
-                                       f"which ends at {s[0]['m_end_kg']:.3f} kg")
-            alt = s[2]["rp_end_km"] - C.R_MOON
-            for n in ("abstract_final_altitude_km", "final_altitude_km"):
-                out[n] = (alt, "perilune altitude reached by LOI 3 (150 N), verified")
-            for n in ("abstract_final_inclination_deg", "final_inclination_deg"):
-                out[n] = (s[2]["inc_end_deg"], "inclination reached by LOI 3 (150 N)")
+        totals_pct[t] = chain_totals_percent(s)
+        fuel_fin[t] = C.ARRIVAL_MASS_KG - s[2]["m_end_kg"]
+        out.update(_chain_equivalents(t, s, impulsive_final_mass_kg))
     if 150.0 in fuel_fin and 300.0 in fuel_fin:
         out["fuel_saving_300N_vs_150N_kg"] = (fuel_fin[150.0] - fuel_fin[300.0],
                                               "propellant of 150 N minus 300 N")
@@ -262,7 +290,7 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
             out[n] = (totals_pct[tmax], f"largest total loss ({tmax:g} N), total loss / total "
                                         "impulsive delta-V")
     for (t, loi), start in (best_starts or {}).items():
-        name = f"best_start_loi{loi}_{key(t)}_min"
+        name = f"best_start_loi{loi}_{_key(t)}_min"
         if name in P.QUOTES:
             sign = -1.0 if P.QUOTES[name].value > 0 else 1.0  # printed as minutes before
             out[name] = (sign * float(start), "our best of the paper's ignition offsets")

@@ -292,36 +292,45 @@ def solutions(result) -> list:
     return [b.solution for b in result.burns]
 
 
-# ---------------------------------------------------------------------- the page
-def build(plan="lro-like-5burn", dynamics: str | None = None,
-          output_name: str = "capture_plan", quick: bool = False) -> Page:
-    """The page of one capture plan (see the module docstring).
+def prose_values(n_burns: int, burns: pd.DataFrame, tot: dict) -> dict:
+    """The numbers the prose quotes, from :func:`burn_table` and :func:`totals_of`."""
+    return {"n_burns": n_burns, "total_delta_v_mps": tot["total_delta_v_mps"],
+            "total_impulsive_mps": tot["total_impulsive_delta_v_mps"],
+            "total_loss_mps": tot["total_loss_mps"],
+            "total_loss_percent": tot["total_loss_percent"],
+            "total_fuel_kg": tot["total_fuel_kg"], "final_mass_kg": tot["final_mass_kg"],
+            "total_burn_min": tot["total_burn_duration_min"],
+            "time_to_final_orbit_h": tot["time_to_final_orbit_h"],
+            "final_rp_alt_km": tot["final_rp_altitude_km"],
+            "final_ra_alt_km": tot["final_ra_altitude_km"],
+            "largest_loss_burn": int(burns.burn[burns.loss_mps.idxmax()]),
+            "largest_loss_mps": float(burns.loss_mps.max()),
+            "largest_loss_share_percent": 100 * float(burns.loss_mps.max())
+            / tot["total_loss_mps"],
+            "n_verified": int(burns.verification_passed.sum()),
+            "max_rp_error_m": float(burns.verification_rp_error_m.abs().max())}
 
-    Parameters
-    ----------
-    plan : str or CapturePlan
-        A packaged plan's name, a YAML file, or a plan.
-    dynamics : str, optional
-        None for the plan's own dynamics, else an override ("two-body" for quick runs).
-    output_name : str
-        Prefix of the CSV and figure files.
-    quick : bool
-        Set by quick (CI) runs; named in the provenance block.
-    """
-    p, yaml_text = _load(plan)
-    name, own = p.name, p.dynamics
-    if dynamics is not None and dynamics != p.dynamics:
-        p = p.with_dynamics(dynamics)
-    params = dict(plan=plan if isinstance(plan, str) else name, dynamics=dynamics)
-    page = Page(NOTEBOOK, params, output_name, quick, solver_description(**{
-        "impulsive limit": "4 s and 2 s burns, Richardson-extrapolated"}))
-    res = plan_result(p)
-    burns = burn_table(res)
-    tot = totals_of(res)
-    a, e = p.arrival, p.engine
-    case = (f"plan {name}: {e.thrust_N:g} N / Isp {e.isp_s:g} s, {a.mass_kg:,g} kg at "
-            f"arrival, {p.dynamics} dynamics")
 
+def negative_loss_note(burns: pd.DataFrame) -> str:
+    """MyST note on the burns whose ΔV loss is negative (or that every loss is positive)."""
+    neg = burns[burns.loss_mps < 0]
+    if not len(neg):
+        return "Every burn's loss is positive."
+    items = ", ".join(f"burn {r.burn}: {r.loss_mps:+.3f} m/s, but "
+                      f"{r.objective_loss_mps:+.3f} m/s in the objective"
+                      for r in neg.itertuples())
+    return (
+        f"**A negative loss** ({items}). The impulsive reference minimises the same "
+        "objective as the finite burn (ΔV plus the perilune speed it leaves, Eq. 9), "
+        "which is nearly flat along the epoch of the impulse: optima a few seconds "
+        "apart trade ~0.1–0.2 m/s of ΔV against the perilune speed, so the ΔV loss of a "
+        "short burn is uncertain by that much (`lunarcap.runs.chain.impulsive_limit`); "
+        "the loss in the objective and the chain's total are the well-conditioned "
+        "numbers.")
+
+
+def _add_plan(page: Page, p: CapturePlan, own: str, yaml_text, case: str) -> None:
+    a = p.arrival
     # ---- the plan
     text = yaml_text if yaml_text is not None else p.to_yaml()
     over = ("" if p.dynamics == own else
@@ -347,6 +356,9 @@ def build(plan="lro-like-5burn", dynamics: str | None = None,
         show_columns=["burn", "target", "period", "apolune_altitude_km", "ignition",
                       "two_body_delta_v_mps", "eq19_duration_min"])
 
+
+
+def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str) -> None:
     # ---- each burn
     page.table(
         "burns", burns,
@@ -379,7 +391,9 @@ def build(plan="lro-like-5burn", dynamics: str | None = None,
         floatfmt={"end_position_m": ".3f", "rp_error_mm": "+.3f", "ra_error_mm": "+.3f",
                   "inc_error_deg": "+.6f", "gamma_error_deg": "+.6f"})
 
-    # ---- totals and the figure
+
+
+def _add_totals(page: Page, p: CapturePlan, res, tot: dict, case: str) -> None:
     page.table(
         "totals", totals_table(tot),
         caption=(f"Totals of {case}. The impulsive total is the sum of each burn's impulsive "
@@ -398,44 +412,15 @@ def build(plan="lro-like-5burn", dynamics: str | None = None,
                  "perilune; dotted: flown on without the first burn), the finite burn arcs "
                  "(thick), the orbit each burn reaches, and one more revolution of the final "
                  "orbit."),
-        alt=f"The capture of plan {name} in the orbit plane", name="capture")
+        alt=f"The capture of plan {p.name} in the orbit plane", name="capture")
 
-    # ---- numbers for the prose
-    values = {"n_burns": p.n_burns, "total_delta_v_mps": tot["total_delta_v_mps"],
-              "total_impulsive_mps": tot["total_impulsive_delta_v_mps"],
-              "total_loss_mps": tot["total_loss_mps"],
-              "total_loss_percent": tot["total_loss_percent"],
-              "total_fuel_kg": tot["total_fuel_kg"], "final_mass_kg": tot["final_mass_kg"],
-              "total_burn_min": tot["total_burn_duration_min"],
-              "time_to_final_orbit_h": tot["time_to_final_orbit_h"],
-              "final_rp_alt_km": tot["final_rp_altitude_km"],
-              "final_ra_alt_km": tot["final_ra_altitude_km"],
-              "largest_loss_burn": int(burns.burn[burns.loss_mps.idxmax()]),
-              "largest_loss_mps": float(burns.loss_mps.max()),
-              "largest_loss_share_percent": 100 * float(burns.loss_mps.max())
-              / tot["total_loss_mps"],
-              "n_verified": int(burns.verification_passed.sum()),
-              "max_rp_error_m": float(burns.verification_rp_error_m.abs().max())}
-    neg = burns[burns.loss_mps < 0]
-    if len(neg):
-        items = ", ".join(f"burn {r.burn}: {r.loss_mps:+.3f} m/s, but "
-                          f"{r.objective_loss_mps:+.3f} m/s in the objective"
-                          for r in neg.itertuples())
-        burn_note = (
-            f"**A negative loss** ({items}). The impulsive reference minimises the same "
-            "objective as the finite burn (ΔV plus the perilune speed it leaves, Eq. 9), "
-            "which is nearly flat along the epoch of the impulse: optima a few seconds "
-            "apart trade ~0.1–0.2 m/s of ΔV against the perilune speed, so the ΔV loss of a "
-            "short burn is uncertain by that much (`lunarcap.runs.chain.impulsive_limit`); "
-            "the loss in the objective and the chain's total are the well-conditioned "
-            "numbers.")
-    else:
-        burn_note = "Every burn's loss is positive."
-    page.note("burn_notes", burn_note)
 
-    # ---- the comparison
+
+def _add_comparison(page: Page, p: CapturePlan, burns: pd.DataFrame, tot: dict,
+                    case: str) -> dict:
+    """The LRO or paper comparison table, if any; its values, its reading as a note."""
     vals = {}
-    if name == LRO["plan"]:
+    if p.name == LRO["plan"]:
         table, vals, reading = lro_comparison(p, burns, tot)
         page.table(
             "comparison", table, name="published",
@@ -468,12 +453,11 @@ def build(plan="lro-like-5burn", dynamics: str | None = None,
     else:
         reading = ("Nothing to set this plan beside: it is neither the LRO-like plan nor a "
                    "variant of the paper's capture from the paper's arrival.")
-    values.update(vals)
     page.note("comparison", reading)
-    for k, v in values.items():
-        page.value(k, float(v))
+    return vals
 
-    # ---- headline checks: the book build fails if these fail
+
+def _add_checks(page: Page, p: CapturePlan, burns: pd.DataFrame, tot: dict) -> None:
     page.expect("every burn passes the verification gate",
                 bool(burns.verification_passed.all()),
                 str(burns.burn[~burns.verification_passed].tolist()))
@@ -486,5 +470,45 @@ def build(plan="lro-like-5burn", dynamics: str | None = None,
                     abs(tot["final_rp_km"] - rp) < FINAL_ORBIT_TOL_KM
                     and abs(tot["final_ra_km"] - rp) < FINAL_ORBIT_TOL_KM,
                     f"{tot['final_rp_km']:.4f} x {tot['final_ra_km']:.4f} km")
+
+
+# ---------------------------------------------------------------------- the page
+def build(plan="lro-like-5burn", dynamics: str | None = None,
+          output_name: str = "capture_plan", quick: bool = False) -> Page:
+    """The page of one capture plan (see the module docstring).
+
+    Parameters
+    ----------
+    plan : str or CapturePlan
+        A packaged plan's name, a YAML file, or a plan.
+    dynamics : str, optional
+        None for the plan's own dynamics, else an override ("two-body" for quick runs).
+    output_name : str
+        Prefix of the CSV and figure files.
+    quick : bool
+        Set by quick (CI) runs; named in the provenance block.
+    """
+    p, yaml_text = _load(plan)
+    name, own = p.name, p.dynamics
+    if dynamics is not None and dynamics != p.dynamics:
+        p = p.with_dynamics(dynamics)
+    params = dict(plan=plan if isinstance(plan, str) else name, dynamics=dynamics)
+    page = Page(NOTEBOOK, params, output_name, quick, solver_description(**{
+        "impulsive limit": "4 s and 2 s burns, Richardson-extrapolated"}))
+    res = plan_result(p)
+    burns = burn_table(res)
+    tot = totals_of(res)
+    a, e = p.arrival, p.engine
+    case = (f"plan {name}: {e.thrust_N:g} N / Isp {e.isp_s:g} s, {a.mass_kg:,g} kg at "
+            f"arrival, {p.dynamics} dynamics")
+    _add_plan(page, p, own, yaml_text, case)
+    _add_burn_tables(page, burns, case)
+    _add_totals(page, p, res, tot, case)
+    values = prose_values(p.n_burns, burns, tot)
+    page.note("burn_notes", negative_loss_note(burns))
+    values.update(_add_comparison(page, p, burns, tot, case))
+    for k, v in values.items():
+        page.value(k, float(v))
+    _add_checks(page, p, burns, tot)
     page.data.update(result=res, plan=p, totals=tot)
     return page

@@ -135,32 +135,32 @@ def _grid_text(thrust_N: float, burn: int) -> str:
     return f"{step} ({', '.join(f'{s:g}' for s in starts)} min)"
 
 
-def notes(gain: pd.DataFrame, chain: pd.DataFrame, legs: dict, rule: pd.DataFrame) -> dict:
-    """The MyST paragraphs the prose includes, written from the data."""
-    out = {}
-    g = gain.dropna(subset=["objective_gain_mps"])
-    # --- the largest gain in J
+def _largest_gain_note(g: pd.DataFrame) -> str:
+    """Where the paper's grid missed the free optimum by most, in J."""
     if len(g):
         top = g.loc[g.objective_gain_mps.idxmax()]
         rest = g.drop(index=top.name)
         others = (f" Everywhere else the best grid point was within "
                   f"{rest.objective_gain_mps.max():.3f} m/s of the optimum in J."
                   if len(rest) else "")
-        out["largest_gain"] = (
+        return (
             f"The largest is {top.engine}, burn {top.burn:.0f} (LOI {top.burn:.0f}), where the "
             f"paper's grid {_grid_text(top.thrust_N, int(top.burn))} around an optimum at "
             f"{top.free_start_min:.2f} min: the best grid point, {top.grid_start_min:g} min, "
             f"costs {top.objective_gain_mps:.2f} m/s in J and {top.delta_v_gain_mps:.2f} m/s "
             f"in ΔV.{others}")
     else:
-        out["largest_gain"] = "No engine of the paper was run: there is no grid to compare with."
-    # --- where the free optimum spends more delta-V than the grid point
+        return "No engine of the paper was run: there is no grid to compare with."
+
+
+def _dv_excess_note(g: pd.DataFrame) -> str:
+    """Rows where the free optimum spends more ΔV than the grid point, and why."""
     neg = g[g.delta_v_gain_mps < 0]
     if len(neg):
         items = [f"{r.delta_v_gain_mps * -1:.3f} m/s for {r.engine}, burn {r.burn:.0f}"
                  for r in neg.itertuples()]
         listed = items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
-        out["dv_excess"] = (
+        return (
             f"The ΔV alone can be *higher* at the free optimum than at a grid point: by "
             f"{listed} (the negative ΔV gains in the table). This is not a solver failure. "
             "The optimiser minimises J, not ΔV, and J is nearly flat along the ignition time: "
@@ -170,11 +170,14 @@ def notes(gain: pd.DataFrame, chain: pd.DataFrame, legs: dict, rule: pd.DataFram
             f"the optimum: close enough to spend up to {-neg.delta_v_gain_mps.min():.3f} m/s "
             "less ΔV while ending slightly faster, which the next burn has to remove.")
     elif len(g):
-        out["dv_excess"] = ("The free optimum also spends no more ΔV than the best grid point "
-                            "in any row.")
+        return ("The free optimum also spends no more ΔV than the best grid point "
+                "in any row.")
     else:
-        out["dv_excess"] = ""
-    # --- the whole chain
+        return ""
+
+
+def _chain_note(gain: pd.DataFrame, chain: pd.DataFrame, legs: dict) -> str:
+    """What the free chain saves over the paper's best grid chain."""
     c = chain.dropna(subset=["delta_v_gain_mps"])
     if len(c):
         names = [e.split(" /")[0] for e in c.engine]
@@ -197,18 +200,21 @@ def notes(gain: pd.DataFrame, chain: pd.DataFrame, legs: dict, rule: pd.DataFram
                      f"chain, burn {k} at the paper's best offset "
                      f"({PAPER_BEST_STARTS_MIN[t][k - 1]:g} min) spends {d[k - 1]:.2f} m/s "
                      f"more than the free chain's burn {k} (at its optimum, {free_k:.2f} min).")
-        out["chain"] = text
+        return text
     else:
-        out["chain"] = ("No engine of the paper was run: there is no grid chain to compare "
-                        "with.")
-    # --- the rule
+        return ("No engine of the paper was run: there is no grid chain to compare "
+                "with.")
+
+
+def _rule_note(rule: pd.DataFrame) -> str:
+    """How well the paper's rule of thumb (ignite at -Eq. (19)/2) holds."""
     w = rule.loc[rule.start_minus_rule_min.abs().idxmax()]
     longest = rule.eq19_duration_min.idxmax() == w.name
     side = ("always *earlier*" if (rule.start_minus_rule_min < 0).all() else
             "always *later*" if (rule.start_minus_rule_min > 0).all() else
             "sometimes earlier, sometimes later")
     worst_percent = 100 * abs(w.start_minus_rule_min) / w.eq19_duration_min
-    out["rule"] = (
+    return (
         ("The rule holds well. " if worst_percent < RULE_GOOD_PERCENT else
          "The rule is a rough guide only. ")
         + f"The optimum ignites between {rule.start_minus_rule_min.abs().min():.2f} and "
@@ -218,32 +224,39 @@ def notes(gain: pd.DataFrame, chain: pd.DataFrame, legs: dict, rule: pd.DataFram
         + f"({w.engine.split(' /')[0]}, burn {w.burn:.0f}: optimum {w.free_start_min:.2f} min, "
         f"rule {w.rule_start_min:.2f} min), and amounts to "
         f"{worst_percent:.1f} % of the Eq. (19) duration.")
-    return out
 
 
-def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
-          output_name: str = "free_ignition", quick: bool = False) -> Page:
-    """The free-ignition page (see the module docstring)."""
-    engines = [(float(t), float(i)) for t, i in engines]
-    params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
-    solver = dict(solver_description())
-    solver["ignition"] = "free (an NLP variable), or fixed for the grid points"
-    solver["gate"] = solver.pop("gate")
-    page = Page(NOTEBOOK, params, output_name, quick, solver)
+def notes(gain: pd.DataFrame, chain: pd.DataFrame, legs: dict, rule: pd.DataFrame) -> dict:
+    """The MyST paragraphs the prose includes, written from the data."""
+    g = gain.dropna(subset=["objective_gain_mps"])
+    return {"largest_gain": _largest_gain_note(g), "dv_excess": _dv_excess_note(g),
+            "chain": _chain_note(gain, chain, legs), "rule": _rule_note(rule)}
 
-    gain = gain_table(engines, dynamics)
-    chain, legs = chain_table(engines, dynamics)
-    rule = rule_table(gain, dynamics)
+
+def gate_text(k: int, n: int, plural: str, singular: str) -> str:
+    """'All 9 free optima passed the re-propagation gate ...' (k of n passed)."""
+    if n == 1:
+        verdict = f"The {singular} {'passed' if k else 'failed'}"
+    else:
+        verdict = f"All {n} {plural} passed" if k == n else f"{k} of {n} {plural} passed"
+    return f"{verdict} the re-propagation gate (column verified of the CSV)."
+
+
+def prose_values(gain: pd.DataFrame, rule: pd.DataFrame) -> dict:
+    """The numbers the prose quotes: the range of the J gains, the rule's misses."""
+    nan = float("nan")
+    jg = gain.objective_gain_mps
+    return {"max_j_gain_mps": float(jg.max()) if jg.notna().any() else nan,
+            "min_j_gain_mps": float(jg.min()) if jg.notna().any() else nan,
+            "max_abs_rule_diff_min": float(rule.start_minus_rule_min.abs().max()),
+            "min_abs_rule_diff_min": float(rule.start_minus_rule_min.abs().min()),
+            "max_rule_j_cost_mps": float(rule.rule_objective_cost_mps.max()),
+            "max_abs_midpoint_min": float(rule.burn_midpoint_min.abs().max())}
+
+
+def _add_tables(page: Page, gain: pd.DataFrame, chain: pd.DataFrame, dynamics: str) -> None:
     n_free_ok = int((gain.verified == "passed").sum())
-    n_rule_ok = int((rule.verified == "passed").sum())
-
-    def gate(k, n, plural, singular):
-        if n == 1:
-            verdict = f"The {singular} {'passed' if k else 'failed'}"
-        else:
-            verdict = f"All {n} {plural} passed" if k == n else f"{k} of {n} {plural} passed"
-        return f"{verdict} the re-propagation gate (column verified of the CSV)."
-
+    gate = gate_text
     page.table(
         "gain", gain,
         caption=("Free ignition against the paper's grid of ignition offsets, per engine and "
@@ -283,6 +296,11 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
                   "free_final_mass_kg": ".3f", "fuel_saved_kg": "+.3f"},
         show_columns=["engine", "grid_starts", "free_starts", "grid_total_delta_v_mps",
                       "free_total_delta_v_mps", "delta_v_gain_mps", "fuel_saved_kg"])
+
+
+def _add_rule(page: Page, rule: pd.DataFrame, engines) -> None:
+    n_rule_ok = int((rule.verified == "passed").sum())
+    gate = gate_text
     imp = [b.delta_v_mps for b in paper_plan(*engines[0]).impulsive()]
     imp_diff = max(abs(a - b) for a, b in zip(imp, PAPER_IMPULSIVE_DV_MPS))
     page.table(
@@ -317,19 +335,12 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
                  "engines; markers: burns 1-3 (LOI 1-3)."),
         alt="Scatter plots of the optimal ignition time against minus half the Eq. 19 duration")
 
-    # ------------------------------------------------------------------ numbers for the prose
-    nan = float("nan")
-    jg = gain.objective_gain_mps
-    page.value("max_j_gain_mps", float(jg.max()) if jg.notna().any() else nan)
-    page.value("min_j_gain_mps", float(jg.min()) if jg.notna().any() else nan)
-    page.value("max_abs_rule_diff_min", float(rule.start_minus_rule_min.abs().max()))
-    page.value("min_abs_rule_diff_min", float(rule.start_minus_rule_min.abs().min()))
-    page.value("max_rule_j_cost_mps", float(rule.rule_objective_cost_mps.max()))
-    page.value("max_abs_midpoint_min", float(rule.burn_midpoint_min.abs().max()))
-    for name, md in notes(gain, chain, legs, rule).items():
-        page.note(name, md or " ")
 
-    # ------------------------------------------------------------------ headline checks
+
+def _add_checks(page: Page, gain, chain, rule, engines, dynamics: str) -> None:
+    n_free_ok = int((gain.verified == "passed").sum())
+    n_rule_ok = int((rule.verified == "passed").sum())
+    jg = gain.objective_gain_mps
     page.expect("every free optimum passes the gate", n_free_ok == len(gain))
     page.expect("every solve at the rule's start passes the gate", n_rule_ok == len(rule))
     page.expect("every chain passes the gate", bool((chain.verified == "passed").all()))
@@ -350,5 +361,26 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
         j = float(gain[sel].objective_gain_mps.iloc[0])
         page.expect("300 N burn 1: J gain between 0.4 and 0.8 m/s", 0.4 < j < 0.8, f"{j:.3f}")
         page.expect("300 N burn 1 is the largest J gain", j == jg.max())
+
+
+def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
+          output_name: str = "free_ignition", quick: bool = False) -> Page:
+    """The free-ignition page (see the module docstring)."""
+    engines = [(float(t), float(i)) for t, i in engines]
+    params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
+    solver = dict(solver_description())
+    solver["ignition"] = "free (an NLP variable), or fixed for the grid points"
+    solver["gate"] = solver.pop("gate")
+    page = Page(NOTEBOOK, params, output_name, quick, solver)
+    gain = gain_table(engines, dynamics)
+    chain, legs = chain_table(engines, dynamics)
+    rule = rule_table(gain, dynamics)
+    _add_tables(page, gain, chain, dynamics)
+    _add_rule(page, rule, engines)
+    for name, v in prose_values(gain, rule).items():
+        page.value(name, v)
+    for name, md in notes(gain, chain, legs, rule).items():
+        page.note(name, md or " ")
+    _add_checks(page, gain, chain, rule, engines, dynamics)
     page.data.update({"gain": gain, "chain": chain, "rule": rule, "chain_legs": legs})
     return page

@@ -87,6 +87,69 @@ def _masses_note(burns, chain, thrust_N, isp_s, printed_min) -> str:
         f"arrival mass than the one it states.")
 
 
+def delta_v_table(burns, rp_km: float) -> pd.DataFrame:
+    """One row per impulse: orbits before and after, ΔV beside the paper's, mass after."""
+    dv = np.array([b.delta_v_mps for b in burns])
+    circle_kmps = float(np.sqrt(C.MU_MOON / rp_km))  # speed on the circle at the perilune
+    paper_dv = np.array(paper.PAPER_IMPULSIVE_DV_MPS)
+    return pd.DataFrame({
+        "loi": [b.burn for b in burns],
+        "from_orbit": [period_text(b.period_before_h) for b in burns],
+        "to_orbit": [("circle, " if np.isclose(b.v_after_kmps, circle_kmps) else "")
+                     + period_text(b.period_after_h) for b in burns],
+        "delta_v_mps": dv, "paper_delta_v_mps": paper_dv, "difference_mps": dv - paper_dv,
+        "mass_after_kg": [b.m_after_kg for b in burns]})
+
+
+def eq19_table(burns, masses, printed_min) -> pd.DataFrame:
+    """Eq. (19) durations from the impulses, with the given masses (None: the chain's)."""
+    t19 = np.array([b.eq19_duration_min for b in burns])
+    return pd.DataFrame({
+        "loi": [b.burn for b in burns], "delta_v_mps": [b.delta_v_mps for b in burns],
+        "m0_kg": [b.m_before_kg for b in burns] if masses is None else masses,
+        "duration_min": t19, "paper_duration_min": printed_min,
+        "difference_min": t19 - np.array(printed_min)})
+
+
+def prose_values(burns, v_inf: float, rp_km: float, printed_min) -> dict:
+    """Numbers quoted in the prose here and on other pages (book/model.md, book/index.md)."""
+    dv = np.array([b.delta_v_mps for b in burns])
+    t19 = np.array([b.eq19_duration_min for b in burns])
+    paper_dv = np.array(paper.PAPER_IMPULSIVE_DV_MPS)
+    out = {"v_inf_kmps": float(v_inf), "rp_km": float(rp_km)}
+    for n in (1, 2, 3):
+        out[f"dv_loi{n}_mps"] = float(dv[n - 1])
+        out[f"paper_dv_loi{n}_mps"] = float(paper_dv[n - 1])
+        out[f"dv_diff_loi{n}_mps"] = float(dv[n - 1] - paper_dv[n - 1])
+        out[f"eq19_loi{n}_min"] = float(t19[n - 1])
+        out[f"paper_eq19_loi{n}_min"] = float(printed_min[n - 1])
+    for n, q in enumerate(PAPER_MASS_QUOTES, start=1):  # m0 of eq19_masses="paper"
+        out[f"paper_m0_loi{n}_kg"] = float(paper.quote(q).value)
+    out["dv_total_mps"] = float(dv.sum())
+    out["paper_dv_total_mps"] = float(paper_dv.sum())
+    out["mass_final_kg"] = float(burns[-1].m_after_kg)
+    return out
+
+
+def _add_checks(page: Page, burns, printed_min, altitude_km: float, eq19_paper: bool) -> None:
+    """Headline checks: the book build fails if the reproduction drifts."""
+    dv = np.array([b.delta_v_mps for b in burns])
+    t19 = np.array([b.eq19_duration_min for b in burns])
+    paper_dv = np.array(paper.PAPER_IMPULSIVE_DV_MPS)
+    if altitude_km == C.PERILUNE_ALTITUDE_KM:
+        page.expect("LOI 1 is the paper's 353.272 m/s (by construction)",
+                    abs(dv[0] - paper_dv[0]) < 1e-3, f"{dv[0]:.4f} m/s")
+        for n in (2, 3):
+            page.expect(f"LOI {n} within 0.25 m/s of the paper",
+                        abs(dv[n - 1] - paper_dv[n - 1]) < 0.25,
+                        f"{dv[n - 1] - paper_dv[n - 1]:+.3f} m/s")
+    if eq19_paper:
+        for n in (1, 2, 3):
+            page.expect(f"Eq. (19) LOI {n} within {EQ19_TOLERANCE_MIN} min of the paper's",
+                        abs(t19[n - 1] - printed_min[n - 1]) < EQ19_TOLERANCE_MIN,
+                        f"{t19[n - 1]:.3f} vs {printed_min[n - 1]:.2f} min")
+
+
 def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRIVAL_MASS_KG,
           altitude_km: float = C.PERILUNE_ALTITUDE_KM, eq19_masses: str = "paper",
           output_name: str = "impulsive_baseline", quick: bool = False) -> Page:
@@ -122,18 +185,8 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRI
     v_inf = v_inf_from_loi1(rp_km=rp_km)
     chain = impulsive_sequence(thrust_N, isp_s, mass_kg, altitude_km)
     burns = impulsive_sequence(thrust_N, isp_s, mass_kg, altitude_km, eq19_masses_kg=masses)
-    dv = np.array([b.delta_v_mps for b in burns])
-    circle_kmps = float(np.sqrt(C.MU_MOON / rp_km))  # speed on the circle at the perilune
-    paper_dv = np.array(paper.PAPER_IMPULSIVE_DV_MPS)
-
     page.table(
-        "delta_v", pd.DataFrame({
-            "loi": [b.burn for b in burns],
-            "from_orbit": [period_text(b.period_before_h) for b in burns],
-            "to_orbit": [("circle, " if np.isclose(b.v_after_kmps, circle_kmps) else "")
-                         + period_text(b.period_after_h) for b in burns],
-            "delta_v_mps": dv, "paper_delta_v_mps": paper_dv, "difference_mps": dv - paper_dv,
-            "mass_after_kg": [b.m_after_kg for b in burns]}),
+        "delta_v", delta_v_table(burns, rp_km),
         caption=(f"Impulsive capture sequence, two-body model, perilune altitude "
                  f"{altitude_km:g} km, {mass_kg:g} kg at arrival, Isp {isp_s:g} s, beside the "
                  "paper's values (Tables 1-5). Orbits are given by their periods (h, or min "
@@ -143,13 +196,8 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRI
         columns={"delta_v_mps": "ΔV, ours (m/s)", "difference_mps": "ours − paper (m/s)"},
         floatfmt={"delta_v_mps": ".3f", "paper_delta_v_mps": ".3f", "difference_mps": "+.3f",
                   "mass_after_kg": ".3f"})
-    t19 = np.array([b.eq19_duration_min for b in burns])
     page.table(
-        "eq19", pd.DataFrame({
-            "loi": [b.burn for b in burns], "delta_v_mps": dv,
-            "m0_kg": [b.m_before_kg for b in burns] if masses is None else masses,
-            "duration_min": t19, "paper_duration_min": printed_min,
-            "difference_min": t19 - np.array(printed_min)}),
+        "eq19", eq19_table(burns, masses, printed_min),
         caption=(f"Burn-duration estimates of Eq. (19) for a {thrust_N:g} N / {isp_s:g} s "
                  "engine from the impulsive ΔV above (m/s), with m₀ (kg) the mass at ignition "
                  + ("as printed in the paper's finite-burn chain (Sec. 3.2.1)"
@@ -162,20 +210,8 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRI
         floatfmt={"delta_v_mps": ".3f", "m0_kg": ".3f", "duration_min": ".2f",
                   "paper_duration_min": ".2f", "difference_min": "+.2f"})
 
-    # numbers quoted in the prose here and on other pages (book/model.md, book/index.md)
-    page.value("v_inf_kmps", float(v_inf))
-    page.value("rp_km", float(rp_km))
-    for n in (1, 2, 3):
-        page.value(f"dv_loi{n}_mps", float(dv[n - 1]))
-        page.value(f"paper_dv_loi{n}_mps", float(paper_dv[n - 1]))
-        page.value(f"dv_diff_loi{n}_mps", float(dv[n - 1] - paper_dv[n - 1]))
-        page.value(f"eq19_loi{n}_min", float(t19[n - 1]))
-        page.value(f"paper_eq19_loi{n}_min", float(printed_min[n - 1]))
-    for n, q in enumerate(PAPER_MASS_QUOTES, start=1):  # m0 of eq19_masses="paper"
-        page.value(f"paper_m0_loi{n}_kg", float(paper.quote(q).value))
-    page.value("dv_total_mps", float(dv.sum()))
-    page.value("paper_dv_total_mps", float(paper_dv.sum()))
-    page.value("mass_final_kg", float(burns[-1].m_after_kg))
+    for name, v in prose_values(burns, v_inf, rp_km, printed_min).items():
+        page.value(name, v)
     paper_case = ((float(thrust_N), float(isp_s)) == (150.0, 200.0)
                   and mass_kg == C.ARRIVAL_MASS_KG and altitude_km == C.PERILUNE_ALTITUDE_KM)
     page.note("eq19_masses_note",
@@ -185,18 +221,6 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRI
               f"{C.PERILUNE_ALTITUDE_KM:g} km perilunes: there is nothing to compare with "
               "here.")
 
-    # headline checks: the book build fails if the reproduction drifts
-    if altitude_km == C.PERILUNE_ALTITUDE_KM:
-        page.expect("LOI 1 is the paper's 353.272 m/s (by construction)",
-                    abs(dv[0] - paper_dv[0]) < 1e-3, f"{dv[0]:.4f} m/s")
-        for n in (2, 3):
-            page.expect(f"LOI {n} within 0.25 m/s of the paper",
-                        abs(dv[n - 1] - paper_dv[n - 1]) < 0.25,
-                        f"{dv[n - 1] - paper_dv[n - 1]:+.3f} m/s")
-    if paper_case and eq19_masses == "paper":
-        for n in (1, 2, 3):
-            page.expect(f"Eq. (19) LOI {n} within {EQ19_TOLERANCE_MIN} min of the paper's",
-                        abs(t19[n - 1] - printed_min[n - 1]) < EQ19_TOLERANCE_MIN,
-                        f"{t19[n - 1]:.3f} vs {printed_min[n - 1]:.2f} min")
+    _add_checks(page, burns, printed_min, altitude_km, paper_case and eq19_masses == "paper")
     page.data["burns"] = burns
     return page

@@ -67,22 +67,36 @@ def totals_table(legs: dict) -> pd.DataFrame:
         "joint_solve_s": df.attrs["solve_s"]} for e, df in legs.items()])
 
 
-def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
-          output_name: str = "joint_capture", quick: bool = False) -> Page:
-    """The page of the joint capture (see the module docstring)."""
-    engines = [(float(t), float(i)) for t, i in engines]
-    params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
-    page = Page(NOTEBOOK, params, output_name, quick, {
-        "transcription": "Legendre-Gauss-Radau collocation, one NLP for all legs, mesh "
-                         + joint_mesh_label(),
-        "NLP": "IPOPT (MUMPS), warm start: the one-at-a-time free-ignition chain",
-        "gate": "re-propagation of each leg from the previous leg's verified end state"})
-    legs = {engine_label(t, i): sweeps.chain_table(t, i, dynamics) for t, i in engines}
+def legs_frame(legs: dict) -> pd.DataFrame:
+    """Every leg of every engine (``legs``: engine label -> chain table), verdicts in words."""
     per_leg = pd.concat([df.assign(engine=e) for e, df in legs.items()], ignore_index=True)
-    per_leg = per_leg.assign(joint_verified=per_leg.joint_verified.map(verdict))[[
+    return per_leg.assign(joint_verified=per_leg.joint_verified.map(verdict))[[
         "engine", "loi", "sequential_start_min", "joint_start_min",
         "sequential_burn_duration_min", "joint_burn_duration_min", "sequential_delta_v_mps",
         "joint_delta_v_mps", "difference_mps", "joint_verified"]]
+
+
+def prose_values(by_thrust: dict, totals: pd.DataFrame) -> dict:
+    """The numbers the prose quotes (NaN for an engine not built); ``by_thrust``: N -> legs."""
+    nan = float("nan")
+    out = {}
+    for thrust in PROSE_THRUSTS_N:
+        tag = f"{thrust:g}N"
+        df = by_thrust.get(thrust)
+        out[f"total_difference_{tag}_mps"] = (float(df.difference_mps.sum()) if df is not None
+                                              else nan)
+        for n in (2, 3):
+            out[f"leg{n}_difference_{tag}_mps"] = (float(df.difference_mps.iloc[n - 1])
+                                                   if df is not None else nan)
+        out[f"leg2_extra_{tag}_mps"] = (-float(df.difference_mps.iloc[1]) if df is not None
+                                        else nan)
+    out["max_total_difference_mps"] = float(totals.total_difference_mps.max())
+    out["max_leg_shift_mps"] = float(totals.largest_leg_shift_mps.max())
+    out["max_start_shift_s"] = float(totals.largest_start_shift_s.max())
+    return out
+
+
+def _add_legs(page: Page, per_leg: pd.DataFrame, dynamics: str) -> None:
     case = (f"The three LOIs optimised together (joint) and one at a time with free ignition "
             f"(sequential, each minimising Eq. 9), per engine (thrust / Isp; {dynamics} "
             "dynamics).")
@@ -97,7 +111,9 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
         caption=(f"{case} Start: ignition, min from each nominal perilune (negative: "
                  "before); duration in min."),
         columns=LEG_LABELS, floatfmt=LEG_FORMATS)
-    totals = totals_table(legs)
+
+
+def _add_totals(page: Page, totals: pd.DataFrame) -> None:
     total_labels = {"engine": "engine (thrust / Isp)",
                     "sequential_total_delta_v_mps": "total ΔV, sequential (m/s)",
                     "joint_total_delta_v_mps": "total ΔV, joint (m/s)",
@@ -125,23 +141,11 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
                  "status, iterations and wall time of the solve (s, when it was computed; "
                  "the result is cached)."),
         columns=total_labels, floatfmt={"joint_solve_s": ".1f"})
-    # numbers for the prose (NaN for an engine not built)
-    nan = float("nan")
-    by_thrust = {t: legs[engine_label(t, i)] for t, i in engines}
-    for thrust in PROSE_THRUSTS_N:
-        tag = f"{thrust:g}N"
-        df = by_thrust.get(thrust)
-        page.value(f"total_difference_{tag}_mps",
-                   float(df.difference_mps.sum()) if df is not None else nan)
-        for n in (2, 3):
-            page.value(f"leg{n}_difference_{tag}_mps",
-                       float(df.difference_mps.iloc[n - 1]) if df is not None else nan)
-        page.value(f"leg2_extra_{tag}_mps",
-                   -float(df.difference_mps.iloc[1]) if df is not None else nan)
-    page.value("max_total_difference_mps", float(totals.total_difference_mps.max()))
-    page.value("max_leg_shift_mps", float(totals.largest_leg_shift_mps.max()))
-    page.value("max_start_shift_s", float(totals.largest_start_shift_s.max()))
-    # headline checks: the book build fails if these drift
+
+
+def _add_checks(page: Page, per_leg: pd.DataFrame, totals: pd.DataFrame,
+                by_thrust: dict) -> None:
+    """Headline checks: the book build fails if these drift."""
     page.expect("every joint leg passes the verification gate",
                 bool((per_leg.joint_verified == PASSED).all()))
     page.expect("every joint NLP converged", bool((totals.ipopt_status == "Solve_Succeeded")
@@ -159,5 +163,26 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
         # the prose: at 150 N the joint optimum spends more on LOI 2, saves on LOI 3
         page.expect("150 N: more ΔV on LOI 2, less on LOI 3, mostly cancelling",
                     d.iloc[1] < 0 < d.iloc[2] and abs(d.sum()) < 0.1 * d.abs().max())
+
+
+def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
+          output_name: str = "joint_capture", quick: bool = False) -> Page:
+    """The page of the joint capture (see the module docstring)."""
+    engines = [(float(t), float(i)) for t, i in engines]
+    params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
+    page = Page(NOTEBOOK, params, output_name, quick, {
+        "transcription": "Legendre-Gauss-Radau collocation, one NLP for all legs, mesh "
+                         + joint_mesh_label(),
+        "NLP": "IPOPT (MUMPS), warm start: the one-at-a-time free-ignition chain",
+        "gate": "re-propagation of each leg from the previous leg's verified end state"})
+    legs = {engine_label(t, i): sweeps.chain_table(t, i, dynamics) for t, i in engines}
+    per_leg = legs_frame(legs)
+    _add_legs(page, per_leg, dynamics)
+    totals = totals_table(legs)
+    _add_totals(page, totals)
+    by_thrust = {t: legs[engine_label(t, i)] for t, i in engines}
+    for name, v in prose_values(by_thrust, totals).items():
+        page.value(name, v)
+    _add_checks(page, per_leg, totals, by_thrust)
     page.data["legs"] = legs
     return page

@@ -81,30 +81,12 @@ def engine_rows(engines, engine_names, paper_engines):
     return rows
 
 
-def build(engines=((320.0, 200.0), (500.0, 300.0)),
-          engine_names=("LRO-class", "SELENE-class"),
-          paper_engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)),
-          starts=("free", "free", "free"), dynamics: str = "full", model_loss: bool = True,
-          output_name: str = "other_engines", quick: bool = False) -> Page:
-    """The page of the engines cited in Sec. 3.1 (see the module docstring)."""
-    start_arg = tuple(s if s == "free" else float(s) for s in starts)
-    params = dict(engines=[list(e) for e in engines], engine_names=list(engine_names),
-                  paper_engines=[list(e) for e in paper_engines], starts=list(starts),
-                  dynamics=dynamics, model_loss=model_loss)
-    solver = solver_description()
-    solver["ignition"] = ("free (an NLP variable)" if _start_text(start_arg) == "free"
-                          else f"fixed {list(starts)} min")
-    page = Page(NOTEBOOK, params, output_name, quick, solver)
-    rows = engine_rows(engines, engine_names, paper_engines)
-    seqs, results = {}, {}
-    for t, i, _, lab in rows:
-        seqs[lab] = sweeps.sequence_table(t, i, start_arg, dynamics,
-                                          with_impulsive_model=model_loss)
-        if model_loss:  # the same chain and impulsive limits, as the plan's result
-            results[lab] = chain.plan_result(paper_plan(t, i, start_arg, dynamics))
-    ignition = _start_text(start_arg)
+def burns_frame(seqs: dict, rows, model_loss: bool) -> pd.DataFrame:
+    """One row per burn of the cited engines (not the paper's), with engine and origin.
 
-    # ---- per burn: the cited engines
+    ``seqs`` maps an engine label to its :func:`lunarcap.runs.sweeps.sequence_table`;
+    ``rows`` are :func:`engine_rows`; verified becomes "passed" / "failed".
+    """
     burns = pd.concat([seqs[lab].assign(engine=lab, origin=o, thrust_N=t, isp_s=i)
                        for t, i, o, lab in rows if o != PAPER_ENGINE], ignore_index=True)
     burns = burns.assign(verified=burns.verified.map(verdict))
@@ -113,9 +95,81 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
             "loss_mps", "loss_percent"]
     cols += ["model_impulsive_delta_v_mps", "model_loss_mps", "model_loss_percent",
              "objective_loss_mps", "objective_loss_percent"] if model_loss else []
-    burns = burns[cols]
-    case = (f"the paper's spacecraft ({ARRIVAL_MASS_KG:g} kg at the first perilune) and "
-            f"orbits, {dynamics} dynamics, ignition {ignition}")
+    return burns[cols]
+
+
+def totals_frame(seqs: dict, rows, model_loss: bool) -> pd.DataFrame:
+    """One row per engine, sorted by thrust: the totals of its capture sequence."""
+    trows = []
+    for t, i, o, lab in sorted(rows, key=lambda r: (r[0], r[1])):
+        x = sweeps.sequence_totals(seqs[lab])
+        row = {"engine": lab, "origin": o, "thrust_N": t, "isp_s": i,
+               "total_delta_v_mps": x["total_delta_v_mps"],
+               "total_impulsive_delta_v_mps": x["total_impulsive_delta_v_mps"],
+               "total_loss_mps": x["total_loss_mps"],
+               "total_loss_percent": x["total_loss_percent"]}
+        if model_loss:
+            row.update({k: x[k] for k in ("total_model_impulsive_delta_v_mps",
+                                          "total_model_loss_mps", "total_model_loss_percent",
+                                          "total_objective_loss_mps",
+                                          "total_objective_loss_percent")})
+        row.update({"total_fuel_kg": x["total_fuel_kg"],
+                    "total_burn_duration_min": x["total_burn_duration_min"],
+                    "loi1_burn_duration_min": float(seqs[lab].burn_duration_min.iloc[0]),
+                    "final_mass_kg": x["final_mass_kg"]})
+        trows.append(row)
+    return pd.DataFrame(trows)
+
+
+def loss_columns(model_loss: bool) -> tuple[str, str, str]:
+    """The plotted loss column, its % column and the short name of its reference."""
+    if model_loss:
+        return ("total_objective_loss_mps", "total_objective_loss_percent",
+                "our impulsive limits")
+    return "total_loss_mps", "total_loss_percent", "the paper's impulsive ΔVs"
+
+
+def _by_thrust(totals: pd.DataFrame, seqs: dict, rows) -> tuple[dict, dict]:
+    """Totals row and sequence per thrust (N); the first engine of a thrust wins."""
+    by_thrust = {}
+    for r in totals.itertuples():
+        by_thrust.setdefault(float(r.thrust_N), r)
+    seq_by_thrust = {t: seqs[lab] for t, i, o, lab in reversed(rows)}
+    return by_thrust, seq_by_thrust
+
+
+def prose_values(totals: pd.DataFrame, seqs: dict, rows, model_loss: bool) -> dict:
+    """The numbers the prose quotes, per thrust of :data:`PROSE_THRUSTS_N` (NaN if absent)."""
+    nan = float("nan")
+    loss_col, pct_col, _ = loss_columns(model_loss)
+    by_thrust, seq_by_thrust = _by_thrust(totals, seqs, rows)
+    out = {}
+    for thrust in PROSE_THRUSTS_N:
+        tag = f"{thrust:g}N"
+        r, s = by_thrust.get(thrust), seq_by_thrust.get(thrust)
+        out[f"plotted_loss_mps_{tag}"] = float(getattr(r, loss_col)) if r else nan
+        out[f"plotted_loss_percent_{tag}"] = float(getattr(r, pct_col)) if r else nan
+        out[f"total_paper_loss_mps_{tag}"] = float(r.total_loss_mps) if r else nan
+        out[f"total_paper_loss_percent_{tag}"] = float(r.total_loss_percent) if r else nan
+        for key in ("total_delta_v_mps", "total_fuel_kg", "total_burn_duration_min",
+                    "final_mass_kg"):
+            out[f"{key}_{tag}"] = float(getattr(r, key)) if r else nan
+        for n in (1, 2, 3):
+            out[f"burn_loi{n}_{tag}_min"] = (float(s.burn_duration_min.iloc[n - 1])
+                                             if s is not None else nan)
+            out[f"dv_loi{n}_{tag}_mps"] = (float(s.delta_v_mps.iloc[n - 1])
+                                           if s is not None else nan)
+    # same Isp, twice the thrust: the LRO-class engine against the paper's 150 N (both 200 s)
+    lc = "objective_loss_mps" if model_loss else "loss_mps"
+    a, b = seq_by_thrust.get(150.0), seq_by_thrust.get(320.0)
+    both = a is not None and b is not None
+    out["loss_ratio_150_320"] = float(a[lc].iloc[0] / b[lc].iloc[0]) if both else nan
+    out["duration_ratio_sq_150_320"] = (
+        float((a.burn_duration_min.iloc[0] / b.burn_duration_min.iloc[0]) ** 2) if both else nan)
+    return out
+
+
+def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str, model_loss: bool) -> None:
     page.table(
         "burns", burns,
         caption=("The capture sequence flown by the engines cited in Sec. 3.1 of the paper "
@@ -148,26 +202,9 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
                   "objective_loss_mps": ".3f", "objective_loss_percent": ".3f"},
         show_columns=loss_cols)
 
-    # ---- totals: every engine, sorted by thrust
-    trows = []
-    for t, i, o, lab in sorted(rows, key=lambda r: (r[0], r[1])):
-        x = sweeps.sequence_totals(seqs[lab])
-        row = {"engine": lab, "origin": o, "thrust_N": t, "isp_s": i,
-               "total_delta_v_mps": x["total_delta_v_mps"],
-               "total_impulsive_delta_v_mps": x["total_impulsive_delta_v_mps"],
-               "total_loss_mps": x["total_loss_mps"],
-               "total_loss_percent": x["total_loss_percent"]}
-        if model_loss:
-            row.update({k: x[k] for k in ("total_model_impulsive_delta_v_mps",
-                                          "total_model_loss_mps", "total_model_loss_percent",
-                                          "total_objective_loss_mps",
-                                          "total_objective_loss_percent")})
-        row.update({"total_fuel_kg": x["total_fuel_kg"],
-                    "total_burn_duration_min": x["total_burn_duration_min"],
-                    "loi1_burn_duration_min": float(seqs[lab].burn_duration_min.iloc[0]),
-                    "final_mass_kg": x["final_mass_kg"]})
-        trows.append(row)
-    totals = pd.DataFrame(trows)
+
+def _add_totals_tables(page: Page, totals: pd.DataFrame, ignition: str,
+                       model_loss: bool) -> None:
     paper_total = float(sum(PAPER_IMPULSIVE_DV_MPS))
     shown = ["engine", "total_delta_v_mps", "total_loss_mps", "total_loss_percent"]
     shown += ["total_objective_loss_mps", "total_objective_loss_percent"] if model_loss else []
@@ -197,10 +234,9 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
         floatfmt={"total_fuel_kg": ".3f", "total_burn_duration_min": ".2f",
                   "loi1_burn_duration_min": ".2f", "final_mass_kg": ".3f"})
 
-    # ---- the figure: one loss, its reference named
-    loss_col = "total_objective_loss_mps" if model_loss else "total_loss_mps"
-    pct_col = "total_objective_loss_percent" if model_loss else "total_loss_percent"
-    ref_short = "our impulsive limits" if model_loss else "the paper's impulsive ΔVs"
+
+def _add_figure(page: Page, totals: pd.DataFrame, ignition: str, model_loss: bool) -> None:
+    loss_col, _, ref_short = loss_columns(model_loss)
     page.figure(
         "loss_figure",
         figures.plot_engine_loss(totals, loss_col, f"total ΔV loss vs {ref_short} (m/s)"),
@@ -211,42 +247,13 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
                  "3.1, circles: the paper's."),
         alt="Total delta-V loss and propellant against thrust for each engine", name="loss")
 
-    # ---- numbers for the prose
-    nan = float("nan")
-    by_thrust = {}
-    for r in totals.itertuples():
-        by_thrust.setdefault(float(r.thrust_N), r)
-    seq_by_thrust = {t: seqs[lab] for t, i, o, lab in reversed(rows)}
-    for thrust in PROSE_THRUSTS_N:
-        tag = f"{thrust:g}N"
-        r, s = by_thrust.get(thrust), seq_by_thrust.get(thrust)
-        page.value(f"plotted_loss_mps_{tag}", float(getattr(r, loss_col)) if r else nan)
-        page.value(f"plotted_loss_percent_{tag}", float(getattr(r, pct_col)) if r else nan)
-        page.value(f"total_paper_loss_mps_{tag}", float(r.total_loss_mps) if r else nan)
-        page.value(f"total_paper_loss_percent_{tag}",
-                   float(r.total_loss_percent) if r else nan)
-        for key in ("total_delta_v_mps", "total_fuel_kg", "total_burn_duration_min",
-                    "final_mass_kg"):
-            page.value(f"{key}_{tag}", float(getattr(r, key)) if r else nan)
-        for n in (1, 2, 3):
-            page.value(f"burn_loi{n}_{tag}_min",
-                       float(s.burn_duration_min.iloc[n - 1]) if s is not None else nan)
-            page.value(f"dv_loi{n}_{tag}_mps",
-                       float(s.delta_v_mps.iloc[n - 1]) if s is not None else nan)
-    # same Isp, twice the thrust: the LRO-class engine against the paper's 150 N (both 200 s)
-    lc = "objective_loss_mps" if model_loss else "loss_mps"
-    a, b = seq_by_thrust.get(150.0), seq_by_thrust.get(320.0)
-    page.value("loss_ratio_150_320",
-               float(a[lc].iloc[0] / b[lc].iloc[0]) if a is not None and b is not None else nan)
-    page.value("duration_ratio_sq_150_320",
-               float((a.burn_duration_min.iloc[0] / b.burn_duration_min.iloc[0]) ** 2)
-               if a is not None and b is not None else nan)
-    page.note("placement", placement_note(totals, seqs, rows, loss_col, pct_col, ref_short))
-    page.note("loss_note", loss_note(totals, seqs, rows, model_loss, dynamics))
 
-    # ---- headline checks
-    ok_burns = all(s.verified.all() for s in seqs.values())
-    page.expect("every burn passes the verification gate", ok_burns)
+def _add_checks(page: Page, totals: pd.DataFrame, seqs: dict, results: dict, rows,
+                model_loss: bool) -> None:
+    loss_col = loss_columns(model_loss)[0]
+    by_thrust, _ = _by_thrust(totals, seqs, rows)
+    page.expect("every burn passes the verification gate",
+                all(s.verified.all() for s in seqs.values()))
     page.expect("every loss vs paper is positive", bool((totals.total_loss_mps > 0).all()))
     if model_loss:
         page.expect("every impulsive limit passes the gate",
@@ -274,25 +281,68 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
         f = {t: by_thrust[t].total_fuel_kg for t in (150.0, 300.0, 320.0)}
         page.expect("LRO-class propellant nearer the 150 N / 200 s engine's than the 300 N's",
                     abs(f[320.0] - f[150.0]) < abs(f[320.0] - f[300.0]), str(f))
+
+
+def _add_measured_checks(page: Page, totals: pd.DataFrame, seqs: dict, rows,
+                         model_loss: bool) -> None:
+    """Ranges measured in full dynamics with free ignition (the manifest's build)."""
+    by_thrust, seq_by_thrust = _by_thrust(totals, seqs, rows)
+    if 320.0 in seq_by_thrust:  # measured: LOI 1 8.90 min, loss 4.30 (paper), 4.70 (ours)
+        s, r = seq_by_thrust[320.0], by_thrust[320.0]
+        page.expect("LRO-class LOI 1 burns 8.5-9.3 min",
+                    8.5 < s.burn_duration_min.iloc[0] < 9.3)
+        page.expect("LRO-class loss vs paper 3.5-5.0 m/s", 3.5 < r.total_loss_mps < 5.0,
+                    f"{r.total_loss_mps:.3f}")
+        if model_loss:
+            page.expect("LRO-class loss vs ours 4.0-5.4 m/s",
+                        4.0 < r.total_model_loss_mps < 5.4, f"{r.total_model_loss_mps:.3f}")
+    if 500.0 in seq_by_thrust:  # measured: LOI 1 5.84 min, loss 1.76 (paper), 2.16 (ours)
+        s, r = seq_by_thrust[500.0], by_thrust[500.0]
+        page.expect("SELENE-class LOI 1 burns 5.5-6.2 min",
+                    5.5 < s.burn_duration_min.iloc[0] < 6.2)
+        page.expect("SELENE-class loss vs paper 1.2-2.3 m/s", 1.2 < r.total_loss_mps < 2.3,
+                    f"{r.total_loss_mps:.3f}")
+        if model_loss:
+            page.expect("SELENE-class loss vs ours 1.6-2.8 m/s",
+                        1.6 < r.total_model_loss_mps < 2.8, f"{r.total_model_loss_mps:.3f}")
+
+
+def build(engines=((320.0, 200.0), (500.0, 300.0)),
+          engine_names=("LRO-class", "SELENE-class"),
+          paper_engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)),
+          starts=("free", "free", "free"), dynamics: str = "full", model_loss: bool = True,
+          output_name: str = "other_engines", quick: bool = False) -> Page:
+    """The page of the engines cited in Sec. 3.1 (see the module docstring)."""
+    start_arg = tuple(s if s == "free" else float(s) for s in starts)
+    params = dict(engines=[list(e) for e in engines], engine_names=list(engine_names),
+                  paper_engines=[list(e) for e in paper_engines], starts=list(starts),
+                  dynamics=dynamics, model_loss=model_loss)
+    solver = solver_description()
+    solver["ignition"] = ("free (an NLP variable)" if _start_text(start_arg) == "free"
+                          else f"fixed {list(starts)} min")
+    page = Page(NOTEBOOK, params, output_name, quick, solver)
+    rows = engine_rows(engines, engine_names, paper_engines)
+    seqs, results = {}, {}
+    for t, i, _, lab in rows:
+        seqs[lab] = sweeps.sequence_table(t, i, start_arg, dynamics,
+                                          with_impulsive_model=model_loss)
+        if model_loss:  # the same chain and impulsive limits, as the plan's result
+            results[lab] = chain.plan_result(paper_plan(t, i, start_arg, dynamics))
+    ignition = _start_text(start_arg)
+    case = (f"the paper's spacecraft ({ARRIVAL_MASS_KG:g} kg at the first perilune) and "
+            f"orbits, {dynamics} dynamics, ignition {ignition}")
+    _add_burn_tables(page, burns_frame(seqs, rows, model_loss), case, model_loss)
+    totals = totals_frame(seqs, rows, model_loss)
+    _add_totals_tables(page, totals, ignition, model_loss)
+    _add_figure(page, totals, ignition, model_loss)
+    for name, v in prose_values(totals, seqs, rows, model_loss).items():
+        page.value(name, v)
+    loss_col, pct_col, ref_short = loss_columns(model_loss)
+    page.note("placement", placement_note(totals, seqs, rows, loss_col, pct_col, ref_short))
+    page.note("loss_note", loss_note(totals, seqs, rows, model_loss, dynamics))
+    _add_checks(page, totals, seqs, results, rows, model_loss)
     if dynamics == "full" and ignition == "free":
-        if 320.0 in seq_by_thrust:  # measured: LOI 1 8.90 min, loss 4.30 (paper), 4.70 (ours)
-            s, r = seq_by_thrust[320.0], by_thrust[320.0]
-            page.expect("LRO-class LOI 1 burns 8.5-9.3 min",
-                        8.5 < s.burn_duration_min.iloc[0] < 9.3)
-            page.expect("LRO-class loss vs paper 3.5-5.0 m/s", 3.5 < r.total_loss_mps < 5.0,
-                        f"{r.total_loss_mps:.3f}")
-            if model_loss:
-                page.expect("LRO-class loss vs ours 4.0-5.4 m/s",
-                            4.0 < r.total_model_loss_mps < 5.4, f"{r.total_model_loss_mps:.3f}")
-        if 500.0 in seq_by_thrust:  # measured: LOI 1 5.84 min, loss 1.76 (paper), 2.16 (ours)
-            s, r = seq_by_thrust[500.0], by_thrust[500.0]
-            page.expect("SELENE-class LOI 1 burns 5.5-6.2 min",
-                        5.5 < s.burn_duration_min.iloc[0] < 6.2)
-            page.expect("SELENE-class loss vs paper 1.2-2.3 m/s", 1.2 < r.total_loss_mps < 2.3,
-                        f"{r.total_loss_mps:.3f}")
-            if model_loss:
-                page.expect("SELENE-class loss vs ours 1.6-2.8 m/s",
-                            1.6 < r.total_model_loss_mps < 2.8, f"{r.total_model_loss_mps:.3f}")
+        _add_measured_checks(page, totals, seqs, rows, model_loss)
     page.data.update({"sequences": seqs, "totals": totals, "plan_results": results})
     return page
 

@@ -284,23 +284,28 @@ def solver_description() -> dict:
             "scaling": "Eq. (19) with our finite-burn ΔV at the mission's mass and thrust"}
 
 
-def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
-          output_name: str = "real_missions", quick: bool = False) -> Page:
-    """The page of published lunar captures (see the module docstring).
+def prose_values(compare: pd.DataFrame, kplo: pd.DataFrame, m0_kg: float,
+                 arrival_speed_kmps: float) -> dict:
+    """The numbers the prose quotes, from :func:`durations_table` and :func:`kplo_table`."""
+    out = {"lro_loi1_ours_min": float(compare.ours_paper_spacecraft_min.iloc[0]),
+           "lro_loi1_scaled_min": float(compare.ours_at_mission_mass_min.iloc[0]),
+           "lro_mass_ratio": LRO_MASS_KG / m0_kg}
+    for n in (1, 2, 3):
+        out[f"ce1_loi{n}_ours_min"] = float(compare.ours_paper_spacecraft_min.iloc[n])
+        out[f"ce1_loi{n}_scaled_min"] = float(compare.ours_at_mission_mass_min.iloc[n])
+        out[f"ce1_loi{n}_ratio"] = (CE1_BURNS_MIN[n - 1]
+                                    / float(compare.ours_at_mission_mass_min.iloc[n]))
+    after = kplo.speed_difference_mps.iloc[1:]
+    out["kplo_arrival_faster_mps"] = -float(kplo.speed_difference_mps.iloc[0])
+    out["kplo_max_abs_after_diff_mps"] = float(after.abs().max())
+    out["kplo_loi1_dv_diff_mps"] = float(kplo.delta_v_difference_mps.iloc[1])
+    out["kplo_total_dv_diff_mps"] = float(np.nansum(kplo.delta_v_difference_mps))
+    out["our_arrival_speed_kmps"] = float(arrival_speed_kmps)
+    return out
 
-    ``engines``: [(thrust N, Isp s)]; the LRO comparison needs the LRO-class engine, the
-    Chang'e-1 comparison the SELENE-class one (their rows are empty without it).
-    """
-    engines = [(float(t), float(i)) for t, i in engines]
-    params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
-    page = Page(NOTEBOOK, params, output_name, quick, solver_description())
-    chains = {(t, i): sequence_table(t, i, ("free",) * 3, dynamics, with_impulsive_model=False)
-              for t, i in engines}
-    plan = paper_plan(*engines[0], dynamics=dynamics)
-    arrival = arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole)
-    arrival_speed = orbit_summary(arrival.state, C.MU_MOON)["v_kmps"]
-    m0 = plan.arrival.mass_kg
 
+def _add_published(page: Page, chains: dict, m0: float, dynamics: str) -> pd.DataFrame:
+    """The published figures and the durations tables; returns the durations."""
     page.table(
         "published", published_table(),
         caption=("Published figures of four lunar captures, as printed in the sources listed "
@@ -329,8 +334,10 @@ def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
                   "ours_at_mission_mass_min": ".1f"},
         show_columns=["mission", "quantity", "published_min", "ours_engine",
                       "ours_paper_spacecraft_min", "ours_at_mission_mass_min"])
-    ref = chains[engines[0]]  # any engine: the same target orbits
-    kplo = kplo_table(arrival_speed, ref)
+    return compare
+
+
+def _add_kplo(page: Page, kplo: pd.DataFrame, engines, dynamics: str) -> None:
     page.table(
         "kplo", kplo,
         caption=("KPLO's design capture (S13, Table 2: three LOIs into a 100 km circular polar "
@@ -349,25 +356,10 @@ def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
         floatfmt={"kplo_speed_kmps": ".3f", "our_speed_kmps": ".3f",
                   "speed_difference_mps": "+.1f", "kplo_delta_v_mps": ".3f",
                   "paper_delta_v_mps": ".3f", "delta_v_difference_mps": "+.3f"})
-    page.note("sources", sources_markdown())
 
-    # ------------------------------------------------------------------ numbers for the prose
-    page.value("lro_loi1_ours_min", float(compare.ours_paper_spacecraft_min.iloc[0]))
-    page.value("lro_loi1_scaled_min", float(compare.ours_at_mission_mass_min.iloc[0]))
-    page.value("lro_mass_ratio", LRO_MASS_KG / m0)
-    for n in (1, 2, 3):
-        page.value(f"ce1_loi{n}_ours_min", float(compare.ours_paper_spacecraft_min.iloc[n]))
-        page.value(f"ce1_loi{n}_scaled_min", float(compare.ours_at_mission_mass_min.iloc[n]))
-        page.value(f"ce1_loi{n}_ratio",
-                   CE1_BURNS_MIN[n - 1] / float(compare.ours_at_mission_mass_min.iloc[n]))
+
+def _add_checks(page: Page, chains: dict, compare: pd.DataFrame, kplo: pd.DataFrame) -> None:
     after = kplo.speed_difference_mps.iloc[1:]
-    page.value("kplo_arrival_faster_mps", -float(kplo.speed_difference_mps.iloc[0]))
-    page.value("kplo_max_abs_after_diff_mps", float(after.abs().max()))
-    page.value("kplo_loi1_dv_diff_mps", float(kplo.delta_v_difference_mps.iloc[1]))
-    page.value("kplo_total_dv_diff_mps", float(np.nansum(kplo.delta_v_difference_mps)))
-    page.value("our_arrival_speed_kmps", float(arrival_speed))
-
-    # ------------------------------------------------------------------ headline checks
     page.expect("every burn of our chains passes the verification gate",
                 all(bool(c.verified.all()) for c in chains.values()))
     page.expect("KPLO's capture orbits are ours: perilune speeds after each LOI within 5 m/s",
@@ -388,5 +380,31 @@ def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
         page.expect("LRO: published / scaled duration 0.5-2", 0.5 < r < 2.0, f"{r:.3f}")
         page.expect("LRO: the scaled duration is shorter than the 40 min burn (the prose)",
                     r > 1.0, f"{r:.3f}")
+
+
+def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
+          output_name: str = "real_missions", quick: bool = False) -> Page:
+    """The page of published lunar captures (see the module docstring).
+
+    ``engines``: [(thrust N, Isp s)]; the LRO comparison needs the LRO-class engine, the
+    Chang'e-1 comparison the SELENE-class one (their rows are empty without it).
+    """
+    engines = [(float(t), float(i)) for t, i in engines]
+    params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
+    page = Page(NOTEBOOK, params, output_name, quick, solver_description())
+    chains = {(t, i): sequence_table(t, i, ("free",) * 3, dynamics, with_impulsive_model=False)
+              for t, i in engines}
+    plan = paper_plan(*engines[0], dynamics=dynamics)
+    arrival = arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole)
+    arrival_speed = orbit_summary(arrival.state, C.MU_MOON)["v_kmps"]
+    m0 = plan.arrival.mass_kg
+
+    compare = _add_published(page, chains, m0, dynamics)
+    kplo = kplo_table(arrival_speed, chains[engines[0]])  # any engine: the same targets
+    _add_kplo(page, kplo, engines, dynamics)
+    page.note("sources", sources_markdown())
+    for name, v in prose_values(compare, kplo, m0, arrival_speed).items():
+        page.value(name, v)
+    _add_checks(page, chains, compare, kplo)
     page.data["chains"] = chains
     return page

@@ -130,8 +130,8 @@ def findings_by_group(ft: pd.DataFrame) -> pd.DataFrame:
     return groups
 
 
-def _part_a(page: Page, engines, dynamics: str, output_name: str):
-    """Tables 1-5 and B1 beside ours; returns the sweeps and the burn-duration rows."""
+def solve_sweeps(engines, dynamics: str) -> dict:
+    """The paper's sweeps (its offsets) of every LOI of each engine: (thrust, loi) -> table."""
     sweeps = {}
     for thrust, isp in engines:
         for loi in (1, 2, 3):
@@ -140,16 +140,52 @@ def _part_a(page: Page, engines, dynamics: str, output_name: str):
                 raise ValueError(f"the paper has no table for {thrust:g} N")
             sweeps[(thrust, loi)] = runs_sweeps.sweep_table(thrust, isp, loi, starts,
                                                             dynamics=dynamics)
-    two_body = paper_plan(150.0, 200.0, dynamics=dynamics).impulsive()
-    long = rep.paper_tables_long(sweeps, impulsive_dv_mps=[b.delta_v_mps for b in two_body])
-    main = long[~long.source.isin(["Table B1", "Tables 1-5, B1 (impulsive)"])]
-    rng = _tables_range(main.source)
+    return sweeps
+
+
+def gate_text(long: pd.DataFrame) -> str:
+    """Whether every case passed the gate, else which failed."""
     failed = long[~long.verified]
-    gate = ("Every case passed the re-propagation gate (the verification page)."
+    return ("Every case passed the re-propagation gate (the verification page)."
             if failed.empty else
             "Cases that failed the re-propagation gate: "
             + ", ".join(sorted({f"{r.source} {r.start_min:g} min"
                                 for r in failed.itertuples()})) + ".")
+
+
+def part_a_values(long: pd.DataFrame, sweeps: dict) -> dict:
+    """The numbers of part (a) the prose quotes: counts, worst and median differences."""
+    main = long[~long.source.isin(["Table B1", "Tables 1-5, B1 (impulsive)"])]
+    dv = main[main.quantity == "delta-V"]
+    dur = main[main.quantity == "burn duration"]
+    worst_dv = dv.loc[dv.difference.abs().idxmax()]
+    worst_dur = dur.loc[dur.difference.abs().idxmax()]
+    b1dv = long[(long.source == "Table B1") & (long.quantity == "delta-V")]
+    best_agree = sum(int(df.loc[df.best, "start_min"].iloc[0]
+                         == df.loc[df.paper_best, "start_min"].iloc[0])
+                     for df in sweeps.values() if df.paper_best.any())
+    return {
+        "tables_range": _tables_range(main.source), "n_cases": int(len(dv)),
+        "n_table_numbers": int(len(main)), "n_numbers_a": int(len(long)),
+        "n_sweeps": int(len(sweeps)), "n_best_agree": int(best_agree),
+        "n_verified": int(dv.verified.sum()),
+        "max_dv_diff_mps": float(worst_dv.difference),
+        "max_dv_diff_percent": float(100 * worst_dv.difference / worst_dv.paper),
+        "max_dv_case": f"{worst_dv.source}, ignition {worst_dv.start_min:g} min",
+        "max_dur_diff_min": float(worst_dur.difference),
+        "max_dur_case": f"{worst_dur.source}, ignition {worst_dur.start_min:g} min",
+        "median_dv_diff_mps": float(dv.difference.abs().median()),
+        "n_dv_within_1mps": int((dv.difference.abs() <= 1.0).sum()),
+        "b1_max_dv_diff_percent": (float((100 * b1dv.difference / b1dv.paper).abs().max())
+                                   if len(b1dv) else float("nan")),
+        "n_b1": int(len(b1dv))}
+
+
+def _add_part_a_tables(page: Page, long: pd.DataFrame, dynamics: str,
+                       output_name: str) -> None:
+    main = long[~long.source.isin(["Table B1", "Tables 1-5, B1 (impulsive)"])]
+    rng = _tables_range(main.source)
+    gate = gate_text(long)
     page.table(
         "tables", tables_wide(long),
         caption=("Every number of Song et al. (2011), Tables 1–5 and B1, beside ours, one row "
@@ -181,43 +217,29 @@ def _part_a(page: Page, engines, dynamics: str, output_name: str):
                  "max_abs_difference": "largest |diff.|"},
         floatfmt={"mean_difference": "+.3f", "median_abs_difference": ".3f",
                   "max_abs_difference": ".3f"})
-    dv = main[main.quantity == "delta-V"]
-    dur = main[main.quantity == "burn duration"]
-    worst_dv = dv.loc[dv.difference.abs().idxmax()]
-    worst_dur = dur.loc[dur.difference.abs().idxmax()]
-    b1dv = long[(long.source == "Table B1") & (long.quantity == "delta-V")]
-    best_agree = sum(int(df.loc[df.best, "start_min"].iloc[0]
-                         == df.loc[df.paper_best, "start_min"].iloc[0])
-                     for df in sweeps.values() if df.paper_best.any())
-    v = page.value
-    v("tables_range", rng)
-    v("n_cases", int(len(dv)))
-    v("n_table_numbers", int(len(main)))
-    v("n_numbers_a", int(len(long)))
-    v("n_sweeps", int(len(sweeps)))
-    v("n_best_agree", int(best_agree))
-    v("n_verified", int(dv.verified.sum()))
-    v("max_dv_diff_mps", float(worst_dv.difference))
-    v("max_dv_diff_percent", float(100 * worst_dv.difference / worst_dv.paper))
-    v("max_dv_case", f"{worst_dv.source}, ignition {worst_dv.start_min:g} min")
-    v("max_dur_diff_min", float(worst_dur.difference))
-    v("max_dur_case", f"{worst_dur.source}, ignition {worst_dur.start_min:g} min")
-    v("median_dv_diff_mps", float(dv.difference.abs().median()))
-    v("n_dv_within_1mps", int((dv.difference.abs() <= 1.0).sum()))
-    v("b1_max_dv_diff_percent", float((100 * b1dv.difference / b1dv.paper).abs().max())
-      if len(b1dv) else float("nan"))
-    v("n_b1", int(len(b1dv)))
+
+
+def _part_a(page: Page, engines, dynamics: str, output_name: str):
+    """Tables 1-5 and B1 beside ours; returns the sweeps and the burn-duration rows."""
+    sweeps = solve_sweeps(engines, dynamics)
+    two_body = paper_plan(150.0, 200.0, dynamics=dynamics).impulsive()
+    long = rep.paper_tables_long(sweeps, impulsive_dv_mps=[b.delta_v_mps for b in two_body])
+    _add_part_a_tables(page, long, dynamics, output_name)
+    values = part_a_values(long, sweeps)
+    for k, x in values.items():
+        page.value(k, x)
     page.expect("every case of part (a) passes the verification gate",
-                bool(long.verified.all()), gate)
+                bool(long.verified.all()), gate_text(long))
     if dynamics == "full":  # the paper's dynamics: the agreement is the reproduction
+        b1 = values["b1_max_dv_diff_percent"]
         page.expect("Table B1: our delta-Vs within 0.25 % of the paper's",
-                    b1dv.empty or (100 * b1dv.difference / b1dv.paper).abs().max() < 0.25,
-                    f"{page.values['b1_max_dv_diff_percent']:.3f} %")
+                    values["n_b1"] == 0 or b1 < 0.25, f"{b1:.3f} %")
         page.expect("every delta-V of Tables 1-5 within 6 m/s of ours",
-                    abs(float(worst_dv.difference)) < 6.0,
-                    f"{float(worst_dv.difference):+.3f} m/s in {page.values['max_dv_case']}")
+                    abs(values["max_dv_diff_mps"]) < 6.0,
+                    f"{values['max_dv_diff_mps']:+.3f} m/s in {values['max_dv_case']}")
     page.data.update(sweeps=sweeps, long=long)
-    return sweeps, dur
+    main = long[~long.source.isin(["Table B1", "Tables 1-5, B1 (impulsive)"])]
+    return sweeps, main[main.quantity == "burn duration"]
 
 
 def _part_b(page: Page, sweeps: dict, dynamics: str, output_name: str, findings):
@@ -287,8 +309,20 @@ def _part_b(page: Page, sweeps: dict, dynamics: str, output_name: str, findings)
     return chains, quotes
 
 
-def _part_c(page: Page, findings, chains: dict, dur: pd.DataFrame, output_name: str):
-    """The audit: groups, the numbers the prose quotes, every inconsistent finding."""
+def duration_remark(dur: pd.DataFrame) -> str:
+    """Whether Table 4's LOI 1 rows hold the largest duration differences of part (a)."""
+    d = dur.difference.abs()
+    t4 = (dur.thrust_N == 300.0) & (dur.loi == 1)
+    if not t4.any():
+        return "Table 4 is not in part (a) of this run"
+    if (~t4).any() and d[t4].min() > d[~t4].max():
+        return ("and Table 4's LOI 1 rows have the largest duration differences of "
+                f"part (a), {d[t4].min():.2f} to {d[t4].max():.2f} min")
+    return ("though Table 4's LOI 1 rows do not hold all the largest duration "
+            "differences of part (a)")
+
+
+def _add_findings_tables(page: Page, output_name: str) -> None:
     ft = audit.findings_table()
     page.table(
         "findings_by_group", findings_by_group(ft),
@@ -311,11 +345,15 @@ def _part_c(page: Page, findings, chains: dict, dur: pd.DataFrame, output_name: 
                  "explanation": "where, and why"})
     page.table("findings_data", bad,
                caption="Every inconsistency found by the audit, all columns.")
+
+
+def _finding_values(findings, ft: pd.DataFrame, chains: dict) -> dict:
+    """The audit's numbers the prose of part (c) quotes."""
     F = {f.id: f for f in findings}
-    v = page.value
-    v("n_findings", int(len(ft)))
-    v("n_inconsistent", int((ft.verdict == audit.INCONSISTENT).sum()))
-    v("n_consistent", int((ft.verdict == audit.CONSISTENT).sum()))
+    out = {"n_findings": int(len(ft)),
+           "n_inconsistent": int((ft.verdict == audit.INCONSISTENT).sum()),
+           "n_consistent": int((ft.verdict == audit.CONSISTENT).sum())}
+    v = out.__setitem__  # v(name, number): one number of the prose
     sun = F["sun-gm"]
     v("sun_printed", float(sun.printed))
     v("sun_correct", float(sun.computed))
@@ -355,18 +393,6 @@ def _part_c(page: Page, findings, chains: dict, dur: pd.DataFrame, output_name: 
     v("t300_paper_dur_min", float(paper.paper_best(300, 1)["burn_duration_min"]))
     v("t300_ours_dur_min", float(chains[300.0][0]["burn_duration_min"]))
     v("t300_half_implied_N", float(F["eq19/300N/LOI1-half"].extra["implied_thrust_N"]))
-    # do Table 4's LOI 1 rows hold the largest duration differences of part (a)?
-    d = dur.difference.abs()
-    t4 = (dur.thrust_N == 300.0) & (dur.loi == 1)
-    if not t4.any():
-        remark = "Table 4 is not in part (a) of this run"
-    elif (~t4).any() and d[t4].min() > d[~t4].max():
-        remark = ("and Table 4's LOI 1 rows have the largest duration differences of "
-                  f"part (a), {d[t4].min():.2f} to {d[t4].max():.2f} min")
-    else:
-        remark = ("though Table 4's LOI 1 rows do not hold all the largest duration "
-                  "differences of part (a)")
-    v("t300_dur_remark", remark)
     ep2, ep3 = F["epoch/perilune2-ignition-reading"], F["epoch/perilune3-ignition-reading"]
     v("epoch2_gap_s", float(ep2.printed - ep2.computed))
     v("epoch3_gap_s", float(ep3.printed - ep3.computed))
@@ -375,6 +401,23 @@ def _part_c(page: Page, findings, chains: dict, dur: pd.DataFrame, output_name: 
     v("eq19_half_computed_min", float(F["eq19/150N/LOI1-half"].computed))
     v("n_pct_rows", int(sum(f.verdict == audit.INCONSISTENT for f in findings
                             if f.check == "b")))
+    return out
+
+
+def _part_c(page: Page, findings, chains: dict, dur: pd.DataFrame, output_name: str):
+    """The audit: groups, the numbers the prose quotes, every inconsistent finding."""
+    _add_findings_tables(page, output_name)
+    ft = audit.findings_table()
+    bad = audit.findings_table(only_inconsistent=True)
+    values = _finding_values(findings, ft, chains)
+    values["t300_dur_remark"] = duration_remark(dur)
+    for k in ("epoch2_gap_s", "epoch3_gap_s", "fig4_printed_end_kg", "fig4_loi1_end_kg",
+              "eq19_half_computed_min", "n_pct_rows"):
+        values[k] = values.pop(k)  # the order of the values as before
+    for k, x in values.items():
+        page.value(k, x)
+    fuel = audit.fuel_sentence_check(150)
+    arr = {f.id: f for f in findings}["mass/arrival-implied"]
     page.expect("the findings table lists every inconsistent check",
                 len(bad) == int((ft.verdict == audit.INCONSISTENT).sum()) > 0)
     page.expect("every finding the prose discusses is inconsistent",

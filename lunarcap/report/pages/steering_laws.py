@@ -51,18 +51,37 @@ def _pick(steer: pd.DataFrame, thrust: float, loi: int, law: str, col: str) -> f
     return float(s[col].iloc[0]) if len(s) else float("nan")
 
 
-def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
-          output_name: str = "steering_laws", quick: bool = False) -> Page:
-    """The page of the steering-law comparison (see the module docstring)."""
-    engines = [(float(t), float(i)) for t, i in engines]
-    params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
-    solver = solver_description()
-    solver.update({
-        "ignition": "free (an NLP variable)",
-        "steering": "optimal u(t); fixed inertial u (optimised); u = -v/|v| (state feedback)",
-        "gate": solver["gate"] + "; released targets reported, not gated"})
-    page = Page(NOTEBOOK, params, output_name, quick, solver)
-    steer = steering_rows(engines, dynamics)
+def prose_values(steer: pd.DataFrame) -> dict:
+    """The numbers the prose quotes (NaN for an engine not built, e.g. in a quick build)."""
+    out = {}
+    for thrust in PROSE_THRUSTS_N:
+        tag = f"{thrust:g}N"
+        for n in (1, 2, 3):
+            for law, short in (("inertial", "inertial"), ("antivelocity", "anti")):
+                out[f"{short}_dv_loi{n}_{tag}_mps"] = _pick(steer, thrust, n, law,
+                                                            "delta_v_penalty_mps")
+                out[f"{short}_j_loi{n}_{tag}_mps"] = _pick(steer, thrust, n, law,
+                                                           "objective_penalty_mps")
+            out[f"anti_rp_miss_loi{n}_{tag}_km"] = _pick(steer, thrust, n, "antivelocity",
+                                                         "rp_miss_km")
+            out[f"duration_loi{n}_{tag}_min"] = _pick(steer, thrust, n, "optimal",
+                                                      "burn_duration_min")
+            out[f"start_loi{n}_{tag}_min"] = _pick(steer, thrust, n, "optimal", "start_min")
+            out[f"inertial_start_loi{n}_{tag}_min"] = _pick(steer, thrust, n, "inertial",
+                                                            "start_min")
+    inert = steer[steer.steering == "inertial"]
+    anti = steer[steer.steering == "antivelocity"]
+    out["max_inertial_j_mps"] = float(inert.objective_penalty_mps.max())
+    out["max_abs_inertial_j_loi3_mps"] = float(
+        inert[inert.loi == 3].objective_penalty_mps.abs().max())
+    out["min_anti_j_mps"] = float(anti.objective_penalty_mps.min())
+    out["max_anti_j_mps"] = float(anti.objective_penalty_mps.max())
+    out["max_anti_rp_miss_km"] = float(anti.rp_miss_km.abs().max())
+    out["max_anti_inc_miss_deg"] = float(anti.inc_miss_deg.abs().max())
+    return out
+
+
+def _add_items(page: Page, steer: pd.DataFrame, engines, dynamics: str) -> None:
     table = steer.assign(verified=steer.verified.map(verdict))[[
         "engine", "loi", "steering", "start_min", "burn_duration_min", "delta_v_mps",
         "delta_v_penalty_mps", "objective_penalty_mps", "released_targets", "rp_miss_km",
@@ -104,33 +123,11 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
                  "another, faster orbit, which J counts."),
         alt="Bar charts of the delta-V and J penalties of the inertial and antivelocity laws",
         name="penalty")
-    # numbers for the prose (NaN for an engine not built, e.g. in a quick build)
-    for thrust in PROSE_THRUSTS_N:
-        tag = f"{thrust:g}N"
-        for n in (1, 2, 3):
-            for law, short in (("inertial", "inertial"), ("antivelocity", "anti")):
-                page.value(f"{short}_dv_loi{n}_{tag}_mps",
-                           _pick(steer, thrust, n, law, "delta_v_penalty_mps"))
-                page.value(f"{short}_j_loi{n}_{tag}_mps",
-                           _pick(steer, thrust, n, law, "objective_penalty_mps"))
-            page.value(f"anti_rp_miss_loi{n}_{tag}_km",
-                       _pick(steer, thrust, n, "antivelocity", "rp_miss_km"))
-            page.value(f"duration_loi{n}_{tag}_min",
-                       _pick(steer, thrust, n, "optimal", "burn_duration_min"))
-            page.value(f"start_loi{n}_{tag}_min",
-                       _pick(steer, thrust, n, "optimal", "start_min"))
-            page.value(f"inertial_start_loi{n}_{tag}_min",
-                       _pick(steer, thrust, n, "inertial", "start_min"))
+
+
+def _add_checks(page: Page, steer: pd.DataFrame, dynamics: str) -> None:
     inert = steer[steer.steering == "inertial"]
     anti = steer[steer.steering == "antivelocity"]
-    page.value("max_inertial_j_mps", float(inert.objective_penalty_mps.max()))
-    page.value("max_abs_inertial_j_loi3_mps",
-               float(inert[inert.loi == 3].objective_penalty_mps.abs().max()))
-    page.value("min_anti_j_mps", float(anti.objective_penalty_mps.min()))
-    page.value("max_anti_j_mps", float(anti.objective_penalty_mps.max()))
-    page.value("max_anti_rp_miss_km", float(anti.rp_miss_km.abs().max()))
-    page.value("max_anti_inc_miss_deg", float(anti.inc_miss_deg.abs().max()))
-    # headline checks: the book build fails if these drift
     page.expect("every solution passes the verification gate", bool(steer.verified.all()),
                 str(steer[~steer.verified][["engine", "loi", "steering"]].values.tolist()))
     page.expect("optimal is optimal: no inertial J penalty below -1 mm/s",
@@ -171,5 +168,23 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
         page.expect("450 N LOI 1: inertial ΔV penalty 0.05-0.2 m/s", 0.05 < dv < 0.2, f"{dv}")
         page.expect("450 N LOI 1: antivelocity J penalty 0.6-1.2 m/s", 0.6 < j < 1.2, f"{j}")
         page.expect("450 N LOI 1: antivelocity 1.5-4 km low", -4.0 < rp < -1.5, f"{rp}")
+
+
+def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
+          output_name: str = "steering_laws", quick: bool = False) -> Page:
+    """The page of the steering-law comparison (see the module docstring)."""
+    engines = [(float(t), float(i)) for t, i in engines]
+    params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
+    solver = solver_description()
+    solver.update({
+        "ignition": "free (an NLP variable)",
+        "steering": "optimal u(t); fixed inertial u (optimised); u = -v/|v| (state feedback)",
+        "gate": solver["gate"] + "; released targets reported, not gated"})
+    page = Page(NOTEBOOK, params, output_name, quick, solver)
+    steer = steering_rows(engines, dynamics)
+    _add_items(page, steer, engines, dynamics)
+    for name, v in prose_values(steer).items():
+        page.value(name, v)
+    _add_checks(page, steer, dynamics)
     page.data["steering"] = steer
     return page

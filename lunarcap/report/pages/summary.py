@@ -209,16 +209,8 @@ def notes(engines, seqs: dict, totals: dict, values: dict) -> dict:
     return out
 
 
-def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
-          output_name: str = "summary", quick: bool = False) -> Page:
-    """The Table B1 and totals page (see the module docstring).
-
-    Parameters
-    ----------
-    engines : [[thrust N, Isp s], ...]
-    starts : per engine, the ignition offsets of LOI 1-3 (min), or None: the paper's best
-    dynamics : "full", "j2" or "two-body"
-    """
+def check_engines(engines) -> list:
+    """The engines as ``[(thrust_N, isp_s)]`` floats; ValueError naming any not the paper's."""
     engines = [(float(t), float(i)) for t, i in engines]
     others = [e for e in engines if e not in {(float(t), float(i)) for t, i in PAPER_ENGINES}]
     if others:
@@ -227,17 +219,69 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
             f"{', '.join(engine_label(*e) for e in others)} is not one of them (150 N / 200 s, "
             f"300 N / 250 s, 450 N / 300 s): see the other-engines page (notebooks/"
             f"other_engines.ipynb) or `lunarcap plan` for another engine")
-    params = dict(engines=[list(e) for e in engines], starts=starts, dynamics=dynamics)
-    page = Page(NOTEBOOK, params, output_name, quick, solver_description())
-    seqs, totals, chains = {}, {}, {}
-    for k, (thrust, isp) in enumerate(engines):
-        s = sweeps.sequence_table(thrust, isp, None if starts is None else starts[k], dynamics)
-        seqs[thrust] = s
-        chains[engine_label(thrust, isp)] = s
-        totals[thrust] = sweeps.sequence_totals(s)
-    b1 = b1_table(chains)
+    return engines
 
-    # ---------------------------------------------------------------- tables and figure
+
+def engine_values(seqs: dict, totals: dict) -> dict:
+    """Per paper engine: our totals, Table B1's, the printed ones, our LOI 1 burn (min).
+
+    ``seqs`` and ``totals`` are keyed by thrust (N); an engine not run gets NaN for ours.
+    """
+    nan = float("nan")
+    values = {}
+    for thrust, isp in PAPER_ENGINES:  # NaN for an engine not run (e.g. in a quick build)
+        t, p, tag = totals.get(thrust, {}), paper_totals(thrust), f"{thrust:g}N"
+        for key in ("total_delta_v_mps", "total_loss_mps", "total_loss_percent",
+                    "mean_of_burn_loss_percent", "total_fuel_kg", "total_burn_duration_min",
+                    "final_mass_kg", "total_model_loss_mps", "total_model_loss_percent",
+                    "total_model_impulsive_delta_v_mps"):
+            values[f"{key}_{tag}"] = float(t.get(key, nan))
+        for key in ("total_delta_v_mps", "total_loss_mps", "total_loss_percent",
+                    "mean_of_burn_loss_percent", "total_burn_duration_min"):
+            values[f"b1_{key}_{tag}"] = float(p[key])
+        for q in ("loss_total_{}N_mps", "loss_total_{}N_percent", "fuel_finite_{}N_kg",
+                  "fuel_impulsive_{}N_kg", "burn_total_{}N_min", "mass_final_{}N_kg"):
+            name = q.format(f"{thrust:g}")
+            values[f"paper_{name}"] = float(paper.quote(name).value)
+        s = seqs.get(thrust)
+        values[f"loi1_burn_min_{tag}"] = (float(s.burn_duration_min.iloc[0]) if s is not None
+                                          else nan)
+    return values
+
+
+def mass_gap_values(final_mass_kg: dict, paper_final_mass_kg: dict,
+                    implied_arrival_kg: float, arrival_kg: float = ARRIVAL_MASS_KG) -> dict:
+    """The arrival-mass gap (ours - the paper's implied) carried to the end of each chain.
+
+    The rocket equation scales a mass by the mass ratio, so the gap at the end is
+    ``gap * final / arrival``; also ours - printed final mass. Keys per thrust (N).
+    """
+    out = {"implied_arrival_mass_kg": implied_arrival_kg, "arrival_mass_kg": float(arrival_kg),
+           "arrival_mass_gap_kg": float(arrival_kg - implied_arrival_kg)}
+    for thrust, final in final_mass_kg.items():
+        out[f"mass_gap_at_end_kg_{thrust:g}N"] = ((arrival_kg - implied_arrival_kg) * final
+                                                  / arrival_kg)
+        out[f"final_mass_diff_kg_{thrust:g}N"] = final - paper_final_mass_kg[thrust]
+    return out
+
+
+def prose_values(seqs: dict, totals: dict, b1: pd.DataFrame) -> dict:
+    """Every number the prose quotes (see :func:`engine_values`, :func:`mass_gap_values`)."""
+    values = engine_values(seqs, totals)
+    findings = audit.findings_table().set_index("id")
+    values["paper_loi1_thrust_300N"] = float(findings.loc["thrust/300N/LOI1", "computed"])
+    values["paper_loi1_burn_300N_min"] = float(paper.paper_best(300, 1)["burn_duration_min"])
+    implied = audit.implied_arrival_mass_kg()
+    # the mean of the three mass-based values, as in lunarcap.paper.audit
+    m_implied = float(np.mean([x for k, x in implied.items() if "mass" in k]))
+    values.update(mass_gap_values(
+        {t: values[f"final_mass_kg_{t:g}N"] for t, _ in PAPER_ENGINES},
+        {t: values[f"paper_mass_final_{t:g}N_kg"] for t, _ in PAPER_ENGINES}, m_implied))
+    values["max_abs_b1_diff_percent"] = float(b1.delta_v_diff_percent.abs().max())
+    return values
+
+
+def _add_b1_tables(page: Page, b1: pd.DataFrame, dynamics: str) -> None:
     same_starts = bool((b1.start_min == b1.paper_start_min).all())
     start_cols = ["start_min"] if same_starts else ["paper_start_min", "start_min"]
     imp_txt = ", ".join(f"{x:.3f}" for x in paper.PAPER_IMPULSIVE_DV_MPS)
@@ -285,6 +329,9 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
         show_columns=["engine", "loi", "paper_burn_duration_min", "burn_duration_min",
                       "burn_duration_diff_min", "fuel_kg", "m_end_kg"],
         paper="Table B1, burn durations")
+
+
+def _add_totals(page: Page, engines, chains: dict, totals: dict) -> None:
     page.table(
         "totals", totals_table(engines, totals),
         caption=("Totals of the capture sequence per engine, in the unit each quantity names: "
@@ -300,6 +347,9 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
         floatfmt={"paper_from_table_b1": ".3f", "ours": ".3f", "ours_minus_printed": "+.3f"},
         show_columns=["engine", "quantity", "paper_printed", "paper_from_table_b1", "ours",
                       "ours_minus_printed", "printed_in"])
+
+
+def _add_model_loss(page: Page, engines, chains: dict, totals: dict) -> None:
     page.table(
         "model_loss", model_loss_table(engines, chains, totals),
         caption=("Delta-V loss (m/s) measured two ways. The paper compares its finite burns "
@@ -332,87 +382,78 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
                  "against an impulse in our own dynamics from the same pre-burn orbit."),
         alt="Bar charts of the delta-V loss per LOI for each engine, the paper's and ours")
 
-    # ---------------------------------------------------------------- numbers for the prose
-    nan = float("nan")
-    values = {}
-    for thrust, isp in PAPER_ENGINES:  # NaN for an engine not run (e.g. in a quick build)
-        t, p, tag = totals.get(thrust, {}), paper_totals(thrust), f"{thrust:g}N"
-        for key in ("total_delta_v_mps", "total_loss_mps", "total_loss_percent",
-                    "mean_of_burn_loss_percent", "total_fuel_kg", "total_burn_duration_min",
-                    "final_mass_kg", "total_model_loss_mps", "total_model_loss_percent",
-                    "total_model_impulsive_delta_v_mps"):
-            values[f"{key}_{tag}"] = float(t.get(key, nan))
-        for key in ("total_delta_v_mps", "total_loss_mps", "total_loss_percent",
-                    "mean_of_burn_loss_percent", "total_burn_duration_min"):
-            values[f"b1_{key}_{tag}"] = float(p[key])
-        for q in ("loss_total_{}N_mps", "loss_total_{}N_percent", "fuel_finite_{}N_kg",
-                  "fuel_impulsive_{}N_kg", "burn_total_{}N_min", "mass_final_{}N_kg"):
-            name = q.format(f"{thrust:g}")
-            values[f"paper_{name}"] = float(paper.quote(name).value)
-        s = seqs.get(thrust)
-        values[f"loi1_burn_min_{tag}"] = (float(s.burn_duration_min.iloc[0]) if s is not None
-                                          else nan)
-    findings = audit.findings_table().set_index("id")
-    values["paper_loi1_thrust_300N"] = float(findings.loc["thrust/300N/LOI1", "computed"])
-    values["paper_loi1_burn_300N_min"] = float(paper.paper_best(300, 1)["burn_duration_min"])
-    implied = audit.implied_arrival_mass_kg()
-    # the mean of the three mass-based values, as in lunarcap.paper.audit
-    m_implied = float(np.mean([x for k, x in implied.items() if "mass" in k]))
-    values["implied_arrival_mass_kg"] = m_implied
-    values["arrival_mass_kg"] = float(ARRIVAL_MASS_KG)
-    values["arrival_mass_gap_kg"] = float(ARRIVAL_MASS_KG - m_implied)
-    for thrust, isp in PAPER_ENGINES:
-        final = values[f"final_mass_kg_{thrust:g}N"]
-        # the arrival-mass gap carried to the end of the chain (rocket equation: x mass ratio)
-        values[f"mass_gap_at_end_kg_{thrust:g}N"] = (ARRIVAL_MASS_KG - m_implied) * final \
-            / ARRIVAL_MASS_KG
-        values[f"final_mass_diff_kg_{thrust:g}N"] = (
-            final - values[f"paper_mass_final_{thrust:g}N_kg"])
-    values["max_abs_b1_diff_percent"] = float(b1.delta_v_diff_percent.abs().max())
+
+def _add_paper_checks(page: Page, engines, seqs: dict, totals: dict, values: dict) -> None:
+    """Checks of the build with the paper's best offsets in full dynamics."""
+    page.expect("every LOI within 0.5 % of Table B1",
+                values["max_abs_b1_diff_percent"] < 0.5,
+                f"{values['max_abs_b1_diff_percent']:.3f} %")
+    for thrust, t in totals.items():
+        # the paper's percentages are means of the per-burn ones: ours the same way agree
+        # (measured: 2.14 vs 2.12, 0.68 vs 0.55 (the paper's 300 N LOI 1 is a ~350 N
+        # burn), 0.25 vs 0.33 %)
+        pq = _quote(f"loss_total_{thrust:g}N_percent")
+        if pq is not None:
+            page.expect(f"{thrust:g} N: mean of the per-burn losses within 0.2 points of "
+                        "the printed total", abs(t["mean_of_burn_loss_percent"] - pq.value)
+                        < 0.2, f"{t['mean_of_burn_loss_percent']:.3f} vs {pq.value:g} %")
+    for thrust, isp in engines:
+        if thrust not in dict(PAPER_ENGINES):
+            continue
+        # the masses note: the final-mass difference is the arrival-mass gap carried
+        # through plus the rocket equation on the delta-V difference
+        s = seqs[thrust]
+        ve = G0_MPS2 * isp
+        dv_part = values["implied_arrival_mass_kg"] * (
+            np.exp(-s.delta_v_mps.sum() / ve) - np.exp(-s.paper_delta_v_mps.sum() / ve))
+        rest = (values[f"final_mass_diff_kg_{thrust:g}N"]
+                - values[f"mass_gap_at_end_kg_{thrust:g}N"])
+        page.expect(f"{thrust:g} N: the final-mass difference is the arrival gap plus "
+                    "the delta-V difference", abs(rest - dv_part) < 0.02,
+                    f"rest {rest:.3f} kg, delta-V part {dv_part:.3f} kg")
+    if 300.0 in totals:
+        # the burn-time note: the 300 N difference is LOI 1's
+        total_d = (values["total_burn_duration_min_300N"]
+                   - values["paper_burn_total_300N_min"])
+        loi1_d = values["loi1_burn_min_300N"] - values["paper_loi1_burn_300N_min"]
+        page.expect("300 N: the burn-time difference is LOI 1's",
+                    abs(total_d - loi1_d) < 0.1, f"{total_d:.2f} vs {loi1_d:.2f} min")
+
+
+def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
+          output_name: str = "summary", quick: bool = False) -> Page:
+    """The Table B1 and totals page (see the module docstring).
+
+    Parameters
+    ----------
+    engines : [[thrust N, Isp s], ...]
+    starts : per engine, the ignition offsets of LOI 1-3 (min), or None: the paper's best
+    dynamics : "full", "j2" or "two-body"
+    """
+    engines = check_engines(engines)
+    params = dict(engines=[list(e) for e in engines], starts=starts, dynamics=dynamics)
+    page = Page(NOTEBOOK, params, output_name, quick, solver_description())
+    seqs, totals, chains = {}, {}, {}
+    for k, (thrust, isp) in enumerate(engines):
+        s = sweeps.sequence_table(thrust, isp, None if starts is None else starts[k], dynamics)
+        seqs[thrust] = s
+        chains[engine_label(thrust, isp)] = s
+        totals[thrust] = sweeps.sequence_totals(s)
+    b1 = b1_table(chains)
+    _add_b1_tables(page, b1, dynamics)
+    _add_totals(page, engines, chains, totals)
+    _add_model_loss(page, engines, chains, totals)
+    values = prose_values(seqs, totals, b1)
     for k, x in values.items():
         page.value(k, float(x))
     for k, md in notes(engines, seqs, totals, values).items():
         page.note(k, md)
-
-    # ---------------------------------------------------------------- headline checks
     page.expect("every burn of every chain passes the verification gate",
                 bool((b1.verified == PASSED).all()),
                 str(b1[b1.verified != PASSED][["engine", "loi"]].values.tolist()))
     page.expect("the model-to-model loss of every chain is positive",
                 all(t["total_model_loss_mps"] > 0 for t in totals.values()))
     if dynamics == "full" and starts is None:
-        page.expect("every LOI within 0.5 % of Table B1",
-                    values["max_abs_b1_diff_percent"] < 0.5,
-                    f"{values['max_abs_b1_diff_percent']:.3f} %")
-        for thrust, t in totals.items():
-            # the paper's percentages are means of the per-burn ones: ours the same way agree
-            # (measured: 2.14 vs 2.12, 0.68 vs 0.55 (the paper's 300 N LOI 1 is a ~350 N
-            # burn), 0.25 vs 0.33 %)
-            pq = _quote(f"loss_total_{thrust:g}N_percent")
-            if pq is not None:
-                page.expect(f"{thrust:g} N: mean of the per-burn losses within 0.2 points of "
-                            "the printed total", abs(t["mean_of_burn_loss_percent"] - pq.value)
-                            < 0.2, f"{t['mean_of_burn_loss_percent']:.3f} vs {pq.value:g} %")
-        for thrust, isp in engines:
-            if thrust not in dict(PAPER_ENGINES):
-                continue
-            # the masses note: the final-mass difference is the arrival-mass gap carried
-            # through plus the rocket equation on the delta-V difference
-            s = seqs[thrust]
-            ve = G0_MPS2 * isp
-            dv_part = values["implied_arrival_mass_kg"] * (
-                np.exp(-s.delta_v_mps.sum() / ve) - np.exp(-s.paper_delta_v_mps.sum() / ve))
-            rest = (values[f"final_mass_diff_kg_{thrust:g}N"]
-                    - values[f"mass_gap_at_end_kg_{thrust:g}N"])
-            page.expect(f"{thrust:g} N: the final-mass difference is the arrival gap plus "
-                        "the delta-V difference", abs(rest - dv_part) < 0.02,
-                        f"rest {rest:.3f} kg, delta-V part {dv_part:.3f} kg")
-        if 300.0 in totals:
-            # the burn-time note: the 300 N difference is LOI 1's
-            total_d = (values["total_burn_duration_min_300N"]
-                       - values["paper_burn_total_300N_min"])
-            loi1_d = values["loi1_burn_min_300N"] - values["paper_loi1_burn_300N_min"]
-            page.expect("300 N: the burn-time difference is LOI 1's",
-                        abs(total_d - loi1_d) < 0.1, f"{total_d:.2f} vs {loi1_d:.2f} min")
+        _add_paper_checks(page, engines, seqs, totals, values)
     page.data.update(chains=chains, totals=totals, b1=b1)
     return page

@@ -66,62 +66,83 @@ def dv_table(sweep: pd.DataFrame, impulsive: dict) -> pd.DataFrame:
                  "verified"]]
 
 
-def notes(sweep: pd.DataFrame, impulsive: dict, printed, best_p, thrust_N, loi,
-          reproduction_report_linked: bool) -> list[str]:
-    """The notes the comparison calls for (MyST paragraphs), each only when the data do."""
+def _paper_findings(thrust_N: float, loi: int) -> pd.DataFrame:
+    """The audit's inconsistent findings about this engine's LOI."""
+    findings = audit.findings_table(only_inconsistent=True)
+    return findings[findings.id.str.contains(rf"/{thrust_N:g}N/LOI{loi}(?:/|-half|$)")]
+
+
+def median_offsets(sweep: pd.DataFrame) -> tuple[float, float]:
+    """Median ours − paper over the rows, in % and in m/s (NaN without printed rows)."""
+    diff_pct = sweep.delta_v_diff_percent
+    if not diff_pct.notna().any():
+        return np.nan, np.nan
+    return float(np.nanmedian(diff_pct)), float(np.nanmedian(sweep.delta_v_diff_mps))
+
+
+def _offset_notes(sweep: pd.DataFrame, impulsive: dict, thrust_f: pd.DataFrame) -> list:
+    """The systematic offset of ours − paper, and the rows far from it."""
     imp = sweep.attrs["impulsive_delta_v_mps"]
     diff_pct = sweep.delta_v_diff_percent
-    med_pct = float(np.nanmedian(diff_pct)) if diff_pct.notna().any() else np.nan
-    med_mps = float(np.nanmedian(sweep.delta_v_diff_mps)) if diff_pct.notna().any() else np.nan
+    med_pct, med_mps = median_offsets(sweep)
+    out = []
+    imp_d = impulsive["delta_v_mps"] - imp
+    if abs(med_pct) < 0.05:
+        out.append(
+            f"**No systematic offset.** Ours − paper is {med_mps:+.3f} m/s "
+            f"({med_pct:+.2f} %) in the median row (an impulse in our dynamics from the "
+            f"same orbit differs from the paper's impulsive value by {imp_d:+.3f} m/s).")
+    else:
+        out.append(
+            f"**A systematic offset.** Ours − paper is {med_mps:+.3f} m/s "
+            f"({med_pct:+.2f} %) in the median row. An impulse in our dynamics from the "
+            f"same orbit differs from the paper's impulsive value by {imp_d:+.3f} m/s, "
+            f"leaving {med_mps - imp_d:+.3f} m/s in the finite burn itself. The arrival "
+            "state is our {ref}`reconstruction <arrival>` (the paper does not print it) "
+            "and LOI 2 and 3 start from our own earlier burns, so some offset is "
+            "expected; being common to every row, it moves neither the best offset nor "
+            "the shape of the curve, which are the checks of the optimiser."
+            + (" Here the paper's stronger effective engine (below) adds to it."
+               if len(thrust_f) else ""))
+    for r in sweep[(diff_pct - med_pct).abs() > OUTLIER_PERCENT].itertuples():
+        d = r.delta_v_diff_mps
+        why = ("The paper's solution at this offset needs more delta-V than our verified "
+               "optimum of the same problem: it is not the minimum (the paper calls its "
+               "solutions semi-optimal)." if d < 0 else
+               "Here the paper found less delta-V than our optimum."
+               + (" Its rows for this LOI imply a stronger engine (see the burn durations "
+                  "below), and extra thrust matters most where the loss is largest."
+                  if len(thrust_f) else " We have no explanation."))
+        out.append(f"**The {r.start_min:g} min row** differs by {d:+.3f} m/s "
+                   f"({r.delta_v_diff_percent:+.2f} %), "
+                   f"{r.delta_v_diff_percent - med_pct:+.2f} points from the median row. "
+                   f"{why}")
+    return out
+
+
+def _best_offset_note(sweep: pd.DataFrame, best_p) -> list:
+    """When our best offset is not the paper's: both delta-Vs and the rule of thumb."""
     eq19_min = float(sweep.eq19_duration_min.iloc[0])
     b = sweep[sweep.best].iloc[0]
     at_pbest = sweep[sweep.paper_best]
-    findings = audit.findings_table(only_inconsistent=True)
-    findings = findings[findings.id.str.contains(rf"/{thrust_N:g}N/LOI{loi}(?:/|-half|$)")]
+    nearest = float(sweep.start_min.iloc[(sweep.start_min + eq19_min / 2).abs().argmin()])
+    if not (best_p and b.start_min != best_p["start_min"] and len(at_pbest)):
+        return []
+    dv_at = float(at_pbest.delta_v_mps.iloc[0])
+    return [
+        f"**A different best offset.** Our smallest delta-V is at {b.start_min:g} min "
+        f"({b.delta_v_mps:.3f} m/s); at the paper's best, {best_p['start_min']:g} min, "
+        f"we get {dv_at:.3f} m/s, {dv_at - b.delta_v_mps:.3f} m/s more. Half our Eq. (19) "
+        f"duration is {eq19_min / 2:.2f} min, and the paper's rule of thumb (ignite half "
+        f"the estimated duration before perilune) points at the tested offset nearest to "
+        f"it: {nearest:g} min."]
+
+
+def _duration_notes(sweep: pd.DataFrame, printed, findings: pd.DataFrame, thrust_N: float,
+                    reproduction_report_linked: bool) -> list:
+    """Our burn durations against the paper's, and the paper's implied thrust if any."""
     thrust_f = findings[findings.id.str.startswith("thrust/")]
     out = []
-    if printed is not None and len(sweep) > 1:
-        imp_d = impulsive["delta_v_mps"] - imp
-        if abs(med_pct) < 0.05:
-            out.append(
-                f"**No systematic offset.** Ours − paper is {med_mps:+.3f} m/s "
-                f"({med_pct:+.2f} %) in the median row (an impulse in our dynamics from the "
-                f"same orbit differs from the paper's impulsive value by {imp_d:+.3f} m/s).")
-        else:
-            out.append(
-                f"**A systematic offset.** Ours − paper is {med_mps:+.3f} m/s "
-                f"({med_pct:+.2f} %) in the median row. An impulse in our dynamics from the "
-                f"same orbit differs from the paper's impulsive value by {imp_d:+.3f} m/s, "
-                f"leaving {med_mps - imp_d:+.3f} m/s in the finite burn itself. The arrival "
-                "state is our {ref}`reconstruction <arrival>` (the paper does not print it) "
-                "and LOI 2 and 3 start from our own earlier burns, so some offset is "
-                "expected; being common to every row, it moves neither the best offset nor "
-                "the shape of the curve, which are the checks of the optimiser."
-                + (" Here the paper's stronger effective engine (below) adds to it."
-                   if len(thrust_f) else ""))
-        for r in sweep[(diff_pct - med_pct).abs() > OUTLIER_PERCENT].itertuples():
-            d = r.delta_v_diff_mps
-            why = ("The paper's solution at this offset needs more delta-V than our verified "
-                   "optimum of the same problem: it is not the minimum (the paper calls its "
-                   "solutions semi-optimal)." if d < 0 else
-                   "Here the paper found less delta-V than our optimum."
-                   + (" Its rows for this LOI imply a stronger engine (see the burn durations "
-                      "below), and extra thrust matters most where the loss is largest."
-                      if len(thrust_f) else " We have no explanation."))
-            out.append(f"**The {r.start_min:g} min row** differs by {d:+.3f} m/s "
-                       f"({r.delta_v_diff_percent:+.2f} %), "
-                       f"{r.delta_v_diff_percent - med_pct:+.2f} points from the median row. "
-                       f"{why}")
-    nearest = float(sweep.start_min.iloc[(sweep.start_min + eq19_min / 2).abs().argmin()])
-    if printed is not None and best_p and b.start_min != best_p["start_min"] and len(at_pbest):
-        dv_at = float(at_pbest.delta_v_mps.iloc[0])
-        out.append(
-            f"**A different best offset.** Our smallest delta-V is at {b.start_min:g} min "
-            f"({b.delta_v_mps:.3f} m/s); at the paper's best, {best_p['start_min']:g} min, "
-            f"we get {dv_at:.3f} m/s, {dv_at - b.delta_v_mps:.3f} m/s more. Half our Eq. (19) "
-            f"duration is {eq19_min / 2:.2f} min, and the paper's rule of thumb (ignite half "
-            f"the estimated duration before perilune) points at the tested offset nearest to "
-            f"it: {nearest:g} min.")
     dur_med = round(float(np.nanmedian(sweep.burn_duration_diff_min)), 2) + 0.0 \
         if sweep.burn_duration_diff_min.notna().any() else np.nan
     big_dur = sweep[(sweep.burn_duration_diff_min - dur_med).abs() > 0.05]
@@ -147,35 +168,72 @@ def notes(sweep: pd.DataFrame, impulsive: dict, printed, best_p, thrust_N, loi,
                        "itself)." if len(findings) else "."))
         out.append(f"**Burn durations.** Ours − paper is {dur_med:+.2f} min in the median row "
                    f"(the paper prints 0.01 min){tail}")
-    if printed is None:
-        out.append("This engine is not one of the paper's: there is nothing to compare with.")
-    if len(findings):
-        items = "\n".join(f"* **{r.where.split(' (also')[0]}**, {r.quantity}: printed "
-                          f"{r.printed:g} {r.unit}, recomputed {r.computed:.4g} {r.unit}. "
-                          f"{r.explanation}" for r in findings.itertuples())
-        out.append(":::{admonition} Where the paper contradicts itself in this table "
-                   "(`lunarcap.paper.audit`)\n:class: dropdown\n\n" + items + "\n:::")
     return out
 
 
-def build(thrust_N: float = 150.0, isp_s: float = 200.0, loi: int = 1,
-          starts=(-10.0,), previous_starts=None, dynamics: str = "full",
-          output_name: str = "loi_sweep", quick: bool = False,
-          reproduction_report_linked: bool = True) -> Page:
-    """The page of one ignition sweep (see the module docstring)."""
-    prev = tuple(sweeps.default_previous(thrust_N, loi, isp_s) if previous_starts is None
-                 else previous_starts)
-    params = dict(thrust_N=thrust_N, isp_s=isp_s, loi=loi, starts=list(starts),
-                  previous_starts=previous_starts, dynamics=dynamics)
-    page = Page(NOTEBOOK, params, output_name, quick, solver_description())
-    sweep = sweeps.sweep_table(thrust_N, isp_s, loi, starts, prev, dynamics)
-    impulsive = sweeps.paper_impulsive_case(thrust_N, isp_s, loi, prev, dynamics)
-    printed, best_p, source = _printed(thrust_N, loi)
+def _findings_note(findings: pd.DataFrame) -> list:
+    """The audit's findings about this table, as a dropdown admonition."""
+    if not len(findings):
+        return []
+    items = "\n".join(f"* **{r.where.split(' (also')[0]}**, {r.quantity}: printed "
+                      f"{r.printed:g} {r.unit}, recomputed {r.computed:.4g} {r.unit}. "
+                      f"{r.explanation}" for r in findings.itertuples())
+    return [":::{admonition} Where the paper contradicts itself in this table "
+            "(`lunarcap.paper.audit`)\n:class: dropdown\n\n" + items + "\n:::"]
+
+
+def notes(sweep: pd.DataFrame, impulsive: dict, printed, best_p, thrust_N, loi,
+          reproduction_report_linked: bool) -> list[str]:
+    """The notes the comparison calls for (MyST paragraphs), each only when the data do."""
+    findings = _paper_findings(thrust_N, loi)
+    thrust_f = findings[findings.id.str.startswith("thrust/")]
+    out = []
+    if printed is not None and len(sweep) > 1:
+        out += _offset_notes(sweep, impulsive, thrust_f)
+    if printed is not None:
+        out += _best_offset_note(sweep, best_p)
+    out += _duration_notes(sweep, printed, findings, thrust_N, reproduction_report_linked)
+    if printed is None:
+        out.append("This engine is not one of the paper's: there is nothing to compare with.")
+    return out + _findings_note(findings)
+
+
+def prose_values(sweep: pd.DataFrame, impulsive: dict, best_p) -> dict:
+    """The numbers the prose quotes (NaN where the paper prints nothing to compare)."""
+    nan = float("nan")
     imp = sweep.attrs["impulsive_delta_v_mps"]
-    prev_txt = ", ".join(s if isinstance(s, str) else f"{s:g}" for s in prev)
-    case = (f"LOI {loi}, {thrust_N:g} N / Isp {isp_s:g} s, {dynamics} dynamics"
-            + (f", beside Song et al. (2011), {source}" if source else "")
-            + (f"; the earlier LOIs ignite at {prev_txt} min" if prev else ""))
+    eq19_min = float(sweep.eq19_duration_min.iloc[0])
+    b = sweep[sweep.best].iloc[0]
+    diff_pct = sweep.delta_v_diff_percent
+    at_pbest = sweep[sweep.paper_best]
+    has = diff_pct.notna().any()
+    values = {
+        "best_start_min": b.start_min, "best_delta_v_mps": b.delta_v_mps,
+        "best_burn_min": b.burn_duration_min, "best_loss_percent": b.loss_percent,
+        "best_loss_mps": b.delta_v_mps - imp,
+        "paper_best_start_min": best_p["start_min"] if best_p else nan,
+        "paper_best_delta_v_mps": best_p["delta_v_mps"] if best_p else nan,
+        "paper_best_burn_min": best_p["burn_duration_min"] if best_p else nan,
+        "paper_best_loss_percent": best_p["diff_percent"] if best_p else nan,
+        "best_diff_mps": b.delta_v_mps - best_p["delta_v_mps"] if best_p else nan,
+        "best_diff_percent": 100 * (b.delta_v_mps / best_p["delta_v_mps"] - 1)
+        if best_p else nan,
+        "dv_at_paper_best_mps": at_pbest.delta_v_mps.iloc[0] if len(at_pbest) else nan,
+        "diff_min_percent": float(np.nanmin(diff_pct)) if has else nan,
+        "diff_max_percent": float(np.nanmax(diff_pct)) if has else nan,
+        "diff_median_percent": float(np.nanmedian(diff_pct)) if has else nan,
+        "diff_median_mps": float(np.nanmedian(sweep.delta_v_diff_mps)) if has else nan,
+        "impulsive_mps": imp, "ours_impulsive_mps": impulsive["delta_v_mps"],
+        "impulsive_diff_mps": impulsive["delta_v_mps"] - imp,
+        "eq19_min": eq19_min, "eq19_half_min": eq19_min / 2,
+        "n_cases": len(sweep), "n_verified": int(sweep.verified.sum()),
+    }
+    return values
+
+
+def _add_items(page: Page, sweep: pd.DataFrame, impulsive: dict, printed, case: str,
+               source, loi: int, thrust_N: float, isp_s: float) -> None:
+    imp = sweep.attrs["impulsive_delta_v_mps"]
     page.table(
         "dv", dv_table(sweep, impulsive),
         caption=(f"Delta-V of {case}. Start: ignition, min from the nominal perilune "
@@ -213,38 +271,12 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, loi: int = 1,
                  f"burn-duration estimate, {eq19_min:.2f} min / 2 from our mass at ignition "
                  "(dashed), the paper's rule of thumb for the best ignition."),
         alt=f"Delta-V of LOI {loi} against ignition offset, ours and the paper's", name="dv")
-    # numbers for the prose
-    nan = float("nan")
+
+
+def _add_checks(page: Page, sweep: pd.DataFrame, impulsive: dict, best_p, values: dict,
+                dynamics: str) -> None:
+    """Headline checks: the book build fails if the reproduction drifts."""
     b = sweep[sweep.best].iloc[0]
-    diff_pct = sweep.delta_v_diff_percent
-    at_pbest = sweep[sweep.paper_best]
-    has = diff_pct.notna().any()
-    values = {
-        "best_start_min": b.start_min, "best_delta_v_mps": b.delta_v_mps,
-        "best_burn_min": b.burn_duration_min, "best_loss_percent": b.loss_percent,
-        "best_loss_mps": b.delta_v_mps - imp,
-        "paper_best_start_min": best_p["start_min"] if best_p else nan,
-        "paper_best_delta_v_mps": best_p["delta_v_mps"] if best_p else nan,
-        "paper_best_burn_min": best_p["burn_duration_min"] if best_p else nan,
-        "paper_best_loss_percent": best_p["diff_percent"] if best_p else nan,
-        "best_diff_mps": b.delta_v_mps - best_p["delta_v_mps"] if best_p else nan,
-        "best_diff_percent": 100 * (b.delta_v_mps / best_p["delta_v_mps"] - 1)
-        if best_p else nan,
-        "dv_at_paper_best_mps": at_pbest.delta_v_mps.iloc[0] if len(at_pbest) else nan,
-        "diff_min_percent": float(np.nanmin(diff_pct)) if has else nan,
-        "diff_max_percent": float(np.nanmax(diff_pct)) if has else nan,
-        "diff_median_percent": float(np.nanmedian(diff_pct)) if has else nan,
-        "diff_median_mps": float(np.nanmedian(sweep.delta_v_diff_mps)) if has else nan,
-        "impulsive_mps": imp, "ours_impulsive_mps": impulsive["delta_v_mps"],
-        "impulsive_diff_mps": impulsive["delta_v_mps"] - imp,
-        "eq19_min": eq19_min, "eq19_half_min": eq19_min / 2,
-        "n_cases": len(sweep), "n_verified": int(sweep.verified.sum()),
-    }
-    for k, v in values.items():
-        page.value(k, float(v))
-    page.note("notes", "\n\n".join(notes(sweep, impulsive, printed, best_p, thrust_N, loi,
-                                         reproduction_report_linked)) or "Nothing to note.")
-    # headline checks: the book build fails if the reproduction drifts
     page.expect("every solution passes the verification gate", bool(sweep.verified.all()),
                 str(sweep[~sweep.verified].start_min.tolist()))
     page.expect("the impulsive limit passes the gate", impulsive["verification_passed"])
@@ -254,5 +286,31 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, loi: int = 1,
         # our best delta-V within 0.5 % of Table B1 (measured: within 0.25 %)
         page.expect("best delta-V within 0.5 % of Table B1",
                     abs(values["best_diff_percent"]) < 0.5, f"{values['best_diff_percent']:.3f} %")
+
+
+def build(thrust_N: float = 150.0, isp_s: float = 200.0, loi: int = 1,
+          starts=(-10.0,), previous_starts=None, dynamics: str = "full",
+          output_name: str = "loi_sweep", quick: bool = False,
+          reproduction_report_linked: bool = True) -> Page:
+    """The page of one ignition sweep (see the module docstring)."""
+    prev = tuple(sweeps.default_previous(thrust_N, loi, isp_s) if previous_starts is None
+                 else previous_starts)
+    params = dict(thrust_N=thrust_N, isp_s=isp_s, loi=loi, starts=list(starts),
+                  previous_starts=previous_starts, dynamics=dynamics)
+    page = Page(NOTEBOOK, params, output_name, quick, solver_description())
+    sweep = sweeps.sweep_table(thrust_N, isp_s, loi, starts, prev, dynamics)
+    impulsive = sweeps.paper_impulsive_case(thrust_N, isp_s, loi, prev, dynamics)
+    printed, best_p, source = _printed(thrust_N, loi)
+    prev_txt = ", ".join(s if isinstance(s, str) else f"{s:g}" for s in prev)
+    case = (f"LOI {loi}, {thrust_N:g} N / Isp {isp_s:g} s, {dynamics} dynamics"
+            + (f", beside Song et al. (2011), {source}" if source else "")
+            + (f"; the earlier LOIs ignite at {prev_txt} min" if prev else ""))
+    _add_items(page, sweep, impulsive, printed, case, source, loi, thrust_N, isp_s)
+    values = prose_values(sweep, impulsive, best_p)
+    for k, v in values.items():
+        page.value(k, float(v))
+    page.note("notes", "\n\n".join(notes(sweep, impulsive, printed, best_p, thrust_N, loi,
+                                         reproduction_report_linked)) or "Nothing to note.")
+    _add_checks(page, sweep, impulsive, best_p, values, dynamics)
     page.data["sweep"] = sweep  # the raw table, for readers who want it in the notebook
     return page

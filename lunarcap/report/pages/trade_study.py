@@ -135,43 +135,57 @@ def _range_text(values, fmt: str = ".1f", unit: str = " %") -> str:
     return (lo if lo == hi else f"{lo} to {hi}") + unit
 
 
-def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
-          thrust_max_N: float = study.DEFAULT_THRUST_MAX_N, points: int = study.DEFAULT_POINTS,
-          isp_s=study.DEFAULT_ISP_S, workers: int = 2, dynamics: str = "full",
-          output_name: str = "trade_study", quick: bool = False, out=None, task=None,
-          processes: bool = True, timing_dir=None, lock_wait_s: float = 3600.0) -> Page:
-    """The trade-study page (see the module docstring).
+def burn_ratios(loi_ok: pd.DataFrame) -> tuple[pd.Series, pd.Series, pd.Series]:
+    """Per solved LOI: optimal / Robbins loss, duration and ignition over Eq. (19).
 
-    Parameters
-    ----------
-    thrust_min_N, thrust_max_N, points, isp_s, dynamics : the grid (:class:`StudySpec`)
-    workers : local Dask worker processes
-    output_name, quick : the page's output name and whether it is a quick build
-    out : the study's CSV table (default :func:`lunarcap.runs.study.default_table_path`)
-    task, processes : passed to :func:`lunarcap.runs.study.run_study` (tests)
-    timing_dir : directory of the timing runs listed in the runs table
-        (default ``<cache>/study/timing``)
-    lock_wait_s : how long to wait for another run writing the same table, s
+    The three ratios are dimensionless: the loss over Robbins' estimate (only where it
+    holds), the optimal duration over the Eq. (19) one, and the ignition offset over the
+    Eq. (19) duration. Robbins' expansion holds where ω_s t_b ≤
+    :data:`ROBBINS_VALID_OMEGA_T` (ω_s the Schuler rate at the perilune, t_b the Eq. (19)
+    duration).
     """
-    params = dict(thrust_min_N=thrust_min_N, thrust_max_N=thrust_max_N, points=points,
-                  isp_s=list(isp_s), workers=workers, dynamics=dynamics)
-    page = Page(NOTEBOOK, params, output_name, quick)
-    spec = study.StudySpec(thrust_min_N, thrust_max_N, points, tuple(isp_s), dynamics)
-    result = study.run_study(spec, out=out, workers=workers, progress=False,
-                             lock_wait_s=lock_wait_s, task=task, processes=processes)
-    table, wide, run = result.table, result.wide(), result.run
-    ok = table[table.status == "ok"]
-    loi_ok = ok[ok.part != "sequence"]
-    seq = ok[ok.part == "sequence"]
-    n_failed = int((wide.status != "ok").sum()) if len(wide) else 0
-    theory = study.analytic_curves(
-        np.geomspace(spec.thrust_min_N, spec.thrust_max_N, DENSE_POINTS), spec.isp_s)
-    paper = study.paper_points()
-    newton_per_ratio = float(study.thrust_from_weight_ratio(1.0))
-    loss_def = LOSS_DEFINITION
-    valid = theory[theory.omega_t_rad <= ROBBINS_VALID_OMEGA_T]
+    w = float(study.schuler_rate_rad_s(study.PERILUNE_RADIUS_KM))
+    in_valid = loi_ok[w * 60.0 * loi_ok.eq19_duration_min <= ROBBINS_VALID_OMEGA_T]
+    ratio = in_valid.loss_mps / in_valid.analytic_loss_mps
+    dur_ratio = loi_ok.burn_duration_min / loi_ok.eq19_duration_min
+    start_ratio = loi_ok.start_min / loi_ok.eq19_duration_min
+    return ratio, dur_ratio, start_ratio
 
-    # ------------------------------------------------------------------ figures and tables
+
+def prose_values(spec, wide: pd.DataFrame, run: dict, ok: pd.DataFrame,
+                 at_paper: pd.DataFrame) -> dict:
+    """The numbers the prose quotes (NaN where the grid solved nothing)."""
+    nan = float("nan")
+    loi_ok = ok[ok.part != "sequence"]
+    hi = ok[ok.part == "sequence"]
+    hi = hi[hi.thrust_N == hi.thrust_N.max()]
+    diffs = at_paper.dropna(subset=["optimal_loss_percent"])
+    ratio, dur_ratio, start_ratio = burn_ratios(loi_ok)
+    return {
+        "n_engines": len(wide), "n_thrusts": spec.points, "n_isp": len(spec.isp_s),
+        "thrust_min": spec.thrust_min_N, "thrust_max": spec.thrust_max_N,
+        "tw_min": study.thrust_to_weight(spec.thrust_min_N),
+        "tw_max": study.thrust_to_weight(spec.thrust_max_N),
+        "n_failed": int((wide.status != "ok").sum()) if len(wide) else 0,
+        "wall_s": float(run["wall_s"]), "n_computed": int(run["computed"]),
+        "seq_loss_high_max_mps": float(hi.loss_mps.max()) if len(hi) else nan,
+        "seq_loss_high_max_percent": float(hi.loss_percent.max()) if len(hi) else nan,
+        "loss_min_mps": float(ok.loss_mps.min()) if len(ok) else nan,
+        "robbins_valid_omega_t": ROBBINS_VALID_OMEGA_T,
+        "n_robbins_valid": len(ratio),
+        "paper_diff_max": float((diffs.optimal_loss_percent
+                                 - diffs.paper_loss_percent).abs().max()) if len(diffs) else nan,
+        "robbins_diff_max": float((diffs.robbins_loss_percent
+                                   - diffs.optimal_loss_percent).abs().max())
+        if len(diffs) else nan,
+        "dur_ratio_max": float(dur_ratio.max()) if len(loi_ok) else nan,
+        "start_ratio_min": float(-start_ratio.min()) if len(loi_ok) else nan,
+    }
+
+
+def _add_loss(page: Page, ok, valid, paper, spec, newton_per_ratio: float) -> pd.DataFrame:
+    """The loss figure and the table at the paper's engines (returned)."""
+    loss_def, dynamics = LOSS_DEFINITION, spec.dynamics
     page.figure(
         "loss", figures.plot_trade_study_loss(ok, valid, paper, spec.isp_s, PART_TITLES,
                                               newton_per_ratio, LOSS_AXIS_PERCENT),
@@ -198,6 +212,12 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
                  "optimal_loss_percent": "optimal (%)", "robbins_loss_percent": "Robbins (%)"},
         floatfmt={"thrust_N": ".0f", "isp_s": ".0f", "paper_loss_percent": ".2f",
                   "optimal_loss_percent": ".2f", "robbins_loss_percent": ".2f"})
+    return at_paper
+
+
+def _add_duration_grid_runs(page: Page, loi_ok, wide, spec, newton_per_ratio: float,
+                            result, timing_dir) -> None:
+    loss_def = LOSS_DEFINITION
     page.figure(
         "duration", figures.plot_trade_study_duration(
             loi_ok, spec.isp_s, {p: PART_TITLES[p] for p in study.PARTS[:3]},
@@ -244,44 +264,12 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
                  "load_avg_1min": "load (1 min)"},
         floatfmt={"wall_s": ".1f", "cluster_start_s": ".1f", "load_avg_1min": ".1f"},
         show_columns=RUNS_SHOWN)
-    page.note("failures", failures_note(result, len(wide)))
 
-    # ------------------------------------------------------------------ numbers for the prose
-    nan = float("nan")
-    lo = seq[seq.thrust_N == seq.thrust_N.min()]
-    hi = seq[seq.thrust_N == seq.thrust_N.max()]
-    diffs = at_paper.dropna(subset=["optimal_loss_percent"])
-    w = float(study.schuler_rate_rad_s(study.PERILUNE_RADIUS_KM))
-    in_valid = loi_ok[w * 60.0 * loi_ok.eq19_duration_min <= ROBBINS_VALID_OMEGA_T]
-    ratio = in_valid.loss_mps / in_valid.analytic_loss_mps
-    dur_ratio = loi_ok.burn_duration_min / loi_ok.eq19_duration_min
-    start_ratio = loi_ok.start_min / loi_ok.eq19_duration_min
-    values = {
-        "n_engines": len(wide), "n_thrusts": spec.points, "n_isp": len(spec.isp_s),
-        "thrust_min": spec.thrust_min_N, "thrust_max": spec.thrust_max_N,
-        "tw_min": study.thrust_to_weight(spec.thrust_min_N),
-        "tw_max": study.thrust_to_weight(spec.thrust_max_N),
-        "n_failed": n_failed, "wall_s": float(run["wall_s"]),
-        "n_computed": int(run["computed"]),
-        "seq_loss_high_max_mps": float(hi.loss_mps.max()) if len(hi) else nan,
-        "seq_loss_high_max_percent": float(hi.loss_percent.max()) if len(hi) else nan,
-        "loss_min_mps": float(ok.loss_mps.min()) if len(ok) else nan,
-        "robbins_valid_omega_t": ROBBINS_VALID_OMEGA_T,
-        "n_robbins_valid": len(in_valid),
-        "paper_diff_max": float((diffs.optimal_loss_percent
-                                 - diffs.paper_loss_percent).abs().max()) if len(diffs) else nan,
-        "robbins_diff_max": float((diffs.robbins_loss_percent
-                                   - diffs.optimal_loss_percent).abs().max())
-        if len(diffs) else nan,
-        "dur_ratio_max": float(dur_ratio.max()) if len(loi_ok) else nan,
-        "start_ratio_min": float(-start_ratio.min()) if len(loi_ok) else nan,
-    }
-    for k, v in values.items():
-        page.value(k, v)
-    page.value("seq_loss_low_range", _range_text(lo.loss_percent))
-    page.value("robbins_ratio_range", _range_text(ratio, ".2f", ""))
 
-    # ------------------------------------------------------------------ headline checks
+def _add_checks(page: Page, spec, table, wide, ok, theory, values: dict) -> None:
+    seq = ok[ok.part == "sequence"]
+    ratio, dur_ratio, _ = burn_ratios(ok[ok.part != "sequence"])
+    loi_ok = ok[ok.part != "sequence"]
     page.expect("every engine of the grid is in the table", len(wide) == len(spec.engines),
                 f"{len(wide)} of {len(spec.engines)}")
     page.expect("known row statuses", set(table.status) <= set(study.STATUSES),
@@ -315,5 +303,50 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
     page.expect("the weakest engines ignite earlier than the paper's rule (−½ Eq. (19))",
                 not len(loi_ok) or values["start_ratio_min"] > 0.5,
                 f"{values['start_ratio_min']:.3f}")
+
+
+def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
+          thrust_max_N: float = study.DEFAULT_THRUST_MAX_N, points: int = study.DEFAULT_POINTS,
+          isp_s=study.DEFAULT_ISP_S, workers: int = 2, dynamics: str = "full",
+          output_name: str = "trade_study", quick: bool = False, out=None, task=None,
+          processes: bool = True, timing_dir=None, lock_wait_s: float = 3600.0) -> Page:
+    """The trade-study page (see the module docstring).
+
+    Parameters
+    ----------
+    thrust_min_N, thrust_max_N, points, isp_s, dynamics : the grid (:class:`StudySpec`)
+    workers : local Dask worker processes
+    output_name, quick : the page's output name and whether it is a quick build
+    out : the study's CSV table (default :func:`lunarcap.runs.study.default_table_path`)
+    task, processes : passed to :func:`lunarcap.runs.study.run_study` (tests)
+    timing_dir : directory of the timing runs listed in the runs table
+        (default ``<cache>/study/timing``)
+    lock_wait_s : how long to wait for another run writing the same table, s
+    """
+    params = dict(thrust_min_N=thrust_min_N, thrust_max_N=thrust_max_N, points=points,
+                  isp_s=list(isp_s), workers=workers, dynamics=dynamics)
+    page = Page(NOTEBOOK, params, output_name, quick)
+    spec = study.StudySpec(thrust_min_N, thrust_max_N, points, tuple(isp_s), dynamics)
+    result = study.run_study(spec, out=out, workers=workers, progress=False,
+                             lock_wait_s=lock_wait_s, task=task, processes=processes)
+    table, wide, run = result.table, result.wide(), result.run
+    ok = table[table.status == "ok"]
+    loi_ok = ok[ok.part != "sequence"]
+    seq = ok[ok.part == "sequence"]
+    theory = study.analytic_curves(
+        np.geomspace(spec.thrust_min_N, spec.thrust_max_N, DENSE_POINTS), spec.isp_s)
+    paper = study.paper_points()
+    newton_per_ratio = float(study.thrust_from_weight_ratio(1.0))
+    valid = theory[theory.omega_t_rad <= ROBBINS_VALID_OMEGA_T]
+    at_paper = _add_loss(page, ok, valid, paper, spec, newton_per_ratio)
+    _add_duration_grid_runs(page, loi_ok, wide, spec, newton_per_ratio, result, timing_dir)
+    page.note("failures", failures_note(result, len(wide)))
+    values = prose_values(spec, wide, run, ok, at_paper)
+    for k, v in values.items():
+        page.value(k, v)
+    lo = seq[seq.thrust_N == seq.thrust_N.min()]
+    page.value("seq_loss_low_range", _range_text(lo.loss_percent))
+    page.value("robbins_ratio_range", _range_text(burn_ratios(loi_ok)[0], ".2f", ""))
+    _add_checks(page, spec, table, wide, ok, theory, values)
     page.data.update(result=result, wide=wide, ok=ok, theory=theory, paper=paper)
     return page

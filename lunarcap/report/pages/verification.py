@@ -217,36 +217,48 @@ def _download(name: str) -> str:
     return f"{{download}}`{p.name} <{paths.relative_to_page(p)}>`"
 
 
-def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
-          meshes=((4, 8, 4), (8, 16, 5)), dynamics: str = "full",
-          output_name: str = "verification", quick: bool = False) -> Page:
-    """The verification page (see the module docstring).
+def case_context(case_list) -> dict:
+    """How the captions name the cases: engines text, whether the paper's, after Table B1.
 
-    Parameters
-    ----------
-    cases : "paper" (the 37 cases of Tables 1-5) or [[thrust N, Isp s, LOI, start min,
-        [earlier starts min]], ...]
-    mesh_cases : cases (same form) of the mesh-convergence study
-    meshes : [[burn intervals, coast intervals, LGR degree], ...], coarse to fine (the last
-        is the reference)
-    dynamics : "full", "j2" or "two-body"
+    ``engines_txt`` lists the engines ("150 N / 200 s, ..."); ``paper_txt`` is ", the
+    paper's" when every engine is one of the paper's; ``after_b1`` is True when every case
+    follows the paper's best earlier burns.
     """
-    params = dict(cases=cases if isinstance(cases, str) else [list(c) for c in cases],
-                  mesh_cases=[list(c) for c in mesh_cases], meshes=[list(m) for m in meshes],
-                  dynamics=dynamics)
-    page = Page(NOTEBOOK, params, output_name, quick, solver_description())
-    case_list = _cases(cases)
-    mesh_list = _cases(mesh_cases)
-    default_points = (DEFAULT.n_burn + DEFAULT.n_coast) * DEFAULT.degree
-
-    # ---------------------------------------------------------------- every case
-    ver = cases_table(case_list, dynamics)
-    n_passed = int((ver.passed == PASSED).sum())
     engines = sorted({(t, i) for t, i, *_ in case_list})
-    engines_txt = ", ".join(f"{t:g} N / {i:g} s" for t, i in engines)
-    paper_txt = ", the paper's" if all(PAPER_ENGINES.get(int(t)) == i for t, i in engines) else ""
-    after_b1 = all(tuple(p) == tuple(PAPER_BEST_STARTS_MIN.get(t, ())[:n - 1])
-                   for t, i, n, s, p in case_list)
+    paper = all(PAPER_ENGINES.get(int(t)) == i for t, i in engines)
+    return {"engines_txt": ", ".join(f"{t:g} N / {i:g} s" for t, i in engines),
+            "paper_txt": ", the paper's" if paper else "",
+            "after_b1": all(tuple(p) == tuple(PAPER_BEST_STARTS_MIN.get(t, ())[:n - 1])
+                            for t, i, n, s, p in case_list)}
+
+
+def prose_values(ver: pd.DataFrame, mesh: pd.DataFrame, default_points: int) -> dict:
+    """The numbers the prose quotes: the gates, the counts, the meshes IPOPT got wrong."""
+    ipopt_ok = mesh.ipopt_status.isin(IPOPT_OK.values())
+    fooled = mesh[ipopt_ok & (mesh.accepted == FAILED)]
+    at_default = mesh[mesh.default == "yes"]
+    values = {"tol_dv_mps": verify.TOL_DV_MPS, "tol_rp_m": verify.TOL_RP_M,
+              "tol_angle_deg": verify.TOL_ANGLE_DEG, "tol_position_m": verify.TOL_POSITION_M,
+              "tol_speed_mmps": verify.TOL_SPEED_MPS * 1e3,
+              "n_cases": len(ver), "n_passed": int((ver.passed == PASSED).sum()),
+              "n_fooled": len(fooled), "n_mesh_solves": len(mesh),
+              "fooled_max_rp_m": fooled.rp_error_m.abs().max() if len(fooled) else np.nan,
+              "fooled_max_gamma_deg": (fooled.gamma_error_deg.abs().max() if len(fooled)
+                                       else np.nan),
+              "default_n_burn": DEFAULT.n_burn, "default_n_coast": DEFAULT.n_coast,
+              "default_degree": DEFAULT.degree, "default_points": default_points,
+              "default_max_change_mps": (at_default.delta_v_change_vs_finest_mps.abs().max()
+                                         if len(at_default) else np.nan)}
+    for q, u, c, g in GATES:
+        values[f"worst_{c}"] = worst(ver, c)[0]
+    return values
+
+
+def _add_cases(page: Page, ver: pd.DataFrame, case_list, dynamics: str) -> None:
+    n_passed = int((ver.passed == PASSED).sum())
+    ctx = case_context(case_list)
+    engines_txt, paper_txt, after_b1 = ctx["engines_txt"], ctx["paper_txt"], ctx["after_b1"]
+    output_name = page.output_name
     residuals = ["final_position_diff_m", "end_speed_diff_mps", "objective_diff_mps",
                  "rp_error_m", "ra_error_m", "inc_error_deg", "gamma_error_deg"]
     page.table(
@@ -289,8 +301,9 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
         show_columns=["quantity", "unit", "gate", "worst_shown", "worst_case",
                       "gate_over_worst"])
 
-    # ---------------------------------------------------------------- impulsive limits
-    imp = impulsive_table(case_list, dynamics)
+
+
+def _add_impulsive(page: Page, imp: pd.DataFrame) -> None:
     n_imp_ok = int((imp.verified == PASSED).sum())
     page.table(
         "impulsive", imp,
@@ -312,8 +325,10 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
         show_columns=["thrust_N", "loi", "burn_long_s", "delta_v_long_mps",
                       "delta_v_short_mps", "delta_v_mps", "extrapolation_mps"])
 
-    # ---------------------------------------------------------------- mesh convergence
-    mesh = mesh_table(mesh_cases, meshes, dynamics)
+
+
+def _add_mesh(page: Page, mesh: pd.DataFrame, mesh_list, default_points: int) -> None:
+    output_name = page.output_name
     one_engine = len({(c[0], c[1]) for c in mesh_list}) == 1
     page.table(
         "mesh", mesh[["case", "mesh", "ipopt_status", "delta_v_mps",
@@ -343,31 +358,13 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
         alt="Delta-V change against collocation points for each mesh-convergence case",
         name="mesh")
 
-    # ---------------------------------------------------------------- numbers for the prose
-    ipopt_ok = mesh.ipopt_status.isin(IPOPT_OK.values())
-    fooled = mesh[ipopt_ok & (mesh.accepted == FAILED)]
-    at_default = mesh[mesh.default == "yes"]
-    values = {"tol_dv_mps": verify.TOL_DV_MPS, "tol_rp_m": verify.TOL_RP_M,
-              "tol_angle_deg": verify.TOL_ANGLE_DEG, "tol_position_m": verify.TOL_POSITION_M,
-              "tol_speed_mmps": verify.TOL_SPEED_MPS * 1e3,
-              "n_cases": len(ver), "n_passed": n_passed,
-              "n_fooled": len(fooled), "n_mesh_solves": len(mesh),
-              "fooled_max_rp_m": fooled.rp_error_m.abs().max() if len(fooled) else np.nan,
-              "fooled_max_gamma_deg": (fooled.gamma_error_deg.abs().max() if len(fooled)
-                                       else np.nan),
-              "default_n_burn": DEFAULT.n_burn, "default_n_coast": DEFAULT.n_coast,
-              "default_degree": DEFAULT.degree, "default_points": default_points,
-              "default_max_change_mps": (at_default.delta_v_change_vs_finest_mps.abs().max()
-                                         if len(at_default) else np.nan)}
-    for q, u, c, g in GATES:
-        values[f"worst_{c}"] = worst(ver, c)[0]
-    for k, v in values.items():
-        page.value(k, float(v))
 
-    # ---------------------------------------------------------------- headline checks
-    page.expect("every solution passes the gate", n_passed == len(ver),
+def _add_checks(page: Page, ver, imp, mesh, values: dict, default_points: int) -> None:
+    at_default = mesh[mesh.default == "yes"]
+    page.expect("every solution passes the gate", values["n_passed"] == len(ver),
                 str(ver[ver.passed != PASSED].case.tolist()))
-    page.expect("every impulsive limit passes the gate", n_imp_ok == len(imp))
+    page.expect("every impulsive limit passes the gate",
+                int((imp.verified == PASSED).sum()) == len(imp))
     page.expect("the default mesh is accepted", bool((at_default.accepted == PASSED).all()))
     # the prose: converged to well below the paper's printed 0.001 m/s
     page.expect("the default mesh within 0.1 mm/s of the finest",
@@ -375,6 +372,41 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
                 f"{values['default_max_change_mps']:.2g} m/s")
     if (mesh.collocation_points < default_points).any():
         # IPOPT success alone would have accepted a wrong answer (the prose says so)
-        page.expect("a coarse mesh IPOPT solved is rejected by the gate", len(fooled) > 0)
+        page.expect("a coarse mesh IPOPT solved is rejected by the gate",
+                    values["n_fooled"] > 0)
+
+
+def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
+          meshes=((4, 8, 4), (8, 16, 5)), dynamics: str = "full",
+          output_name: str = "verification", quick: bool = False) -> Page:
+    """The verification page (see the module docstring).
+
+    Parameters
+    ----------
+    cases : "paper" (the 37 cases of Tables 1-5) or [[thrust N, Isp s, LOI, start min,
+        [earlier starts min]], ...]
+    mesh_cases : cases (same form) of the mesh-convergence study
+    meshes : [[burn intervals, coast intervals, LGR degree], ...], coarse to fine (the last
+        is the reference)
+    dynamics : "full", "j2" or "two-body"
+    """
+    params = dict(cases=cases if isinstance(cases, str) else [list(c) for c in cases],
+                  mesh_cases=[list(c) for c in mesh_cases], meshes=[list(m) for m in meshes],
+                  dynamics=dynamics)
+    page = Page(NOTEBOOK, params, output_name, quick, solver_description())
+    case_list = _cases(cases)
+    mesh_list = _cases(mesh_cases)
+    default_points = (DEFAULT.n_burn + DEFAULT.n_coast) * DEFAULT.degree
+
+    ver = cases_table(case_list, dynamics)
+    _add_cases(page, ver, case_list, dynamics)
+    imp = impulsive_table(case_list, dynamics)
+    _add_impulsive(page, imp)
+    mesh = mesh_table(mesh_cases, meshes, dynamics)
+    _add_mesh(page, mesh, mesh_list, default_points)
+    values = prose_values(ver, mesh, default_points)
+    for k, v in values.items():
+        page.value(k, float(v))
+    _add_checks(page, ver, imp, mesh, values, default_points)
     page.data.update(cases=ver, mesh=mesh, impulsive=imp)
     return page

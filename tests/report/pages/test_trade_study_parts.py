@@ -1,0 +1,49 @@
+"""The computing parts of the trade-study page, on a hand-made study table."""
+
+import math
+
+import pandas as pd
+import pytest
+
+from lunarcap.report.pages import trade_study as ts
+from lunarcap.runs import study
+
+
+def _ok():
+    # Robbins' expansion holds below an Eq. (19) duration of 0.5 / omega_s = 9.38 min
+    return pd.DataFrame({
+        "part": ["LOI1", "LOI1", "sequence", "sequence"],
+        "thrust_N": [100.0, 1000.0, 100.0, 1000.0],
+        "eq19_duration_min": [40.0, 4.0, float("nan"), float("nan")],
+        "burn_duration_min": [44.0, 4.1, float("nan"), float("nan")],
+        "start_min": [-30.0, -2.0, float("nan"), float("nan")],
+        "loss_mps": [20.0, 0.3, 25.0, 0.4],
+        "analytic_loss_mps": [30.0, 0.4, float("nan"), float("nan")],
+        "loss_percent": [5.0, 0.08, 3.0, 0.05]})
+
+
+def test_burn_ratios_robbins_only_where_it_holds():
+    ratio, dur, start = ts.burn_ratios(_ok()[lambda d: d.part != "sequence"])
+    assert ratio.tolist() == pytest.approx([0.75])            # only the 1000 N burn
+    assert dur.tolist() == pytest.approx([1.1, 1.025])
+    assert start.tolist() == pytest.approx([-0.75, -0.5])
+
+
+def test_prose_values_from_the_table():
+    spec = study.StudySpec(100.0, 1000.0, 2, (250.0,), "two-body")
+    wide = pd.DataFrame({"status": ["ok", "failed"]})
+    at_paper = pd.DataFrame({"optimal_loss_percent": [2.0, float("nan")],
+                             "paper_loss_percent": [2.5, 1.0],
+                             "robbins_loss_percent": [1.8, 1.0]})
+    v = ts.prose_values(spec, wide, {"wall_s": 12.5, "computed": 3}, _ok(), at_paper)
+    assert v["n_failed"] == 1 and v["n_engines"] == 2 and v["n_computed"] == 3
+    assert v["seq_loss_high_max_mps"] == pytest.approx(0.4)   # the strongest engine's
+    assert v["loss_min_mps"] == pytest.approx(0.3)
+    assert v["n_robbins_valid"] == 1
+    assert v["paper_diff_max"] == pytest.approx(0.5)
+    assert v["robbins_diff_max"] == pytest.approx(0.2)
+    assert v["dur_ratio_max"] == pytest.approx(1.1)
+    assert v["start_ratio_min"] == pytest.approx(0.75)
+    empty = ts.prose_values(spec, wide.iloc[:0], {"wall_s": 0.0, "computed": 0},
+                            _ok().iloc[:0], at_paper.iloc[:0])
+    assert math.isnan(empty["loss_min_mps"]) and empty["n_failed"] == 0
