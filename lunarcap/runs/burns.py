@@ -404,6 +404,7 @@ def run_burns(plans, counts, max_period_h: float = DEFAULT_MAX_PERIOD_H,
                         workers=workers, scheduler=scheduler, progress=progress,
                         processes=processes, desc="burns study", unit="count",
                         recompute=not use_cache, ok_statuses=("ok", "infeasible"),
+                        longest=lambda key: key["n_burns"],  # an NLP of n legs
                         describe={"study": "burns", "counts": list(counts),
                                   "max_period_h": max_period_h, "max_days": max_days})
 

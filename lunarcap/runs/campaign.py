@@ -211,6 +211,14 @@ def parse_numbers(option: str, text, minimum: float, include_min: bool, maximum=
 
 
 # ====================================================================== Dask
+#: Environment variable with the address of a Dask scheduler that every campaign given no
+#: ``scheduler`` uses instead of starting a local cluster of its own. The book's build
+#: sets it (:func:`lunarcap.report.execution.study_cluster`): the studies of all its pages
+#: share two worker processes, which start once and build each NLP shape once for the
+#: whole book, not once per study and worker.
+SCHEDULER_ENV = "LUNARCAP_DASK_SCHEDULER"
+
+
 def check_scheduler(scheduler) -> str | None:
     """The scheduler address (None: a local cluster); InputError if it is not text."""
     if scheduler is not None and (not isinstance(scheduler, str) or not scheduler.strip()):
@@ -484,7 +492,7 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
                  retry_failed: bool = False, lock_wait_s: float = 0.0, processes: bool = True,
                  desc: str = "study", unit: str = "case", describe: dict | None = None,
                  ok_statuses=("ok",), recompute: bool = False,
-                 error_rows=None) -> CampaignResult:
+                 error_rows=None, longest=None) -> CampaignResult:
     """Run (or resume) a campaign: one Dask task per case not yet in the table.
 
     Parameters
@@ -499,7 +507,9 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
     fmt : TableFormat
     version : str
         The code version rows are computed with; rows of another version are not reused.
-    workers, scheduler, processes : the cluster (see :func:`dask_client`)
+    workers, scheduler, processes : the cluster (see :func:`dask_client`); without
+        ``scheduler``, the one named by the environment variable :data:`SCHEDULER_ENV`
+        if set (``workers`` and ``processes`` are then those of that cluster)
     progress : show a tqdm bar on stderr
     retry_failed : recompute cases whose row's status is not in ``ok_statuses``
     lock_wait_s : how long to wait for another run writing the same table
@@ -508,6 +518,10 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
     error_rows : callable(key, message) -> list of dict, optional
         The rows recorded for a case whose task raised (default: the key with ``status``
         "task error" and the message).
+    longest : callable(key) -> number, optional
+        An estimate of each case's cost: the cases are submitted in decreasing order of
+        it (stable; default: in the order given), so few workers do not end on one long
+        case. The table keeps the order of ``cases``.
 
     Raises
     ------
@@ -516,7 +530,7 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
     """
     t0 = time.perf_counter()
     path = check_output_path(out)
-    scheduler = check_scheduler(scheduler)
+    scheduler = check_scheduler(scheduler or os.environ.get(SCHEDULER_ENV) or None)
     started = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
     load_start = loadavg()
     counts = {"computed": 0, "failed": 0}
@@ -527,6 +541,8 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
         todo = [(k, a) for (k, a), ck in zip(cases, keys)
                 if recompute or ck not in have
                 or (retry_failed and any(r["status"] not in ok_statuses for r in have[ck]))]
+        if longest is not None:
+            todo.sort(key=lambda case: -longest(case[0]))
 
         def record() -> dict:
             run = {"started_utc": started, "wall_s": round(time.perf_counter() - t0, 2),

@@ -418,3 +418,25 @@ def test_a_signal_to_the_main_process_alone_stops_everything(tmp_path, sig):
     assert not [f.name for f in gen.rglob(".*") if f.is_file()]
     assert not (gen / "one.ipynb").exists() and not (gen / "two.ipynb").exists()
     assert not (gen / "one.stamp.json").exists()
+
+
+def test_longest_first_starts_the_longest_chain_of_work_first(tmp_path, monkeypatch):
+    """Ready entries start by the work they lead to: own time plus the longest chain after.
+
+    Without a recorded run the manifest's ``expected_s`` counts; a stamp's recorded
+    ``seconds`` takes precedence; ties keep the manifest's order.
+    """
+    monkeypatch.setattr(paths, "GENERATED", tmp_path)
+    nb = tmp_path / "x.ipynb"
+
+    def entry(name, deps=(), expected_s=0.0):
+        return book.Entry(name, name, nb, {}, {}, tuple(deps), (), expected_s)
+
+    entries = [entry("small"), entry("a", expected_s=10), entry("b", ["a"], 30),
+               entry("big", expected_s=35), entry("c")]
+    assert [e.name for e in book.longest_first(entries)] == ["a", "big", "b", "small", "c"]
+    (tmp_path / "small.stamp.json").write_text(json.dumps({"seconds": 100.0}))
+    assert [e.name for e in book.longest_first(entries)][:2] == ["small", "a"]
+    bad = {"entries": [{"name": "x", "title": "X", "notebook": "x.ipynb", "expected_s": -1}]}
+    with pytest.raises(ManifestError, match="expected_s must be a number of seconds"):
+        validate_manifest(bad, tmp_path, check_notebooks=False)
