@@ -257,8 +257,16 @@ def remove_temporaries(since: float) -> list[Path]:
 
 
 # ====================================================================== execution
-def execute_entry(entry: Entry, parameters: dict, stamp: dict, timeout: float | None) -> dict:
-    """Run one entry with papermill (in a worker process). Returns a result dict, never raises."""
+def execute_entry(entry: Entry, parameters: dict, stamp: dict, timeout: float | None,
+                  env: dict | None = None) -> dict:
+    """Run one entry with papermill (in a worker process). Returns a result dict, never raises.
+
+    ``env``: environment variables the kernel gets for this run only (the shared study
+    cluster's address, see :class:`StudyCluster`).
+    """
+    env = env or {}
+    before = {k: os.environ.get(k) for k in env}  # a worker runs one entry after another
+    os.environ.update(env)
     paths.ensure_dirs()
     tmp = paths.GENERATED / f".{entry.name}.tmp.ipynb"
     t0 = time.perf_counter()
@@ -275,6 +283,11 @@ def execute_entry(entry: Entry, parameters: dict, stamp: dict, timeout: float | 
         os.dup2(saved, 2)
         os.close(saved)
         _RUNNING_FILES.clear()
+        for k, v in before.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
 
 
 def _stderr_tail(errlog: Path, n: int = 10) -> str:
@@ -344,17 +357,18 @@ def _execute(entry, parameters, stamp, timeout, tmp, t0, errlog) -> dict:
 
 
 class StudyCluster:
-    """The Dask cluster the book's studies share, started when the first notebook runs.
+    """The Dask cluster the book's studies share, started when the first study runs.
 
     Every study of the book (trade study, burn count, missed thrust, dispersions) would
     otherwise start a local cluster of its own, whose worker processes import lunarcap and
     build each NLP shape they need again: for the all-burns NLPs of the studies, 1.6 s of
     CPU for one leg up to 14 s for five, per worker and study. This one is started once
     (``jobs`` workers, one thread each) and named to the notebooks' kernels by the
-    environment variable :data:`lunarcap.runs.campaign.SCHEDULER_ENV`, set before the
-    worker processes that start the kernels are spawned; its workers keep the NLPs they
-    built from one study to the next. Not started when nothing is executed (a rerun with
-    nothing changed), nor when that variable names a scheduler already.
+    environment variable :data:`lunarcap.runs.campaign.SCHEDULER_ENV` (set for that
+    kernel alone, :func:`execute_entry`); its workers keep the NLPs they built from one
+    study to the next. A study is an entry whose manifest parameters set ``workers``.
+    Not started when no study is executed (a rerun with nothing changed), nor when that
+    variable names a scheduler already.
     """
 
     def __init__(self, workers: int):
@@ -362,15 +376,19 @@ class StudyCluster:
         self._stack = contextlib.ExitStack()
         self._client = None
 
-    def start(self) -> None:
-        """Start the cluster (once) and name it in this process's environment."""
+    def start(self) -> dict:
+        """Start the cluster (once); the environment naming it, for a study's kernel.
+
+        Empty if this process's environment names a scheduler already: the kernels inherit
+        that one.
+        """
         from lunarcap.runs.campaign import SCHEDULER_ENV, dask_client
 
-        if self._client is not None or os.environ.get(SCHEDULER_ENV):
-            return
-        self._client = self._stack.enter_context(dask_client(self.workers, None, True))
-        os.environ[SCHEDULER_ENV] = self._client.scheduler.address
-        self._stack.callback(os.environ.pop, SCHEDULER_ENV, None)
+        if os.environ.get(SCHEDULER_ENV):
+            return {}
+        if self._client is None:
+            self._client = self._stack.enter_context(dask_client(self.workers, None, True))
+        return {SCHEDULER_ENV: self._client.scheduler.address}
 
     def close(self, interrupted: bool = False) -> None:
         """Stop the cluster; after an interruption quietly (its workers were killed)."""
@@ -460,9 +478,9 @@ class _Run:
                     progressed = True
                     continue
                 self.log(f"      running {e.name} ...")
-                self.cluster.start()  # before the pool spawns the processes it names
+                env = self.cluster.start() if "workers" in e.parameters else {}
                 fut = pool.submit(execute_entry, e, e.effective_parameters(self.quick), stamp,
-                                  self.timeout)
+                                  self.timeout, env)
                 self.running[fut] = (e, stamp)
                 busy.add(e.name)
 
