@@ -492,7 +492,7 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
                  retry_failed: bool = False, lock_wait_s: float = 0.0, processes: bool = True,
                  desc: str = "study", unit: str = "case", describe: dict | None = None,
                  ok_statuses=("ok",), recompute: bool = False,
-                 error_rows=None, longest=None) -> CampaignResult:
+                 error_rows=None, longest=None, affinity=None) -> CampaignResult:
     """Run (or resume) a campaign: one Dask task per case not yet in the table.
 
     Parameters
@@ -522,6 +522,10 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
         An estimate of each case's cost: the cases are submitted in decreasing order of
         it (stable; default: in the order given), so few workers do not end on one long
         case. The table keeps the order of ``cases``.
+    affinity : callable(key) -> hashable, optional
+        Cases of one group go to one worker (:func:`assign_workers`, loosely: another
+        worker takes them if that one is gone): a group is the cases solving NLPs of the
+        same shapes, built once by one worker instead of once by each.
 
     Raises
     ------
@@ -566,10 +570,11 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
                     state["cluster_s"] = time.perf_counter() - tc
                     state["workers"] = len(client.scheduler_info().get("workers", {})) \
                         or workers
+                    where = assign_workers(client, todo, affinity, longest)
                     _compute(client, task, todo, fmt, version, path, counts, progress,
                              f"{desc} ({state['workers']} worker"
                              f"{'s' * (state['workers'] > 1)})", unit, ok_statuses,
-                             error_rows or _task_error_row, set(have))
+                             error_rows or _task_error_row, set(have), where)
         except KeyboardInterrupt:
             state["interrupted"] = True
             record()
@@ -580,20 +585,47 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
     return CampaignResult(pd.DataFrame(rows, columns=list(fmt.columns)), path, run)
 
 
+def assign_workers(client, todo: list, affinity=None, longest=None) -> list:
+    """The worker each case of ``todo`` should run on (None: any), one per case.
+
+    Cases are grouped by ``affinity(key)``; the groups, largest first (the sum of
+    ``longest(key)``, else the number of cases), go each to the worker with the least
+    work assigned so far. Without ``affinity``, or with one worker, every case may run
+    anywhere.
+    """
+    addrs = sorted(client.scheduler_info().get("workers", {}))
+    if affinity is None or len(addrs) < 2:
+        return [None] * len(todo)
+    cost: dict = {}
+    for key, _ in todo:
+        g = affinity(key)
+        cost[g] = cost.get(g, 0.0) + (float(longest(key)) if longest else 1.0)
+    load = dict.fromkeys(addrs, 0.0)
+    home = {}
+    for g in sorted(cost, key=lambda g: -cost[g]):
+        home[g] = min(addrs, key=lambda a: load[a])
+        load[home[g]] += cost[g]
+    return [home[affinity(key)] for key, _ in todo]
+
+
 def _compute(client, task, todo, fmt, version, path, counts, progress, desc, unit,
-             ok_statuses, error_rows, present=frozenset()) -> None:
+             ok_statuses, error_rows, present=frozenset(), where=None) -> None:
     """Submit one task per case; append each case's rows as its task completes.
 
     ``present``: case keys with rows of ``version`` in the table already (a case
     recomputed on request, or retried): their rows are replaced, not duplicated.
+    ``where``: per case, the worker it should run on (None: any; see
+    :func:`assign_workers`).
     """
     from dask.distributed import as_completed
     from tqdm import tqdm
 
     futures = {}
     for rank, (key, args) in enumerate(todo):
+        addr = where[rank] if where else None
         fut = client.submit(_run_task, task, key, args, pure=False,
-                            priority=len(todo) - rank)
+                            priority=len(todo) - rank, workers=[addr] if addr else None,
+                            allow_other_workers=bool(addr))
         futures[fut] = key
     bar = tqdm(as_completed(list(futures)), total=len(futures), unit=unit, desc=desc,
                file=sys.stderr, disable=not progress, dynamic_ncols=True)

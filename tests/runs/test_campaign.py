@@ -167,3 +167,29 @@ def test_a_campaign_uses_the_scheduler_the_environment_names_longest_cases_first
     monkeypatch.delenv(campaign.SCHEDULER_ENV)
     res = burns.run_burns([plan], "1", out=tmp_path / "own.csv", **kw)
     assert res.run["scheduler"] == "LocalCluster"
+
+
+def test_cases_of_one_nlp_shape_go_to_one_worker_balanced_by_their_cost():
+    """assign_workers: a group (same NLP shapes) on one worker; groups, largest first,
+    each to the least loaded worker; without affinity or with one worker, anywhere."""
+
+    class Client:
+        def __init__(self, *addrs):
+            self.addrs = addrs
+
+        def scheduler_info(self):
+            return {"workers": {a: {} for a in self.addrs}}
+
+    todo = [({"plan": p, "n_burns": n, "dynamics": "full"}, ()) for p in "ab"
+            for n in (1, 2, 3, 4, 5)]
+    where = campaign.assign_workers(Client("tcp://w2", "tcp://w1"), todo,
+                                    burns._nlp_shapes, lambda k: k["n_burns"])
+    home = {}
+    for (key, _), addr in zip(todo, where):
+        assert home.setdefault(key["n_burns"], addr) == addr  # both plans' n: one worker
+    # costs 10 (n=5), 8, 6, 4, 2: w1 takes 5, w2 4 and 3, then w1 2 and 1 (load 16 / 14)
+    assert home == {5: "tcp://w1", 4: "tcp://w2", 3: "tcp://w2", 2: "tcp://w1",
+                    1: "tcp://w1"}
+    assert campaign.assign_workers(Client("tcp://w1", "tcp://w2"), todo) == [None] * 10
+    assert campaign.assign_workers(Client("tcp://w1"), todo, burns._nlp_shapes) == \
+        [None] * 10
