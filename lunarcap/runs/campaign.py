@@ -523,53 +523,34 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
         it (stable; default: in the order given), so few workers do not end on one long
         case. The table keeps the order of ``cases``.
     affinity : callable(key) -> hashable, optional
-        Cases of one group go to one worker (:func:`assign_workers`, loosely: another
-        worker takes them if that one is gone): a group is the cases solving NLPs of the
-        same shapes, built once by one worker instead of once by each.
+        Cases of one group (solving NLPs of the same shapes) go to one worker, which
+        builds those NLPs once (:func:`assign_workers`).
 
     Raises
     ------
     InputError
         An unusable table path, a table in use, an unreachable scheduler: before any case.
     """
-    t0 = time.perf_counter()
     path = check_output_path(out)
     scheduler = check_scheduler(scheduler or os.environ.get(SCHEDULER_ENV) or None)
-    started = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
-    load_start = loadavg()
+    info = {"t0": time.perf_counter(), "scheduler": scheduler, "version": version,
+            "started": _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC"),
+            "load_start": loadavg(), "describe": describe or {}}
     counts = {"computed": 0, "failed": 0}
     state = {"cluster_s": 0.0, "workers": 0, "interrupted": False}
     keys = [fmt.case_key(k) for k, _ in cases]
     with table_lock(path, lock_wait_s, what=fmt.name):
         have = latest(read_table(path, fmt), fmt, version)
-        todo = [(k, a) for (k, a), ck in zip(cases, keys)
-                if recompute or ck not in have
-                or (retry_failed and any(r["status"] not in ok_statuses for r in have[ck]))]
-        if longest is not None:
-            todo.sort(key=lambda case: -longest(case[0]))
+        todo = _todo(cases, keys, have, recompute, retry_failed, ok_statuses, longest)
 
         def record() -> dict:
-            run = {"started_utc": started, "wall_s": round(time.perf_counter() - t0, 2),
-                   "cluster_start_s": round(state["cluster_s"], 2),
-                   "scheduler": (scheduler or "LocalCluster") if todo
-                   else "none (all in the table)",
-                   "workers": state["workers"] if todo else 0, "cases": len(cases),
-                   "computed": counts["computed"], "reused": len(cases) - len(todo),
-                   "failed_computed": counts["failed"], "interrupted": state["interrupted"],
-                   "table": str(path), "cache": cache_description(), "code_version": version,
-                   "host": socket.gethostname(), "cpu_count": os.cpu_count(),
-                   "load_avg_1min_start": load_start, "load_avg_1min_end": loadavg(),
-                   **(describe or {})}
-            append_run(path, run)
-            return run
+            return _record(path, todo, len(cases), state, counts, info)
 
         try:
             if todo:
                 tc = time.perf_counter()
                 with dask_client(workers, scheduler, processes) as client:
-                    state["cluster_s"] = time.perf_counter() - tc
-                    state["workers"] = len(client.scheduler_info().get("workers", {})) \
-                        or workers
+                    _start_s(state, tc, client, workers)
                     where = assign_workers(client, todo, affinity, longest)
                     _compute(client, task, todo, fmt, version, path, counts, progress,
                              f"{desc} ({state['workers']} worker"
@@ -583,6 +564,41 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
         have = latest(read_table(path, fmt), fmt, version)
     rows = [row for ck in keys for row in have.get(ck, [])]
     return CampaignResult(pd.DataFrame(rows, columns=list(fmt.columns)), path, run)
+
+
+def _record(path: Path, todo: list, n_cases: int, state: dict, counts: dict,
+            info: dict) -> dict:
+    """Append the record of a campaign run to its runs log; return it."""
+    run = {"started_utc": info["started"],
+           "wall_s": round(time.perf_counter() - info["t0"], 2),
+           "cluster_start_s": round(state["cluster_s"], 2),
+           "scheduler": (info["scheduler"] or "LocalCluster") if todo
+           else "none (all in the table)",
+           "workers": state["workers"] if todo else 0, "cases": n_cases,
+           "computed": counts["computed"], "reused": n_cases - len(todo),
+           "failed_computed": counts["failed"], "interrupted": state["interrupted"],
+           "table": str(path), "cache": cache_description(), "code_version": info["version"],
+           "host": socket.gethostname(), "cpu_count": os.cpu_count(),
+           "load_avg_1min_start": info["load_start"], "load_avg_1min_end": loadavg(),
+           **info["describe"]}
+    append_run(path, run)
+    return run
+
+
+def _todo(cases, keys, have, recompute, retry_failed, ok_statuses, longest) -> list:
+    """The cases to compute (see :func:`run_campaign`), longest first if ``longest``."""
+    todo = [(k, a) for (k, a), ck in zip(cases, keys)
+            if recompute or ck not in have
+            or (retry_failed and any(r["status"] not in ok_statuses for r in have[ck]))]
+    if longest is not None:
+        todo.sort(key=lambda case: -longest(case[0]))
+    return todo
+
+
+def _start_s(state: dict, tc: float, client, workers: int) -> None:
+    """Record how long the cluster took to start and how many workers it has."""
+    state["cluster_s"] = time.perf_counter() - tc
+    state["workers"] = len(client.scheduler_info().get("workers", {})) or workers
 
 
 def assign_workers(client, todo: list, affinity=None, longest=None) -> list:
