@@ -211,6 +211,14 @@ def parse_numbers(option: str, text, minimum: float, include_min: bool, maximum=
 
 
 # ====================================================================== Dask
+#: Environment variable with the address of a Dask scheduler that every campaign given no
+#: ``scheduler`` uses instead of starting a local cluster of its own. The book's build
+#: sets it (:func:`lunarcap.report.execution.study_cluster`): the studies of all its pages
+#: share two worker processes, which start once and build each NLP shape once for the
+#: whole book, not once per study and worker.
+SCHEDULER_ENV = "LUNARCAP_DASK_SCHEDULER"
+
+
 def check_scheduler(scheduler) -> str | None:
     """The scheduler address (None: a local cluster); InputError if it is not text."""
     if scheduler is not None and (not isinstance(scheduler, str) or not scheduler.strip()):
@@ -484,7 +492,7 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
                  retry_failed: bool = False, lock_wait_s: float = 0.0, processes: bool = True,
                  desc: str = "study", unit: str = "case", describe: dict | None = None,
                  ok_statuses=("ok",), recompute: bool = False,
-                 error_rows=None) -> CampaignResult:
+                 error_rows=None, longest=None, affinity=None) -> CampaignResult:
     """Run (or resume) a campaign: one Dask task per case not yet in the table.
 
     Parameters
@@ -499,7 +507,9 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
     fmt : TableFormat
     version : str
         The code version rows are computed with; rows of another version are not reused.
-    workers, scheduler, processes : the cluster (see :func:`dask_client`)
+    workers, scheduler, processes : the cluster (see :func:`dask_client`); without
+        ``scheduler``, the one named by the environment variable :data:`SCHEDULER_ENV`
+        if set (``workers`` and ``processes`` are then those of that cluster)
     progress : show a tqdm bar on stderr
     retry_failed : recompute cases whose row's status is not in ``ok_statuses``
     lock_wait_s : how long to wait for another run writing the same table
@@ -508,52 +518,44 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
     error_rows : callable(key, message) -> list of dict, optional
         The rows recorded for a case whose task raised (default: the key with ``status``
         "task error" and the message).
+    longest : callable(key) -> number, optional
+        An estimate of each case's cost: the cases are submitted in decreasing order of
+        it (stable; default: in the order given), so few workers do not end on one long
+        case. The table keeps the order of ``cases``.
+    affinity : callable(key) -> hashable, optional
+        Cases of one group (solving NLPs of the same shapes) go to one worker, which
+        builds those NLPs once (:func:`assign_workers`).
 
     Raises
     ------
     InputError
         An unusable table path, a table in use, an unreachable scheduler: before any case.
     """
-    t0 = time.perf_counter()
     path = check_output_path(out)
-    scheduler = check_scheduler(scheduler)
-    started = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
-    load_start = loadavg()
+    scheduler = check_scheduler(scheduler or os.environ.get(SCHEDULER_ENV) or None)
+    info = {"t0": time.perf_counter(), "scheduler": scheduler, "version": version,
+            "started": _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC"),
+            "load_start": loadavg(), "describe": describe or {}}
     counts = {"computed": 0, "failed": 0}
     state = {"cluster_s": 0.0, "workers": 0, "interrupted": False}
     keys = [fmt.case_key(k) for k, _ in cases]
     with table_lock(path, lock_wait_s, what=fmt.name):
         have = latest(read_table(path, fmt), fmt, version)
-        todo = [(k, a) for (k, a), ck in zip(cases, keys)
-                if recompute or ck not in have
-                or (retry_failed and any(r["status"] not in ok_statuses for r in have[ck]))]
+        todo = _todo(cases, keys, have, recompute, retry_failed, ok_statuses, longest)
 
         def record() -> dict:
-            run = {"started_utc": started, "wall_s": round(time.perf_counter() - t0, 2),
-                   "cluster_start_s": round(state["cluster_s"], 2),
-                   "scheduler": (scheduler or "LocalCluster") if todo
-                   else "none (all in the table)",
-                   "workers": state["workers"] if todo else 0, "cases": len(cases),
-                   "computed": counts["computed"], "reused": len(cases) - len(todo),
-                   "failed_computed": counts["failed"], "interrupted": state["interrupted"],
-                   "table": str(path), "cache": cache_description(), "code_version": version,
-                   "host": socket.gethostname(), "cpu_count": os.cpu_count(),
-                   "load_avg_1min_start": load_start, "load_avg_1min_end": loadavg(),
-                   **(describe or {})}
-            append_run(path, run)
-            return run
+            return _record(path, todo, len(cases), state, counts, info)
 
         try:
             if todo:
                 tc = time.perf_counter()
                 with dask_client(workers, scheduler, processes) as client:
-                    state["cluster_s"] = time.perf_counter() - tc
-                    state["workers"] = len(client.scheduler_info().get("workers", {})) \
-                        or workers
+                    _start_s(state, tc, client, workers)
+                    where = assign_workers(client, todo, affinity, longest)
                     _compute(client, task, todo, fmt, version, path, counts, progress,
                              f"{desc} ({state['workers']} worker"
                              f"{'s' * (state['workers'] > 1)})", unit, ok_statuses,
-                             error_rows or _task_error_row, set(have))
+                             error_rows or _task_error_row, set(have), where)
         except KeyboardInterrupt:
             state["interrupted"] = True
             record()
@@ -564,20 +566,82 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
     return CampaignResult(pd.DataFrame(rows, columns=list(fmt.columns)), path, run)
 
 
+def _record(path: Path, todo: list, n_cases: int, state: dict, counts: dict,
+            info: dict) -> dict:
+    """Append the record of a campaign run to its runs log; return it."""
+    run = {"started_utc": info["started"],
+           "wall_s": round(time.perf_counter() - info["t0"], 2),
+           "cluster_start_s": round(state["cluster_s"], 2),
+           "scheduler": (info["scheduler"] or "LocalCluster") if todo
+           else "none (all in the table)",
+           "workers": state["workers"] if todo else 0, "cases": n_cases,
+           "computed": counts["computed"], "reused": n_cases - len(todo),
+           "failed_computed": counts["failed"], "interrupted": state["interrupted"],
+           "table": str(path), "cache": cache_description(), "code_version": info["version"],
+           "host": socket.gethostname(), "cpu_count": os.cpu_count(),
+           "load_avg_1min_start": info["load_start"], "load_avg_1min_end": loadavg(),
+           **info["describe"]}
+    append_run(path, run)
+    return run
+
+
+def _todo(cases, keys, have, recompute, retry_failed, ok_statuses, longest) -> list:
+    """The cases to compute (see :func:`run_campaign`), longest first if ``longest``."""
+    todo = [(k, a) for (k, a), ck in zip(cases, keys)
+            if recompute or ck not in have
+            or (retry_failed and any(r["status"] not in ok_statuses for r in have[ck]))]
+    if longest is not None:
+        todo.sort(key=lambda case: -longest(case[0]))
+    return todo
+
+
+def _start_s(state: dict, tc: float, client, workers: int) -> None:
+    """Record how long the cluster took to start and how many workers it has."""
+    state["cluster_s"] = time.perf_counter() - tc
+    state["workers"] = len(client.scheduler_info().get("workers", {})) or workers
+
+
+def assign_workers(client, todo: list, affinity=None, longest=None) -> list:
+    """The worker each case of ``todo`` should run on (None: any), one per case.
+
+    Cases are grouped by ``affinity(key)``; the groups, largest first (the sum of
+    ``longest(key)``, else the number of cases), go each to the worker with the least
+    work assigned so far. Without ``affinity``, or with one worker, every case may run
+    anywhere.
+    """
+    addrs = sorted(client.scheduler_info().get("workers", {}))
+    if affinity is None or len(addrs) < 2:
+        return [None] * len(todo)
+    cost: dict = {}
+    for key, _ in todo:
+        g = affinity(key)
+        cost[g] = cost.get(g, 0.0) + (float(longest(key)) if longest else 1.0)
+    load = dict.fromkeys(addrs, 0.0)
+    home = {}
+    for g in sorted(cost, key=lambda g: -cost[g]):
+        home[g] = min(addrs, key=lambda a: load[a])
+        load[home[g]] += cost[g]
+    return [home[affinity(key)] for key, _ in todo]
+
+
 def _compute(client, task, todo, fmt, version, path, counts, progress, desc, unit,
-             ok_statuses, error_rows, present=frozenset()) -> None:
+             ok_statuses, error_rows, present=frozenset(), where=None) -> None:
     """Submit one task per case; append each case's rows as its task completes.
 
     ``present``: case keys with rows of ``version`` in the table already (a case
     recomputed on request, or retried): their rows are replaced, not duplicated.
+    ``where``: per case, the worker it should run on (None: any; see
+    :func:`assign_workers`).
     """
     from dask.distributed import as_completed
     from tqdm import tqdm
 
     futures = {}
     for rank, (key, args) in enumerate(todo):
+        addr = where[rank] if where else None
         fut = client.submit(_run_task, task, key, args, pure=False,
-                            priority=len(todo) - rank)
+                            priority=len(todo) - rank, workers=[addr] if addr else None,
+                            allow_other_workers=bool(addr))
         futures[fut] = key
     bar = tqdm(as_completed(list(futures)), total=len(futures), unit=unit, desc=desc,
                file=sys.stderr, disable=not progress, dynamic_ncols=True)

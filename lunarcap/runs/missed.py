@@ -60,19 +60,25 @@ from lunarcap.errors import InputError, SolveError
 from lunarcap.mission.plan import CapturePlan, PlanError, plan_ephemeris
 from lunarcap.mission.targets import PERILUNE
 from lunarcap.optim.collocation import DEFAULT_MESHES, sundman_fractions
-from lunarcap.optim.guess import guess_arcs, make_guess, mean_motion_and_anomaly
+from lunarcap.optim.guess import guess_arcs, make_guess
 from lunarcap.optim.joint import solve_joint, warm_start
 from lunarcap.optim.problem import burn_problem
 from lunarcap.optim.verify import fly_burn_until
-from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model
-from lunarcap.physics.elements import mee_from_rv, orbit_summary, rv_from_mee
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.propagate import propagate
 from lunarcap.repro.cache import cached
 from lunarcap.runs.burns import MAX_FIT_SPAN_S
 from lunarcap.runs.chain import solve_plan, time_to_final_orbit_h
+from lunarcap.runs.missed_orbits import (  # noqa: F401  (this module's API too)
+    classify,
+    make_up_estimate,
+    period_s,
+    physical_bound,
+    soi_radius_km,
+    time_to_perilune_after_impulse_s,
+)
 
 #: Longest period of the orbit after burn n, in the recovery and in the nominal alike, h.
 #: About twice the paper's 12.235 h. For the paper's 150 N plan the nominal's own optimum
@@ -208,118 +214,6 @@ def on_meshes(solve, meshes=DEFAULT_MESHES[:2]):
         except SolveError as exc:
             if exc.status != "verification failed" or j == len(meshes) - 1:
                 raise
-# ---------------------------------------------------------------------- orbits
-def classify(x, t_s: float, ephemeris: str | None = None) -> dict:
-    """The orbit of state ``x`` (p, f, g, h, k, L, m) at epoch ``t_s`` about the Moon.
-
-    Returns energy (km^2/s^2), eccentricity, perilune and apolune radii (km, inf if open),
-    period (h, inf if open), the sphere-of-influence radius at that epoch (km) and
-    ``orbit``: "escape" (energy >= 0), "captured" (apolune inside the sphere of influence)
-    or "weakly captured".
-    """
-    o = orbit_summary(np.asarray(x, float), C.MU_MOON)
-    energy = o["v_kmps"] ** 2 / 2 - C.MU_MOON / o["r_km"]
-    soi = soi_radius_km(t_s, ephemeris)
-    if energy >= 0:
-        kind, period_h = "escape", math.inf
-    else:
-        a = -C.MU_MOON / (2 * energy)
-        period_h = 2 * math.pi * math.sqrt(a ** 3 / C.MU_MOON) / 3600.0
-        kind = "captured" if o["ra_km"] < soi else "weakly captured"
-    return {"orbit": kind, "energy_km2ps2": energy, "e": o["e"], "rp_km": o["rp_km"],
-            "ra_km": o["ra_km"], "period_h": period_h, "r_km": o["r_km"],
-            "soi_radius_km": soi}
-
-
-def soi_radius_km(t_s: float, ephemeris: str | None = None) -> float:
-    """Laplace's sphere-of-influence radius of the Moon, a (m_Moon/m_Earth)^(2/5), km.
-
-    ``a``: the Earth-Moon distance at epoch ``t_s`` from the ephemeris.
-    """
-    rm, _ = plan_ephemeris(ephemeris).moon_geocentric_state(t_s)
-    return float(np.linalg.norm(rm[:, 0])) * (C.MU_MOON / C.MU_EARTH) ** 0.4
-
-
-def period_s(a_km: float, mu: float = C.MU_MOON) -> float:
-    """Kepler's third law: the period of an ellipse of semi-major axis ``a_km``, s."""
-    return 2 * math.pi * math.sqrt(a_km ** 3 / mu)
-
-
-def time_to_perilune_after_impulse_s(x, dv_mps: float, after_s: float = 0.0,
-                                     mu: float = C.MU_MOON) -> float:
-    """Two-body time to the first perilune later than ``after_s``, after an impulse ``dv``.
-
-    The impulse is opposite the velocity at the state ``x``; inf if the orbit after it is
-    open.
-    """
-    r, v = (np.array(a, float) for a in rv_from_mee(*np.asarray(x, float)[:6], mu))
-    vn = np.linalg.norm(v)
-    if dv_mps * 1e-3 >= vn:   # the impulse would stop the spacecraft: no such orbit
-        return math.inf
-    mee = mee_from_rv(r, v * (vn - dv_mps * 1e-3) / vn, mu)
-    if math.hypot(mee[1], mee[2]) >= 1:
-        return math.inf
-    n, M = mean_motion_and_anomaly(mee, mu)
-    t = float((-M if M < 0 else 2 * math.pi - M) / n)
-    while t <= after_s:
-        t += 2 * math.pi / n
-    return t
-
-
-def make_up_estimate(x, rp_km: float, max_period_s: float, mu: float = C.MU_MOON) -> dict:
-    """Two-body delta-V a make-up burn needs at state ``x`` to reach the period bound.
-
-    A tangential impulse opposite the velocity bringing the orbit's period down to
-    ``max_period_s`` (0 if it is already shorter). ``min_period_s``: the shortest period
-    of any orbit through the position with perilune radius ``rp_km`` (semi-major axis
-    (r + rp) / 2): above ``max_period_s``, no recovery is possible from here. Returns
-    ``delta_v_mps``, ``min_period_s``, ``r_km``.
-    """
-    r, v = (np.array(a, float) for a in rv_from_mee(*np.asarray(x, float)[:6], mu))
-    rn, vn = float(np.linalg.norm(r)), float(np.linalg.norm(v))
-    a_max = (mu * (max_period_s / (2 * math.pi)) ** 2) ** (1 / 3)
-    v_max2 = mu * (2 / rn - 1 / a_max)
-    dv = vn - math.sqrt(v_max2) if v_max2 > 0 else vn
-    return {"delta_v_mps": max(dv, 0.0) * 1e3, "r_km": rn,
-            "min_period_s": period_s((rn + min(rp_km, rn)) / 2, mu)}
-
-
-def physical_bound(plan: CapturePlan, i: int, t_s: float, x, window_min: tuple,
-                   max_period_s: float, coast: Model) -> str:
-    """Why no recovery can start from ``x`` at ``t_s`` (empty text if one may).
-
-    Checked at the opening and the close of the make-up burn's window: the spacecraft
-    outside the Moon's sphere of influence at both, or every orbit through its position
-    with the plan's perilune radius longer than ``max_period_s`` at both (an elliptic
-    target only).
-    """
-    ends = []
-    for w in sorted(set(window_min)):
-        t = t_s + 60.0 * w
-        xw = propagate(coast, t_s, x, t).final if t > t_s else np.asarray(x, float)
-        ends.append((w, make_up_estimate(xw, plan.perilune_radius_km, max_period_s),
-                     soi_radius_km(t, plan.ephemeris)))
-    if all(e["r_km"] > soi for _, e, soi in ends):
-        w, e, soi = ends[0]
-        return (f"the spacecraft is {e['r_km']:,.0f} km from the Moon when the window "
-                f"opens, outside its sphere of influence ({soi:,.0f} km)")
-    if plan.targets[i].kind == PERILUNE and all(e["min_period_s"] > max_period_s
-                                                for _, e, _ in ends):
-        e = min((e for _, e, _ in ends), key=lambda e: e["min_period_s"])
-        now = orbit_summary(np.asarray(x, float), C.MU_MOON)
-        energy = now["v_kmps"] ** 2 / 2 - C.MU_MOON / now["r_km"]
-        still = ""
-        if energy < 0:   # bound: it will come back to its perilune
-            still = (f"; the spacecraft is still bound (period "
-                     f"{period_s(-C.MU_MOON / (2 * energy)) / 3600:.1f} h), so a make-up at a "
-                     f"later perilune or a longer --max-period-h could recover it")
-        return (f"the spacecraft is {e['r_km']:,.0f} km from the Moon when the make-up burn "
-                f"can ignite: every orbit through there with a {plan.perilune_radius_km:,.0f}"
-                f" km perilune radius lasts at least {e['min_period_s'] / 3600:.1f} h, more "
-                f"than the {max_period_s / 3600:g} h allowed (--max-period-h){still}")
-    return ""
-
-
 # ---------------------------------------------------------------------- the recovery
 def _sized(nplan: CapturePlan, i: int) -> CapturePlan:
     """The plan with burn ``i``'s period between its own and the next orbit's (geometric mean).

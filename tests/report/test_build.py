@@ -418,3 +418,69 @@ def test_a_signal_to_the_main_process_alone_stops_everything(tmp_path, sig):
     assert not [f.name for f in gen.rglob(".*") if f.is_file()]
     assert not (gen / "one.ipynb").exists() and not (gen / "two.ipynb").exists()
     assert not (gen / "one.stamp.json").exists()
+
+
+def test_longest_first_starts_the_longest_chain_of_work_first(tmp_path, monkeypatch):
+    """Ready entries start by the work they lead to: own time plus the longest chain after.
+
+    Without a recorded run the manifest's ``expected_s`` counts; a stamp's recorded
+    ``seconds`` takes precedence; ties keep the manifest's order.
+    """
+    monkeypatch.setattr(paths, "GENERATED", tmp_path)
+    nb = tmp_path / "x.ipynb"
+
+    def entry(name, deps=(), expected_s=0.0):
+        return book.Entry(name, name, nb, {}, {}, tuple(deps), (), expected_s)
+
+    entries = [entry("small"), entry("a", expected_s=10), entry("b", ["a"], 30),
+               entry("big", expected_s=35), entry("c")]
+    assert [e.name for e in book.longest_first(entries)] == ["a", "big", "b", "small", "c"]
+    (tmp_path / "small.stamp.json").write_text(json.dumps({"seconds": 100.0}))
+    assert [e.name for e in book.longest_first(entries)][:2] == ["small", "a"]
+    bad = {"entries": [{"name": "x", "title": "X", "notebook": "x.ipynb", "expected_s": -1}]}
+    with pytest.raises(ManifestError, match="expected_s must be a number of seconds"):
+        validate_manifest(bad, tmp_path, check_notebooks=False)
+
+
+@pytest.mark.notebooks
+def test_studies_share_one_cluster_named_to_their_kernels_alone(tmp_path):
+    """An entry whose parameters set ``workers`` (a Dask study) runs with the book's cluster.
+
+    Its kernel gets the address in LUNARCAP_DASK_SCHEDULER, the same for two studies, and
+    a scheduler is listening there while they run; an entry without ``workers`` gets none.
+    """
+    root = tmp_path / "tree"
+    nbdir = _book_tree(root)
+    body = textwrap.dedent("""
+        import os
+        import pandas as pd
+        from lunarcap.repro import paths
+        addr = os.environ.get("LUNARCAP_DASK_SCHEDULER", "")
+        if addr:
+            from dask.distributed import Client
+            with Client(addr, timeout="30s") as c:
+                n = len(c.scheduler_info()["workers"])
+        else:
+            n = 0
+        paths.write_csv(pd.DataFrame({"addr": [addr or "none"], "n": [n]}), output_name)
+        """)
+    _notebook(nbdir / "study.ipynb", params="workers = 2\nquick = False\noutput_name = 'n'",
+              body=body)
+    _notebook(nbdir / "page.ipynb", body=body)
+    names = ("s1", "s2", "plain")
+    (nbdir / "manifest.yml").write_text(yaml.safe_dump({"entries": [
+        _entry("s1", "study.ipynb", parameters={"workers": 2}, outputs=["tables/s1.csv"]),
+        _entry("s2", "study.ipynb", parameters={"workers": 1}, outputs=["tables/s2.csv"]),
+        _entry("plain", "page.ipynb", outputs=["tables/plain.csv"])]}))
+    (root / "book" / "_toc.yml").write_text(yaml.safe_dump({
+        "format": "jb-book", "root": "intro",
+        "chapters": [{"file": f"generated/{n}"} for n in names]}))
+    env = dict(os.environ, LUNARCAP_ROOT=str(root), LUNARCAP_NO_CACHE="1")
+    env.pop("LUNARCAP_DASK_SCHEDULER", None)
+    cmd = [sys.executable, "-m", "lunarcap.report.build", "build", "--no-build", "--jobs", "2"]
+    run = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stdout + run.stderr
+    tables = root / "book" / "generated" / "tables"
+    got = {n: (tables / f"{n}.csv").read_text().splitlines()[1].split(",") for n in names}
+    assert got["s1"][0].startswith("tcp://") and got["s1"] == got["s2"], got
+    assert got["s1"][1] == "2" and got["plain"] == ["none", "0"], got

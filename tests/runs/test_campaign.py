@@ -141,3 +141,55 @@ def test_no_cache_after_an_interrupted_study_replaces_rows_not_duplicates(tmp_pa
     burns.run_burns([plan], "1,2,3", use_cache=False, **kw)
     table = campaign.read_table(out, before)
     assert len(table) == 4 and list(table.code_version).count("older-version") == 1
+
+
+def test_a_campaign_uses_the_scheduler_the_environment_names_longest_cases_first(
+        tmp_path, monkeypatch):
+    """The book's shared cluster (LUNARCAP_DASK_SCHEDULER) and the burns study's order.
+
+    Without ``scheduler``, a campaign joins the cluster the environment variable names
+    instead of starting its own; the burns study submits its cases most burns first, so
+    a worker does not end the study on the longest one (one worker thread here: the cases
+    run in the order they were submitted). The table keeps the order of the counts.
+    """
+    from dask.distributed import LocalCluster
+
+    plan = load_plan("song2011-150N").with_dynamics("two-body")
+    kw = dict(task=_fake_count_row, progress=False, processes=False, workers=1)
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                      dashboard_address=None) as cluster:
+        monkeypatch.setenv(campaign.SCHEDULER_ENV, cluster.scheduler_address)
+        FAKE_CALLS.clear()
+        res = burns.run_burns([plan], "1,2,3", out=tmp_path / "shared.csv", **kw)
+    assert res.run["scheduler"] == cluster.scheduler_address
+    assert [n for n, _ in FAKE_CALLS] == [3, 2, 1]
+    assert list(res.table.n_burns) == [1, 2, 3]
+    monkeypatch.delenv(campaign.SCHEDULER_ENV)
+    res = burns.run_burns([plan], "1", out=tmp_path / "own.csv", **kw)
+    assert res.run["scheduler"] == "LocalCluster"
+
+
+def test_cases_of_one_nlp_shape_go_to_one_worker_balanced_by_their_cost():
+    """assign_workers: a group (same NLP shapes) on one worker; groups, largest first,
+    each to the least loaded worker; without affinity or with one worker, anywhere."""
+
+    class Client:
+        def __init__(self, *addrs):
+            self.addrs = addrs
+
+        def scheduler_info(self):
+            return {"workers": {a: {} for a in self.addrs}}
+
+    todo = [({"plan": p, "n_burns": n, "dynamics": "full"}, ()) for p in "ab"
+            for n in (1, 2, 3, 4, 5)]
+    where = campaign.assign_workers(Client("tcp://w2", "tcp://w1"), todo,
+                                    burns._nlp_shapes, lambda k: k["n_burns"])
+    home = {}
+    for (key, _), addr in zip(todo, where):
+        assert home.setdefault(key["n_burns"], addr) == addr  # both plans' n: one worker
+    # costs 10 (n=5), 8, 6, 4, 2: w1 takes 5, w2 4 and 3, then w1 2 and 1 (load 16 / 14)
+    assert home == {5: "tcp://w1", 4: "tcp://w2", 3: "tcp://w2", 2: "tcp://w1",
+                    1: "tcp://w1"}
+    assert campaign.assign_workers(Client("tcp://w1", "tcp://w2"), todo) == [None] * 10
+    assert campaign.assign_workers(Client("tcp://w1"), todo, burns._nlp_shapes) == \
+        [None] * 10
