@@ -99,6 +99,9 @@ from lunarcap.runs.dispersion_summary import (  # noqa: F401
 EARTH_MOON_KM = 384400.0
 SOI_RADIUS_KM = EARTH_MOON_KM * (C.MU_MOON / C.MU_EARTH) ** 0.4
 
+#: Share of a revolution by which the nominal steering's coast may miss the plan's perilune
+#: epoch before a re-plan starts from the burn timed to it (:func:`replan_guesses`).
+TIMING_MISS_REV = 0.05
 #: IPOPT statuses meaning "no solution within the bounds".
 INFEASIBLE = ("Infeasible_Problem_Detected", "Restoration_Failed")
 
@@ -336,7 +339,35 @@ def _replan(plan: CapturePlan, i: int, t_p: float, x_p, nom) -> object:
         raise Uncorrectable(f"the plan's rules refuse a re-plan from the orbit reached ({why})"
                             ) from None
     prob = burn_problem(rp, 0, x_p, rp.ephemeris_model())
-    return solve_burn_problem(prob, guess=warm_guess(nom.raw, prob))
+    first = None
+    for guess in replan_guesses(nom.raw, prob):
+        try:
+            return solve_burn_problem(prob, guess=guess)
+        except SolveError as exc:
+            first = first or exc
+    raise first
+
+
+def replan_guesses(nominal_raw, prob) -> list:
+    """The guesses a re-plan tries in turn: the nominal steering, or the timed burn first.
+
+    The nominal burn's steering (:func:`warm_guess`) is the natural start, except when the
+    plan's timeline makes it the wrong one: with the paper's target (a perilune at the
+    plan's fixed epoch) a burn error of a few m/s moves the perilune reached by tens of
+    minutes, and the next orbit must then have another period to bring its perilune back
+    onto the plan's epoch. The nominal steering's coast then misses that epoch by more
+    than :data:`TIMING_MISS_REV` of a revolution, and IPOPT started from it stalls or ends
+    on a costlier branch (one more revolution in a smaller orbit); the anti-velocity burn
+    whose duration is tuned to reach perilune at the epoch (``None``: the solver's own
+    :func:`lunarcap.optim.guess.make_guess`) goes first. The other guess is the fallback.
+    """
+    warm = warm_guess(nominal_raw, prob)
+    if prob.free_end or prob.circular:
+        return [warm, None]
+    _, mean_anomaly = mean_motion_and_anomaly(warm.coast.x[:, -1])
+    if abs(float(mean_anomaly)) > 2 * math.pi * TIMING_MISS_REV:
+        return [None, warm]
+    return [warm, None]
 
 
 class Uncorrectable(Exception):
