@@ -44,6 +44,10 @@ The **budget** is what the tanks must hold: the delta-V flown (the quadrature of
 along every re-propagated burn) and the propellant used, summarised by percentiles and a
 distribution-free confidence interval on the 99 % quantile from order statistics
 (:func:`quantile_ci`).
+
+The error model and the draws are in :mod:`lunarcap.runs.dispersion_model`, the answer
+from a table in :mod:`lunarcap.runs.dispersion_summary`; their public names are imported
+here, so ``dispersions.ErrorModel`` or ``dispersions.summarise`` keep working.
 """
 
 from __future__ import annotations
@@ -68,20 +72,36 @@ from lunarcap.physics import constants as C
 from lunarcap.physics.elements import mee_from_rv, orbit_summary, rv_from_mee
 from lunarcap.physics.propagate import Trajectory, propagate
 from lunarcap.physics.steering import Steering, polynomial
+from lunarcap.runs.dispersion_model import (  # noqa: F401
+    BLOCK,
+    MAX_BURNS,
+    PER_BURN,
+    BurnErrors,
+    ErrorModel,
+    arrival_factor,
+    draws,
+    read_covariance,
+    realise,
+    sample_draws,
+)
+from lunarcap.runs.dispersion_summary import (  # noqa: F401
+    PERCENTILES,
+    burns_of,
+    convergence,
+    format_summary,
+    quantile_ci,
+    settled_after,
+    summarise,
+)
 
-#: Most burns a plan may have in this study (the draws' block is sized for it).
-MAX_BURNS = 8
-#: Standard normals per burn: thrust, Isp, two pointing angles, ignition offset.
-PER_BURN = 5
-#: Standard normals drawn per sample, whatever the sigmas: 6 (arrival) + 5 per burn.
-BLOCK = 6 + PER_BURN * MAX_BURNS
 #: Mean Earth-Moon distance, km (IAU 2009 / JPL: 384,400 km), for the Moon's sphere of
 #: influence (Laplace's radius a (m_Moon/m_Earth)^(2/5) = 66,200 km).
 EARTH_MOON_KM = 384400.0
 SOI_RADIUS_KM = EARTH_MOON_KM * (C.MU_MOON / C.MU_EARTH) ** 0.4
-#: Percentiles of the budget reported.
-PERCENTILES = (50.0, 90.0, 95.0, 99.0)
 
+#: Share of a revolution by which the nominal steering's coast may miss the plan's perilune
+#: epoch before a re-plan starts from the burn timed to it (:func:`replan_guesses`).
+TIMING_MISS_REV = 0.05
 #: IPOPT statuses meaning "no solution within the bounds".
 INFEASIBLE = ("Infeasible_Problem_Detected", "Restoration_Failed")
 
@@ -92,163 +112,11 @@ OK_STATUSES = ("ok", "not captured", "correction failed")
 
 @lru_cache(maxsize=1)
 def module_version() -> str:
-    """Hash of this module's source: part of the table's code version."""
-    return hashlib.sha256(Path(__file__).read_bytes()).hexdigest()[:16]
-
-
-# ====================================================================== error model
-@dataclass(frozen=True)
-class ErrorModel:
-    """One-sigma execution and navigation errors (every default 0: nothing assumed).
-
-    Attributes
-    ----------
-    thrust_sigma_pct, isp_sigma_pct : float
-        Thrust and specific impulse, % of nominal, drawn per burn.
-    pointing_sigma_deg : float
-        Each of two tilt angles of the thrust direction (perpendicular to the burn's mean
-        direction, fixed over the burn), deg, drawn per burn.
-    ignition_sigma_s : float
-        Ignition epoch, s, per burn (the steering follows the time since ignition).
-    arrival_sigma_km, arrival_sigma_mps : float
-        Arrival position (km) and velocity (m/s) errors per axis of the arrival RTN frame.
-    arrival_cov : tuple of 36 floats, optional
-        Instead: the 6x6 covariance (km, km/s; RTN at the arrival perilune), row-major.
-    """
-
-    thrust_sigma_pct: float = 0.0
-    isp_sigma_pct: float = 0.0
-    pointing_sigma_deg: float = 0.0
-    ignition_sigma_s: float = 0.0
-    arrival_sigma_km: float = 0.0
-    arrival_sigma_mps: float = 0.0
-    arrival_cov: tuple | None = None
-
-    def __post_init__(self):
-        for name in ("thrust_sigma_pct", "isp_sigma_pct", "pointing_sigma_deg",
-                     "ignition_sigma_s", "arrival_sigma_km", "arrival_sigma_mps"):
-            v = getattr(self, name)
-            opt = "--" + name.replace("_", "-")
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or \
-                    not math.isfinite(v) or v < 0:
-                raise InputError(f"{opt} must be a non-negative number, got {v!r}")
-            object.__setattr__(self, name, float(v))
-        if self.thrust_sigma_pct >= 30 or self.isp_sigma_pct >= 30:
-            raise InputError("thrust and Isp sigmas must be below 30 % (a 3-sigma draw would "
-                             "stop or reverse the engine)")
-        if self.pointing_sigma_deg > 30:
-            raise InputError(f"--pointing-sigma-deg must be at most 30 deg, got "
-                             f"{self.pointing_sigma_deg:g}")
-        if self.arrival_cov is not None:
-            if self.arrival_sigma_km or self.arrival_sigma_mps:
-                raise InputError("give --arrival-cov or --arrival-sigma-km/-mps, not both")
-            cov = np.asarray(self.arrival_cov, float)
-            object.__setattr__(self, "arrival_cov", tuple(float(v) for v in cov.ravel()))
-            arrival_factor(self.arrival_cov)  # checks it
-
-    @property
-    def is_zero(self) -> bool:
-        """True if no error is dispersed."""
-        return not any((self.thrust_sigma_pct, self.isp_sigma_pct, self.pointing_sigma_deg,
-                        self.ignition_sigma_s, self.arrival_sigma_km, self.arrival_sigma_mps,
-                        self.arrival_cov is not None and any(self.arrival_cov)))
-
-    def key(self) -> dict:
-        """The error model as the table's key columns."""
-        cov = "" if self.arrival_cov is None else \
-            hashlib.sha256(np.asarray(self.arrival_cov).tobytes()).hexdigest()[:12]
-        return {"thrust_sigma_pct": self.thrust_sigma_pct, "isp_sigma_pct": self.isp_sigma_pct,
-                "pointing_sigma_deg": self.pointing_sigma_deg,
-                "ignition_sigma_s": self.ignition_sigma_s,
-                "arrival_sigma_km": self.arrival_sigma_km,
-                "arrival_sigma_mps": self.arrival_sigma_mps, "arrival_cov": cov}
-
-    def describe(self) -> str:
-        """One line: the one-sigma errors."""
-        arr = ("arrival covariance from a file" if self.arrival_cov is not None else
-               f"arrival {self.arrival_sigma_km:g} km / {self.arrival_sigma_mps:g} m/s per axis")
-        return (f"1-sigma: thrust {self.thrust_sigma_pct:g} %, Isp {self.isp_sigma_pct:g} %, "
-                f"pointing {self.pointing_sigma_deg:g} deg per axis, ignition "
-                f"{self.ignition_sigma_s:g} s, {arr}")
-
-
-def arrival_factor(cov) -> np.ndarray:
-    """L with L L^T = the 6x6 covariance (km, km/s); InputError if it is not one."""
-    c = np.asarray(cov, float)
-    if c.size != 36 or not np.all(np.isfinite(c)):
-        raise InputError(f"--arrival-cov must be 36 finite numbers (a 6x6 matrix, km and "
-                         f"km/s), got {c.size}")
-    c = c.reshape(6, 6)
-    if not np.allclose(c, c.T, rtol=1e-9, atol=1e-15):
-        raise InputError("--arrival-cov is not symmetric")
-    w, v = np.linalg.eigh(c)
-    if w.min() < -1e-9 * max(1.0, abs(w).max()):
-        raise InputError(f"--arrival-cov is not positive semi-definite (eigenvalue "
-                         f"{w.min():.3g})")
-    return v * np.sqrt(np.clip(w, 0.0, None))
-
-
-def read_covariance(path) -> tuple:
-    """A 6x6 covariance from a text file (whitespace or commas; '#' comments), row-major."""
-    p = Path(path).expanduser()
-    try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"--arrival-cov {p}: cannot read it ({exc})") from None
-    vals = []
-    for line in text.splitlines():
-        line = line.split("#", 1)[0].replace(",", " ")
-        try:
-            vals += [float(t) for t in line.split()]
-        except ValueError:
-            raise InputError(f"--arrival-cov {p}: not numbers: {line.strip()!r}") from None
-    if len(vals) != 36:
-        raise InputError(f"--arrival-cov {p}: a 6x6 matrix has 36 numbers, the file has "
-                         f"{len(vals)}")
-    arrival_factor(vals)
-    return tuple(vals)
-
-
-# ====================================================================== draws
-def draws(seed: int, index: int) -> np.ndarray:
-    """The sample's :data:`BLOCK` standard normals, from ``default_rng([seed, index])``."""
-    return np.random.default_rng([int(seed), int(index)]).standard_normal(BLOCK)
-
-
-def sample_draws(seed: int, index: int, antithetic: bool = False) -> np.ndarray:
-    """:func:`draws`, or with ``antithetic`` the negated draws of the pair's first sample."""
-    if antithetic and index % 2:
-        return -draws(seed, index - 1)
-    return draws(seed, index)
-
-
-@dataclass(frozen=True)
-class BurnErrors:
-    """The errors of one burn: thrust and Isp factors, tilt (rad, 2), ignition offset (s)."""
-
-    thrust_factor: float = 1.0
-    isp_factor: float = 1.0
-    tilt_rad: tuple = (0.0, 0.0)
-    ignition_s: float = 0.0
-
-
-def realise(z: np.ndarray, model: ErrorModel, n_burns: int) -> tuple:
-    """(arrival error (6,) km and km/s in RTN, [BurnErrors per burn]) from the draws."""
-    z = np.asarray(z, float)
-    if model.arrival_cov is not None:
-        d_arr = arrival_factor(model.arrival_cov) @ z[:6]
-    else:
-        d_arr = np.concatenate([model.arrival_sigma_km * z[:3],
-                                model.arrival_sigma_mps * 1e-3 * z[3:6]])
-    out = []
-    for i in range(n_burns):
-        b = z[6 + PER_BURN * i: 6 + PER_BURN * (i + 1)]
-        out.append(BurnErrors(1.0 + model.thrust_sigma_pct / 100 * b[0],
-                              1.0 + model.isp_sigma_pct / 100 * b[1],
-                              (math.radians(model.pointing_sigma_deg) * b[2],
-                               math.radians(model.pointing_sigma_deg) * b[3]),
-                              model.ignition_sigma_s * b[4]))
-    return d_arr, out
+    """Hash of the study's sources (this module, its error model and its answer)."""
+    h = hashlib.sha256()
+    for name in ("dispersions.py", "dispersion_model.py", "dispersion_summary.py"):
+        h.update((Path(__file__).parent / name).read_bytes())
+    return h.hexdigest()[:16]
 
 
 # ====================================================================== flying with errors
@@ -471,7 +339,35 @@ def _replan(plan: CapturePlan, i: int, t_p: float, x_p, nom) -> object:
         raise Uncorrectable(f"the plan's rules refuse a re-plan from the orbit reached ({why})"
                             ) from None
     prob = burn_problem(rp, 0, x_p, rp.ephemeris_model())
-    return solve_burn_problem(prob, guess=warm_guess(nom.raw, prob))
+    first = None
+    for guess in replan_guesses(nom.raw, prob):
+        try:
+            return solve_burn_problem(prob, guess=guess)
+        except SolveError as exc:
+            first = first or exc
+    raise first
+
+
+def replan_guesses(nominal_raw, prob) -> list:
+    """The guesses a re-plan tries in turn: the nominal steering, or the timed burn first.
+
+    The nominal burn's steering (:func:`warm_guess`) is the natural start, except when the
+    plan's timeline makes it the wrong one: with the paper's target (a perilune at the
+    plan's fixed epoch) a burn error of a few m/s moves the perilune reached by tens of
+    minutes, and the next orbit must then have another period to bring its perilune back
+    onto the plan's epoch. The nominal steering's coast then misses that epoch by more
+    than :data:`TIMING_MISS_REV` of a revolution, and IPOPT started from it stalls or ends
+    on a costlier branch (one more revolution in a smaller orbit); the anti-velocity burn
+    whose duration is tuned to reach perilune at the epoch (``None``: the solver's own
+    :func:`lunarcap.optim.guess.make_guess`) goes first. The other guess is the fallback.
+    """
+    warm = warm_guess(nominal_raw, prob)
+    if prob.free_end or prob.circular:
+        return [warm, None]
+    _, mean_anomaly = mean_motion_and_anomaly(warm.coast.x[:, -1])
+    if abs(float(mean_anomaly)) > 2 * math.pi * TIMING_MISS_REV:
+        return [None, warm]
+    return [warm, None]
 
 
 class Uncorrectable(Exception):
@@ -483,6 +379,50 @@ def _fail(out: dict, status: str, reason: str) -> dict:
     out["sample_wall_s"] = time.perf_counter() - out.pop("_t0")
     out["sample_cpu_s"] = time.process_time() - out.pop("_c0")
     return out
+
+
+def _corrected(plan: CapturePlan, i: int, t_ref: float, x_ref, nom) -> tuple:
+    """(Solution, "") of burn ``i`` re-planned from (t_ref, x_ref), or (None, why not)."""
+    try:
+        return _replan(plan, i, t_ref, x_ref, nom), ""
+    except SolveError as exc:
+        status = getattr(exc, "status", "") or "no status"
+        what = ("no burn meets the target from the orbit reached"
+                if status in INFEASIBLE else "no verified solution")
+        return None, (f"burn {i + 1} cannot be re-planned: {what} (IPOPT {status} on the "
+                      f"last of {len(exc.details.get('attempts', [])) or 'its'} meshes)")
+    except Uncorrectable as exc:
+        return None, f"burn {i + 1} cannot be re-planned: {exc}"
+    except InputError as exc:
+        return None, f"burn {i + 1} cannot be re-planned from the orbit reached: {exc}"
+    except RuntimeError as exc:   # a guess propagation that fails (p -> 0)
+        return None, (f"burn {i + 1}: no trajectory to start the re-plan from ({exc})"
+                      .split("\n")[0])
+
+
+def _burn_record(i: int, sol, flown: FlownBurn, e: BurnErrors, t_ref: float) -> dict:
+    """One flown burn of a sample, as stored in its row's ``burns_json``."""
+    return {"burn": i + 1, "delta_v_mps": flown.delta_v_mps,
+            "planned_delta_v_mps": sol.delta_v_mps,
+            "ignition_min": (flown.t_ign_s - t_ref) / 60.0,
+            "duration_min": sol.raw.t1_s / 60.0,
+            "thrust_error_pct": 100 * (e.thrust_factor - 1),
+            "isp_error_pct": 100 * (e.isp_factor - 1),
+            "pointing_error_deg": math.degrees(math.hypot(*e.tilt_rad)),
+            "ignition_error_s": e.ignition_s}
+
+
+def _final_orbit(sol, flown: FlownBurn) -> dict:
+    """The final orbit's errors after the last burn, at the end of the plan's last coast."""
+    x_f = propagate(sol.problem.model, flown.t_end_s, flown.x_end, sol.problem.t_end_s).final
+    err = sol.problem.target.errors(x_f[:6])
+    o = orbit_summary(x_f, C.MU_MOON)
+    return {"final_rp_error_km": err["rp_error_m"] / 1e3,
+            "final_ra_error_km": (err["ra_error_m"] / 1e3 if err["ra_error_m"] is not None
+                                  else math.nan),
+            "final_inc_error_deg": err["inc_error_deg"],
+            "final_rp_altitude_km": o["rp_km"] - C.R_MOON,
+            "final_ra_altitude_km": o["ra_km"] - C.R_MOON}
 
 
 def fly_sample(plan: CapturePlan, z, model: ErrorModel, use_cache: bool = True) -> dict:
@@ -504,64 +444,30 @@ def fly_sample(plan: CapturePlan, z, model: ErrorModel, use_cache: bool = True) 
     sol = noms[0]
     for i in range(plan.n_burns):
         if i > 0:
-            try:
-                sol = _replan(plan, i, t_ref, x_ref, noms[i])
-            except SolveError as exc:
-                status = getattr(exc, "status", "") or "no status"
-                what = ("no burn meets the target from the orbit reached"
-                        if status in INFEASIBLE else "no verified solution")
-                return _fail(out, "correction failed",
-                             f"burn {i + 1} cannot be re-planned: {what} (IPOPT {status} on "
-                             f"the last of {len(exc.details.get('attempts', [])) or 'its'} "
-                             f"meshes)")
-            except Uncorrectable as exc:
-                return _fail(out, "correction failed", f"burn {i + 1} cannot be re-planned: "
-                                                       f"{exc}")
-            except InputError as exc:
-                return _fail(out, "correction failed",
-                             f"burn {i + 1} cannot be re-planned from the orbit reached: {exc}")
-            except RuntimeError as exc:   # a guess propagation that fails (p -> 0)
-                return _fail(out, "correction failed",
-                             f"burn {i + 1}: no trajectory to start the re-plan from ({exc})"
-                             .split("\n")[0])
+            sol, why = _corrected(plan, i, t_ref, x_ref, noms[i])
+            if sol is None:
+                out["burns_json"] = json.dumps(burns)
+                return _fail(out, "correction failed", why)
         e = errs[i]
         flown = fly_with_errors(sol.raw, x_ref, t_ref, e)
-        burns.append({"burn": i + 1, "delta_v_mps": flown.delta_v_mps,
-                      "planned_delta_v_mps": sol.delta_v_mps,
-                      "ignition_min": (flown.t_ign_s - t_ref) / 60.0,
-                      "duration_min": sol.raw.t1_s / 60.0,
-                      "thrust_error_pct": 100 * (e.thrust_factor - 1),
-                      "isp_error_pct": 100 * (e.isp_factor - 1),
-                      "pointing_error_deg": math.degrees(math.hypot(*e.tilt_rad)),
-                      "ignition_error_s": e.ignition_s})
+        burns.append(_burn_record(i, sol, flown, e, t_ref))
         out["burns_flown"] = i + 1
         out["propellant_kg"] = float(plan.initial_mass_kg - flown.x_end[6])
         out["total_delta_v_mps"] = float(sum(b["delta_v_mps"] for b in burns))
+        out["burns_json"] = json.dumps(burns)
         why = orbit_check(flown.x_end)
         if why:
-            out["burns_json"] = json.dumps(burns)
             return _fail(out, "not captured", f"after burn {i + 1}, {why}")
-        model_i = sol.problem.model
         if i < plan.n_burns - 1:
             try:
-                t_ref, x_ref = next_perilune(model_i, flown.t_end_s, flown.x_end,
+                t_ref, x_ref = next_perilune(sol.problem.model, flown.t_end_s, flown.x_end,
                                              sol.problem.t_end_s + e.ignition_s)
             except InputError as exc:   # beyond the burn's ephemeris fit (+-6 h)
-                out["burns_json"] = json.dumps(burns)
                 return _fail(out, "correction failed",
                              f"the perilune after burn {i + 1} is not found within 6 h of the "
                              f"plan's ({exc})")
         else:   # the final orbit, at the end of the plan's last coast
-            x_f = propagate(model_i, flown.t_end_s, flown.x_end, sol.problem.t_end_s).final
-            err = sol.problem.target.errors(x_f[:6])
-            o = orbit_summary(x_f, C.MU_MOON)
-            out.update(final_rp_error_km=err["rp_error_m"] / 1e3,
-                       final_ra_error_km=(err["ra_error_m"] / 1e3
-                                          if err["ra_error_m"] is not None else math.nan),
-                       final_inc_error_deg=err["inc_error_deg"],
-                       final_rp_altitude_km=o["rp_km"] - C.R_MOON,
-                       final_ra_altitude_km=o["ra_km"] - C.R_MOON)
-    out["burns_json"] = json.dumps(burns)
+            out.update(_final_orbit(sol, flown))
     out["sample_wall_s"] = time.perf_counter() - out.pop("_t0")
     out["sample_cpu_s"] = time.process_time() - out.pop("_c0")
     return out
@@ -675,158 +581,3 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
                         recompute=not use_cache, ok_statuses=OK_STATUSES,
                         describe={"study": "dispersions", "seed": seed, "samples": samples,
                                   "error_model": model.describe()})
-
-
-# ====================================================================== the answer
-def quantile_ci(n: int, q: float, level: float = 0.95) -> tuple:
-    """Ranks (1-based, inclusive) (lo, hi) of order statistics bracketing the q-quantile.
-
-    Distribution-free: P(X_(lo) <= x_q <= X_(hi)) >= ``level`` for any continuous
-    distribution (binomial(n, q) counts of samples below x_q), the interval as nearly
-    symmetric in probability as possible. A rank of 0 or n + 1 means that side is
-    unbounded at this n (too few samples).
-    """
-    from scipy.stats import binom
-
-    a = (1 - level) / 2
-    lo = int(binom.ppf(a, n, q))          # P(B <= lo - 1) <= a
-    hi = int(binom.ppf(1 - a, n, q)) + 1  # P(B >= hi) <= a
-    while lo > 0 and binom.cdf(hi - 1, n, q) - binom.cdf(lo - 1, n, q) < level:
-        lo -= 1
-    while hi <= n and binom.cdf(hi - 1, n, q) - binom.cdf(lo - 1, n, q) < level:
-        hi += 1
-    return max(lo, 0), min(hi, n + 1)
-
-
-def summarise(rows, level: float = 0.95) -> dict:
-    """The planner's answer from a table's rows (a DataFrame or list of dicts).
-
-    Percentiles of the total delta-V and propellant over every sample (a sample not
-    captured, or not corrected, counts as needing more than any captured one: its value
-    is +inf, so failures push the percentiles up rather than vanishing), the 99 % budget
-    above the nominal with its distribution-free confidence interval, the failure
-    probabilities (with a 95 % Clopper-Pearson upper bound) and the failed samples with
-    their reasons, and the final-orbit errors (RMS and max over the captured samples).
-    """
-    import pandas as pd
-    from scipy.stats import beta
-
-    df = pd.DataFrame(rows)
-    n = len(df)
-    ok = df[df.status == "ok"]
-    nom = float(df.nominal_delta_v_mps.dropna().iloc[0]) if \
-        df.nominal_delta_v_mps.notna().any() else math.nan
-    nom_kg = float(df.nominal_propellant_kg.dropna().iloc[0]) if \
-        df.nominal_propellant_kg.notna().any() else math.nan
-    dv = np.sort(np.where(df.status == "ok", df.total_delta_v_mps.astype(float), np.inf))
-    kg = np.sort(np.where(df.status == "ok", df.propellant_kg.astype(float), np.inf))
-    out = {"samples": n, "captured_and_corrected": len(ok),
-           "nominal_delta_v_mps": nom, "nominal_propellant_kg": nom_kg}
-    for q in PERCENTILES:
-        out[f"delta_v_p{q:g}_mps"] = _quantile(dv, q / 100)
-        out[f"propellant_p{q:g}_kg"] = _quantile(kg, q / 100)
-    lo, hi = quantile_ci(n, 0.99, level) if n else (0, 1)
-    out["budget_p99_above_nominal_mps"] = out["delta_v_p99_mps"] - nom
-    out["budget_p99_ci_mps"] = (dv[lo - 1] - nom if lo >= 1 else -math.inf,
-                                dv[hi - 1] - nom if hi <= n else math.inf)
-    out["budget_p99_ci_ranks"] = (lo, hi)
-    out["ci_level"] = level
-    for status, name in (("not captured", "p_not_captured"),
-                         ("correction failed", "p_correction_failed")):
-        k = int((df.status == status).sum())
-        out[name] = k / n if n else math.nan
-        out[name + "_upper95"] = float(beta.ppf(0.95, k + 1, n - k)) if n else math.nan
-    bad = df[df.status != "ok"]
-    out["failures"] = [{"sample": int(r["sample"]), "status": r["status"],
-                        "reason": r["reason"] or r.get("error", "")}
-                       for r in bad.to_dict("records")]
-    for c in ("final_rp_error_km", "final_ra_error_km", "final_inc_error_deg"):
-        v = ok[c].astype(float).dropna().to_numpy()
-        out[c.replace("final_", "final_rms_")] = float(np.sqrt(np.mean(v ** 2))) if v.size \
-            else math.nan
-        out[c.replace("final_", "final_max_abs_")] = float(np.abs(v).max()) if v.size \
-            else math.nan
-    return out
-
-
-def _quantile(sorted_values: np.ndarray, q: float) -> float:
-    """The q-quantile as the order statistic of rank ceil(q n) (inf if that sample failed)."""
-    n = sorted_values.size
-    if n == 0:
-        return math.nan
-    return float(sorted_values[max(1, math.ceil(q * n)) - 1])
-
-
-def convergence(rows, q: float = 0.99) -> "object":
-    """The q-quantile of the delta-V above nominal after the first N samples, N = 1..n.
-
-    A pandas DataFrame (samples, estimate_mps, ci_lo_mps, ci_hi_mps): how the estimate
-    and its distribution-free 95 % interval settle with N, in sample order.
-    """
-    import pandas as pd
-
-    df = pd.DataFrame(rows).sort_values("sample")
-    nom = float(df.nominal_delta_v_mps.dropna().iloc[0])
-    vals = np.where(df.status == "ok", df.total_delta_v_mps.astype(float), np.inf) - nom
-    recs = []
-    for n in range(1, len(vals) + 1):
-        s = np.sort(vals[:n])
-        lo, hi = quantile_ci(n, q)
-        recs.append({"samples": n, "estimate_mps": _quantile(s, q),
-                     "ci_lo_mps": s[lo - 1] if lo >= 1 else -math.inf,
-                     "ci_hi_mps": s[hi - 1] if hi <= n else math.inf})
-    return pd.DataFrame(recs)
-
-
-def settled_after(conv, tol_mps: float = 1.0) -> int | None:
-    """Fewest samples N after which the estimate stays within ``tol_mps`` of its last value."""
-    est = conv.estimate_mps.to_numpy()
-    if not est.size or not np.isfinite(est[-1]):
-        return None
-    off = ~(np.abs(est - est[-1]) <= tol_mps)
-    idx = np.nonzero(off)[0]
-    return int(conv.samples.iloc[idx[-1] + 1]) if idx.size else int(conv.samples.iloc[0])
-
-
-def burns_of(row) -> list:
-    """The per-burn records of a table row (decoded ``burns_json``)."""
-    text = row["burns_json"] if isinstance(row, dict) else row.burns_json
-    return json.loads(text) if isinstance(text, str) and text else []
-
-
-def format_summary(plan: CapturePlan, model: ErrorModel, s: dict, result) -> str:
-    """The CLI's text: the error model, the budget, failures, final orbit, the run."""
-    run = result.run
-    lo, hi = s["budget_p99_ci_mps"]
-    lines = [
-        f"Dispersions of plan {plan.name} ({plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} "
-        f"s, {plan.dynamics} dynamics): {s['samples']} sample(s), closed-loop re-planning "
-        f"after each burn",
-        f"  errors: {model.describe()}",
-        f"  nominal: {s['nominal_delta_v_mps']:.3f} m/s, {s['nominal_propellant_kg']:.3f} kg "
-        f"of propellant",
-        f"  {'percentile':>10} | {'delta-V m/s':>11} {'above nominal':>13} | "
-        f"{'propellant kg':>13}"]
-    for q in PERCENTILES:
-        d = s[f"delta_v_p{q:g}_mps"]
-        lines.append(f"  {q:>9g}% | {d:11.3f} {d - s['nominal_delta_v_mps']:13.3f} | "
-                     f"{s[f'propellant_p{q:g}_kg']:13.3f}")
-    lines.append(f"  99 % budget above nominal: {s['budget_p99_above_nominal_mps']:.3f} m/s, "
-                 f"{100 * s['ci_level']:g} % interval [{lo:.3f}, {hi:.3f}] m/s "
-                 f"(order statistics, distribution-free; inf: too few samples)")
-    lines.append(f"  not captured: {s['p_not_captured']:.4g} (95 % upper bound "
-                 f"{s['p_not_captured_upper95']:.3g}); correction failed: "
-                 f"{s['p_correction_failed']:.4g} (upper bound "
-                 f"{s['p_correction_failed_upper95']:.3g})")
-    for f in s["failures"]:
-        lines.append(f"    sample {f['sample']}: {f['status']}: {f['reason']}")
-    lines.append(f"  final orbit (RMS / max): perilune {s['final_rms_rp_error_km']:.3g} / "
-                 f"{s['final_max_abs_rp_error_km']:.3g} km, apolune "
-                 f"{s['final_rms_ra_error_km']:.3g} / {s['final_max_abs_ra_error_km']:.3g} km, "
-                 f"inclination {s['final_rms_inc_error_deg']:.3g} / "
-                 f"{s['final_max_abs_inc_error_deg']:.3g} deg")
-    lines.append(f"{run['computed']} sample(s) computed, {run['reused']} taken from the table; "
-                 f"wall time {run['wall_s']:.1f} s ({run['scheduler']}, {run['workers']} "
-                 f"worker(s), cache: {run['cache']})")
-    lines.append(f"table: {result.path}")
-    return "\n".join(lines)
