@@ -232,3 +232,17 @@ def test_plan_overrides_say_the_plans_and_the_papers_default():
             assert f"the paper's {real[opt]} without --plan" in a.help, (name, opt, a.help)
         seen += 1
     assert seen == 6 * len(("plan", "solve", "impulsive", "burns", "missed", "dispersions"))
+
+
+# ---------------------------------------------------------------------- altitudes
+def test_final_orbit_is_printed_as_altitudes(capsys):
+    """Plans take altitudes, so the text output's final orbit is in altitudes, not radii."""
+    from lunarcap.physics.constants import R_MOON
+
+    tot = {"total_loss_mps": None, "total_delta_v_mps": 800.0, "total_burn_duration_min": 30.0,
+           "total_fuel_kg": 150.0, "final_mass_kg": 374.9, "final_rp_km": R_MOON + 100.0,
+           "final_ra_km": R_MOON + 300.0, "final_inc_deg": 90.0,
+           "final_orbit_epoch": "2017-02-21 00:00:00 TDB", "time_to_final_orbit_h": 20.0}
+    cli._print_totals(tot)
+    out = capsys.readouterr().out
+    assert "final orbit 100.0 x 300.0 km altitude" in out, out
