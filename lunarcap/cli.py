@@ -13,7 +13,7 @@ import math
 import sys
 
 from lunarcap import cli_parser
-from lunarcap.errors import InputError, LunarcapError, SolveError, integer, number
+from lunarcap.errors import InputError, LunarcapError, SolveError, integer, number, number_list
 from lunarcap.physics.constants import R_MOON
 
 
@@ -345,10 +345,16 @@ def cmd_missed(args) -> int:
     fractions = args.fractions
     if fractions is None:   # the default cut-offs, unless only late ignitions are asked
         fractions = None if args.late_min else "0.25,0.5,0.75,0.9"
+    if fractions is not None:
+        fractions = number_list("--fractions", fractions, "", positive=True, maximum=1.0,
+                                distinct=True)
+    delays = number_list("--delays-min", args.delays_min, "min", minimum=0.0, distinct=True)
+    late = None if args.late_min is None else \
+        number_list("--late-min", args.late_min, "min", minimum=0.0, distinct=True)
     res, status = _resumable(lambda: missed.run_missed(
-        plan, burn, fractions, args.delays_min, max_period_h, out=args.out,
+        plan, burn, fractions, delays, max_period_h, out=args.out,
         workers=args.workers, scheduler=args.scheduler, progress=not args.no_progress,
-        use_cache=not args.no_cache, late_min=args.late_min), "cases")
+        use_cache=not args.no_cache, late_min=late), "cases")
     if status:
         return status
     rows = res.table.to_dict("records")
@@ -372,7 +378,8 @@ def cmd_dispersions(args) -> int:
         from dataclasses import replace
 
         plan = replace(plan, formulation=args.formulation)
-    samples, seed = disp.check_samples(args.samples, args.seed)
+    samples = integer("--samples", args.samples, minimum=1)
+    seed = integer("--seed", args.seed, minimum=0)
     cov = None
     if args.arrival_cov is not None:
         cov = disp.read_covariance(args.arrival_cov)

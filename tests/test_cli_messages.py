@@ -164,6 +164,15 @@ COMMAND_CASES = [
     (["dispersions", "song2011-150N", "--thrust-sigma-pct", "-1"], "--thrust-sigma-pct",
      "below the smallest allowed"),
     (["solve", "--burn", "0"], "--burn", "must be an integer >= 1"),
+    (["missed", "song2011-150N", "--fractions", "0.5,2"], "--fractions",
+     "2 is above the largest allowed, 1"),
+    (["missed", "song2011-150N", "--fractions", "0"], "--fractions", "must be positive"),
+    (["missed", "song2011-150N", "--delays-min", "-5"], "--delays-min",
+     "-5 min is below the smallest allowed, 0 min"),
+    (["missed", "song2011-150N", "--late-min", "3,3"], "--late-min", "duplicates"),
+    (["missed", "song2011-150N", "--late-min", "x"], "--late-min", "must be a number of min"),
+    (["dispersions", "song2011-150N", "--samples", "-3"], "--samples", "integer >= 1"),
+    (["dispersions", "song2011-150N", "--seed", "1.5"], "--seed", "must be an integer"),
 ]
 
 

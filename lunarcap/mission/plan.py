@@ -508,8 +508,8 @@ def load_plan(source: str | os.PathLike) -> CapturePlan:
 
     path = Path(source).expanduser()
     if path.is_dir():
-        raise PlanError(f"plan {source}: is a directory; give a plan file (YAML) in it, or a "
-                        f"packaged plan ({', '.join(available_plans())})")
+        raise PlanError(f"plan {source}: is a directory, not a plan file: give a YAML file "
+                        f"in it or a packaged plan ({', '.join(available_plans())})")
     if not path.is_file():
         packaged = PLAN_DIR / f"{source}.yaml"
         if isinstance(source, str) and os.sep not in source and packaged.is_file():
