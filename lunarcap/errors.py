@@ -86,7 +86,7 @@ def number(field: str | None, value, unit: str, *, positive: bool = False,
                                        f", got {_shown(value)}"))
     if positive and v <= 0:
         raise InputError(_named(field, f"must be positive ({unit or 'a number'}), got "
-                                       f"{value!r}"))
+                                       f"{_shown(value)}"))
     if minimum is not None and v < minimum:
         raise InputError(_named(field, f"{v:g}{u} is below the smallest allowed, "
                                        f"{minimum:g}{u}"))
@@ -106,9 +106,9 @@ def integer(field: str | None, value, minimum: int | None = None) -> int:
     """An integer (int, integral float or digits) >= ``minimum``, else InputError."""
     v = _real(value)
     if v is None or not math.isfinite(v) or v != int(v):
-        raise InputError(_named(field, f"must be an integer, got {value!r}"))
+        raise InputError(_named(field, f"must be an integer, got {_shown(value)}"))
     if minimum is not None and v < minimum:
-        raise InputError(_named(field, f"must be an integer >= {minimum}, got {value!r}"))
+        raise InputError(_named(field, f"must be an integer >= {minimum}, got {_shown(value)}"))
     return int(v)
 
 
@@ -124,14 +124,14 @@ def number_list(field: str | None, value, unit: str, *, positive: bool = False,
         items = [s.strip() for s in value.split(",")]
         if not value.strip() or any(s == "" for s in items):
             raise InputError(_named(field, f"must be numbers{' of ' + unit if unit else ''} "
-                                           f"separated by commas, got {value!r}"))
+                                           f"separated by commas, got {_shown(value)}"))
     elif _real(value) is not None and not isinstance(value, str):
         items = [value]
     else:
         try:
             items = list(value)
         except TypeError:
-            raise InputError(_named(field, f"must be a list of numbers, got {value!r}")) \
+            raise InputError(_named(field, f"must be a list of numbers, got {_shown(value)}")) \
                 from None
     if not items:
         raise InputError(_named(field, "must not be empty"))
@@ -139,5 +139,5 @@ def number_list(field: str | None, value, unit: str, *, positive: bool = False,
                        x, unit, positive=positive, minimum=minimum, maximum=maximum)
                 for j, x in enumerate(items))
     if distinct and len(set(out)) != len(out):
-        raise InputError(_named(field, f"has duplicates: {value!r}"))
+        raise InputError(_named(field, f"has duplicates: {_shown(value)}"))
     return out

@@ -113,6 +113,7 @@ from lunarcap.physics.frames import DEFAULT_LUNAR_POLE
 #: Packaged plans (``<name>.yaml``), selectable by name.
 PLAN_DIR = Path(__file__).resolve().parent / "plans"
 
+
 @dataclass(frozen=True)
 class Engine:
     """Constant-thrust engine: thrust (N) and specific impulse (s)."""
