@@ -223,8 +223,8 @@ def _bounds(i: int, bounds) -> tuple:
     if not isinstance(bounds, (list, tuple)) or len(bounds) != 2:
         raise err(where, f"must be [lo, hi] in minutes, got {bounds!r}")
     out = tuple(start_value(f"{where}[{j + 1}]", x) for j, x in enumerate(bounds))
-    if "free" in out or not out[0] < out[1]:
-        raise err(where, f"must be two numbers lo < hi, got {list(bounds)!r}")
+    if "free" in out or not out[0] <= out[1]:   # lo == hi: the ignition fixed (a re-plan's)
+        raise err(where, f"must be two numbers lo <= hi, got {list(bounds)!r}")
     return out
 
 
