@@ -7,36 +7,14 @@ written is lost.
 
 from __future__ import annotations
 
-import argparse
 import contextlib
 import json
 import math
-import re
 import sys
 
-from lunarcap.errors import InputError, LunarcapError, SolveError
-
-
-def _positive(kind: str, unit: str):
-    def conv(text: str) -> float:
-        try:
-            val = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{kind} must be a number of {unit}, got {text!r}")
-        if not math.isfinite(val) or val <= 0:
-            raise argparse.ArgumentTypeError(f"{kind} must be positive ({unit}), got {text!r}")
-        return val
-    return conv
-
-
-def _burn_number(text: str) -> int:
-    try:
-        val = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"a burn number is an integer from 1, got {text!r}")
-    if val < 1:
-        raise argparse.ArgumentTypeError(f"a burn number is an integer from 1, got {text!r}")
-    return val
+from lunarcap import cli_parser
+from lunarcap.errors import InputError, LunarcapError, SolveError, integer, number, number_list
+from lunarcap.physics.constants import R_MOON
 
 
 def _jsonable(obj):
@@ -51,69 +29,43 @@ def _jsonable(obj):
     return obj
 
 
-def _starts(text: str) -> tuple:
-    """Comma-separated ignition offsets (min) or 'free'."""
-    try:
-        vals = tuple("free" if s.strip() == "free" else float(s)
-                     for s in text.split(",") if s.strip())
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"start offsets must be numbers of minutes (or 'free') "
-                                         f"separated by commas, got {text!r}")
-    if not vals or not all(v == "free" or math.isfinite(v) for v in vals):
-        raise argparse.ArgumentTypeError(f"start offsets must be finite numbers, got {text!r}")
-    return vals
-
-
-def _start(text: str):
-    vals = _starts(text)
-    if len(vals) != 1:
-        raise argparse.ArgumentTypeError(f"one start offset (min) expected, got {text!r}")
-    return vals[0]
-
-
-# ---------------------------------------------------------------------- plans
-def _add_plan_options(p: argparse.ArgumentParser, plan_positional: bool) -> None:
-    if plan_positional:
-        p.add_argument("plan", metavar="PLAN",
-                       help="a plan file (YAML) or the name of a packaged plan (list them "
-                            "with `lunarcap plans`)")
-    else:
-        p.add_argument("--plan", default=None, metavar="PLAN",
-                       help="a plan file (YAML) or packaged plan name (default: the paper's "
-                            "capture with the engine of --thrust and --isp)")
-    p.add_argument("--thrust", type=_positive("thrust", "N"), default=None,
-                   help="engine thrust, N (overrides the plan's; default 150)")
-    p.add_argument("--isp", type=_positive("Isp", "s"), default=None,
-                   help="specific impulse, s (overrides the plan's; default 200)")
-    p.add_argument("--mass", type=_positive("mass", "kg"), default=None,
-                   help="mass at the first perilune, kg (overrides the plan's)")
-    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default=None,
-                   help="perturbations: full (J2, Earth, Sun), j2, or two-body (overrides the "
-                        "plan's)")
-    p.add_argument("--hemisphere", choices=["north", "south"], default=None,
-                   help="lunar hemisphere of the arrival perilune (overrides the plan's)")
-    p.add_argument("--ephemeris", default=None, metavar="BSP",
-                   help="SPK file (.bsp) instead of the plan's (default: the bundled DE405)")
-    p.add_argument("--lunar-pole", choices=["iau2009-j2000", "iau-constant"], default=None,
-                   help="the pole fixing M-MME2000: the IAU (2009) expression at J2000 "
-                        "(default) or its constant terms only (overrides the plan's)")
-    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+#: The plan field each overriding option sets, to name the option when the plan refuses it.
+_OVERRIDES = {"--thrust": ("thrust", "engine.thrust_N"), "--isp": ("isp", "engine.isp_s"),
+              "--mass": ("mass", "arrival.mass_kg"), "--starts": ("starts", "burns[")}
 
 
 def _plan_from_args(args):
-    """The plan named by the arguments, with their overrides applied."""
-    from dataclasses import replace
+    """The plan named by the arguments, with their overrides applied.
 
-    from lunarcap.mission.plan import load_plan, paper_plan
+    A value the plan refuses because of an option is reported with the option first:
+    ``--mass (arrival.mass_kg): 700000 kg is above ...``.
+    """
+    from lunarcap.mission.plan import PlanError, load_plan
 
     source = getattr(args, "plan", None)
-    if source is None:
+    plan = None if source is None else load_plan(source)
+    try:
+        return _with_overrides(plan, args)
+    except PlanError as exc:
+        msg = str(exc)
+        for opt, (dest, field) in _OVERRIDES.items():
+            if getattr(args, dest, None) is not None and msg.startswith(field):
+                raise PlanError(f"{opt} ({msg.split(': ', 1)[0]}): {msg.split(': ', 1)[1]}") \
+                    from None
+        raise
+
+
+def _with_overrides(plan, args):
+    from dataclasses import replace
+    from pathlib import Path
+
+    from lunarcap.mission.plan import paper_plan
+
+    if plan is None:
         plan = paper_plan(args.thrust or 150.0, args.isp or 200.0)
-    else:
-        plan = load_plan(source)
-        if args.thrust is not None or args.isp is not None:
-            plan = plan.with_engine(args.thrust or plan.engine.thrust_N,
-                                    args.isp or plan.engine.isp_s, name=plan.name)
+    elif args.thrust is not None or args.isp is not None:
+        plan = plan.with_engine(args.thrust or plan.engine.thrust_N,
+                                args.isp or plan.engine.isp_s, name=plan.name)
     arrival = plan.arrival
     if args.mass is not None:
         arrival = replace(arrival, mass_kg=args.mass)
@@ -124,7 +76,6 @@ def _plan_from_args(args):
     if args.dynamics is not None:
         plan = plan.with_dynamics(args.dynamics)
     if args.ephemeris is not None:
-        from pathlib import Path
         plan = replace(plan, ephemeris=str(Path(args.ephemeris).expanduser().resolve()))
     if args.lunar_pole is not None:
         plan = plan.with_lunar_pole(args.lunar_pole)
@@ -206,8 +157,9 @@ def _print_totals(tot: dict) -> None:
          f"{tot['total_loss_mps']:.3f} m/s ({tot['total_loss_percent']:.2f} %)")
     print(f"total: dV {tot['total_delta_v_mps']:.3f} m/s{loss}; burns "
           f"{tot['total_burn_duration_min']:.2f} min; fuel {tot['total_fuel_kg']:.3f} kg, final "
-          f"mass {tot['final_mass_kg']:.3f} kg; final orbit {tot['final_rp_km']:.1f} x "
-          f"{tot['final_ra_km']:.1f} km, {tot['final_inc_deg']:.4f} deg, reached "
+          f"mass {tot['final_mass_kg']:.3f} kg; final orbit {tot['final_rp_km'] - R_MOON:.1f} x "
+          f"{tot['final_ra_km'] - R_MOON:.1f} km altitude, {tot['final_inc_deg']:.4f} deg, "
+          f"reached "
           f"{tot['final_orbit_epoch']} (end of the last burn, {tot['time_to_final_orbit_h']:.2f} h "
           f"after the arrival perilune)")
 
@@ -357,26 +309,14 @@ def cmd_study(args) -> int:
     return 0 if res.failures.empty else 3
 
 
-def _number_arg(option: str, text: str, unit: str) -> float:
-    """A positive finite number from an option's text, else InputError naming the option."""
-    try:
-        val = float(text)
-    except (TypeError, ValueError):
-        raise InputError(f"{option} must be a positive number of {unit}, got {text!r}") \
-            from None
-    if not math.isfinite(val) or val <= 0:
-        raise InputError(f"{option} must be a positive number of {unit}, got {text!r}")
-    return val
-
-
 def cmd_burns(args) -> int:
     """How many capture burns: the plan's capture in N burns, the periods optimised."""
     from lunarcap.runs import burns
 
     plan = _plan_from_args(args)
     counts = burns.parse_counts(args.counts)
-    max_period_h = _number_arg("--max-period-h", args.max_period_h, "hours")
-    max_days = _number_arg("--max-days", args.max_days, "days")
+    max_period_h = number("--max-period-h", args.max_period_h, "h", positive=True)
+    max_days = number("--max-days", args.max_days, "days", positive=True)
     res, status = _resumable(lambda: burns.run_burns(
         [plan], counts, max_period_h, max_days, out=args.out, workers=args.workers,
         scheduler=args.scheduler, progress=not args.no_progress, use_cache=not args.no_cache),
@@ -400,18 +340,21 @@ def cmd_missed(args) -> int:
     from lunarcap.runs import missed
 
     plan = _plan_from_args(args)
-    try:
-        burn = int(args.burn)
-    except ValueError:
-        raise InputError(f"--burn must be a burn number from 1, got {args.burn!r}") from None
-    max_period_h = _number_arg("--max-period-h", args.max_period_h, "hours")
+    burn = integer("--burn", args.burn, minimum=1)
+    max_period_h = number("--max-period-h", args.max_period_h, "h", positive=True)
     fractions = args.fractions
     if fractions is None:   # the default cut-offs, unless only late ignitions are asked
         fractions = None if args.late_min else "0.25,0.5,0.75,0.9"
+    if fractions is not None:
+        fractions = number_list("--fractions", fractions, "", positive=True, maximum=1.0,
+                                distinct=True)
+    delays = number_list("--delays-min", args.delays_min, "min", minimum=0.0, distinct=True)
+    late = None if args.late_min is None else \
+        number_list("--late-min", args.late_min, "min", minimum=0.0, distinct=True)
     res, status = _resumable(lambda: missed.run_missed(
-        plan, burn, fractions, args.delays_min, max_period_h, out=args.out,
+        plan, burn, fractions, delays, max_period_h, out=args.out,
         workers=args.workers, scheduler=args.scheduler, progress=not args.no_progress,
-        use_cache=not args.no_cache, late_min=args.late_min), "cases")
+        use_cache=not args.no_cache, late_min=late), "cases")
     if status:
         return status
     rows = res.table.to_dict("records")
@@ -426,17 +369,6 @@ def cmd_missed(args) -> int:
     return 0 if all(r["status"] in ("recovered", "no recovery") for r in rows) else 3
 
 
-def _sigma_arg(option: str, text) -> float:
-    """A non-negative finite number from an option's text, else InputError naming it."""
-    try:
-        val = float(text)
-    except (TypeError, ValueError):
-        raise InputError(f"{option} must be a non-negative number, got {text!r}") from None
-    if not math.isfinite(val) or val < 0:
-        raise InputError(f"{option} must be a non-negative number, got {text!r}")
-    return val
-
-
 def cmd_dispersions(args) -> int:
     """Dispersions: the capture flown with errors, re-planned after each burn; the budget."""
     from lunarcap.runs import dispersions as disp
@@ -446,12 +378,13 @@ def cmd_dispersions(args) -> int:
         from dataclasses import replace
 
         plan = replace(plan, formulation=args.formulation)
-    samples, seed = disp.check_samples(args.samples, args.seed)
+    samples = integer("--samples", args.samples, minimum=1)
+    seed = integer("--seed", args.seed, minimum=0)
     cov = None
     if args.arrival_cov is not None:
         cov = disp.read_covariance(args.arrival_cov)
-    model = disp.ErrorModel(**{name: _sigma_arg("--" + name.replace("_", "-"),
-                                                 getattr(args, name))
+    model = disp.ErrorModel(**{name: number("--" + name.replace("_", "-"), getattr(args, name),
+                                              "", minimum=0.0)
                                for name in ("thrust_sigma_pct", "isp_sigma_pct",
                                             "pointing_sigma_deg", "ignition_sigma_s",
                                             "arrival_sigma_km", "arrival_sigma_mps")},
@@ -476,184 +409,15 @@ def cmd_dispersions(args) -> int:
     return 0 if all(r["status"] in disp.OK_STATUSES for r in rows) else 3
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of every subcommand."""
-    parser = argparse.ArgumentParser(prog="lunarcap", description=__doc__.splitlines()[0])
-    sub = parser.add_subparsers(dest="command", required=True)
-
-    p = sub.add_parser("plan", help="solve and verify every burn of a capture plan")
-    _add_plan_options(p, plan_positional=True)
-    p.add_argument("--starts", type=_starts, default=None, metavar="S1,S2,...",
-                   help="ignition offsets of every burn, min from perilune (or 'free'), "
-                        "overriding the plan's")
-    p.add_argument("--no-impulsive", action="store_true",
-                   help="skip the impulsive limits in the same dynamics (no loss column)")
-    p.add_argument("--no-cache", action="store_true", help="recompute, ignoring the disk cache")
-    p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
-    p.add_argument("--export", default=None, metavar="DIR",
-                   help="write the verified capture to DIR for other tools: <name>.oem (CCSDS "
-                        "OEM), <name>.bsp (SPICE SPK), <name>_attitude.csv, "
-                        "<name>_maneuvers.csv (Moon-centred ICRF)")
-    p.add_argument("--time-system", choices=["TDB", "UTC"], default="TDB",
-                   type=str.upper, help="time scale of the exported epochs (default TDB; "
-                                        "the SPK is always in ET = TDB)")
-    p.add_argument("--spk-id", type=int, default=-310001, metavar="ID",
-                   help="NAIF ID of the spacecraft in the exported SPK and OEM (default "
-                        "-310001)")
-    p.set_defaults(func=cmd_plan)
-
-    p = sub.add_parser("solve", help="optimal finite burn of one burn of a plan, verified")
-    _add_plan_options(p, plan_positional=False)
-    p.add_argument("--burn", "--loi", dest="burn", type=_burn_number, default=1,
-                   help="burn number, from 1 (--loi is the same)")
-    p.add_argument("--start", type=_start, default=None,
-                   help="ignition, minutes from the nominal perilune (negative: before), or "
-                        "'free' to optimise it (default: the plan's)")
-    p.add_argument("--previous-starts", type=_starts, default=None, metavar="S1[,S2...]",
-                   help="ignition offsets of the earlier burns (default: the plan's)")
-    p.add_argument("--steering", choices=["optimal", "inertial", "antivelocity"],
-                   default="optimal", help="steering law of this burn (earlier burns: the plan's)")
-    p.add_argument("--no-impulsive", action="store_true",
-                   help="skip the impulsive limit in the same dynamics (no loss)")
-    p.add_argument("--no-cache", action="store_true", help="recompute, ignoring the disk cache")
-    p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
-    p.set_defaults(func=cmd_solve)
-
-    p = sub.add_parser("impulsive", help="a plan's two-body impulsive chain and Eq. (19)")
-    _add_plan_options(p, plan_positional=False)
-    p.set_defaults(func=cmd_impulsive)
-
-    p = sub.add_parser("plans", help="list the packaged plans, or print one as YAML")
-    p.add_argument("name", nargs="?", default=None, help="a packaged plan to print")
-    p.set_defaults(func=cmd_plans)
-
-    p = sub.add_parser("bench", help="solve and verify all 37 paper cases, print timings")
-    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default=None,
-                   help="dynamics (default: full; with --warm, two-body)")
-    p.add_argument("--warm", action="store_true",
-                   help="instead: warm verified solves of the dymos peer benchmark's cases")
-    p.add_argument("--repeats", type=int, default=5, help="warm solves per case (--warm)")
-    p.add_argument("--studies", action="store_true",
-                   help="instead: figures on where the time goes (NLP builds per shape, cold "
-                        "and cached `lunarcap plan`, a trade-study engine, study walls)")
-    p.add_argument("--no-cold", action="store_true",
-                   help="with --studies: skip the cold `lunarcap plan` runs")
-    p.add_argument("--resolve-earlier", action="store_true",
-                   help="solve each case's earlier burns again (default: once per run)")
-    p.set_defaults(func=cmd_bench)
-
-    p = sub.add_parser("study", help="engine trade study: loss vs thrust-to-weight on Dask")
-    p.add_argument("--thrust-min", default="50", metavar="N", help="lowest thrust, N (50)")
-    p.add_argument("--thrust-max", default="2000", metavar="N", help="highest thrust, N (2000)")
-    p.add_argument("--points", default="30", metavar="K", help="log-spaced thrusts (30)")
-    p.add_argument("--isp", default="200,250,300", metavar="S1,S2,...",
-                   help="specific impulses, s (200,250,300)")
-    p.add_argument("--workers", default="2", metavar="W",
-                   help="local Dask worker processes, one thread each (2)")
-    p.add_argument("--scheduler", default=None, metavar="ADDR",
-                   help="address of an existing Dask scheduler instead of a local cluster")
-    p.add_argument("--out", default=None, metavar="PATH",
-                   help="CSV table, appended as engines finish and resumed on rerun "
-                        "(default .cache/study/engine_trade.csv)")
-    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default="full")
-    p.add_argument("--retry-failed", action="store_true",
-                   help="recompute engines that failed in an earlier run")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.set_defaults(func=cmd_study)
-
-    p = sub.add_parser("burns", help="how many capture burns: N burns, periods optimised")
-    _add_plan_options(p, plan_positional=True)
-    p.add_argument("--counts", default="1,2,3,4,5", metavar="N1,N2,...",
-                   help="numbers of burns to try (1,2,3,4,5)")
-    p.add_argument("--max-period-h", default="12.235", metavar="H",
-                   help="longest intermediate period, h (12.235)")
-    p.add_argument("--max-days", default="3", metavar="D",
-                   help="longest time from the arrival perilune to the end of the last burn, "
-                        "days (3)")
-    _add_dask_options(p, "count")
-    p.set_defaults(func=cmd_burns)
-
-    p = sub.add_parser("missed", help="missed thrust or late ignition: a burn gone wrong, "
-                                      "the capture re-planned")
-    _add_plan_options(p, plan_positional=True)
-    p.add_argument("--burn", default="1", metavar="N", help="the burn cut short (1)")
-    p.add_argument("--fractions", default=None, metavar="F1,F2,...",
-                   help="fractions of the burn flown before the engine stops, in (0, 1] "
-                        "(0.25,0.5,0.75,0.9; none if only --late-min is given)")
-    p.add_argument("--delays-min", default="0,30,120,720", metavar="D1,D2,...",
-                   help="minutes from the cut-off to the recovery window (0,30,120,720)")
-    p.add_argument("--late-min", default=None, metavar="L1,L2,...",
-                   help="late ignition: the burn ignites these minutes after its planned "
-                        "ignition, is re-optimised from there and the later burns re-planned")
-    p.add_argument("--max-period-h", default="24", metavar="H",
-                   help="longest period of the orbit after the burn, in the recovery and "
-                        "in the nominal it is compared with, h (24)")
-    _add_dask_options(p, "case")
-    p.set_defaults(func=cmd_missed)
-
-    p = sub.add_parser("dispersions", help="the capture's delta-V budget under execution and "
-                                           "arrival errors (Monte Carlo, closed loop)")
-    _add_plan_options(p, plan_positional=True)
-    p.add_argument("--samples", default="100", metavar="N", help="samples (100)")
-    p.add_argument("--seed", default="0", metavar="S",
-                   help="seed: sample k draws its errors from numpy's generator seeded by "
-                        "(S, k), the same whatever the sigmas (0)")
-    for opt, unit, what in (
-            ("--thrust-sigma-pct", "%", "thrust, per burn"),
-            ("--isp-sigma-pct", "%", "specific impulse, per burn"),
-            ("--pointing-sigma-deg", "deg", "each of two tilt angles of the thrust "
-                                            "direction, fixed over a burn"),
-            ("--ignition-sigma-s", "s", "ignition epoch, per burn"),
-            ("--arrival-sigma-km", "km", "arrival position, per RTN axis"),
-            ("--arrival-sigma-mps", "m/s", "arrival velocity, per RTN axis")):
-        p.add_argument(opt, default="0", metavar=unit.upper().replace("/", "").replace("%",
-                                                                                        "PCT"),
-                       help=f"1-sigma error of the {what}, {unit} (0)")
-    p.add_argument("--arrival-cov", default=None, metavar="FILE",
-                   help="instead of --arrival-sigma-*: a 6x6 covariance of the arrival state "
-                        "in its RTN frame, km and km/s (36 numbers, whitespace or commas)")
-    p.add_argument("--formulation", choices=["orbit", "song2011"], default=None,
-                   help="how the re-planned burns meet a period: orbit (the orbit asked, its "
-                        "perilune epoch free) or song2011 (the paper's: at the plan's nominal "
-                        "perilune epochs, a fixed timeline); default the plan's")
-    _add_dask_options(p, "sample")
-    p.set_defaults(func=cmd_dispersions)
-    return parser
+def build_parser():
+    """The argument parser of every subcommand (:func:`lunarcap.cli_parser.build_parser`)."""
+    return cli_parser.build_parser(_commands(), __doc__.splitlines()[0])
 
 
-def _add_dask_options(p: argparse.ArgumentParser, what: str) -> None:
-    p.add_argument("--workers", default="2", metavar="W",
-                   help="local Dask worker processes, one thread each (2)")
-    p.add_argument("--scheduler", default=None, metavar="ADDR",
-                   help="address of an existing Dask scheduler instead of a local cluster")
-    p.add_argument("--out", default=None, metavar="PATH",
-                   help=f"CSV table, appended as each {what} finishes and resumed on rerun "
-                        f"(default below .cache/study/)")
-    p.add_argument("--no-cache", action="store_true",
-                   help="recompute every case, ignoring the disk cache and the table")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
-
-
-_LIST_OPTIONS = ("--starts", "--previous-starts", "--start", "--counts", "--fractions",
-                 "--delays-min", "--max-period-h", "--max-days", "--burn", "--workers",
-                 "--samples", "--seed", "--thrust-sigma-pct", "--isp-sigma-pct",
-                 "--pointing-sigma-deg", "--ignition-sigma-s", "--arrival-sigma-km",
-                 "--arrival-sigma-mps")
-
-
-def _join_negative_lists(argv: list) -> list:
-    """Let ``--starts -10,-6,-5`` work: argparse would take '-10,-6,-5' for an option."""
-    out = []
-    i = 0
-    while i < len(argv):
-        a = argv[i]
-        if a in _LIST_OPTIONS and i + 1 < len(argv) and re.match(r"^-\d", argv[i + 1]):
-            out.append(f"{a}={argv[i + 1]}")
-            i += 2
-            continue
-        out.append(a)
-        i += 1
-    return out
+def _commands() -> dict:
+    return {"plan": cmd_plan, "solve": cmd_solve, "impulsive": cmd_impulsive,
+            "plans": cmd_plans, "bench": cmd_bench, "study": cmd_study, "burns": cmd_burns,
+            "missed": cmd_missed, "dispersions": cmd_dispersions}
 
 
 @contextlib.contextmanager
@@ -693,8 +457,7 @@ def _interrupt_outside_casadi():
 
 def main(argv=None) -> int:
     """Entry point; returns the exit status."""
-    parser = build_parser()
-    args = parser.parse_args(_join_negative_lists(sys.argv[1:] if argv is None else list(argv)))
+    args = cli_parser.parse_args(_commands(), __doc__.splitlines()[0], argv)
     try:
         with _interrupt_outside_casadi():
             return args.func(args)

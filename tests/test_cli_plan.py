@@ -112,7 +112,7 @@ BAD_PLANS = [
     (lambda d: d.update(colour="red"), "colour", "unknown key"),
     (lambda d: d["arrival"].update(perilune_altitude_km=-50), "arrival.perilune_altitude_km",
      "surface"),
-    (lambda d: d["burns"][0].update(target_period_h=1.0), "burns[0].target_period_h",
+    (lambda d: d["burns"][0].update(target_period_h=1.0), "burns[1].target_period_h",
      "circular orbit"),
     (lambda d: d["arrival"].update(epoch="2250-06-01 00:00:00 TDB"), "arrival.epoch",
      "outside the ephemeris"),
@@ -139,7 +139,7 @@ def test_bad_plan_exits_2_with_one_line_naming_the_field(tmp_path, plan_file, mu
 @pytest.mark.parametrize("args,words", [
     (["solve", "--burn", "4"], "has burns 1 to 3"),
     (["solve", "--start", "abc"], "start offsets must be numbers"),
-    (["solve", "--thrust", "-1"], "thrust must be positive"),
+    (["solve", "--thrust", "-1"], "--thrust: must be positive"),
     (["solve", "--start", "500"], "more than 120 min"),
     (["solve", "--thrust", "1e9"], "too strong"),
     (["plan", "song2011-150N", "--starts", "-1,-2"], "3 ignition offsets expected"),

@@ -83,84 +83,35 @@ from pathlib import Path
 import numpy as np
 
 from lunarcap.errors import InputError
-from lunarcap.mission.arrival import STATE_FRAMES, ArrivalSpec, StateArrival, perilune_from_state
-from lunarcap.mission.impulsive import (
-    PAPER_DV_LOI1_MPS,
-    ImpulsiveBurn,
-    impulsive_chain,
-    tangential_impulse_mps,
-    v_inf_from_loi1,
+from lunarcap.mission.arrival import ArrivalSpec, perilune_from_state
+from lunarcap.mission.impulsive import ImpulsiveBurn, impulsive_chain, tangential_impulse_mps
+from lunarcap.mission.plan_checks import (  # noqa: F401  (the plan's names, re-exported)
+    DYNAMICS,
+    EPHEMERIS_MARGIN_S,
+    FORMULATIONS,
+    HEMISPHERES,
+    MAX_BURN_FRACTION,
+    MAX_START_MIN,
+    MIN_BURN_S,
+    STEERING,
+    PlanError,
+    burn_field,
+    circle_period_s,
+    err,
+    num,
+    start_value,
+    validate,
 )
-from lunarcap.mission.targets import CIRCULAR, ELLIPSE, PERILUNE, Target, check_inclination
+from lunarcap.mission.plan_io import plan_dict, plan_fields
+from lunarcap.mission.targets import CIRCULAR, ELLIPSE, PERILUNE, Target
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import semi_major_axis_from_period
 from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
-from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
-from lunarcap.physics.frames import DEFAULT_LUNAR_POLE, LUNAR_POLES
+from lunarcap.physics.epochs import seconds_from_calendar
+from lunarcap.physics.frames import DEFAULT_LUNAR_POLE
 
 #: Packaged plans (``<name>.yaml``), selectable by name.
 PLAN_DIR = Path(__file__).resolve().parent / "plans"
-
-DYNAMICS = ("full", "j2", "two-body")
-#: How a burn's period or apolune target is met (:mod:`lunarcap.mission.targets`):
-#: ``orbit``, the orbit named, as osculating elements at the first perilune after the burn
-#: (its epoch free); ``song2011``, the paper's Eq. (17): perilune radius, inclination and
-#: gamma = 0 at the next nominal perilune (the period only through that timing).
-FORMULATIONS = ("orbit", "song2011")
-STEERING = ("optimal", "inertial", "antivelocity")
-HEMISPHERES = ("north", "south")
-
-#: Largest |ignition offset| from a nominal perilune, min.
-MAX_START_MIN = 120.0
-#: Margin of the ephemeris window around the plan's first and last perilune, s.
-EPHEMERIS_MARGIN_S = 6 * 3600.0
-#: Shortest burn the transcription resolves, s (an engine that would finish faster is
-#: reported as too strong rather than handed to the optimiser).
-MIN_BURN_S = 0.5
-#: A burn may last at most this fraction of the coast it starts (Eq. (19) estimate).
-MAX_BURN_FRACTION = 0.5
-
-_TOP_KEYS = {"name", "description", "arrival", "engine", "dynamics", "burns", "ephemeris",
-             "lunar_pole", "start", "formulation"}
-_START_KEYS = {"epoch", "mee", "mass_kg", "first_coast_min"}
-_ARRIVAL_KEYS = {"epoch", "perilune_altitude_km", "inclination_deg", "v_inf_kmps",
-                 "impulsive_loi1_mps", "hemisphere", "approach_dir", "mass_kg"}
-_STATE_ARRIVAL_KEYS = {"epoch", "frame", "position_km", "velocity_kmps", "mass_kg"}
-_ENGINE_KEYS = {"thrust_N", "isp_s"}
-_BURN_KEYS = {"target", "target_period_h", "target_apolune_altitude_km", "start_min",
-              "coast_min", "steering", "start_bounds_min"}
-
-
-class PlanError(InputError):
-    """A capture plan is malformed or physically impossible (the message names the field)."""
-
-
-def _err(where: str, what: str) -> PlanError:
-    return PlanError(f"{where}: {what}")
-
-
-def _number(where: str, value, unit: str, positive: bool = True) -> float:
-    """A finite float (positive unless ``positive`` is False), else PlanError."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise _err(where, f"must be a number of {unit}, got {value!r}")
-    v = float(value)
-    if not math.isfinite(v):
-        raise _err(where, f"must be a finite number of {unit}, got {value!r}")
-    if positive and v <= 0:
-        raise _err(where, f"must be positive ({unit}), got {value!r}")
-    return v
-
-
-def _keys(where: str, d, known: set, required: set) -> None:
-    if not isinstance(d, dict):
-        raise _err(where, f"must be a mapping of keys to values, got {type(d).__name__}")
-    unknown = sorted(set(d) - known)
-    if unknown:
-        raise _err(f"{where}.{unknown[0]}" if where else unknown[0],
-                   f"unknown key (known: {', '.join(sorted(known))})")
-    missing = sorted(required - set(d))
-    if missing:
-        raise _err(f"{where}.{missing[0]}" if where else missing[0], "missing")
 
 
 @dataclass(frozen=True)
@@ -250,19 +201,7 @@ class Start:
     first_coast_s: float
 
     def __post_init__(self):
-        object.__setattr__(self, "state", tuple(float(v) for v in self.state))
-        object.__setattr__(self, "epoch_s", _number("start.epoch", self.epoch_s, "s",
-                                                    positive=False))
-        if len(self.state) != 7:
-            raise _err("start.mee", f"a state is 7 numbers (p, f, g, h, k, L, m), got "
-                                    f"{len(self.state)}")
-        if not all(math.isfinite(v) for v in self.state):
-            raise _err("start.mee", f"must be finite numbers, got {self.state!r}")
-        if self.state[0] <= 0:
-            raise _err("start.mee", f"p must be positive (km), got {self.state[0]!r}")
-        if self.state[6] <= 0:
-            raise _err("start.mass_kg", f"must be positive (kg), got {self.state[6]!r}")
-        _number("start.first_coast_min", self.first_coast_s / 60.0, "min")
+        object.__setattr__(self, "state", tuple(self.state))   # checked by the plan
 
     @property
     def mass_kg(self) -> float:
@@ -305,131 +244,24 @@ class CapturePlan:
 
     # ------------------------------------------------------------------ validation
     def __post_init__(self):
+        """The one validation of a plan, whoever built it (:func:`plan_checks.validate`)."""
         object.__setattr__(self, "burns", tuple(self.burns))
-        _validate_engine(self.engine)
-        if self.arrival.state is not None:
-            self._derive_state_arrival()
-        _validate_arrival(self.arrival)
-        if self.formulation not in FORMULATIONS:
-            raise _err("formulation", f"must be one of {', '.join(FORMULATIONS)}, got "
-                                      f"{self.formulation!r}")
-        if self.dynamics not in DYNAMICS:
-            raise _err("dynamics", f"must be one of {', '.join(DYNAMICS)}, got {self.dynamics!r}")
-        if self.lunar_pole not in LUNAR_POLES:
-            raise _err("lunar_pole", f"must be one of {', '.join(LUNAR_POLES)}, "
-                                     f"got {self.lunar_pole!r}")
-        if not self.burns:
-            raise _err("burns", "a plan needs at least one burn")
-        rp = self.perilune_radius_km
-        period_before = math.inf
-        if self.start is not None:
-            self._check_start()
-        for i, b in enumerate(self.burns):
-            _validate_burn(f"burns[{i}]", b, rp, period_before, last=i == len(self.burns) - 1)
-            if b.perilune_altitude_km is not None:
-                self._check_explicit_ellipse(i)
-            period_before = b.period_s if b.target == PERILUNE else _circle_period_s(rp)
-        if self.start is None and (self.impulsive_loi1_mps is not None
-                                   or self.arrival.v_inf_kmps is None):
-            # v_inf from an impulsive first burn (default: the paper's 353.272 m/s)
-            dv = PAPER_DV_LOI1_MPS if self.impulsive_loi1_mps is None else \
-                _number("arrival.impulsive_loi1_mps", self.impulsive_loi1_mps, "m/s")
-            first = self.burns[0]
-            period = first.period_s if first.target == PERILUNE else _circle_period_s(rp)
-            try:
-                vinf = v_inf_from_loi1(dv, rp, period)
-            except InputError as exc:
-                raise _err("arrival.impulsive_loi1_mps", str(exc)) from None
-            object.__setattr__(self, "arrival", replace(self.arrival, v_inf_kmps=vinf))
-        self._check_ephemeris()
-        if self.start is None:
-            self._check_arrival_geometry()
-        self._check_engine_fits()
+        validate(self)
 
     def _derive_state_arrival(self) -> None:
         """Replace the perilune numbers of a state arrival by those of its propagation."""
-        if self.dynamics not in DYNAMICS or self.lunar_pole not in LUNAR_POLES:
-            return  # refused below with the field named
         a = self.arrival
         try:
-            peri = perilune_from_state(a.state, float(a.mass_kg), self.dynamics,
-                                       self.ephemeris_model(), self.lunar_pole)
+            peri = perilune_from_state(a.state, float(num("arrival.mass_kg", a.mass_kg, "kg")),
+                                       self.dynamics, self.ephemeris_model(), self.lunar_pole)
         except InputError as exc:
             where = "arrival.opm" if a.state.opm else "arrival"
-            raise _err(where, str(exc)) from None
+            raise err(where, str(exc)) from None
         object.__setattr__(self, "arrival", replace(
             a, epoch=peri["epoch"], perilune_altitude_km=peri["altitude_km"],
             inclination_deg=peri["inclination_deg"], hemisphere=peri["hemisphere"],
             v_inf_kmps=peri["v_inf_kmps"], perilune_mee=peri["mee"],
             approach_dir=peri["approach_dir"]))
-
-    def _check_explicit_ellipse(self, i: int) -> None:
-        """An ellipse given by both altitudes: the last burn, in the orbit formulation."""
-        if i != self.n_burns - 1:
-            raise _err(f"burns[{i}].target", "an ellipse given by both altitudes is a final "
-                                             "orbit: only the last burn may have it")
-        if self.formulation == "song2011":
-            raise _err(f"burns[{i}].target", "the song2011 formulation (Eq. 17) targets a "
-                                             "perilune and a timing, not an apolune: use "
-                                             "formulation: orbit for an ellipse by altitudes")
-
-    def _check_start(self) -> None:
-        st = self.start
-        if not isinstance(st, Start):
-            raise _err("start", f"must be a Start, got {type(st).__name__}")
-        b0 = self.burns[0]
-        if b0.free_start and b0.start_bounds_min is None:
-            raise _err("burns[0].start_bounds_min",
-                       "a plan that starts from a given state needs a window [lo, hi] (min "
-                       "from its epoch) for a free first ignition")
-        latest = b0.start_bounds_min[1] if b0.free_start else b0.start_min
-        if latest * 60.0 >= st.first_coast_s:
-            raise _err("start.first_coast_min",
-                       f"the first coast ({st.first_coast_s / 60:.1f} min) must end after the "
-                       f"latest ignition ({latest:g} min)")
-
-    def _check_arrival_geometry(self) -> None:
-        """The arrival hyperbola can be built with this inclination (else PlanError)."""
-        a = self.arrival
-        s = a.approach_direction(self.ephemeris_model())
-        lat = math.degrees(math.asin(max(-1.0, min(1.0, float(s[2])))))
-        inc = a.inclination_deg
-        if min(inc, 180.0 - inc) < abs(lat) - 1e-9:
-            raise _err("arrival.inclination_deg",
-                       f"{inc:g} deg cannot be reached from this arrival: its approach "
-                       f"asymptote lies {abs(lat):.2f} deg from the lunar equator (M-MME2000) "
-                       f"on {a.epoch}, and an orbit containing it is inclined at least that "
-                       f"much (and at most 180 deg minus it); ask for {abs(lat):.2f} to "
-                       f"{180 - abs(lat):.2f} deg, or give approach_dir")
-
-    def _check_ephemeris(self) -> None:
-        eph = self.ephemeris_model()
-        t = self.nominal_perilunes_s
-        a, b = eph.span_s
-        if t[0] - EPHEMERIS_MARGIN_S < a or t[-1] + EPHEMERIS_MARGIN_S > b:
-            raise _err("arrival.epoch",
-                       f"the capture from {calendar_from_seconds(t[0], 0)} to "
-                       f"{calendar_from_seconds(t[-1], 0)} (with 6 h margins) is outside the "
-                       f"ephemeris {eph.name}, which covers {calendar_from_seconds(a, 0)} to "
-                       f"{calendar_from_seconds(b, 0)}")
-
-    def _check_engine_fits(self) -> None:
-        for i, ib in enumerate(self.impulsive()):
-            t19 = ib.eq19_duration_min * 60.0
-            coast = self.nominal_perilunes_s[i + 1] - self.nominal_perilunes_s[i]
-            before = self.nominal_perilunes_s[i] - self.nominal_perilunes_s[i - 1] if i else coast
-            if t19 < MIN_BURN_S:
-                raise _err("engine.thrust_N",
-                           f"{self.engine.thrust_N:g} N is too strong: burn {i + 1} "
-                           f"({ib.delta_v_mps:.1f} m/s) would last {t19:.2g} s (Eq. 19), "
-                           f"below the {MIN_BURN_S:g} s the transcription resolves; for an "
-                           f"impulse, see the impulsive chain (lunarcap impulsive)")
-            if t19 > MAX_BURN_FRACTION * min(coast, before):
-                raise _err("engine.thrust_N",
-                           f"{self.engine.thrust_N:g} N is too weak: burn {i + 1} "
-                           f"({ib.delta_v_mps:.1f} m/s) would last {t19 / 60:.1f} min "
-                           f"(Eq. 19), more than half the {min(coast, before) / 60:.1f} min "
-                           f"orbit around it")
 
     # ------------------------------------------------------------------ derived numbers
     @property
@@ -475,7 +307,7 @@ class CapturePlan:
         b = self.burns[i]
         if b.target == PERILUNE:
             return b.period_s
-        return b.coast_s if b.coast_s is not None else _circle_period_s(self.perilune_radius_km)
+        return b.coast_s if b.coast_s is not None else circle_period_s(self.perilune_radius_km)
 
     @property
     def nominal_perilunes_s(self) -> tuple:
@@ -524,14 +356,14 @@ class CapturePlan:
         """The same plan with burn ``i`` (0-based) igniting at ``start_min`` (or 'free')."""
         self._index(i)
         burns = list(self.burns)
-        burns[i] = replace(burns[i], start_min=_start_value(f"burns[{i}].start_min", start_min))
+        burns[i] = replace(burns[i], start_min=start_value(burn_field(i, "start_min"), start_min))
         return replace(self, burns=tuple(burns))
 
     def with_starts(self, starts) -> "CapturePlan":
         """The same plan with every burn's ignition offset replaced (one per burn)."""
         starts = list(starts)
         if len(starts) != self.n_burns:
-            raise _err("burns", f"{self.n_burns} ignition offsets expected (one per burn), "
+            raise err("burns", f"{self.n_burns} ignition offsets expected (one per burn), "
                                 f"got {len(starts)}")
         plan = self
         for i, s in enumerate(starts):
@@ -555,13 +387,13 @@ class CapturePlan:
         """
         coasts = list(coasts_s)
         if len(coasts) != self.n_burns:
-            raise _err("burns", f"{self.n_burns} coasts expected (one per burn), got "
+            raise err("burns", f"{self.n_burns} coasts expected (one per burn), got "
                                 f"{len(coasts)}")
         burns, start = list(self.burns), self.start
         for i, c in enumerate(coasts):
             if c is None:
                 continue
-            c = _number(f"burns[{i}].coast", float(c) / 60.0, "min") * 60.0
+            c = num(burn_field(i, "coast_min"), float(c) / 60.0, "min") * 60.0
             if i == 0 and start is not None:
                 start = replace(start, first_coast_s=c)
             elif burns[i].target == PERILUNE:
@@ -605,7 +437,7 @@ class CapturePlan:
     def truncated(self, n: int) -> "CapturePlan":
         """The plan's first ``n`` burns (a prefix: what burn n depends on)."""
         if not 1 <= n <= self.n_burns:
-            raise _err("burns", f"a prefix of 1 to {self.n_burns} burns, got {n}")
+            raise err("burns", f"a prefix of 1 to {self.n_burns} burns, got {n}")
         return replace(self, burns=self.burns[:n])
 
     def with_lunar_pole(self, lunar_pole: str) -> "CapturePlan":
@@ -627,7 +459,7 @@ class CapturePlan:
 
     def _index(self, i: int) -> None:
         if not isinstance(i, (int, np.integer)) or not 0 <= i < self.n_burns:
-            raise _err("burns", f"this plan has burns 1 to {self.n_burns}; "
+            raise err("burns", f"this plan has burns 1 to {self.n_burns}; "
                                 f"burn {i + 1 if isinstance(i, int) else i} does not exist")
 
     # ------------------------------------------------------------------ (de)serialisation
@@ -637,373 +469,20 @@ class CapturePlan:
         """A plan from the mapping of a YAML file (every key checked; PlanError names it).
 
         ``base_dir`` resolves a relative ``ephemeris`` path (the plan file's directory).
+        The mapping's structure is read by :func:`plan_io.plan_fields`; its values are
+        checked once, by the plan itself.
         """
-        _keys("", d, _TOP_KEYS, {"arrival", "engine", "burns"})
-        name = d.get("name", default_name)
-        if not isinstance(name, str) or not name.strip():
-            raise _err("name", f"must be a non-empty text, got {name!r}")
-        a = d["arrival"]
-        arrival = _state_arrival_from_dict(a, base_dir)
-        if arrival is None:
-            arrival = _perilune_arrival_from_dict(a)
-        e = d["engine"]
-        _keys("engine", e, _ENGINE_KEYS, _ENGINE_KEYS)
-        engine = Engine(_number("engine.thrust_N", e["thrust_N"], "N"),
-                        _number("engine.isp_s", e["isp_s"], "s"))
-        burns_in = d["burns"]
-        if not isinstance(burns_in, list) or not burns_in:
-            raise _err("burns", "must be a list of at least one burn")
-        burns = tuple(_burn_from_dict(f"burns[{i}]", b, arrival.perilune_altitude_km)
-                      for i, b in enumerate(burns_in))
-        eph = d.get("ephemeris")
-        if eph is not None:
-            if not isinstance(eph, str):
-                raise _err("ephemeris", f"must be the path of an SPK file, got {eph!r}")
-            p = Path(eph).expanduser()
-            if not p.is_absolute() and base_dir is not None:
-                p = Path(base_dir) / p
-            eph = str(p.resolve())
-        desc = d.get("description", "")
-        if not isinstance(desc, str):
-            raise _err("description", f"must be a text, got {desc!r}")
-        start = d.get("start")
-        if start is not None:
-            start = _start_from_dict(start)
-        return cls(name=name.strip(), arrival=arrival, engine=engine, burns=burns,
-                   dynamics=d.get("dynamics", "full"), ephemeris=eph,
-                   lunar_pole=d.get("lunar_pole", DEFAULT_LUNAR_POLE),
-                   impulsive_loi1_mps=(_number("arrival.impulsive_loi1_mps",
-                                               a["impulsive_loi1_mps"], "m/s")
-                                       if "impulsive_loi1_mps" in a else None),
-                   description=desc.strip(), start=start,
-                   formulation=d.get("formulation", "orbit"))
+        return cls(**plan_fields(d, base_dir, default_name))
 
     def to_dict(self) -> dict:
         """The plan as a mapping with the YAML file's keys (round-trips :meth:`from_dict`)."""
-        a = self.arrival
-        arrival = {"epoch": a.epoch, "perilune_altitude_km": a.perilune_altitude_km,
-                   "inclination_deg": a.inclination_deg}
-        if self.impulsive_loi1_mps is not None:
-            arrival["impulsive_loi1_mps"] = self.impulsive_loi1_mps
-        else:
-            arrival["v_inf_kmps"] = a.v_inf_kmps
-        arrival["hemisphere"] = a.hemisphere
-        if a.approach_dir is not None:
-            arrival["approach_dir"] = list(a.approach_dir)
-        arrival["mass_kg"] = a.mass_kg
-        if a.state is not None:   # as given (the perilune is derived again on loading)
-            st = a.state
-            arrival = ({"opm": st.opm} if st.opm else
-                       {"epoch": st.epoch, "frame": st.frame,
-                        "position_km": list(st.position_km),
-                        "velocity_kmps": list(st.velocity_kmps)}) | {"mass_kg": a.mass_kg}
-        burns = []
-        for b in self.burns:
-            row = {}
-            if b.target == CIRCULAR:
-                row["target"] = CIRCULAR
-                if b.coast_s is not None:
-                    row["coast_min"] = b.coast_s / 60.0
-            elif b.perilune_altitude_km is not None:
-                row["target"] = {"perilune_altitude_km": b.perilune_altitude_km,
-                                 "apolune_altitude_km": b.apolune_altitude_km}
-            elif b.apolune_altitude_km is not None:
-                row["target_apolune_altitude_km"] = b.apolune_altitude_km
-            else:
-                row["target_period_h"] = b.period_s / 3600.0
-            row["start_min"] = b.start_min
-            if b.steering != "optimal":
-                row["steering"] = b.steering
-            if b.start_bounds_min is not None:
-                row["start_bounds_min"] = list(b.start_bounds_min)
-            burns.append(row)
-        out = {"name": self.name}
-        if self.description:
-            out["description"] = self.description
-        out.update(arrival=arrival, engine={"thrust_N": self.engine.thrust_N,
-                                            "isp_s": self.engine.isp_s},
-                   dynamics=self.dynamics, burns=burns)
-        if self.ephemeris is not None:
-            out["ephemeris"] = self.ephemeris
-        if self.lunar_pole != DEFAULT_LUNAR_POLE:
-            out["lunar_pole"] = self.lunar_pole
-        if self.formulation != "orbit":
-            out["formulation"] = self.formulation
-        if self.start is not None:
-            out["start"] = {"epoch": calendar_from_seconds(self.start.epoch_s, 6),
-                            "mee": list(self.start.state[:6]), "mass_kg": self.start.mass_kg,
-                            "first_coast_min": self.start.first_coast_s / 60.0}
-        return out
+        return plan_dict(self)
 
     def to_yaml(self) -> str:
         """YAML text of :meth:`to_dict`."""
         import yaml
 
         return yaml.safe_dump(self.to_dict(), sort_keys=False, default_flow_style=None)
-
-
-# ---------------------------------------------------------------------- helpers
-def _circle_period_s(r_km: float, mu: float = C.MU_MOON) -> float:
-    return 2 * math.pi * math.sqrt(r_km ** 3 / mu)
-
-
-def _period_from_apolune_s(rp_km: float, ra_km: float, mu: float = C.MU_MOON) -> float:
-    a = 0.5 * (rp_km + ra_km)
-    return 2 * math.pi * math.sqrt(a ** 3 / mu)
-
-
-def _start_value(where: str, value):
-    if value == "free":
-        return "free"
-    v = _number(where, value, "min", positive=False)
-    if abs(v) > MAX_START_MIN:
-        raise _err(where, f"{v:g} min is more than {MAX_START_MIN:g} min from perilune")
-    return v
-
-
-def _ellipse_from_dict(where: str, t) -> tuple:
-    """(perilune altitude, apolune altitude, period) of ``target: {perilune_altitude_km, ...}``."""
-    keys = {"perilune_altitude_km", "apolune_altitude_km"}
-    _keys(where, t, keys, keys)
-    rp = _number(f"{where}.perilune_altitude_km", t["perilune_altitude_km"], "km")
-    ra = _number(f"{where}.apolune_altitude_km", t["apolune_altitude_km"], "km")
-    if not ra > rp:
-        raise _err(f"{where}.apolune_altitude_km", f"{ra:g} km is not above the perilune "
-                                                   f"altitude {rp:g} km")
-    return rp, ra, _period_from_apolune_s(C.R_MOON + rp, C.R_MOON + ra)
-
-
-def _burn_from_dict(where: str, b, altitude_km: float) -> Burn:
-    _keys(where, b, _BURN_KEYS, {"start_min"})
-    given = [k for k in ("target_period_h", "target_apolune_altitude_km") if k in b]
-    if isinstance(b.get("target"), dict):
-        if given or "coast_min" in b:
-            raise _err(f"{where}.target", "an ellipse given by both altitudes takes no "
-                                          "period, apolune or coast_min of its own")
-        rp_alt, ra_alt, period = _ellipse_from_dict(f"{where}.target", b["target"])
-        return replace(_burn_from_dict(where, {k: v for k, v in b.items() if k != "target"}
-                                       | {"target_period_h": period / 3600.0}, altitude_km),
-                       period_s=period, apolune_altitude_km=ra_alt,
-                       perilune_altitude_km=rp_alt)
-    kind = b.get("target", PERILUNE if given else None)
-    if kind not in (PERILUNE, CIRCULAR):
-        raise _err(f"{where}.target", f"must be 'circular', an ellipse "
-                                      f"{{perilune_altitude_km, apolune_altitude_km}}, or "
-                                      f"'perilune' (or give target_period_h / "
-                                      f"target_apolune_altitude_km), got {kind!r}")
-    period = apo = coast = None
-    if kind == CIRCULAR:
-        if given:
-            raise _err(f"{where}.{given[0]}", "a circular target takes no period or apolune")
-        if "coast_min" in b:
-            coast = _number(f"{where}.coast_min", b["coast_min"], "min") * 60.0
-    else:
-        if len(given) != 1:
-            raise _err(f"{where}.target_period_h", "give exactly one of target_period_h and "
-                                                   "target_apolune_altitude_km")
-        if "coast_min" in b:
-            raise _err(f"{where}.coast_min", "only a circular target takes coast_min (an "
-                                             "ellipse's coast lasts its period)")
-        if given[0] == "target_period_h":
-            period = _number(f"{where}.target_period_h", b["target_period_h"], "h") * 3600.0
-        else:
-            apo = _number(f"{where}.target_apolune_altitude_km",
-                          b["target_apolune_altitude_km"], "km")
-            if apo <= altitude_km:
-                raise _err(f"{where}.target_apolune_altitude_km",
-                           f"{apo:g} km is not above the perilune altitude {altitude_km:g} km")
-            period = _period_from_apolune_s(C.R_MOON + altitude_km, C.R_MOON + apo)
-    steering = b.get("steering", "optimal")
-    bounds = b.get("start_bounds_min")
-    if bounds is not None:
-        if not isinstance(bounds, (list, tuple)) or len(bounds) != 2:
-            raise _err(f"{where}.start_bounds_min", f"must be [lo, hi] in minutes, got "
-                                                    f"{bounds!r}")
-        bounds = tuple(_start_value(f"{where}.start_bounds_min[{j}]", x)
-                       for j, x in enumerate(bounds))
-        if "free" in bounds or not bounds[0] < bounds[1]:
-            raise _err(f"{where}.start_bounds_min", f"must be two numbers lo < hi, got "
-                                                    f"{list(bounds)!r}")
-    return Burn(target=kind, period_s=period,
-                start_min=_start_value(f"{where}.start_min", b["start_min"]),
-                coast_s=coast, apolune_altitude_km=apo, steering=steering,
-                start_bounds_min=bounds)
-
-
-def _perilune_arrival_from_dict(a) -> ArrivalSpec:
-    """The ``arrival`` of a plan given by its perilune (v_inf and the reconstructed geometry)."""
-    _keys("arrival", a, _ARRIVAL_KEYS,
-          {"epoch", "perilune_altitude_km", "inclination_deg", "mass_kg"})
-    if ("v_inf_kmps" in a) == ("impulsive_loi1_mps" in a):
-        raise _err("arrival.v_inf_kmps", "give exactly one of v_inf_kmps and "
-                                         "impulsive_loi1_mps")
-    epoch = a["epoch"]
-    if not isinstance(epoch, str):
-        raise _err("arrival.epoch", f"must be a text like '2017-02-20 03:41:26 TDB', "
-                                    f"got {epoch!r}")
-    try:
-        seconds_from_calendar(epoch)
-    except InputError as exc:
-        raise _err("arrival.epoch", str(exc)) from None
-    approach = a.get("approach_dir")
-    if approach is not None:
-        if not isinstance(approach, (list, tuple)) or len(approach) != 3:
-            raise _err("arrival.approach_dir", f"must be a list of three numbers "
-                                               f"(M-MME2000), got {approach!r}")
-        approach = tuple(_number(f"arrival.approach_dir[{j}]", x, "", positive=False)
-                         for j, x in enumerate(approach))
-    return ArrivalSpec(
-        epoch=epoch,
-        perilune_altitude_km=_number("arrival.perilune_altitude_km",
-                                     a["perilune_altitude_km"], "km", positive=False),
-        inclination_deg=_number("arrival.inclination_deg", a["inclination_deg"], "deg",
-                                positive=False),
-        mass_kg=_number("arrival.mass_kg", a["mass_kg"], "kg"),
-        v_inf_kmps=(_number("arrival.v_inf_kmps", a["v_inf_kmps"], "km/s")
-                    if "v_inf_kmps" in a else None),
-        hemisphere=a.get("hemisphere", "north"),
-        approach_dir=approach)
-
-
-def _state_arrival_from_dict(a, base_dir) -> ArrivalSpec | None:
-    """The ``arrival`` of a plan given as a state or an OPM file (None: a perilune arrival).
-
-    The perilune numbers are placeholders until the plan derives them in its dynamics
-    (:meth:`CapturePlan._derive_state_arrival`).
-    """
-    if not isinstance(a, dict) or not ({"opm", "position_km", "velocity_kmps"} & set(a)):
-        return None
-    mass = a.get("mass_kg")
-    if "opm" in a:
-        _keys("arrival", a, {"opm", "mass_kg"}, {"opm"})
-        from lunarcap.exchange.ccsds import read_opm
-
-        path = a["opm"]
-        if not isinstance(path, str):
-            raise _err("arrival.opm", f"must be the path of a CCSDS OPM file, got {path!r}")
-        p = Path(path).expanduser()
-        if not p.is_absolute() and base_dir is not None:
-            p = Path(base_dir) / p
-        try:
-            sv = read_opm(p)
-        except InputError as exc:
-            raise _err("arrival.opm", str(exc)) from None
-        if mass is None:
-            if sv.mass_kg is None:
-                raise _err("arrival.mass_kg", f"missing: the OPM {p.name} gives no MASS")
-            mass = sv.mass_kg
-        state = StateArrival(sv.epoch_text, "ICRF", sv.r_km, sv.v_kmps, opm=str(path))
-    else:
-        unknown = sorted(set(a) - _STATE_ARRIVAL_KEYS)
-        if unknown:
-            raise _err(f"arrival.{unknown[0]}",
-                       f"a state arrival takes {', '.join(sorted(_STATE_ARRIVAL_KEYS))}; "
-                       f"{unknown[0]} belongs to an arrival given by its perilune")
-        _keys("arrival", a, _STATE_ARRIVAL_KEYS, _STATE_ARRIVAL_KEYS)
-        if not isinstance(a["epoch"], str):
-            raise _err("arrival.epoch", f"must be a text like '2017-02-20 03:11:26 UTC', "
-                                        f"got {a['epoch']!r}")
-        try:
-            seconds_from_calendar(a["epoch"])
-        except InputError as exc:
-            raise _err("arrival.epoch", str(exc)) from None
-        if a["frame"] not in STATE_FRAMES:
-            raise _err("arrival.frame", f"must be one of {', '.join(STATE_FRAMES)}, got "
-                                        f"{a['frame']!r}")
-        vecs = []
-        for key, unit in (("position_km", "km"), ("velocity_kmps", "km/s")):
-            val = a[key]
-            if not isinstance(val, (list, tuple)) or len(val) != 3:
-                raise _err(f"arrival.{key}", f"must be a list of three numbers ({unit}), got "
-                                             f"{val!r}")
-            vecs.append(tuple(_number(f"arrival.{key}[{j}]", x, unit, positive=False)
-                              for j, x in enumerate(val)))
-        state = StateArrival(a["epoch"], a["frame"], vecs[0], vecs[1])
-    mass = _number("arrival.mass_kg", mass, "kg")
-    # placeholders (a valid perilune), replaced by the derivation in the plan's dynamics
-    return ArrivalSpec(epoch=state.epoch, perilune_altitude_km=100.0, inclination_deg=90.0,
-                       mass_kg=mass, v_inf_kmps=1.0, state=state)
-
-
-def _start_from_dict(d) -> Start:
-    _keys("start", d, _START_KEYS, _START_KEYS)
-    if not isinstance(d["epoch"], str):
-        raise _err("start.epoch", f"must be a text like '2017-02-20 03:41:26 TDB', got "
-                                  f"{d['epoch']!r}")
-    try:
-        epoch = seconds_from_calendar(d["epoch"])
-    except InputError as exc:
-        raise _err("start.epoch", str(exc)) from None
-    mee = d["mee"]
-    if not isinstance(mee, (list, tuple)) or len(mee) != 6:
-        raise _err("start.mee", f"must be six numbers (p km, f, g, h, k, L rad), got {mee!r}")
-    mee = [_number(f"start.mee[{j}]", x, "", positive=False) for j, x in enumerate(mee)]
-    mass = _number("start.mass_kg", d["mass_kg"], "kg")
-    coast = _number("start.first_coast_min", d["first_coast_min"], "min") * 60.0
-    return Start(epoch, tuple(mee) + (mass,), coast)
-
-
-def _validate_engine(e: Engine) -> None:
-    _number("engine.thrust_N", e.thrust_N, "N")
-    _number("engine.isp_s", e.isp_s, "s")
-
-
-def _validate_arrival(a: ArrivalSpec) -> None:
-    alt = _number("arrival.perilune_altitude_km", a.perilune_altitude_km, "km", positive=False)
-    if alt <= 0:
-        raise _err("arrival.perilune_altitude_km",
-                   f"{alt:g} km puts the perilune at or below the lunar surface "
-                   f"(radius {C.R_MOON} km): the altitude must be positive")
-    inc = _number("arrival.inclination_deg", a.inclination_deg, "deg", positive=False)
-    try:
-        check_inclination("arrival.inclination_deg", inc)
-    except InputError as exc:
-        raise PlanError(str(exc)) from None
-    _number("arrival.mass_kg", a.mass_kg, "kg")
-    if a.v_inf_kmps is not None:
-        _number("arrival.v_inf_kmps", a.v_inf_kmps, "km/s")
-    if a.hemisphere not in HEMISPHERES:
-        raise _err("arrival.hemisphere", f"must be north or south, got {a.hemisphere!r}")
-    if a.approach_dir is not None and not np.linalg.norm(a.approach_dir) > 0:
-        raise _err("arrival.approach_dir", "must be a non-zero vector")
-
-
-def _validate_burn(where: str, b: Burn, rp_km: float, period_before_s: float,
-                   last: bool) -> None:
-    if b.target not in (PERILUNE, CIRCULAR):
-        raise _err(f"{where}.target", f"must be 'perilune' or 'circular', got {b.target!r}")
-    if b.steering not in STEERING:
-        raise _err(f"{where}.steering", f"must be one of {', '.join(STEERING)}, "
-                                        f"got {b.steering!r}")
-    _start_value(f"{where}.start_min", b.start_min)
-    circle = _circle_period_s(rp_km)
-    if b.target == CIRCULAR:
-        if not last:
-            raise _err(f"{where}.target", "a circular target must be the last burn (a burn "
-                                          "after it has nothing to lower)")
-        if b.coast_s is not None:
-            _number(f"{where}.coast_min", b.coast_s / 60.0, "min")
-        period_after = circle
-    else:
-        key = ("target_apolune_altitude_km" if b.apolune_altitude_km is not None
-               else "target_period_h")
-        p = _number(f"{where}.{key}", b.period_s, "s")
-        if p <= circle:
-            raise _err(f"{where}.{key}",
-                       f"a period of {p / 3600:.4g} h is not longer than the circular orbit's "
-                       f"at the perilune radius {rp_km:g} km ({circle / 3600:.4g} h): no "
-                       f"ellipse has that perilune and period")
-        period_after = p
-    if not period_after < period_before_s:
-        raise _err(f"{where}.target_period_h" if b.target == PERILUNE else f"{where}.target",
-                   f"the orbit reached ({period_after / 3600:.4g} h) is not shorter than the "
-                   f"orbit before ({period_before_s / 3600:.4g} h): each capture burn must "
-                   f"lower the orbit")
-    if not b.free_start and math.isfinite(period_before_s) and \
-            abs(b.start_min) * 60.0 > 0.4 * period_before_s:
-        raise _err(f"{where}.start_min",
-                   f"{b.start_min:g} min from perilune is more than 0.4 of the "
-                   f"{period_before_s / 60:.1f} min orbit it starts on")
 
 
 @lru_cache(maxsize=8)
@@ -1029,6 +508,9 @@ def load_plan(source: str | os.PathLike) -> CapturePlan:
     import yaml
 
     path = Path(source).expanduser()
+    if path.is_dir():
+        raise PlanError(f"plan {source}: is a directory, not a plan file: give a YAML file "
+                        f"in it or a packaged plan ({', '.join(available_plans())})")
     if not path.is_file():
         packaged = PLAN_DIR / f"{source}.yaml"
         if isinstance(source, str) and os.sep not in source and packaged.is_file():

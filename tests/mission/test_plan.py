@@ -143,7 +143,7 @@ BAD = [
     (("arrival", "epoch"), "DELETE", "arrival.epoch", "missing"),
     (("engine", "thrust"), 150, "engine.thrust", "unknown key"),
     (("flavour",), "vanilla", "flavour", "unknown key"),
-    (("burns", 0, "target_periood_h"), 12.0, "burns[0].target_periood_h", "unknown key"),
+    (("burns", 0, "target_periood_h"), 12.0, "burns[1].target_periood_h", "unknown key"),
     (("engine", "thrust_N"), -150, "engine.thrust_N", "positive"),
     (("engine", "isp_s"), float("nan"), "engine.isp_s", "finite"),
     (("engine", "isp_s"), "fast", "engine.isp_s", "number"),
@@ -152,12 +152,12 @@ BAD = [
     (("arrival", "inclination_deg"), 200, "arrival.inclination_deg", "outside (0, 175]"),
     (("arrival", "epoch"), "2300-01-01 00:00:00 TDB", "arrival.epoch", "outside the ephemeris"),
     (("arrival", "epoch"), "yesterday", "arrival.epoch", "cannot read epoch"),
-    (("arrival", "hemisphere"), "east", "arrival.hemisphere", "north or south"),
-    (("burns", 1, "target_period_h"), 1.5, "burns[1].target_period_h", "circular orbit"),
-    (("burns", 1, "target_period_h"), 14.0, "burns[1].target_period_h", "not shorter"),
-    (("burns", 0, "start_min"), 500, "burns[0].start_min", "more than 120 min"),
-    (("burns", 0, "start_min"), "late", "burns[0].start_min", "number"),
-    (("burns", 2, "target"), "parabolic", "burns[2].target", "circular"),
+    (("arrival", "hemisphere"), "east", "arrival.hemisphere", "one of north, south"),
+    (("burns", 1, "target_period_h"), 1.5, "burns[2].target_period_h", "circular orbit"),
+    (("burns", 1, "target_period_h"), 14.0, "burns[2].target_period_h", "not shorter"),
+    (("burns", 0, "start_min"), 500, "burns[1].start_min", "more than 120 min"),
+    (("burns", 0, "start_min"), "late", "burns[1].start_min", "number"),
+    (("burns", 2, "target"), "parabolic", "burns[3].target", "circular"),
     (("burns",), [], "burns", "at least one burn"),
     (("dynamics",), "n-body", "dynamics", "full, j2, two-body"),
     (("engine", "thrust_N"), 1e9, "engine.thrust_N", "too strong"),
@@ -179,7 +179,7 @@ def test_circular_target_must_be_last_and_keys_are_exclusive(base):
     d = copy.deepcopy(base)
     d["burns"] = [{"target": "circular", "start_min": -5}, {"target_period_h": 3.0,
                                                              "start_min": -5}]
-    with pytest.raises(PlanError, match=r"burns\[0\].target: a circular target must be the last"):
+    with pytest.raises(PlanError, match=r"burns\[1\].target: a circular target must be the last"):
         CapturePlan.from_dict(d)
     d = copy.deepcopy(base)
     d["arrival"]["v_inf_kmps"] = 0.9
