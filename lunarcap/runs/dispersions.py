@@ -53,7 +53,6 @@ import json
 import math
 import time
 from dataclasses import dataclass, replace
-from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -68,6 +67,7 @@ from lunarcap.physics import constants as C
 from lunarcap.physics.elements import mee_from_rv, orbit_summary, rv_from_mee
 from lunarcap.physics.propagate import Trajectory, propagate
 from lunarcap.physics.steering import Steering, polynomial
+from lunarcap.repro.cache import code_version, enabled, position
 
 #: Most burns a plan may have in this study (the draws' block is sized for it).
 MAX_BURNS = 8
@@ -86,14 +86,12 @@ PERCENTILES = (50.0, 90.0, 95.0, 99.0)
 INFEASIBLE = ("Infeasible_Problem_Detected", "Restoration_Failed")
 
 STATUSES = ("ok", "not captured", "correction failed", "error")
+
+#: This module, relative to the package: its tables' and cached cases' code version is
+#: :func:`lunarcap.repro.cache.code_version` of the numerical code and this file.
+_MODULE = "runs/dispersions.py"
 #: Statuses of a sample computed as it should be (the failures are physical outcomes).
 OK_STATUSES = ("ok", "not captured", "correction failed")
-
-
-@lru_cache(maxsize=1)
-def module_version() -> str:
-    """Hash of this module's source: part of the table's code version."""
-    return hashlib.sha256(Path(__file__).read_bytes()).hexdigest()[:16]
 
 
 # ====================================================================== error model
@@ -404,22 +402,23 @@ def warm_guess(nominal_raw, prob) -> Guess:
 _NOMINAL: dict = {}
 
 
-def nominal(plan: CapturePlan, use_cache: bool = True) -> list:
+def nominal(plan: CapturePlan) -> list:
     """The plan's verified burns (solved in order, :func:`lunarcap.runs.chain.solve_plan`).
 
-    Memoised per process (a worker solves or loads it once for all its samples).
+    Memoised per process and cache switch position (a worker solves or loads it once for
+    all its samples).
     """
     from lunarcap.runs.chain import solve_plan
 
-    key = (plan.key(), use_cache)
+    key = (plan.key(), enabled())
     if key not in _NOMINAL:
-        _NOMINAL[key] = solve_plan(plan, use_cache=use_cache)
+        _NOMINAL[key] = solve_plan(plan)
     return _NOMINAL[key]
 
 
-def nominal_totals(plan: CapturePlan, use_cache: bool = True) -> dict:
+def nominal_totals(plan: CapturePlan) -> dict:
     """Nominal delta-V (m/s), propellant (kg) and the two-body impulsive delta-V (m/s)."""
-    sols = nominal(plan, use_cache)
+    sols = nominal(plan)
     return {"nominal_delta_v_mps": float(sum(s.delta_v_mps for s in sols)),
             "nominal_propellant_kg": float(plan.initial_mass_kg - sols[-1].end_state[6]),
             "impulsive_two_body_mps": float(sum(b.delta_v_mps for b in plan.impulsive()))}
@@ -485,7 +484,7 @@ def _fail(out: dict, status: str, reason: str) -> dict:
     return out
 
 
-def fly_sample(plan: CapturePlan, z, model: ErrorModel, use_cache: bool = True) -> dict:
+def fly_sample(plan: CapturePlan, z, model: ErrorModel) -> dict:
     """One sample of the capture with the errors of the draws ``z`` (see the module).
 
     Returns a dict: status ("ok", "not captured", "correction failed"), reason, the total
@@ -493,7 +492,7 @@ def fly_sample(plan: CapturePlan, z, model: ErrorModel, use_cache: bool = True) 
     orbit's errors, its wall and CPU time (s; the nominal, solved or loaded once per
     process, is left out).
     """
-    noms = nominal(plan, use_cache)
+    noms = nominal(plan)
     t_start, c_start = time.perf_counter(), time.process_time()
     d_arr, errs = realise(z, model, plan.n_burns)
     out = {"status": "ok", "reason": "", "burns_flown": 0, "_t0": t_start, "_c0": c_start,
@@ -599,13 +598,13 @@ def default_table_path():
 
 
 def sample_row(plan: CapturePlan, seed: int, index: int, model: ErrorModel,
-               antithetic: bool = False, use_cache: bool = True) -> dict:
+               antithetic: bool = False, use_cache: bool | None = None) -> dict:
     """Dask task: one sample as a row of the table (a failure is a status, not raised)."""
     from lunarcap.runs import campaign
 
     def compute():
-        r = fly_sample(plan, sample_draws(seed, index, antithetic), model, use_cache)
-        r.update(nominal_totals(plan, use_cache))
+        r = fly_sample(plan, sample_draws(seed, index, antithetic), model)
+        r.update(nominal_totals(plan))
         if "total_delta_v_mps" in r:
             r["delta_v_above_nominal_mps"] = r["total_delta_v_mps"] - r["nominal_delta_v_mps"]
         return r
@@ -636,7 +635,8 @@ def check_samples(samples, seed) -> tuple:
 
 def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorModel,
                     out=None, workers=2, scheduler=None, progress: bool = True,
-                    use_cache: bool = True, processes: bool = True, antithetic: bool = False,
+                    use_cache: bool | None = None, processes: bool = True,
+                    antithetic: bool = False,
                     first: int = 0, task=None):
     """Run (or resume) ``samples`` samples (indices ``first``...) of the capture on Dask.
 
@@ -646,12 +646,12 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
     :data:`MAX_BURNS` burns, an unusable ``out``, an unreachable scheduler) before any
     sample.
     """
-    from lunarcap.repro.cache import code_version
     from lunarcap.runs.burns import plan_id
     from lunarcap.runs.campaign import run_campaign
     from lunarcap.runs.study import check_workers
 
     samples, seed = check_samples(samples, seed)
+    use_cache = position(use_cache)   # None: the switch's current position
     plans = list(plan) if isinstance(plan, (list, tuple)) else [plan]
     for p in plans:
         if p.n_burns > MAX_BURNS:
@@ -669,7 +669,7 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
         cases += [(dict(base, sample=k), (p, seed, k, model, bool(antithetic), use_cache))
                   for k in range(int(first), int(first) + samples)]
     return run_campaign(cases, task or sample_row, out or default_table_path(),
-                        table_format(), f"{code_version()}:{module_version()}",
+                        table_format(), code_version(_MODULE),
                         workers=workers, scheduler=scheduler, progress=progress,
                         processes=processes, desc="dispersions", unit="sample",
                         recompute=not use_cache, ok_statuses=OK_STATUSES,

@@ -18,6 +18,7 @@ from lunarcap.optim.solve import solve_burn
 from lunarcap.optim.verify import mesh_convergence, verify
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import mee_from_rv
+from lunarcap.repro.cache import caching
 from lunarcap.runs.chain import arrival_for, impulsive_limit
 
 pytestmark = pytest.mark.slow
@@ -43,7 +44,8 @@ def test_impulsive_limit_two_body_matches_closed_form(plan150):
     # Two-body, one impulse with free epoch and direction: the optimum is the tangential
     # perilune impulse whose closed form is 353.272 m/s by construction of v_inf.
     # Richardson-extrapolated 4 s / 2 s burns must agree to 0.01 m/s (the gate's tolerance).
-    r = impulsive_limit(plan150.with_dynamics("two-body").key(1), use_cache=False)
+    with caching(False):
+        r = impulsive_limit(plan150.with_dynamics("two-body").key(1))
     assert r["verification_passed"]
     assert abs(r["delta_v_mps"] - 353.272) < 0.01
     assert abs(r["impulse_offset_min"]) < 0.05  # centred on perilune (+-3 s)
