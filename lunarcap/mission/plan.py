@@ -91,15 +91,13 @@ from lunarcap.mission.impulsive import (
     tangential_impulse_mps,
     v_inf_from_loi1,
 )
+from lunarcap.mission.scenario import PAPER_PLANS, PLAN_DIR, paper_plan_name
 from lunarcap.mission.targets import CIRCULAR, ELLIPSE, PERILUNE, Target, check_inclination
 from lunarcap.physics import constants as C
-from lunarcap.physics.elements import semi_major_axis_from_period
+from lunarcap.physics.elements import period_from_semi_major_axis, semi_major_axis_from_period
 from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 from lunarcap.physics.frames import DEFAULT_LUNAR_POLE, LUNAR_POLES
-
-#: Packaged plans (``<name>.yaml``), selectable by name.
-PLAN_DIR = Path(__file__).resolve().parent / "plans"
 
 DYNAMICS = ("full", "j2", "two-body")
 #: How a burn's period or apolune target is met (:mod:`lunarcap.mission.targets`):
@@ -496,7 +494,7 @@ class CapturePlan:
         if self.start is not None:  # the first burn from the start's radius and speed
             o = self.start.orbit()
             a = None if self.burns[0].target == CIRCULAR else \
-                (C.MU_MOON * (periods[0] / (2 * math.pi)) ** 2) ** (1.0 / 3.0)
+                float(semi_major_axis_from_period(periods[0], C.MU_MOON))
             if a is None:
                 a = self.perilune_radius_km
             first = tangential_impulse_mps(o["r_km"], o["v_kmps"], a)
@@ -744,12 +742,11 @@ class CapturePlan:
 
 # ---------------------------------------------------------------------- helpers
 def _circle_period_s(r_km: float, mu: float = C.MU_MOON) -> float:
-    return 2 * math.pi * math.sqrt(r_km ** 3 / mu)
+    return float(period_from_semi_major_axis(r_km, mu))
 
 
 def _period_from_apolune_s(rp_km: float, ra_km: float, mu: float = C.MU_MOON) -> float:
-    a = 0.5 * (rp_km + ra_km)
-    return 2 * math.pi * math.sqrt(a ** 3 / mu)
+    return float(period_from_semi_major_axis(0.5 * (rp_km + ra_km), mu))
 
 
 def _start_value(where: str, value):
@@ -1060,13 +1057,11 @@ def paper_plan(thrust_N: float = 150.0, isp_s: float = 200.0, starts=None,
     plan with its best ignition offsets (Table B1); for any other engine the 150 N plan
     with that engine and free ignition (``starts`` overrides either).
     """
-    engines = {(150.0, 200.0): "song2011-150N", (300.0, 250.0): "song2011-300N",
-               (450.0, 300.0): "song2011-450N"}
-    key = (float(thrust_N), float(isp_s))
-    if key in engines:
-        plan = load_plan(engines[key])
+    name = paper_plan_name(thrust_N, isp_s)
+    if name is not None:
+        plan = load_plan(name)
     else:
-        base = load_plan("song2011-150N")
+        base = load_plan(PAPER_PLANS[0])
         plan = base.with_engine(thrust_N, isp_s, name=f"song2011-{thrust_N:g}N-{isp_s:g}s")
         plan = plan.with_starts(["free"] * plan.n_burns)
     if starts is not None:

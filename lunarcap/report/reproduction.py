@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from lunarcap.mission.scenario import paper_engines, paper_scenario
 from lunarcap.physics import constants as C
 from lunarcap.physics.rocket import burn_duration_estimate_s
 
@@ -154,7 +155,7 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
     """
     from lunarcap.paper import printed as P
     out: dict = {}
-    per = C.CAPTURE_PERIODS_S
+    per = paper_scenario().capture_periods_s
     inp = "input (the paper's value)"
     for n in ("abstract_period_capture1_h", "period_capture1_about_h", "period_capture1_h",
               "period_capture1_about2_h"):
@@ -175,8 +176,8 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
     out["r_moon_km"] = (C.R_MOON, inp)
     out["lunar_unit_km"] = (C.LU_KM, inp)
     out["j2_moon"] = (C.J2_MOON, inp)
-    out["arrival_mass_kg"] = (C.ARRIVAL_MASS_KG, inp)
-    for j, (t, isp) in enumerate(C.PAPER_ENGINES, 1):
+    out["arrival_mass_kg"] = (paper_scenario().mass_kg, inp)
+    for j, (t, isp) in enumerate(tuple(paper_engines().items()), 1):
         out[f"engine{j}_thrust_N"] = (t, inp)
         out[f"engine{j}_isp_s"] = (isp, inp)
     for n in ("thrust_direction_bound_lower", "thrust_direction_bound_upper"):
@@ -187,7 +188,7 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
         return f"{int(t)}N"
 
     totals_pct = {}
-    m0 = C.ARRIVAL_MASS_KG
+    m0 = paper_scenario().mass_kg
     imp_total = float(sum(P.PAPER_IMPULSIVE_DV_MPS))
     fuel_fin = {}
     for t, chain in chains.items():

@@ -45,6 +45,7 @@ from lunarcap.mission.plan import CapturePlan, PlanError, plan_ephemeris
 from lunarcap.mission.targets import CIRCULAR
 from lunarcap.optim.joint import solve_joint
 from lunarcap.physics import constants as C
+from lunarcap.physics.elements import period_from_semi_major_axis
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.repro.cache import cached, code_version, position
@@ -70,7 +71,7 @@ _MODULE = "runs/burns.py"
 
 def circle_period_s(r_km: float) -> float:
     """Period of the circle of radius r about the Moon, s."""
-    return 2 * math.pi * math.sqrt(r_km ** 3 / C.MU_MOON)
+    return float(period_from_semi_major_axis(r_km, C.MU_MOON))
 
 
 def check_bounds(max_period_s: float, max_time_s: float) -> None:

@@ -62,7 +62,7 @@ from lunarcap.mission.plan import CapturePlan, PlanError
 from lunarcap.optim.guess import Guess, mean_motion_and_anomaly
 from lunarcap.optim.nlp import interval_steering
 from lunarcap.optim.problem import burn_problem
-from lunarcap.optim.solve import solve_burn as solve_burn_problem
+from lunarcap.optim.solve import solve_burn_problem
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import mee_from_rv, orbit_summary, rv_from_mee
 from lunarcap.physics.propagate import Trajectory, propagate

@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.mission.plan import paper_plan
+from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
@@ -24,8 +25,9 @@ from lunarcap.runs import chain
 
 NOTEBOOK = "notebooks/capture_sequence.ipynb"
 
-#: The case Sec. 3.3 of the paper describes: engine (N, s) and ignition offsets (min).
-PAPER_ENGINE = (150.0, 200.0)
+#: The case Sec. 3.3 of the paper describes: engine (N, s; its first packaged plan's) and
+#: ignition offsets (min).
+PAPER_ENGINE = paper_engine_pairs()[0]
 PAPER_STARTS_MIN = (-10.0, -6.0, -5.0)
 
 
@@ -90,8 +92,8 @@ def _orbits_text(plan, geo) -> str:
     return "; ".join(parts)
 
 
-def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN,
-          dynamics: str = "full", output_name: str = "capture_sequence",
+def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
+          starts=PAPER_STARTS_MIN, dynamics: str = "full", output_name: str = "capture_sequence",
           quick: bool = False) -> Page:
     """The page of one capture sequence (see the module docstring)."""
     params = dict(thrust_N=thrust_N, isp_s=isp_s, starts=list(starts), dynamics=dynamics)

@@ -13,6 +13,7 @@ import inspect
 
 import pandas as pd
 
+from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page
@@ -67,7 +68,7 @@ def totals_table(legs: dict) -> pd.DataFrame:
         "joint_solve_s": df.attrs["solve_s"]} for e, df in legs.items()])
 
 
-def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
+def build(engines=paper_engine_pairs(), dynamics: str = "full",
           output_name: str = "joint_capture", quick: bool = False) -> Page:
     """The page of the joint capture (see the module docstring)."""
     engines = [(float(t), float(i)) for t, i in engines]

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import pandas as pd
 
+from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.report import figures
 from lunarcap.report.display import verdict
 from lunarcap.report.labels import engine_label
@@ -51,7 +52,7 @@ def _pick(steer: pd.DataFrame, thrust: float, loi: int, law: str, col: str) -> f
     return float(s[col].iloc[0]) if len(s) else float("nan")
 
 
-def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
+def build(engines=paper_engine_pairs(), dynamics: str = "full",
           output_name: str = "steering_laws", quick: bool = False) -> Page:
     """The page of the steering-law comparison (see the module docstring)."""
     engines = [(float(t), float(i)) for t, i in engines]

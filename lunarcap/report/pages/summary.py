@@ -16,9 +16,10 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
-from lunarcap.physics.constants import ARRIVAL_MASS_KG, G0_MPS2
+from lunarcap.physics.constants import G0_MPS2
 from lunarcap.report import figures
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
@@ -27,8 +28,8 @@ from lunarcap.runs import sweeps
 
 NOTEBOOK = "notebooks/summary.ipynb"
 
-#: The paper's engines (thrust N, Isp s), in its order.
-PAPER_ENGINES = tuple((float(t), float(i)) for t, i in paper.PAPER_ENGINES.items())
+#: The paper's engines (thrust N, Isp s), in its order (its packaged plans').
+PAPER_ENGINES = paper_engine_pairs()
 
 #: Totals of a chain (quantity, unit, key of :func:`lunarcap.runs.sweeps.sequence_totals`,
 #: name of the number the paper prints in its prose, or None).
@@ -292,8 +293,8 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
                  "to the paper's Table B1 (sums, the loss over the total impulsive delta-V "
                  f"{sum(paper.PAPER_IMPULSIVE_DV_MPS):.3f} m/s, the mean of the per-burn "
                  "percentages; Table B1 prints no masses); ours, from our best chains starting "
-                 f"with {ARRIVAL_MASS_KG:g} kg at the first perilune; ours minus the printed "
-                 "value; where the paper prints it."),
+                 f"with {paper_scenario().mass_kg:g} kg at the first perilune; ours minus the "
+                 "printed value; where the paper prints it."),
         columns={"engine": "engine (thrust / Isp)", "paper_printed": "paper, printed",
                  "paper_from_table_b1": "paper, from Table B1", "ours": "ours",
                  "ours_minus_printed": "ours − printed", "printed_in": "printed in"},
@@ -359,13 +360,13 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
     # the mean of the three mass-based values, as in lunarcap.paper.audit
     m_implied = float(np.mean([x for k, x in implied.items() if "mass" in k]))
     values["implied_arrival_mass_kg"] = m_implied
-    values["arrival_mass_kg"] = float(ARRIVAL_MASS_KG)
-    values["arrival_mass_gap_kg"] = float(ARRIVAL_MASS_KG - m_implied)
+    values["arrival_mass_kg"] = float(paper_scenario().mass_kg)
+    values["arrival_mass_gap_kg"] = float(paper_scenario().mass_kg - m_implied)
     for thrust, isp in PAPER_ENGINES:
         final = values[f"final_mass_kg_{thrust:g}N"]
         # the arrival-mass gap carried to the end of the chain (rocket equation: x mass ratio)
-        values[f"mass_gap_at_end_kg_{thrust:g}N"] = (ARRIVAL_MASS_KG - m_implied) * final \
-            / ARRIVAL_MASS_KG
+        values[f"mass_gap_at_end_kg_{thrust:g}N"] = (paper_scenario().mass_kg - m_implied) * final \
+            / paper_scenario().mass_kg
         values[f"final_mass_diff_kg_{thrust:g}N"] = (
             final - values[f"paper_mass_final_{thrust:g}N_kg"])
     values["max_abs_b1_diff_percent"] = float(b1.delta_v_diff_percent.abs().max())
