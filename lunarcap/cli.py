@@ -180,7 +180,7 @@ def cmd_plan(args) -> int:
         _print_plan_header(plan)
     try:
         res = plan_result(plan, impulsive=not args.no_impulsive, verbose=not args.quiet,
-                          use_cache=not args.no_cache, on_burn=on_burn)
+                          on_burn=on_burn)
     finally:
         if args.json:
             partial = PlanResult(plan, done)
@@ -213,7 +213,13 @@ def _export_plan(res, args) -> None:
 
 def cmd_solve(args) -> int:
     """Solve one burn of a plan (its earlier burns are solved or fetched first)."""
-    from lunarcap.runs.chain import BurnResult, impulsive_limit, prebuild_for, solve_burn
+    from lunarcap.runs.chain import (
+        BurnResult,
+        impulsive_limit,
+        prebuild_for,
+        reuse_earlier_burns,
+        solve_burn,
+    )
 
     plan = _plan_from_args(args)
     n = args.burn
@@ -232,11 +238,12 @@ def cmd_solve(args) -> int:
         plan = plan.with_steering(n - 1, args.steering)
     key = plan.key(n)
     verbose = not args.quiet
-    prebuild_for(key, [n], impulsive=not args.no_impulsive, use_cache=not args.no_cache)
-    sol = (solve_burn.uncached if args.no_cache else solve_burn)(key, verbose=verbose)
+    prebuild_for(key, [n], impulsive=not args.no_impulsive)
+    with reuse_earlier_burns():
+        sol = solve_burn(key, verbose=verbose)
     imp = None
     if not args.no_impulsive:
-        imp = impulsive_limit(key, verbose=verbose, use_cache=not args.no_cache)
+        imp = impulsive_limit(key, verbose=verbose)
     r = BurnResult(sol, imp)
     if args.json:
         out = sol.to_dict()
@@ -319,8 +326,7 @@ def cmd_burns(args) -> int:
     max_days = number("--max-days", args.max_days, "days", positive=True)
     res, status = _resumable(lambda: burns.run_burns(
         [plan], counts, max_period_h, max_days, out=args.out, workers=args.workers,
-        scheduler=args.scheduler, progress=not args.no_progress, use_cache=not args.no_cache),
-        "counts")
+        scheduler=args.scheduler, progress=not args.no_progress), "counts")
     if status:
         return status
     rows = res.table.to_dict("records")
@@ -354,7 +360,7 @@ def cmd_missed(args) -> int:
     res, status = _resumable(lambda: missed.run_missed(
         plan, burn, fractions, delays, max_period_h, out=args.out,
         workers=args.workers, scheduler=args.scheduler, progress=not args.no_progress,
-        use_cache=not args.no_cache, late_min=late), "cases")
+        late_min=late), "cases")
     if status:
         return status
     rows = res.table.to_dict("records")
@@ -391,8 +397,7 @@ def cmd_dispersions(args) -> int:
                             arrival_cov=cov)
     res, status = _resumable(lambda: disp.run_dispersions(
         plan, samples, seed, model, out=args.out, workers=args.workers,
-        scheduler=args.scheduler, progress=not args.no_progress,
-        use_cache=not args.no_cache), "samples")
+        scheduler=args.scheduler, progress=not args.no_progress), "samples")
     if status:
         return status
     rows = res.table.to_dict("records")
@@ -458,8 +463,13 @@ def _interrupt_outside_casadi():
 def main(argv=None) -> int:
     """Entry point; returns the exit status."""
     args = cli_parser.parse_args(_commands(), __doc__.splitlines()[0], argv)
+    from lunarcap.repro.cache import caching
+
+    # --no-cache: the one cache switch, off for the whole command (studies ship its
+    # position to their workers); without it the environment decides (LUNARCAP_NO_CACHE)
+    no_cache = getattr(args, "no_cache", False)
     try:
-        with _interrupt_outside_casadi():
+        with _interrupt_outside_casadi(), caching(False) if no_cache else contextlib.nullcontext():
             return args.func(args)
     except BrokenPipeError:  # e.g. `lunarcap impulsive --json | head`
         import os

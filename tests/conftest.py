@@ -14,12 +14,12 @@ from pathlib import Path
 
 import pytest
 
-from lunarcap.physics.constants import ARRIVAL_EPOCH_TDB, CAPTURE_PERIODS_S
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics.ephemeris import ChebyshevFit, default_ephemeris
 from lunarcap.physics.epochs import seconds_from_calendar
 
-T_ARRIVAL_S = seconds_from_calendar(ARRIVAL_EPOCH_TDB)
-T_LAST_PERILUNE_S = T_ARRIVAL_S + sum(CAPTURE_PERIODS_S)
+T_ARRIVAL_S = seconds_from_calendar(paper_scenario().epoch_tdb)
+T_LAST_PERILUNE_S = T_ARRIVAL_S + sum(paper_scenario().capture_periods_s)
 
 
 #: The repository and the venv's dask command (the loopback cluster of the Dask tests).

@@ -38,6 +38,7 @@ import numpy as np
 
 from lunarcap.errors import InputError
 from lunarcap.mission.impulsive import v_inf_from_loi1
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import inclination, mee_from_rv, rv_from_mee
 from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
@@ -48,6 +49,9 @@ from lunarcap.physics.rocket import check_engine, check_perilune_radius
 STATE_FRAMES = ("ICRF", "M-MME2000")
 #: The longest a state may precede its perilune (the ephemeris fit's 4 days, less margins).
 MAX_TO_PERILUNE_S = 3.5 * 86400.0
+
+#: The paper's scenario (its packaged plans): the defaults of an arrival.
+_PAPER = paper_scenario()
 
 
 @dataclass(frozen=True)
@@ -86,10 +90,10 @@ class ArrivalSpec:
     Moon's geocentric velocity).
     """
 
-    epoch: str = C.ARRIVAL_EPOCH_TDB
-    perilune_altitude_km: float = C.PERILUNE_ALTITUDE_KM
-    inclination_deg: float = 90.0
-    mass_kg: float = C.ARRIVAL_MASS_KG
+    epoch: str = _PAPER.epoch_tdb
+    perilune_altitude_km: float = _PAPER.perilune_altitude_km
+    inclination_deg: float = _PAPER.inclination_deg
+    mass_kg: float = _PAPER.mass_kg
     v_inf_kmps: float | None = None
     hemisphere: str = "north"
     approach_dir: tuple | None = None
@@ -146,8 +150,8 @@ class Arrival:
         return np.concatenate([self.mee, [self.mass_kg]])
 
 
-def arrival_state(epoch: str = C.ARRIVAL_EPOCH_TDB, altitude_km: float = C.PERILUNE_ALTITUDE_KM,
-                  inclination_deg: float = 90.0, mass_kg: float = C.ARRIVAL_MASS_KG,
+def arrival_state(epoch: str = _PAPER.epoch_tdb, altitude_km: float = _PAPER.perilune_altitude_km,
+                  inclination_deg: float = _PAPER.inclination_deg, mass_kg: float = _PAPER.mass_kg,
                   v_inf_kmps: float | None = None, approach="anti-lunar-velocity",
                   hemisphere: str = "north", eph: Ephemeris | None = None,
                   mu: float = C.MU_MOON) -> Arrival:

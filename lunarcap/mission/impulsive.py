@@ -17,8 +17,13 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from lunarcap.errors import InputError
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics import constants as C
-from lunarcap.physics.elements import semi_major_axis_from_period, vis_viva_speed
+from lunarcap.physics.elements import (
+    period_from_semi_major_axis,
+    semi_major_axis_from_period,
+    vis_viva_speed,
+)
 from lunarcap.physics.rocket import (
     burn_duration_estimate_s,
     check_engine,
@@ -26,12 +31,17 @@ from lunarcap.physics.rocket import (
     rocket_mass_after,
 )
 
-#: Song 2011's impulsive LOI-1 delta-V, m/s (Table 1; from Song et al. 2009c).
-PAPER_DV_LOI1_MPS = 353.272
+#: The paper's scenario (its packaged plans, :mod:`lunarcap.mission.scenario`).
+_PAPER = paper_scenario()
+
+#: Song 2011's impulsive LOI-1 delta-V, m/s (Table 1; from Song et al. 2009c), as the
+#: packaged plans give it (``arrival.impulsive_loi1_mps``).
+PAPER_DV_LOI1_MPS = _PAPER.impulsive_loi1_mps
 
 
 def v_inf_from_loi1(dv_loi1_mps: float = PAPER_DV_LOI1_MPS, rp_km: float | None = None,
-                    period_s: float = C.CAPTURE_PERIODS_S[0], mu: float = C.MU_MOON) -> float:
+                    period_s: float = _PAPER.capture_periods_s[0],
+                    mu: float = C.MU_MOON) -> float:
     """Hyperbolic excess speed (km/s) whose tangential perilune impulse dv gives the period.
 
     Parameters
@@ -41,7 +51,7 @@ def v_inf_from_loi1(dv_loi1_mps: float = PAPER_DV_LOI1_MPS, rp_km: float | None 
     period_s : period of the orbit the first burn reaches, s
     mu : gravitational parameter, km^3/s^2
     """
-    rp = C.R_MOON + C.PERILUNE_ALTITUDE_KM if rp_km is None else rp_km
+    rp = C.R_MOON + _PAPER.perilune_altitude_km if rp_km is None else rp_km
     check_perilune_radius(rp)
     if not np.isfinite(dv_loi1_mps) or dv_loi1_mps <= 0:
         raise InputError(f"the impulsive first-burn delta-V must be a positive number of m/s, "
@@ -112,7 +122,7 @@ def impulsive_chain(rp_km: float, v_inf_kmps: float, periods_after_s, thrust_N: 
     periods_h = [np.inf]
     for T in periods_after_s:
         speeds.append(perilune_speed_kmps(rp_km, T, mu))
-        periods_h.append((2 * np.pi * np.sqrt(rp_km ** 3 / mu) if T is None else T) / 3600)
+        periods_h.append((period_from_semi_major_axis(rp_km, mu) if T is None else T) / 3600)
     if first_delta_v_mps is not None:  # the speed "before" is the equivalent one
         speeds[0] = speeds[1] + float(first_delta_v_mps) * 1e-3
         periods_h[0] = np.nan
@@ -129,8 +139,9 @@ def impulsive_chain(rp_km: float, v_inf_kmps: float, periods_after_s, thrust_N: 
 
 
 def impulsive_sequence(thrust_N: float = 150.0, isp_s: float = 200.0,
-                       mass_kg: float = C.ARRIVAL_MASS_KG, altitude_km: float = 100.0,
-                       v_inf_kmps: float | None = None, periods_s=C.CAPTURE_PERIODS_S[:2],
+                       mass_kg: float = _PAPER.mass_kg,
+                       altitude_km: float = _PAPER.perilune_altitude_km,
+                       v_inf_kmps: float | None = None, periods_s=_PAPER.capture_periods_s[:2],
                        mu: float = C.MU_MOON, eq19_masses_kg=None) -> list[ImpulsiveBurn]:
     """The paper's two-body impulsive chain: hyperbola, 12.235 h, 3.525 h, circle.
 
@@ -183,7 +194,7 @@ def period_from_perilune_speed_s(rp_km: float, v_kmps: float, mu: float = C.MU_M
     inv_a = 2.0 / rp_km - v_kmps ** 2 / mu
     if inv_a <= 0:
         return float("inf")
-    return float(2 * np.pi * np.sqrt((1.0 / inv_a) ** 3 / mu))
+    return float(period_from_semi_major_axis(1.0 / inv_a, mu))
 
 
 def equal_split_periods_s(rp_km: float, v_inf_kmps: float, n_burns: int,

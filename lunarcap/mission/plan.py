@@ -74,7 +74,6 @@ gives the perilune radius and inclination every target uses.
 
 from __future__ import annotations
 
-import math
 import os
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
@@ -103,15 +102,13 @@ from lunarcap.mission.plan_checks import (  # noqa: F401  (the plan's names, re-
     validate,
 )
 from lunarcap.mission.plan_io import plan_dict, plan_fields
+from lunarcap.mission.scenario import PAPER_PLANS, PLAN_DIR, paper_plan_name
 from lunarcap.mission.targets import CIRCULAR, ELLIPSE, PERILUNE, Target
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import semi_major_axis_from_period
 from lunarcap.physics.ephemeris import Ephemeris, default_ephemeris
 from lunarcap.physics.epochs import seconds_from_calendar
 from lunarcap.physics.frames import DEFAULT_LUNAR_POLE
-
-#: Packaged plans (``<name>.yaml``), selectable by name.
-PLAN_DIR = Path(__file__).resolve().parent / "plans"
 
 
 @dataclass(frozen=True)
@@ -328,7 +325,7 @@ class CapturePlan:
         if self.start is not None:  # the first burn from the start's radius and speed
             o = self.start.orbit()
             a = None if self.burns[0].target == CIRCULAR else \
-                (C.MU_MOON * (periods[0] / (2 * math.pi)) ** 2) ** (1.0 / 3.0)
+                float(semi_major_axis_from_period(periods[0], C.MU_MOON))
             if a is None:
                 a = self.perilune_radius_km
             first = tangential_impulse_mps(o["r_km"], o["v_kmps"], a)
@@ -542,13 +539,11 @@ def paper_plan(thrust_N: float = 150.0, isp_s: float = 200.0, starts=None,
     plan with its best ignition offsets (Table B1); for any other engine the 150 N plan
     with that engine and free ignition (``starts`` overrides either).
     """
-    engines = {(150.0, 200.0): "song2011-150N", (300.0, 250.0): "song2011-300N",
-               (450.0, 300.0): "song2011-450N"}
-    key = (float(thrust_N), float(isp_s))
-    if key in engines:
-        plan = load_plan(engines[key])
+    name = paper_plan_name(thrust_N, isp_s)
+    if name is not None:
+        plan = load_plan(name)
     else:
-        base = load_plan("song2011-150N")
+        base = load_plan(PAPER_PLANS[0])
         plan = base.with_engine(thrust_N, isp_s, name=f"song2011-{thrust_N:g}N-{isp_s:g}s")
         plan = plan.with_starts(["free"] * plan.n_burns)
     if starts is not None:

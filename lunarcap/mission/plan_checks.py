@@ -22,6 +22,7 @@ from lunarcap.errors import InputError, number
 from lunarcap.mission.impulsive import PAPER_DV_LOI1_MPS, v_inf_from_loi1
 from lunarcap.mission.targets import CIRCULAR, PERILUNE, check_inclination
 from lunarcap.physics import constants as C
+from lunarcap.physics.elements import period_from_semi_major_axis, semi_major_axis_from_period
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 from lunarcap.physics.frames import LUNAR_POLES
 
@@ -104,13 +105,12 @@ def choice(where: str, value, allowed) -> str:
 
 def circle_period_s(r_km: float, mu: float = C.MU_MOON) -> float:
     """Period of the circle of radius ``r_km``, s."""
-    return 2 * math.pi * math.sqrt(r_km ** 3 / mu)
+    return float(period_from_semi_major_axis(r_km, mu))
 
 
 def period_from_apolune_s(rp_km: float, ra_km: float, mu: float = C.MU_MOON) -> float:
     """Period of the ellipse of perilune and apolune radii ``rp_km``, ``ra_km``, s."""
-    a = 0.5 * (rp_km + ra_km)
-    return 2 * math.pi * math.sqrt(a ** 3 / mu)
+    return float(period_from_semi_major_axis(0.5 * (rp_km + ra_km), mu))
 
 
 def start_value(where: str, value):
@@ -322,7 +322,7 @@ def _check_ellipse(plan, i: int, b, rp_km: float, circle_s: float) -> float:
                   f"a period of {p / 3600:.4g} h is not longer than the circular orbit's at "
                   f"the perilune radius {rp_km:g} km ({circle_s / 3600:.4g} h): no ellipse "
                   f"has that perilune and period")
-    a = (C.MU_MOON * (p / (2 * math.pi)) ** 2) ** (1.0 / 3.0)
+    a = float(semi_major_axis_from_period(p, C.MU_MOON))
     if 2 * a - rp_km >= MOON_SOI_RADIUS_KM:
         raise err(burn_field(i, key),
                   f"a period of {p / 3600:.4g} h puts the apolune {2 * a - rp_km:,.0f} km from "

@@ -11,7 +11,7 @@ from lunarcap.optim.nlp import RawSolution, burn_bounds, steering_function
 from lunarcap.optim.verify import Flight, Verification
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import rtn_from_mee
-from lunarcap.physics.elements import orbit_summary, rv_from_mee
+from lunarcap.physics.elements import orbit_summary, period_from_semi_major_axis, rv_from_mee
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.frames import thrust_angles_deg
 
@@ -156,7 +156,7 @@ def _period_h(tv: dict) -> float:
     if tv["e"] >= 1:
         return float("inf")
     a = 0.5 * (tv["rp_km"] + tv["ra_km"])
-    return float(2 * np.pi * np.sqrt(a ** 3 / C.MU_MOON) / 3600.0)
+    return float(period_from_semi_major_axis(a, C.MU_MOON) / 3600.0)
 
 
 def _plain(obj):

@@ -1,10 +1,10 @@
 """Solve one burn with automatic mesh refinement behind the verification gate.
 
-:func:`solve_burn` tries the meshes of :data:`lunarcap.optim.collocation.DEFAULT_MESHES` in turn:
-build (cached per mesh shape), guess, IPOPT, independent re-propagation. The first
-solution that converges *and* passes verification is returned; otherwise a
-:class:`~lunarcap.errors.SolveError` carries IPOPT's status and the residuals of every
-attempt. A converged IPOPT status alone is never accepted.
+:func:`solve_burn_problem` tries the meshes of
+:data:`lunarcap.optim.collocation.DEFAULT_MESHES` in turn: build (cached per mesh shape),
+guess, IPOPT, independent re-propagation. The first solution that converges *and* passes
+verification is returned; otherwise a :class:`~lunarcap.errors.SolveError` carries
+IPOPT's status and the residuals of every attempt. A converged IPOPT status alone is never accepted.
 """
 
 from __future__ import annotations
@@ -24,7 +24,8 @@ from lunarcap.optim.verify import verify
 from lunarcap.physics.elements import period
 
 
-def solve_burn(prob: BurnProblem, meshes=DEFAULT_MESHES, guess=None, progress=None) -> Solution:
+def solve_burn_problem(prob: BurnProblem, meshes=DEFAULT_MESHES, guess=None,
+                       progress=None) -> Solution:
     """Optimal finite burn for ``prob``, verified by re-propagation.
 
     Parameters
@@ -61,7 +62,7 @@ def solve_burn(prob: BurnProblem, meshes=DEFAULT_MESHES, guess=None, progress=No
 def widened(prob: BurnProblem) -> BurnProblem | None:
     """The problem of an ellipse as asked with a wider free-ignition window, or None.
 
-    The second try of :func:`solve_burn`: three times as early and twice as late as the
+    The second try of :func:`solve_burn_problem`: three times as early and twice as late as the
     window that failed, within 120 min and 0.4 of the orbit the burn starts on. IPOPT's
     path depends on the bounds: a capture whose next perilune the Earth lowers by 19 km
     failed in +-30 min (its iterates stalled at the early bound) and was solved in -100 ..
@@ -82,7 +83,7 @@ def widened(prob: BurnProblem) -> BurnProblem | None:
 
 
 def _solve_on_meshes(prob: BurnProblem, meshes, guess, progress, t0: float) -> Solution:
-    """The mesh loop of :func:`solve_burn` (see there)."""
+    """The mesh loop of :func:`solve_burn_problem` (see there)."""
     guess = guess or make_guess(prob)
     attempts = []
     for mesh in meshes:

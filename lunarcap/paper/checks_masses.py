@@ -6,8 +6,6 @@ Each ``_check_<x>`` returns the findings of one group (titles in
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from lunarcap.paper import printed as P
@@ -40,6 +38,7 @@ from lunarcap.paper.recompute import (
     implied_arrival_mass_kg,
 )
 from lunarcap.physics import constants as C
+from lunarcap.physics.rocket import rocket_delta_v_mps, rocket_mass_before
 
 # ---------------------------------------------------------------------------------------
 # (a) constants
@@ -149,8 +148,8 @@ def _masses_vs_rocket_equation() -> list[Finding]:
         inputs = [(m_before, h_before)] + [(dv, 0.0005) for dv in dvs]
         x, u = _propagate(lambda m, *d: _mass_after(m, sum(d), isp_s), *inputs)
         tol = _half(qname) + u + SOLVER_REL_TOL * x
-        implied_m = p * math.exp(sum(dvs) / _ve(isp_s))
-        implied_dv = _ve(isp_s) * math.log(m_before / p)
+        implied_m = rocket_mass_before(p, sum(dvs), isp_s)
+        implied_dv = rocket_delta_v_mps(m_before, p, isp_s)
         note = (f" The printed mass implies a starting mass of {implied_m:.3f} kg (not "
                 f"{m_before:.3f}), or a delta-V of {implied_dv:.3f} m/s (not "
                 f"{sum(dvs):.3f})." if not _ok(p, x, tol) else
@@ -264,7 +263,7 @@ def _row_durations() -> tuple[list[Finding], dict, dict]:
                 implied_T = _fuel(ms, row.delta_v_mps, isp[t]) * _ve(isp[t]) / (
                     row.burn_duration_min * 60)
                 implied_m = (_fuel_from_burn(t, row.burn_duration_min, isp[t])
-                             / (1 - math.exp(-row.delta_v_mps / _ve(isp[t]))))
+                             / _fuel(1.0, row.delta_v_mps, isp[t]))
                 m_alt = starts_printed_m0[t][n - 1]
                 x0 = _burn_min(m_alt, row.delta_v_mps, t, isp[t])
                 if n == 1:
@@ -339,10 +338,10 @@ def _fuel_as_labelled(t: int) -> list[Finding]:
     cf, ci = fs["computed_finite_kg"], fs["computed_impulsive_kg"]
     qf, qi = f"fuel_finite_{t}N_kg", f"fuel_impulsive_{t}N_kg"
     # impulsive: pure arithmetic on printed numbers
-    _, ui = _propagate(lambda m, a, b, c: m * (1 - math.exp(-(a + b + c) / _ve(isp))),
+    _, ui = _propagate(lambda m, a, b, c: _fuel(m, a + b + c, isp),
                        (m0, hm), *[(d, 0.0005) for d in _IMP])
     tol_i = _half(qi) + ui
-    dv_impl = _ve(isp) * math.log(m0 / (m0 - pi))
+    dv_impl = rocket_delta_v_mps(m0, m0 - pi, isp)
     sw = (f" The number printed for *finite* thrust, {pf:.3f} kg, is within "
           f"{abs(pf - ci):.3f} kg of this." if fs["labels_swapped"] else "")
     out.append(Finding(
@@ -353,7 +352,7 @@ def _fuel_as_labelled(t: int) -> list[Finding]:
         f"impulsive delta-V of {dv_impl:.3f} m/s.",
         extra={"implied_total_impulsive_dv_mps": dv_impl}))
     # finite: rocket equation through Table B1's delta-Vs
-    _, uf = _propagate(lambda m, a, b, c: m * (1 - math.exp(-(a + b + c) / _ve(isp))),
+    _, uf = _propagate(lambda m, a, b, c: _fuel(m, a + b + c, isp),
                        (m0, hm), *[(d, 0.0005) for d in _best_dvs(t)])
     tol_f = _half(qf) + uf + SOLVER_REL_TOL * cf
     final = _qv(f"mass_final_{t}N_kg")

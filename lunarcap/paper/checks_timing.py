@@ -31,7 +31,9 @@ from lunarcap.paper.recompute import (
     _ve,
     implied_arrival_mass_kg,
 )
+from lunarcap.physics.elements import period_from_semi_major_axis, semi_major_axis_from_period
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
+from lunarcap.physics.rocket import rocket_propellant_kg
 
 # ---------------------------------------------------------------------------------------
 # (f) burn-duration totals
@@ -73,10 +75,10 @@ def _check_g() -> list[Finding]:
     p = _qv("period_final_min")
 
     def period(mu_, r_):
-        return 2 * math.pi * math.sqrt((r_ + h) ** 3 / mu_) / 60
+        return float(period_from_semi_major_axis(r_ + h, mu_)) / 60
 
     x, u = _propagate(period, (mu, _half("mu_moon_km3s2")), (R, _half("r_moon_km")))
-    r_impl = (mu * (p * 60 / (2 * math.pi)) ** 2) ** (1 / 3)
+    r_impl = float(semi_major_axis_from_period(p * 60, mu))
     mu_impl = 4 * math.pi ** 2 * (R + h) ** 3 / (p * 60) ** 2
     out = [Finding(
         "period/final", "g", _where("period_final_min"),
@@ -144,7 +146,7 @@ def _check_i() -> list[Finding]:
     isp = P.PAPER_ENGINES[150]
     ve = _ve(isp)
     p = _qv("eq19_loi1_150N_min")
-    mf_printed = m0 * (1 - math.exp(-_IMP[0] / ve))  # Eq. (19a) as printed
+    mf_printed = rocket_propellant_kg(m0, _IMP[0], isp)  # Eq. (19a) as printed: m0 [1 - e^-x]
     x_typo = (m0 - mf_printed) * ve / 150 / 60  # Eq. (19b)
     out.append(Finding(
         "eq19a/as-printed", "i",

@@ -39,6 +39,7 @@ from decimal import Decimal
 import pandas as pd
 
 from lunarcap.errors import InputError
+from lunarcap.mission.scenario import paper_engines
 
 __all__ = [
     "PAPER_IMPULSIVE_DV_MPS",
@@ -60,8 +61,9 @@ __all__ = [
 PAPER_IMPULSIVE_DV_MPS = (353.272, 254.034, 245.363)
 
 #: The three engines studied, thrust N -> specific impulse s (abstract; Sec. 3.1, para 2;
-#: Sec. 3.2, para 1; Table B1).
-PAPER_ENGINES = {150: 200.0, 300: 250.0, 450: 300.0}
+#: Sec. 3.2, para 1; Table B1), keyed by integer thrust as the tables print it. The
+#: engines run are the packaged plans' (:func:`lunarcap.mission.scenario.paper_engines`).
+PAPER_ENGINES = {int(t): isp for t, isp in paper_engines().items()}
 
 #: The paper's ignition offsets, min before perilune (Tables 1-5), by (thrust N, LOI).
 PAPER_STARTS_MIN = {

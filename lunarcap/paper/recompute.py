@@ -7,15 +7,18 @@ delta-Vs imply, and the arrival mass its printed results imply.
 
 from __future__ import annotations
 
-import math
-
 from lunarcap.paper import printed as P
 from lunarcap.paper.finding import (
-    _G0,
     _IMP,
     _LOIS,
     _THRUSTS,
     _qv,
+)
+from lunarcap.physics.rocket import (
+    exhaust_speed_mps,
+    rocket_mass_after,
+    rocket_mass_before,
+    rocket_propellant_kg,
 )
 
 # ---------------------------------------------------------------------------------------
@@ -23,19 +26,10 @@ from lunarcap.paper.finding import (
 # ---------------------------------------------------------------------------------------
 
 
-def _ve(isp_s: float) -> float:
-    """Effective exhaust speed g0 Isp, m/s."""
-    return _G0 * isp_s
-
-
-def _mass_after(m0_kg, dv_mps, isp_s):
-    """Rocket equation, kg."""
-    return m0_kg * math.exp(-dv_mps / _ve(isp_s))
-
-
-def _fuel(m0_kg, dv_mps, isp_s):
-    """Propellant for a delta-V by the rocket equation, kg."""
-    return m0_kg - _mass_after(m0_kg, dv_mps, isp_s)
+# The rocket equation is physics.rocket's (named as the audit's modules call it).
+_ve = exhaust_speed_mps
+_mass_after = rocket_mass_after
+_fuel = rocket_propellant_kg
 
 
 def _burn_min(m0_kg, dv_mps, thrust_N, isp_s):
@@ -83,16 +77,18 @@ def implied_arrival_mass_kg() -> dict:
     """
     isp150, isp300, isp450 = (P.PAPER_ENGINES[t] for t in _THRUSTS)
     out = {
-        "150N mass after LOI 1": _qv("mass_after_loi1_150N_kg")
-        * math.exp(_best_dvs(150)[0] / _ve(isp150)),
-        "300N final mass": _qv("mass_final_300N_kg") * math.exp(sum(_best_dvs(300)) / _ve(isp300)),
-        "450N final mass": _qv("mass_final_450N_kg") * math.exp(sum(_best_dvs(450)) / _ve(isp450)),
+        "150N mass after LOI 1": rocket_mass_before(_qv("mass_after_loi1_150N_kg"),
+                                                    _best_dvs(150)[0], isp150),
+        "300N final mass": rocket_mass_before(_qv("mass_final_300N_kg"), sum(_best_dvs(300)),
+                                              isp300),
+        "450N final mass": rocket_mass_before(_qv("mass_final_450N_kg"), sum(_best_dvs(450)),
+                                              isp450),
         "150N total burn time": _qv("mass_final_150N_kg")
         + _fuel_from_burn(150, _qv("burn_total_150N_min"), isp150),
         "450N total burn time": _qv("mass_final_450N_kg")
         + _fuel_from_burn(450, _qv("burn_total_450N_min"), isp450),
         "150N Eq. (19) LOI 1": _fuel_from_burn(150, _qv("eq19_loi1_150N_min"), isp150)
-        / (1 - math.exp(-_IMP[0] / _ve(isp150))),
+        / rocket_propellant_kg(1.0, _IMP[0], isp150),
     }
     return out
 
@@ -113,7 +109,7 @@ def _printed_mass_starts():
     starts, src = {}, {}
     m1, m2 = _qv("mass_after_loi1_150N_kg"), _qv("mass_after_loi2_150N_kg")
     isp150 = P.PAPER_ENGINES[150]
-    starts[150] = [(m1 * math.exp(_best_dvs(150)[0] / _ve(isp150)), 0.0006), (m1, 0.0005),
+    starts[150] = [(rocket_mass_before(m1, _best_dvs(150)[0], isp150), 0.0006), (m1, 0.0005),
                    (m2, 0.0005)]
     src[150] = ["printed 434.471 kg after LOI 1 taken back through 367.415 m/s",
                 "printed mass after LOI 1", "printed mass after LOI 2"]
@@ -121,7 +117,7 @@ def _printed_mass_starts():
         isp = P.PAPER_ENGINES[t]
         dvs = _best_dvs(t)
         mf = _qv(f"mass_final_{t}N_kg")
-        starts[t] = [(mf * math.exp(sum(dvs[n:]) / _ve(isp)), 0.0006) for n in range(3)]
+        starts[t] = [(rocket_mass_before(mf, sum(dvs[n:]), isp), 0.0006) for n in range(3)]
         src[t] = [f"printed final mass {mf:.3f} kg taken back through Table B1's delta-Vs"] * 3
     return starts, src
 

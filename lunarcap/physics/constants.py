@@ -2,7 +2,10 @@
 
 All values are in km, s and kg unless the name says otherwise. The paper is
 Song, Park, Kim, Lee & Sim (2011), J. Astron. Space Sci. 28(3) 203-216,
-hereafter "Song 2011"; its constants are printed in its Section 3.1.
+hereafter "Song 2011"; its constants are printed in its Section 3.1. Only physical
+constants live here: the paper's scenario (arrival epoch and mass, perilune altitude,
+capture periods) and engines are its packaged plans, read by
+:mod:`lunarcap.mission.scenario`.
 """
 
 from __future__ import annotations
@@ -70,19 +73,3 @@ MOON_POLE_RA_AMPL_DEG = (-3.8787, -0.1204, 0.0700, -0.0172, 0.0, 0.0072, 0.0, 0.
                          -0.0052, 0.0, 0.0, 0.0043)
 MOON_POLE_DEC_AMPL_DEG = (1.5419, 0.0239, -0.0278, 0.0068, 0.0, -0.0029, 0.0009, 0.0, 0.0,
                           0.0008, 0.0, 0.0, -0.0009)
-
-#: Target altitude of every capture orbit's perilune, km (Song 2011, Sec. 1 and 3.2).
-PERILUNE_ALTITUDE_KM = 100.0
-
-#: Periods of the capture orbits used to fix the coast durations (Song 2011, Sec. 3.1):
-#: LOI 1 -> 12.235 h, LOI 2 -> 3.525 h, LOI 3 -> 117.848 min.
-CAPTURE_PERIODS_S = (12.235 * 3600.0, 3.525 * 3600.0, 117.848 * 60.0)
-
-#: Spacecraft mass at the first perilune, kg (Song 2011, Sec. 3.2.1).
-ARRIVAL_MASS_KG = 524.895
-
-#: Epoch of the first perilune, TDB (Song 2011, Sec. 3.2.1).
-ARRIVAL_EPOCH_TDB = "2017-02-20 03:41:26 TDB"
-
-#: The paper's three engines, (thrust N, Isp s) (Song 2011, abstract and Sec. 3.2).
-PAPER_ENGINES = ((150.0, 200.0), (300.0, 250.0), (450.0, 300.0))

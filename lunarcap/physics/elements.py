@@ -193,8 +193,7 @@ def period(p, f, g, mu):
     e = np.asarray(eccentricity(f, g))
     if np.any(e >= 1):
         raise InputError(f"an orbital period was asked of a hyperbola or parabola (e = {e})")
-    a = np.asarray(p) / (1 - e * e)
-    return 2 * np.pi * np.sqrt(a ** 3 / mu)
+    return period_from_semi_major_axis(np.asarray(p) / (1 - e * e), mu)
 
 
 def vis_viva_speed(r, a, mu):

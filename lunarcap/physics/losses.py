@@ -57,9 +57,6 @@ import numpy as np
 from lunarcap.errors import InputError
 from lunarcap.physics import constants as C
 
-#: Radius of every capture perilune, km (R_Moon + 100 km, Song 2011 Sec. 3.2.1).
-PERILUNE_RADIUS_KM = C.R_MOON + C.PERILUNE_ALTITUDE_KM
-
 
 def schuler_rate_rad_s(r_km: float, mu: float = C.MU_MOON) -> float:
     """Schuler frequency sqrt(mu / r^3), rad/s.
@@ -77,7 +74,7 @@ def schuler_rate_rad_s(r_km: float, mu: float = C.MU_MOON) -> float:
     return np.sqrt(mu / r_km ** 3)
 
 
-def robbins_loss_mps(dv_mps, burn_s, r_km: float = PERILUNE_RADIUS_KM, mu: float = C.MU_MOON):
+def robbins_loss_mps(dv_mps, burn_s, r_km: float, mu: float = C.MU_MOON):
     """Robbins' (1966) finite-burn loss estimate (1/24) (omega_s t_b)^2 dV, m/s.
 
     Parameters
@@ -87,7 +84,7 @@ def robbins_loss_mps(dv_mps, burn_s, r_km: float = PERILUNE_RADIUS_KM, mu: float
     burn_s : float or ndarray
         Burn duration, s.
     r_km : float
-        Radius of the burn (its centre), km; default the capture perilune.
+        Radius of the burn (its centre), km (the paper's: R_Moon + 100 km).
     mu : float
         Gravitational parameter, km^3/s^2.
 
@@ -98,8 +95,8 @@ def robbins_loss_mps(dv_mps, burn_s, r_km: float = PERILUNE_RADIUS_KM, mu: float
 
     Examples
     --------
-    >>> w = float(schuler_rate_rad_s(PERILUNE_RADIUS_KM))
-    >>> round(float(robbins_loss_mps(240.0, 1.0 / w)), 6)  # (omega t)^2 = 1: dV/24
+    >>> w = float(schuler_rate_rad_s(1838.2))
+    >>> round(float(robbins_loss_mps(240.0, 1.0 / w, 1838.2)), 6)  # (omega t)^2 = 1: dV/24
     10.0
     """
     dv = np.asarray(dv_mps, dtype=float)

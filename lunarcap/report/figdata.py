@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import rv_from_coe, rv_from_mee, semi_major_axis_from_period
 from lunarcap.physics.frames import rtn_basis, thrust_angles_deg, thrust_direction_rtn
@@ -79,8 +80,8 @@ def _arc(a: np.ndarray, b: np.ndarray, angle: float, n: int = 60) -> np.ndarray:
 
 def fig1_geometry(u_rtn=None, alpha_deg: float = 55.0, beta_deg: float = 30.0,
                   true_anomaly_deg: float = -40.0,
-                  period_h: float = C.CAPTURE_PERIODS_S[0] / 3600,
-                  altitude_km: float = C.PERILUNE_ALTITUDE_KM,
+                  period_h: float = paper_scenario().capture_periods_s[0] / 3600,
+                  altitude_km: float = paper_scenario().perilune_altitude_km,
                   mu: float = C.MU_MOON) -> Fig1Geometry:
     """Compute the data of Fig. 1 for a thrust direction on an example capture ellipse.
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from lunarcap.mission.scenario import paper_engines, paper_scenario
 from lunarcap.physics import constants as C
 from lunarcap.physics.rocket import burn_duration_estimate_s
 
@@ -132,7 +133,7 @@ def _key(thrust_N: float) -> str:
 def _input_equivalents(audit_values: dict | None) -> dict:
     """The paper's inputs, which we take as given (periods, constants, engines)."""
     out: dict = {}
-    per = C.CAPTURE_PERIODS_S
+    per = paper_scenario().capture_periods_s
     inp = "input (the paper's value)"
     for n in ("abstract_period_capture1_h", "period_capture1_about_h", "period_capture1_h",
               "period_capture1_about2_h"):
@@ -153,8 +154,8 @@ def _input_equivalents(audit_values: dict | None) -> dict:
     out["r_moon_km"] = (C.R_MOON, inp)
     out["lunar_unit_km"] = (C.LU_KM, inp)
     out["j2_moon"] = (C.J2_MOON, inp)
-    out["arrival_mass_kg"] = (C.ARRIVAL_MASS_KG, inp)
-    for j, (t, isp) in enumerate(C.PAPER_ENGINES, 1):
+    out["arrival_mass_kg"] = (paper_scenario().mass_kg, inp)
+    for j, (t, isp) in enumerate(tuple(paper_engines().items()), 1):
         out[f"engine{j}_thrust_N"] = (t, inp)
         out[f"engine{j}_isp_s"] = (isp, inp)
     for n in ("thrust_direction_bound_lower", "thrust_direction_bound_upper"):
@@ -169,7 +170,7 @@ def _chain_equivalents(t: float, s: list, impulsive_final_mass_kg: dict | None) 
     from lunarcap.paper import printed as P
     out: dict = {}
     k = _key(t)
-    m0 = C.ARRIVAL_MASS_KG
+    m0 = paper_scenario().mass_kg
     imp_total = float(sum(P.PAPER_IMPULSIVE_DV_MPS))
     loss = [x["loss_mps"] for x in s]
     pct = [x["loss_percent"] for x in s]
@@ -223,7 +224,7 @@ def _chain_equivalents(t: float, s: list, impulsive_final_mass_kg: dict | None) 
 def _chain_150N_equivalents(s: list) -> dict:
     """The numbers the paper quotes for its 150 N chain only (Fig. 4, the final orbit)."""
     out: dict = {}
-    fin = C.ARRIVAL_MASS_KG - s[2]["m_end_kg"]
+    fin = paper_scenario().mass_kg - s[2]["m_end_kg"]
     dur = [x["burn_duration_min"] for x in s]
     out["fuel_150N_recalled_kg"] = (fin, "arrival mass minus our mass after LOI 3")
     out["fig4_burn_loi1_150N_min"] = (dur[0], "LOI 1 burn duration")
@@ -279,7 +280,7 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
         if len(s) != 3:
             continue
         totals_pct[t] = chain_totals_percent(s)
-        fuel_fin[t] = C.ARRIVAL_MASS_KG - s[2]["m_end_kg"]
+        fuel_fin[t] = paper_scenario().mass_kg - s[2]["m_end_kg"]
         out.update(_chain_equivalents(t, s, impulsive_final_mass_kg))
     if 150.0 in fuel_fin and 300.0 in fuel_fin:
         out["fuel_saving_300N_vs_150N_kg"] = (fuel_fin[150.0] - fuel_fin[300.0],

@@ -14,7 +14,14 @@
 Arguments are bound to the function's signature with defaults applied before hashing,
 so ``f(1, b=2)`` and ``f(1, 2)`` share one entry.
 
-Set ``LUNARCAP_NO_CACHE=1`` to compute everything afresh (nothing is read or written).
+One switch turns the cache off: ``with caching(False):`` (``--no-cache`` on the command
+line). Inside the block nothing is read from or written to the cache, by any cached
+function at any depth (a burn's earlier burns included). The switch is per thread (a
+:class:`contextvars.ContextVar`); work shipped to another process or thread receives the
+position explicitly (:func:`enabled` at submission, ``caching(...)`` in the task: see
+:func:`lunarcap.runs.campaign.guarded`). Outside any block the switch stands where the
+environment puts it: ``LUNARCAP_NO_CACHE=1`` for a whole process (the test suite, the book's
+executed notebooks); lunarcap itself never edits the environment.
 
 Examples
 --------
@@ -33,6 +40,9 @@ import hashlib
 import inspect
 import os
 from collections import OrderedDict
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
 
 from lunarcap.repro import paths
@@ -49,12 +59,47 @@ PRESENTATION_CODE = ("report/", "paper/", "runs/", "cli.py")
 _PACKAGE_DIR = Path(__file__).resolve().parents[1]
 
 
-def _enabled() -> bool:
+#: The switch's position set by the innermost :func:`caching` block of this thread (None:
+#: no block, the environment decides).
+_SWITCH: ContextVar[bool | None] = ContextVar("lunarcap_cache_on", default=None)
+
+
+def enabled() -> bool:
+    """Whether cached functions read and write the disk cache here and now.
+
+    The innermost :func:`caching` block's position; outside any block, on unless the
+    environment sets ``LUNARCAP_NO_CACHE`` (to anything but "", 0, false or no).
+    """
+    on = _SWITCH.get()
+    if on is not None:
+        return on
     return os.environ.get("LUNARCAP_NO_CACHE", "").strip().lower() in ("", "0", "false", "no")
 
 
+@contextmanager
+def caching(on: bool = True) -> Iterator[None]:
+    """Within the block, the disk cache is used (``on``) or neither read nor written.
+
+    The one cache switch of lunarcap (see the module docstring); restored on leaving the
+    block, exception or not.
+    """
+    token = _SWITCH.set(bool(on))
+    try:
+        yield
+    finally:
+        _SWITCH.reset(token)
+
+
+def position(use_cache: bool | None) -> bool:
+    """The switch's position to ship with a task to another process or thread.
+
+    ``use_cache`` as given, or (None) the submitting thread's position (:func:`enabled`).
+    """
+    return enabled() if use_cache is None else bool(use_cache)
+
+
 #: The joblib store, created on first use (joblib is imported only then): a process that
-#: caches nothing (``LUNARCAP_NO_CACHE=1``, ``--no-cache``) does not pay for it.
+#: caches nothing (the switch off: :func:`caching`) does not pay for it.
 memory = None
 
 
@@ -69,8 +114,8 @@ def get_memory():
 
 
 def location() -> str | None:
-    """Where results are cached, or None when caching is off (``LUNARCAP_NO_CACHE``)."""
-    return str(paths.JOBLIB_CACHE) if _enabled() else None
+    """Where results are cached, or None when the switch is off (:func:`enabled`)."""
+    return str(paths.JOBLIB_CACHE) if enabled() else None
 
 
 def _selected(rel: str, prefixes) -> bool:
@@ -78,11 +123,17 @@ def _selected(rel: str, prefixes) -> bool:
 
 
 @functools.lru_cache(maxsize=None)
-def code_version(include_presentation: bool = False) -> str:
+def code_version(*also: str, include_presentation: bool = False) -> str:
     """SHA-256 (hex, 16 characters) of the lunarcap source a result depends on.
+
+    The one code version of lunarcap: the disk cache's key, a study table's
+    ``code_version`` column and the book's stamps are all this function's value.
 
     Parameters
     ----------
+    *also : str
+        Further source files or folders, relative to the package (``"runs/missed.py"``):
+        a study's table depends on its own module too, not only on :data:`NUMERICAL_CODE`.
     include_presentation : bool
         Also hash :data:`PRESENTATION_CODE` (the book uses this for its stamps, since a
         figure depends on the plotting code).
@@ -91,10 +142,19 @@ def code_version(include_presentation: bool = False) -> str:
     -------
     str
         Hash over the relative path and content of every ``.py`` file of
-        :data:`NUMERICAL_CODE` (and :data:`PRESENTATION_CODE`), in sorted order. Computed
-        once per process.
+        :data:`NUMERICAL_CODE`, ``also`` (and :data:`PRESENTATION_CODE`), in sorted order.
+        Computed once per process and argument list.
+
+    Raises
+    ------
+    ValueError
+        If an entry of ``also`` names no source file of the package (a typo would silently
+        leave it out of the version).
     """
-    prefixes = NUMERICAL_CODE + (PRESENTATION_CODE if include_presentation else ())
+    for rel in also:
+        if not (_PACKAGE_DIR / rel).exists():
+            raise ValueError(f"code_version: {rel!r} is no file or folder of lunarcap")
+    prefixes = NUMERICAL_CODE + tuple(also) + (PRESENTATION_CODE if include_presentation else ())
     h = hashlib.sha256()
     files = sorted(_PACKAGE_DIR.rglob("*.py"))
     for f in files:
@@ -120,7 +180,7 @@ def _source_hash(func) -> str:
 def cached(func=None, *, ignore=()):
     """Cache ``func`` on disk with :func:`get_memory`, keyed also by :func:`code_version`.
 
-    With ``LUNARCAP_NO_CACHE`` set (checked at each call), ``func`` is simply called.
+    With the switch off (:func:`enabled`, checked at each call), ``func`` is simply called.
 
     Usable as ``@cached`` or ``@cached(ignore=["verbose"])``.
 
@@ -134,8 +194,8 @@ def cached(func=None, *, ignore=()):
     Returns
     -------
     callable
-        Same signature as ``func``; attributes ``uncached`` (the original function),
-        and ``is_cached(*args, **kwargs)``.
+        Same signature as ``func``; attribute ``is_cached(*args, **kwargs)``. (To call
+        it without the cache, turn the switch off: ``with caching(False): ...``.)
     """
     if func is None:
         return functools.partial(cached, ignore=ignore)
@@ -175,17 +235,16 @@ def cached(func=None, *, ignore=()):
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
-        if not _enabled():
+        if not enabled():
             return func(*args, **kwargs)
         return memorized()(*_split(args, kwargs))
 
     def is_cached(*args, **kwargs) -> bool:
         """True if a result for these arguments is already on disk."""
-        if not _enabled():
+        if not enabled():
             return False
         return memorized().check_call_in_cache(*_split(args, kwargs))
 
-    wrapper.uncached = func
     wrapper.is_cached = is_cached
     return wrapper
 

@@ -29,9 +29,11 @@ import os
 import statistics
 import time
 
+from lunarcap.mission.scenario import paper_engines
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_STARTS_MIN
 
-ENGINES = {150.0: 200.0, 300.0: 250.0, 450.0: 300.0}
+#: The paper's engines, thrust N -> Isp s (its packaged plans).
+ENGINES = paper_engines()
 
 
 def paper_cases():
@@ -53,9 +55,9 @@ def run(dynamics: str = "full", out=print, cases=None, reuse: bool = True) -> li
     """Solve the cases uncached; print one line each and the medians. Returns the rows."""
     import contextlib
 
-    os.environ["LUNARCAP_NO_CACHE"] = "1"  # nothing read from or written to disk
     from lunarcap.optim.collocation import DEFAULT_MESHES
     from lunarcap.optim.nlp import prebuild
+    from lunarcap.repro.cache import caching
     from lunarcap.runs.chain import paper_case, reuse_earlier_burns
 
     t0 = time.perf_counter()
@@ -63,8 +65,8 @@ def run(dynamics: str = "full", out=print, cases=None, reuse: bool = True) -> li
     # built at once on the machine's two cores; their time is part of the total
     prebuild([(DEFAULT_MESHES[0], kind, False, "optimal", dynamics)
               for kind in ("perilune", "circular")])
-    with reuse_earlier_burns() if reuse else contextlib.nullcontext():
-        return _run(dynamics, out, cases, reuse, paper_case, t0)
+    with caching(False), (reuse_earlier_burns() if reuse else contextlib.nullcontext()):
+        return _run(dynamics, out, cases, reuse, paper_case, t0)  # nothing read or written
 
 
 def _run(dynamics, out, cases, reuse, paper_case, t_all) -> list[dict]:
@@ -221,7 +223,6 @@ def plan_walls(plan: str = "song2011-150N", repeats: int = 3, cold: bool = True,
     built); cached: the same command again (median of ``repeats``). Also the wall of
     importing the CLI and the heavy packages its import pulls in (none should be).
     """
-    import os
     import subprocess
     import sys
     import tempfile
@@ -349,8 +350,6 @@ def studies(out=print, cold: bool = True, repeats: int = 3) -> dict:
     profiled, and the last recorded wall of each study. Wall times on a shared machine are
     noisy: compare ratios, rerun for medians.
     """
-    import os
-
     out(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} (1 min)")
     out("\n== NLP build per shape (this process, full dynamics)")
     builds = nlp_builds(out=out)

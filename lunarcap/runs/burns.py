@@ -36,8 +36,6 @@ import hashlib
 import math
 import re
 import time
-from functools import lru_cache
-from pathlib import Path
 
 import numpy as np
 
@@ -47,9 +45,10 @@ from lunarcap.mission.plan import CapturePlan, PlanError, plan_ephemeris
 from lunarcap.mission.targets import CIRCULAR
 from lunarcap.optim.joint import solve_joint
 from lunarcap.physics import constants as C
+from lunarcap.physics.elements import period_from_semi_major_axis
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
-from lunarcap.repro.cache import cached
+from lunarcap.repro.cache import cached, code_version, position
 from lunarcap.runs.chain import impulsive_limit, solve_plan, time_to_final_orbit_h
 
 #: Longest intermediate period allowed by default, h (the paper's first ellipse: longer
@@ -65,16 +64,14 @@ MAX_FIT_SPAN_S = 4 * 86400.0
 
 STATUSES = ("ok", "infeasible", "failed")
 
-
-@lru_cache(maxsize=1)
-def module_version() -> str:
-    """Hash of this module's source: part of the cache key of :func:`solve_count`."""
-    return hashlib.sha256(Path(__file__).read_bytes()).hexdigest()[:16]
+#: This module, relative to the package: its tables' and cached cases' code version is
+#: :func:`lunarcap.repro.cache.code_version` of the numerical code and this file.
+_MODULE = "runs/burns.py"
 
 
 def circle_period_s(r_km: float) -> float:
     """Period of the circle of radius r about the Moon, s."""
-    return 2 * math.pi * math.sqrt(r_km ** 3 / C.MU_MOON)
+    return float(period_from_semi_major_axis(r_km, C.MU_MOON))
 
 
 def check_bounds(max_period_s: float, max_time_s: float) -> None:
@@ -167,7 +164,7 @@ def solve_count(plan: CapturePlan, n: int, max_period_s: float, max_time_s: floa
                 impulsive: bool = True, version: str = "", verbose: bool = False) -> dict:
     """The capture of ``plan`` (pass ``plan.key()``) in ``n`` burns, periods optimised.
 
-    See the module docstring. ``version`` is :func:`module_version` (part of the cache key).
+    See the module docstring. ``version`` is ``code_version(_MODULE)`` (part of the cache key).
     Never raises for a count without a plan (status "infeasible", also when the optimum
     found is no valid ``n``-burn plan, see :func:`_not_a_plan`) or a failed solve
     ("failed").
@@ -302,14 +299,16 @@ def _totals(res, imps: list | None) -> dict:
 
 def count_result(plan: CapturePlan, n: int, max_period_h: float = DEFAULT_MAX_PERIOD_H,
                  max_days: float = DEFAULT_MAX_DAYS, impulsive: bool = True,
-                 use_cache: bool = True, verbose: bool = False) -> dict:
-    """:func:`solve_count` of ``plan`` in ``n`` burns with bounds in hours and days."""
+                 verbose: bool = False) -> dict:
+    """:func:`solve_count` of ``plan`` in ``n`` burns with bounds in hours and days.
+
+    Cached as the cache switch says (:func:`lunarcap.repro.cache.caching`).
+    """
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise InputError(f"a number of burns is an integer >= 1, got {n!r}")
     check_bounds(max_period_h * 3600.0, max_days * 86400.0)
-    fn = solve_count if use_cache else solve_count.uncached
-    return fn(plan.key(), int(n), float(max_period_h) * 3600.0, float(max_days) * 86400.0,
-              impulsive, module_version(), verbose=verbose)
+    return solve_count(plan.key(), int(n), float(max_period_h) * 3600.0, float(max_days) * 86400.0,
+              impulsive, code_version(_MODULE), verbose=verbose)
 
 
 # ====================================================================== the study on Dask
@@ -352,11 +351,12 @@ def default_table_path():
 
 
 def count_row(plan: CapturePlan, n: int, max_period_h: float, max_days: float,
-              use_cache: bool = True) -> dict:
+              use_cache: bool | None = None) -> dict:
     """Dask task: one plan in ``n`` burns, as a row of the study's table.
 
     Never raises for a solver failure (status "failed" with IPOPT's status); any other
-    exception is recorded as status "error". ``use_cache`` False: no disk cache.
+    exception is recorded as status "error". ``use_cache``: the cache switch's position
+    (:func:`lunarcap.runs.campaign.guarded`).
     """
     import json
 
@@ -376,18 +376,19 @@ def count_row(plan: CapturePlan, n: int, max_period_h: float, max_days: float,
 
 def run_burns(plans, counts, max_period_h: float = DEFAULT_MAX_PERIOD_H,
               max_days: float = DEFAULT_MAX_DAYS, out=None, workers=2, scheduler=None,
-              progress: bool = True, use_cache: bool = True, processes: bool = True,
+              progress: bool = True, use_cache: bool | None = None, processes: bool = True,
               task=None):
     """Run (or resume) the study for every plan and count on Dask (see the module).
 
     Returns a :class:`lunarcap.runs.campaign.CampaignResult` whose table has one row per
-    (plan, count), in the order given. InputError (bad counts or bounds, an unusable
-    ``out``, an unreachable scheduler) before any solve.
+    (plan, count), in the order given. ``use_cache``: the cache switch for the tasks (None:
+    its current position, :func:`lunarcap.repro.cache.position`). InputError (bad counts or
+    bounds, an unusable ``out``, an unreachable scheduler) before any solve.
     """
-    from lunarcap.repro.cache import code_version
     from lunarcap.runs.campaign import run_campaign
     from lunarcap.runs.study import check_workers
 
+    use_cache = position(use_cache)
     counts = parse_counts(counts)
     check_bounds(_hours(max_period_h) * 3600.0, _days(max_days) * 86400.0)
     workers = check_workers(workers)
@@ -400,7 +401,7 @@ def run_burns(plans, counts, max_period_h: float = DEFAULT_MAX_PERIOD_H,
                    "max_period_h": float(max_period_h), "max_days": float(max_days)}
             cases.append((key, (plan, n, float(max_period_h), float(max_days), use_cache)))
     return run_campaign(cases, task or count_row, out or default_table_path(),
-                        table_format(), f"{code_version()}:{module_version()}",
+                        table_format(), code_version(_MODULE),
                         workers=workers, scheduler=scheduler, progress=progress,
                         processes=processes, desc="burns study", unit="count",
                         recompute=not use_cache, ok_statuses=("ok", "infeasible"),

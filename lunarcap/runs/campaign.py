@@ -152,30 +152,25 @@ def cache_description() -> str:
     from lunarcap.repro import cache
 
     loc = cache.location()
-    return "disabled (LUNARCAP_NO_CACHE)" if loc is None else f"joblib at {loc}"
+    return "disabled (the cache switch is off)" if loc is None else f"joblib at {loc}"
 
 
-def guarded(compute, use_cache: bool = True) -> tuple[dict | None, dict | None]:
+def guarded(compute, use_cache: bool | None = None) -> tuple[dict | None, dict | None]:
     """Run ``compute()`` in a task: ``(result, None)``, or ``(None, error row)``.
 
-    ``use_cache`` False sets ``LUNARCAP_NO_CACHE`` for the call (nothing read from or
-    written to the disk cache) and restores it after. An exception becomes the row
+    ``use_cache``: the cache switch's position shipped with the task (a worker is another
+    process or thread: :func:`lunarcap.repro.cache.position` at submission; None: this
+    thread's position); the call runs inside ``caching(use_cache)``. An exception becomes the row
     ``{"status": "error", "error": ...}``: a bug in one case must not lose the rest of a
     study.
     """
-    old = os.environ.get("LUNARCAP_NO_CACHE")
-    if not use_cache:
-        os.environ["LUNARCAP_NO_CACHE"] = "1"
+    from lunarcap.repro.cache import caching, position
+
     try:
-        return compute(), None
+        with caching(position(use_cache)):
+            return compute(), None
     except Exception as exc:
         return None, {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
-    finally:
-        if not use_cache:
-            if old is None:
-                os.environ.pop("LUNARCAP_NO_CACHE", None)
-            else:
-                os.environ["LUNARCAP_NO_CACHE"] = old
 
 
 def parse_numbers(option: str, text, minimum: float, include_min: bool, maximum=None,

@@ -27,10 +27,10 @@ from lunarcap.mission.arrival import Arrival, ArrivalSpec
 from lunarcap.mission.plan import CapturePlan, paper_plan, plan_ephemeris
 from lunarcap.optim.problem import burn_fit, burn_problem
 from lunarcap.optim.solution import Solution
-from lunarcap.optim.solve import solve_burn as solve_burn_problem
+from lunarcap.optim.solve import solve_burn_problem
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.frames import DEFAULT_LUNAR_POLE
-from lunarcap.repro.cache import cached
+from lunarcap.repro.cache import cached, enabled
 
 
 def _log(msg: str) -> None:
@@ -52,16 +52,18 @@ _EARLIER: dict | None = None
 def reuse_earlier_burns():
     """Within the block, a burn solved as an earlier link of a chain is solved once.
 
-    With the disk cache off (``LUNARCAP_NO_CACHE``), every burn of a chain would otherwise
-    be solved again for each later burn that starts from it; ``lunarcap bench`` uses this
-    to solve each distinct prefix of the paper's chains once per run, in memory.
+    With the cache switch off (:func:`lunarcap.repro.cache.caching`), every burn of a chain
+    would otherwise be solved again for each later burn that starts from it;
+    :func:`plan_result` and ``lunarcap bench`` use this to solve each distinct prefix of a
+    chain once per run, in memory (a burn solved in the block is remembered too).
     """
     global _EARLIER
-    _EARLIER = {}
+    outer = _EARLIER
+    _EARLIER = {} if outer is None else outer
     try:
         yield
     finally:
-        _EARLIER = None
+        _EARLIER = outer
 
 
 def perilune_state(plan: CapturePlan, i: int, verbose: bool = False) -> np.ndarray:
@@ -122,6 +124,8 @@ def solve_burn(plan: CapturePlan, verbose: bool = False) -> Solution:
     if verbose:
         _log(f"{_burn_label(plan, i)}:")
     sol = solve_burn_problem(prob, progress=_log if verbose else None)
+    if _EARLIER is not None:  # a later burn of the chain starts from its end
+        _EARLIER[plan] = (sol.problem.t_end_s, sol.end_state)
     if verbose:
         s = sol.summary()
         _log(f"  -> start {s['start_min']:+.3f} min, {s['burn_duration_min']:.2f} min, "
@@ -129,28 +133,27 @@ def solve_burn(plan: CapturePlan, verbose: bool = False) -> Solution:
     return sol
 
 
-def solve_plan(plan: CapturePlan, verbose: bool = False, use_cache: bool = True) -> list:
-    """Every burn of a plan in order (a list of Solution)."""
-    out = []
-    for n in range(1, plan.n_burns + 1):
-        fn = solve_burn if use_cache else solve_burn.uncached
-        out.append(fn(plan.key(n), verbose=verbose))
-    return out
+def solve_plan(plan: CapturePlan, verbose: bool = False) -> list:
+    """Every burn of a plan in order (a list of Solution), each solved once.
+
+    Cached as the cache switch says (:func:`lunarcap.repro.cache.caching`).
+    """
+    with reuse_earlier_burns():
+        return [solve_burn(plan.key(n), verbose=verbose) for n in range(1, plan.n_burns + 1)]
 
 
 #: Burn durations (s) of the two high-thrust solves of :func:`impulsive_limit`.
 IMPULSIVE_LIMIT_DURATIONS_S = (4.0, 2.0)
 
 
-def impulsive_limit(plan: CapturePlan, verbose: bool = False, use_cache: bool = True) -> dict:
+def impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     """Impulsive delta-V of the last burn of ``plan`` (see :func:`_impulsive_limit`).
 
     The result depends on the orbit before the burn and its target, not on the burn's own
     ignition offset or steering law: those are blanked from the cache key, and so is the
     thrust of a first burn (every engine of the same Isp shares its impulsive limit).
     """
-    key = impulsive_key(plan)
-    return (_impulsive_limit if use_cache else _impulsive_limit.uncached)(key, verbose=verbose)
+    return _impulsive_limit(impulsive_key(plan), verbose=verbose)
 
 
 def impulsive_key(plan: CapturePlan) -> CapturePlan:
@@ -330,8 +333,7 @@ def _in_cache(fn, *args) -> bool:
     return bool(check and check(*args))
 
 
-def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
-                 use_cache: bool = True) -> None:
+def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True) -> None:
     """Build at once (two threads) the NLP shapes that solving ``burns`` of ``plan`` needs.
 
     ``burns``: 1-based burn numbers (default all). Burns (and impulsive limits) already in
@@ -345,33 +347,33 @@ def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
         key, b = plan.key(n), plan.burns[n - 1]
         kind = plan.targets[n - 1].kind
         free_end = plan.targets[n - 1].free_epoch
-        if not (use_cache and _in_cache(solve_burn, key)):
+        if not (enabled() and _in_cache(solve_burn, key)):
             shapes.append((mesh, kind, b.free_start, b.steering, plan.dynamics, free_end))
         if impulsive:
-            if not (use_cache and _in_cache(_impulsive_limit, impulsive_key(key))):
+            if not (enabled() and _in_cache(_impulsive_limit, impulsive_key(key))):
                 shapes += [(mesh, kind, True, "optimal", plan.dynamics, free_end),
                            (mesh, kind, False, "optimal", plan.dynamics, free_end)]
     prebuild(shapes)
 
 
 def plan_result(plan: CapturePlan, impulsive: bool = True, verbose: bool = False,
-                use_cache: bool = True, on_burn=None) -> PlanResult:
-    """Solve every burn of ``plan`` (and its impulsive limit) in order.
+                on_burn=None) -> PlanResult:
+    """Solve every burn of ``plan`` (and its impulsive limit) in order, each burn once.
 
-    ``on_burn(BurnResult)`` is called as each burn completes, so a caller can print what
-    is done even if a later burn fails.
+    Cached as the cache switch says (:func:`lunarcap.repro.cache.caching`: ``--no-cache``
+    recomputes every burn, the earlier ones included). ``on_burn(BurnResult)`` is called as
+    each burn completes, so a caller can print what is done even if a later burn fails.
     """
-    prebuild_for(plan, impulsive=impulsive, use_cache=use_cache)
+    prebuild_for(plan, impulsive=impulsive)
     burns = []
-    for n in range(1, plan.n_burns + 1):
-        key = plan.key(n)
-        sol = (solve_burn if use_cache else solve_burn.uncached)(key, verbose=verbose)
-        imp = None
-        if impulsive:
-            imp = impulsive_limit(key, verbose=verbose, use_cache=use_cache)
-        burns.append(BurnResult(sol, imp))
-        if on_burn is not None:
-            on_burn(burns[-1])
+    with reuse_earlier_burns():
+        for n in range(1, plan.n_burns + 1):
+            key = plan.key(n)
+            sol = solve_burn(key, verbose=verbose)
+            imp = impulsive_limit(key, verbose=verbose) if impulsive else None
+            burns.append(BurnResult(sol, imp))
+            if on_burn is not None:
+                on_burn(burns[-1])
     return PlanResult(plan, burns)
 
 

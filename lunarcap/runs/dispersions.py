@@ -52,13 +52,10 @@ here, so ``dispersions.ErrorModel`` or ``dispersions.summarise`` keep working.
 
 from __future__ import annotations
 
-import hashlib
 import json
 import math
 import time
 from dataclasses import dataclass, replace
-from functools import lru_cache
-from pathlib import Path
 
 import numpy as np
 
@@ -67,11 +64,12 @@ from lunarcap.mission.plan import CapturePlan, PlanError
 from lunarcap.optim.guess import Guess, mean_motion_and_anomaly
 from lunarcap.optim.nlp import interval_steering
 from lunarcap.optim.problem import burn_problem
-from lunarcap.optim.solve import solve_burn as solve_burn_problem
+from lunarcap.optim.solve import solve_burn_problem
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import mee_from_rv, orbit_summary, rv_from_mee
 from lunarcap.physics.propagate import Trajectory, propagate
 from lunarcap.physics.steering import Steering, polynomial
+from lunarcap.repro.cache import code_version, enabled, position
 from lunarcap.runs.dispersion_model import (  # noqa: F401
     BLOCK,
     MAX_BURNS,
@@ -110,13 +108,9 @@ STATUSES = ("ok", "not captured", "correction failed", "error")
 OK_STATUSES = ("ok", "not captured", "correction failed")
 
 
-@lru_cache(maxsize=1)
-def module_version() -> str:
-    """Hash of the study's sources (this module, its error model and its answer)."""
-    h = hashlib.sha256()
-    for name in ("dispersions.py", "dispersion_model.py", "dispersion_summary.py"):
-        h.update((Path(__file__).parent / name).read_bytes())
-    return h.hexdigest()[:16]
+#: The study's modules, relative to the package: its tables' and cached cases' code
+#: version is :func:`lunarcap.repro.cache.code_version` of the numerical code and these.
+_MODULES = ("runs/dispersions.py", "runs/dispersion_model.py", "runs/dispersion_summary.py")
 
 
 # ====================================================================== flying with errors
@@ -272,22 +266,23 @@ def warm_guess(nominal_raw, prob) -> Guess:
 _NOMINAL: dict = {}
 
 
-def nominal(plan: CapturePlan, use_cache: bool = True) -> list:
+def nominal(plan: CapturePlan) -> list:
     """The plan's verified burns (solved in order, :func:`lunarcap.runs.chain.solve_plan`).
 
-    Memoised per process (a worker solves or loads it once for all its samples).
+    Memoised per process and cache switch position (a worker solves or loads it once for
+    all its samples).
     """
     from lunarcap.runs.chain import solve_plan
 
-    key = (plan.key(), use_cache)
+    key = (plan.key(), enabled())
     if key not in _NOMINAL:
-        _NOMINAL[key] = solve_plan(plan, use_cache=use_cache)
+        _NOMINAL[key] = solve_plan(plan)
     return _NOMINAL[key]
 
 
-def nominal_totals(plan: CapturePlan, use_cache: bool = True) -> dict:
+def nominal_totals(plan: CapturePlan) -> dict:
     """Nominal delta-V (m/s), propellant (kg) and the two-body impulsive delta-V (m/s)."""
-    sols = nominal(plan, use_cache)
+    sols = nominal(plan)
     return {"nominal_delta_v_mps": float(sum(s.delta_v_mps for s in sols)),
             "nominal_propellant_kg": float(plan.initial_mass_kg - sols[-1].end_state[6]),
             "impulsive_two_body_mps": float(sum(b.delta_v_mps for b in plan.impulsive()))}
@@ -425,7 +420,7 @@ def _final_orbit(sol, flown: FlownBurn) -> dict:
             "final_ra_altitude_km": o["ra_km"] - C.R_MOON}
 
 
-def fly_sample(plan: CapturePlan, z, model: ErrorModel, use_cache: bool = True) -> dict:
+def fly_sample(plan: CapturePlan, z, model: ErrorModel) -> dict:
     """One sample of the capture with the errors of the draws ``z`` (see the module).
 
     Returns a dict: status ("ok", "not captured", "correction failed"), reason, the total
@@ -433,7 +428,7 @@ def fly_sample(plan: CapturePlan, z, model: ErrorModel, use_cache: bool = True) 
     orbit's errors, its wall and CPU time (s; the nominal, solved or loaded once per
     process, is left out).
     """
-    noms = nominal(plan, use_cache)
+    noms = nominal(plan)
     t_start, c_start = time.perf_counter(), time.process_time()
     d_arr, errs = realise(z, model, plan.n_burns)
     out = {"status": "ok", "reason": "", "burns_flown": 0, "_t0": t_start, "_c0": c_start,
@@ -505,13 +500,13 @@ def default_table_path():
 
 
 def sample_row(plan: CapturePlan, seed: int, index: int, model: ErrorModel,
-               antithetic: bool = False, use_cache: bool = True) -> dict:
+               antithetic: bool = False, use_cache: bool | None = None) -> dict:
     """Dask task: one sample as a row of the table (a failure is a status, not raised)."""
     from lunarcap.runs import campaign
 
     def compute():
-        r = fly_sample(plan, sample_draws(seed, index, antithetic), model, use_cache)
-        r.update(nominal_totals(plan, use_cache))
+        r = fly_sample(plan, sample_draws(seed, index, antithetic), model)
+        r.update(nominal_totals(plan))
         if "total_delta_v_mps" in r:
             r["delta_v_above_nominal_mps"] = r["total_delta_v_mps"] - r["nominal_delta_v_mps"]
         return r
@@ -542,7 +537,8 @@ def check_samples(samples, seed) -> tuple:
 
 def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorModel,
                     out=None, workers=2, scheduler=None, progress: bool = True,
-                    use_cache: bool = True, processes: bool = True, antithetic: bool = False,
+                    use_cache: bool | None = None, processes: bool = True,
+                    antithetic: bool = False,
                     first: int = 0, task=None):
     """Run (or resume) ``samples`` samples (indices ``first``...) of the capture on Dask.
 
@@ -552,11 +548,11 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
     :data:`MAX_BURNS` burns, an unusable ``out``, an unreachable scheduler) before any
     sample.
     """
-    from lunarcap.repro.cache import code_version
     from lunarcap.runs.burns import plan_id
     from lunarcap.runs.campaign import run_campaign
     from lunarcap.runs.study import check_workers
 
+    use_cache = position(use_cache)   # None: the switch's current position
     samples, seed = check_samples(samples, seed)
     plans = list(plan) if isinstance(plan, (list, tuple)) else [plan]
     for p in plans:
@@ -575,7 +571,7 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
         cases += [(dict(base, sample=k), (p, seed, k, model, bool(antithetic), use_cache))
                   for k in range(int(first), int(first) + samples)]
     return run_campaign(cases, task or sample_row, out or default_table_path(),
-                        table_format(), f"{code_version()}:{module_version()}",
+                        table_format(), code_version(*_MODULES),
                         workers=workers, scheduler=scheduler, progress=progress,
                         processes=processes, desc="dispersions", unit="sample",
                         recompute=not use_cache, ok_statuses=OK_STATUSES,

@@ -36,7 +36,7 @@ from lunarcap.exchange.spk import DEFAULT_OBJECT_ID, write_spk
 from lunarcap.optim.nlp import burn_bounds, interval_steering, steering_function
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model, rtn_from_mee
-from lunarcap.physics.elements import orbit_summary, rv_from_mee
+from lunarcap.physics.elements import orbit_summary, period_from_semi_major_axis, rv_from_mee
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import leap_second_table
 from lunarcap.physics.frames import icrf_from_mme
@@ -132,7 +132,7 @@ def flight_arcs(solutions, approach_min: float = APPROACH_MIN, t_start_s: float 
         else:
             o = orbit_summary(coast.x[:7, 0], C.MU_MOON)
             a = 0.5 * (o["rp_km"] + o["ra_km"])
-            period = 2 * np.pi * np.sqrt(a ** 3 / C.MU_MOON)
+            period = float(period_from_semi_major_axis(a, C.MU_MOON))
             arcs.append(Arc("final orbit", prob.model,
                             [(coast.t[0], coast.x[:7, 0], period, COAST)]))
     return arcs

@@ -47,12 +47,9 @@ not a physical reason, so it is never reported as "no recovery").
 
 from __future__ import annotations
 
-import hashlib
 import math
 import time
 from dataclasses import replace
-from functools import lru_cache
-from pathlib import Path
 
 import numpy as np
 
@@ -68,7 +65,7 @@ from lunarcap.physics.dynamics import Model
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.propagate import propagate
-from lunarcap.repro.cache import cached
+from lunarcap.repro.cache import cached, caching, code_version, position
 from lunarcap.runs.burns import MAX_FIT_SPAN_S
 from lunarcap.runs.chain import solve_plan, time_to_final_orbit_h
 from lunarcap.runs.missed_orbits import (  # noqa: F401  (this module's API too)
@@ -103,10 +100,9 @@ CONTINGENCIES = ("cut-off", "late ignition")
 STATUSES = ("recovered", "no recovery", "failed", "error")
 
 
-@lru_cache(maxsize=1)
-def module_version() -> str:
-    """Hash of this module's source: part of the cache keys of this study."""
-    return hashlib.sha256(Path(__file__).read_bytes()).hexdigest()[:16]
+#: The study's modules, relative to the package: its tables' and cached cases' code
+#: version is :func:`lunarcap.repro.cache.code_version` of the numerical code and these.
+_MODULES = ("runs/missed.py", "runs/missed_orbits.py")
 
 
 # ---------------------------------------------------------------------- the nominal
@@ -184,13 +180,15 @@ def _nominal_from(free_plan: CapturePlan, i: int, max_period_s: float):
 _NOMINALS: dict = {}
 
 
-def nominal_of(plan: CapturePlan, burn: int, max_period_s: float,
-               use_cache: bool = True) -> dict:
-    """:func:`nominal` of ``plan``, solved once per process (memo), cached on disk."""
+def nominal_of(plan: CapturePlan, burn: int, max_period_s: float) -> dict:
+    """:func:`nominal` of ``plan``, solved once per process (memo).
+
+    Cached on disk as the cache switch says (:func:`lunarcap.repro.cache.caching`).
+    """
     key = (plan.key(), int(burn), float(max_period_s))
     if key not in _NOMINALS:
-        fn = nominal if use_cache else nominal.uncached
-        _NOMINALS[key] = fn(plan.key(), int(burn), float(max_period_s), module_version())
+        _NOMINALS[key] = nominal(plan.key(), int(burn), float(max_period_s),
+                                 code_version(*_MODULES))
     return _NOMINALS[key]
 
 
@@ -474,22 +472,22 @@ def late_case(plan: CapturePlan, burn: int, late_s: float, max_period_s: float,
 
 def case_result(plan: CapturePlan, burn: int, fraction: float | None = None,
                 delay_min: float = 0.0, max_period_h: float = DEFAULT_MAX_PERIOD_H,
-                window_min: tuple = DEFAULT_WINDOW_MIN, use_cache: bool = True,
-                verbose: bool = False, late_min: float | None = None) -> dict:
+                window_min: tuple = DEFAULT_WINDOW_MIN, verbose: bool = False,
+                late_min: float | None = None) -> dict:
     """One case with checked inputs (InputError) in the CLI's units.
 
-    A cut-off (``fraction``, ``delay_min``), or with ``late_min`` a late ignition.
+    A cut-off (``fraction``, ``delay_min``), or with ``late_min`` a late ignition. Cached
+    as the cache switch says (:func:`lunarcap.repro.cache.caching`).
     """
     if late_min is not None:
         check_case(plan, burn, 1.0, late_min, "a late ignition")
-        fn = late_case if use_cache else late_case.uncached
-        return fn(plan.key(), int(burn), float(late_min) * 60.0,
-                  float(max_period_h) * 3600.0, module_version(), verbose=verbose)
+        return late_case(plan.key(), int(burn), float(late_min) * 60.0,
+                         float(max_period_h) * 3600.0, code_version(*_MODULES),
+                         verbose=verbose)
     check_case(plan, burn, fraction, delay_min)
-    fn = missed_case if use_cache else missed_case.uncached
-    return fn(plan.key(), int(burn), float(fraction), float(delay_min) * 60.0,
-              float(max_period_h) * 3600.0, tuple(float(w) for w in window_min),
-              module_version(), verbose=verbose)
+    return missed_case(plan.key(), int(burn), float(fraction), float(delay_min) * 60.0,
+                       float(max_period_h) * 3600.0, tuple(float(w) for w in window_min),
+                       code_version(*_MODULES), verbose=verbose)
 
 
 def check_case(plan: CapturePlan, burn, fraction, delay_min, what: str = "a delay") -> None:
@@ -544,7 +542,7 @@ def default_table_path():
 
 
 def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
-             max_period_h: float, use_cache: bool = True, late_min: float | None = None,
+             max_period_h: float, use_cache: bool | None = None, late_min: float | None = None,
              nominal_result: dict | None = None) -> dict:
     """Dask task: one case as a row of the study's table (a failure is a status, not raised).
 
@@ -559,7 +557,7 @@ def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
         _NOMINALS[(plan.key(), int(burn), float(max_period_h) * 3600.0)] = nominal_result
     r, error = campaign.guarded(
         lambda: case_result(plan, burn, fraction, delay_min, max_period_h,
-                            use_cache=use_cache, late_min=late_min), use_cache)
+                            late_min=late_min), use_cache)
     if error:
         return error
     row = {k: v for k, v in r.items() if k in COLUMNS}
@@ -589,7 +587,7 @@ def _cases(plan: CapturePlan, burn: int, fractions, delays, late, max_period_h: 
 
 def run_missed(plan: CapturePlan, burn: int, fractions, delays_min,
                max_period_h: float = DEFAULT_MAX_PERIOD_H, out=None, workers=2,
-               scheduler=None, progress: bool = True, use_cache: bool = True,
+               scheduler=None, progress: bool = True, use_cache: bool | None = None,
                processes: bool = True, task=None, late_min=None):
     """Run (or resume) the study on Dask (see the module): cut-offs and late ignitions.
 
@@ -599,7 +597,6 @@ def run_missed(plan: CapturePlan, burn: int, fractions, delays_min,
     per case). InputError (a burn the plan lacks, fractions outside (0, 1], negative
     delays, an unusable ``out``, an unreachable scheduler) before any solve.
     """
-    from lunarcap.repro.cache import code_version
     from lunarcap.runs.campaign import parse_numbers, run_campaign
     from lunarcap.runs.study import check_workers
 
@@ -616,13 +613,15 @@ def run_missed(plan: CapturePlan, burn: int, fractions, delays_min,
         raise InputError(f"--max-period-h must be a positive number of hours, got "
                          f"{max_period_h!r}")
     workers = check_workers(workers)
+    use_cache = position(use_cache)   # None: the switch's current position
     nom = None
     if task is None:   # the real study: its nominal, once, in this process
-        nom = nominal_of(plan, int(burn), float(max_period_h) * 3600.0, use_cache)
+        with caching(use_cache):
+            nom = nominal_of(plan, int(burn), float(max_period_h) * 3600.0)
     return run_campaign(_cases(plan, burn, fractions, delays, late, max_period_h, use_cache,
                                nom),
                         task or case_row, out or default_table_path(), table_format(),
-                        f"{code_version()}:{module_version()}", workers=workers,
+                        code_version(*_MODULES), workers=workers,
                         scheduler=scheduler, progress=progress, processes=processes,
                         desc="missed-thrust study", unit="case", recompute=not use_cache,
                         ok_statuses=("recovered", "no recovery"),

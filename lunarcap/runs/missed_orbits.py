@@ -17,7 +17,13 @@ from lunarcap.mission.targets import PERILUNE
 from lunarcap.optim.guess import mean_motion_and_anomaly
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model
-from lunarcap.physics.elements import mee_from_rv, orbit_summary, rv_from_mee
+from lunarcap.physics.elements import (
+    mee_from_rv,
+    orbit_summary,
+    period_from_semi_major_axis,
+    rv_from_mee,
+    semi_major_axis_from_period,
+)
 from lunarcap.physics.propagate import propagate
 
 
@@ -36,7 +42,7 @@ def classify(x, t_s: float, ephemeris: str | None = None) -> dict:
         kind, period_h = "escape", math.inf
     else:
         a = -C.MU_MOON / (2 * energy)
-        period_h = 2 * math.pi * math.sqrt(a ** 3 / C.MU_MOON) / 3600.0
+        period_h = period_s(a) / 3600.0
         kind = "captured" if o["ra_km"] < soi else "weakly captured"
     return {"orbit": kind, "energy_km2ps2": energy, "e": o["e"], "rp_km": o["rp_km"],
             "ra_km": o["ra_km"], "period_h": period_h, "r_km": o["r_km"],
@@ -54,7 +60,7 @@ def soi_radius_km(t_s: float, ephemeris: str | None = None) -> float:
 
 def period_s(a_km: float, mu: float = C.MU_MOON) -> float:
     """Kepler's third law: the period of an ellipse of semi-major axis ``a_km``, s."""
-    return 2 * math.pi * math.sqrt(a_km ** 3 / mu)
+    return float(period_from_semi_major_axis(a_km, mu))
 
 
 def time_to_perilune_after_impulse_s(x, dv_mps: float, after_s: float = 0.0,
@@ -89,7 +95,7 @@ def make_up_estimate(x, rp_km: float, max_period_s: float, mu: float = C.MU_MOON
     """
     r, v = (np.array(a, float) for a in rv_from_mee(*np.asarray(x, float)[:6], mu))
     rn, vn = float(np.linalg.norm(r)), float(np.linalg.norm(v))
-    a_max = (mu * (max_period_s / (2 * math.pi)) ** 2) ** (1 / 3)
+    a_max = float(semi_major_axis_from_period(max_period_s, mu))
     v_max2 = mu * (2 / rn - 1 / a_max)
     dv = vn - math.sqrt(v_max2) if v_max2 > 0 else vn
     return {"delta_v_mps": max(dv, 0.0) * 1e3, "r_km": rn,

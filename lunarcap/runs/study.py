@@ -75,11 +75,12 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.errors import InputError
-from lunarcap.physics.losses import PERILUNE_RADIUS_KM, schuler_rate_rad_s
+from lunarcap.physics.losses import schuler_rate_rad_s
 from lunarcap.repro import paths
 from lunarcap.runs import campaign as _campaign
 from lunarcap.runs.study_theory import (  # noqa: F401  (this module's API too)
     G_MOON_MPS2,
+    PERILUNE_RADIUS_KM,
     capture_chain_estimate,
     paper_points,
     thrust_from_weight_ratio,

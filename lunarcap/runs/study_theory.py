@@ -12,16 +12,23 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.errors import InputError
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
 from lunarcap.physics import constants as C
-from lunarcap.physics.losses import PERILUNE_RADIUS_KM, robbins_loss_mps
+from lunarcap.physics.losses import robbins_loss_mps
 from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine, rocket_mass_after
 
 #: Lunar surface gravity mu / R^2, m/s^2 (from :data:`lunarcap.physics.constants.MU_MOON` and
 #: :data:`lunarcap.physics.constants.R_MOON`, Song 2011's values).
 G_MOON_MPS2 = C.MU_MOON / C.R_MOON ** 2 * 1e3
 
-def thrust_to_weight(thrust_N, mass_kg: float = C.ARRIVAL_MASS_KG, g_mps2: float = C.G0_MPS2):
+#: Radius of every capture perilune, km (R_Moon + the packaged plans' 100 km, Song 2011
+#: Sec. 3.2.1).
+PERILUNE_RADIUS_KM = C.R_MOON + paper_scenario().perilune_altitude_km
+
+
+def thrust_to_weight(thrust_N, mass_kg: float = paper_scenario().mass_kg,
+                     g_mps2: float = C.G0_MPS2):
     """Thrust-to-weight ratio T / (m g) (dimensionless).
 
     Parameters
@@ -39,13 +46,14 @@ def thrust_to_weight(thrust_N, mass_kg: float = C.ARRIVAL_MASS_KG, g_mps2: float
     return float(thrust_N) / (mass_kg * g_mps2)
 
 
-def thrust_from_weight_ratio(ratio, mass_kg: float = C.ARRIVAL_MASS_KG,
+def thrust_from_weight_ratio(ratio, mass_kg: float = paper_scenario().mass_kg,
                              g_mps2: float = C.G0_MPS2):
     """Inverse of :func:`thrust_to_weight`: the thrust (N) of a thrust-to-weight ratio."""
     return np.asarray(ratio, dtype=float) * mass_kg * g_mps2
 
 
-def capture_chain_estimate(thrust_N: float, isp_s: float, mass_kg: float = C.ARRIVAL_MASS_KG,
+def capture_chain_estimate(thrust_N: float, isp_s: float,
+                           mass_kg: float = paper_scenario().mass_kg,
                            dv_mps=PAPER_IMPULSIVE_DV_MPS, r_km: float = PERILUNE_RADIUS_KM,
                            mu: float = C.MU_MOON) -> list[dict]:
     """Eq. (19) durations and Robbins losses of the three LOIs of one engine.

@@ -11,6 +11,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.mission.plan import paper_plan
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.paper.printed import (
     PAPER_BEST_STARTS_MIN,
     PAPER_IMPULSIVE_DV_MPS,
@@ -18,7 +19,6 @@ from lunarcap.paper.printed import (
     paper_best,
     paper_table,
 )
-from lunarcap.physics import constants as C
 from lunarcap.runs.chain import burn_loss, impulsive_limit, paper_case
 
 
@@ -153,7 +153,7 @@ def sequence_table(thrust_N: float, isp_s: float, starts=None, dynamics: str = "
     return df
 
 
-def sequence_totals(df: pd.DataFrame, mass0_kg: float = C.ARRIVAL_MASS_KG) -> dict:
+def sequence_totals(df: pd.DataFrame, mass0_kg: float = paper_scenario().mass_kg) -> dict:
     """Totals of a :func:`sequence_table`: delta-V, loss, fuel, burn time, final mass.
 
     The loss in m/s and in % of the impulsive total, and the paper's way of quoting it (the

@@ -13,6 +13,7 @@ from jplephem.ephem import Ephemeris as RawEphemeris
 
 from lunarcap.errors import EphemerisRangeError, InputError
 from lunarcap.mission import arrival as scenario
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics import constants as C
 from lunarcap.physics import elements as el
 from lunarcap.physics.frames import icrf_to_mme
@@ -45,7 +46,7 @@ def _incoming_asymptote(r, v):
 
 def _raw_moon_velocity_direction(epoch):
     dt = datetime(2017, 2, 20, 3, 41, 26) - datetime(2017, 2, 20)
-    assert epoch == C.ARRIVAL_EPOCH_TDB
+    assert epoch == paper_scenario().epoch_tdb
     _, vel = RawEphemeris(de405).position_and_velocity("moon", 2457804.5,
                                                        dt.total_seconds() / 86400.0)
     vm = C_ICRF_TO_MME @ np.ravel(vel)
@@ -79,7 +80,7 @@ def test_arrival_v_inf_and_paper_loi1(arrival):
 
 def test_arrival_asymptote_anti_parallel_to_moon_velocity(arrival):
     s_in = _incoming_asymptote(arrival.r_km, arrival.v_kmps)
-    moon_dir = _raw_moon_velocity_direction(C.ARRIVAL_EPOCH_TDB)
+    moon_dir = _raw_moon_velocity_direction(paper_scenario().epoch_tdb)
     # exact by construction: only round-off separates the state's asymptote from -v_Moon.
     # Components agree to 1e-12 (a few hundred ulps: the eccentricity vector is a difference
     # of O(1) terms); the angle via arccos near 1 resolves only sqrt(2 eps) ~ 2e-8 rad.
@@ -114,7 +115,7 @@ def test_arrival_mee_matches_cartesian_state(arrival):
     r, v = el.rv_from_mee(*arrival.mee, MU)
     np.testing.assert_allclose(r, arrival.r_km, rtol=1e-12)
     np.testing.assert_allclose(v, arrival.v_kmps, rtol=1e-12)
-    assert arrival.state[6] == C.ARRIVAL_MASS_KG == 524.895
+    assert arrival.state[6] == paper_scenario().mass_kg == 524.895
     assert el.perilune_radius(*arrival.mee[:3]) == pytest.approx(RP, rel=1e-12)
 
 

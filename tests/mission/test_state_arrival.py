@@ -9,6 +9,7 @@ import pytest
 from lunarcap.exchange.ccsds import StateVector, write_opm
 from lunarcap.mission.arrival import arrival_state
 from lunarcap.mission.plan import CapturePlan, PlanError, load_plan
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.elements import mee_from_rv, rv_from_mee
@@ -17,7 +18,7 @@ from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 from lunarcap.physics.frames import icrf_from_mme
 from lunarcap.physics.propagate import propagate
 
-T_PERI = seconds_from_calendar(C.ARRIVAL_EPOCH_TDB)
+T_PERI = seconds_from_calendar(paper_scenario().epoch_tdb)
 
 
 def _approach(dynamics="two-body", hours=2.0):

@@ -14,10 +14,11 @@ from lunarcap.optim.collocation import Mesh
 from lunarcap.optim.guess import make_guess
 from lunarcap.optim.nlp import solve_nlp
 from lunarcap.optim.problem import burn_problem
-from lunarcap.optim.solve import solve_burn
+from lunarcap.optim.solve import solve_burn_problem
 from lunarcap.optim.verify import mesh_convergence, verify
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import mee_from_rv
+from lunarcap.repro.cache import caching
 from lunarcap.runs.chain import arrival_for, impulsive_limit
 
 pytestmark = pytest.mark.slow
@@ -36,14 +37,15 @@ def plan150():
 
 @pytest.fixture(scope="module")
 def loi1_150(plan150):
-    return solve_burn(_burn1(plan150))
+    return solve_burn_problem(_burn1(plan150))
 
 
 def test_impulsive_limit_two_body_matches_closed_form(plan150):
     # Two-body, one impulse with free epoch and direction: the optimum is the tangential
     # perilune impulse whose closed form is 353.272 m/s by construction of v_inf.
     # Richardson-extrapolated 4 s / 2 s burns must agree to 0.01 m/s (the gate's tolerance).
-    r = impulsive_limit(plan150.with_dynamics("two-body").key(1), use_cache=False)
+    with caching(False):
+        r = impulsive_limit(plan150.with_dynamics("two-body").key(1))
     assert r["verification_passed"]
     assert abs(r["delta_v_mps"] - 353.272) < 0.01
     assert abs(r["impulse_offset_min"]) < 0.05  # centred on perilune (+-3 s)
@@ -53,7 +55,7 @@ def test_large_thrust_tends_to_impulsive(plan150):
     # 20 kN on 525 kg: a ~9 s burn. Its finite-burn loss must be positive and below
     # 0.1 m/s (gravity loss ~ (omega t)^2/24 dV ~ 1e-3 m/s).
     plan = plan150.with_engine(20000.0, 200.0).with_dynamics("two-body")
-    sol = solve_burn(_burn1(plan, start_min="free", start_bounds_min=(-5.0, 5.0)))
+    sol = solve_burn_problem(_burn1(plan, start_min="free", start_bounds_min=(-5.0, 5.0)))
     loss = sol.delta_v_mps - 353.272
     assert -1e-6 < loss < 0.1
 
@@ -82,7 +84,7 @@ def test_loi1_150N_agrees_with_paper_table_b1(loi1_150):
 
 def test_two_body_and_full_dynamics(plan150, loi1_150):
     # Little difference in delta-V (< 1 %), but the coasts visibly differ (> 10 km).
-    tb = solve_burn(_burn1(plan150.with_dynamics("two-body")))
+    tb = solve_burn_problem(_burn1(plan150.with_dynamics("two-body")))
     assert abs(tb.delta_v_mps - loi1_150.delta_v_mps) / loi1_150.delta_v_mps < 0.01
     h_full = loi1_150.history()
     h_tb = tb.history()
@@ -100,14 +102,14 @@ def test_coarse_mesh_false_success_is_caught(plan150):
     v = verify(raw)
     assert not v.passed and abs(v.rp_error_m) > 10.0
     with pytest.raises(SolveError) as exc:
-        solve_burn(prob, meshes=(Mesh(2, 4, 3),))
+        solve_burn_problem(prob, meshes=(Mesh(2, 4, 3),))
     assert "IPOPT" in str(exc.value) and "rp error" in str(exc.value)
 
 
 def test_refinement_rescues_a_mesh_the_gate_rejects(plan150):
-    # The gate rejects 3x6 LGR-4 (measured: r_p off by ~50 m); solve_burn then tries the
+    # The gate rejects 3x6 LGR-4 (measured: r_p off by ~50 m); solve_burn_problem then tries the
     # next mesh and returns its verified solution, recording both attempts.
-    sol = solve_burn(_burn1(plan150), meshes=(Mesh(3, 6, 4), Mesh(8, 16, 5)))
+    sol = solve_burn_problem(_burn1(plan150), meshes=(Mesh(3, 6, 4), Mesh(8, 16, 5)))
     assert [a["verified"] for a in sol.attempts] == [False, True]
     assert sol.raw.mesh == Mesh(8, 16, 5) and sol.verification.passed
 
@@ -122,7 +124,7 @@ def test_mesh_convergence_default_mesh():
 
 
 def test_free_start_never_worse_than_grid(plan150, loi1_150):
-    free = solve_burn(_burn1(plan150, start_min="free"))
+    free = solve_burn_problem(_burn1(plan150, start_min="free"))
     assert free.verification.passed
     # objective (Eq. 9) of the free optimum <= that of the -10 min grid point
     assert free.raw.objective_kmps <= loi1_150.raw.objective_kmps + 1e-9
@@ -130,7 +132,7 @@ def test_free_start_never_worse_than_grid(plan150, loi1_150):
 
 
 def test_deterministic(plan150, loi1_150):
-    again = solve_burn(_burn1(plan150))
+    again = solve_burn_problem(_burn1(plan150))
     assert again.delta_v_mps == loi1_150.delta_v_mps
     assert again.raw.t1_s == loi1_150.raw.t1_s
 
@@ -145,7 +147,7 @@ def test_circular_target_from_an_ellipse():
     v = arr.v_kmps / np.linalg.norm(arr.v_kmps) * np.sqrt(C.MU_MOON * (2 / rp - 1 / a))
     x = np.concatenate([mee_from_rv(arr.r_km, v, C.MU_MOON), [381.0]])
     prob = burn_problem(plan, 2, x, plan_ephemeris(None))
-    sol = solve_burn(prob)
+    sol = solve_burn_problem(prob)
     # r_p = r_a = 1838.2 km: the verified orbit is circular to 10 m
     assert abs(sol.verification.ra_error_m) < 10 and abs(sol.verification.rp_error_m) < 10
     # two-body impulsive circularisation costs 245.178 m/s; a 3.7 min burn loses < 2 m/s

@@ -2,7 +2,7 @@
 
 Real IPOPT solves (marked slow; they still run in `make test`), in two-body dynamics to
 keep them fast, for the 450 N / 300 s plan. The first-burn solves are built directly with
-:func:`lunarcap.optim.solve.solve_burn` (not the disk cache), so they test the optimiser
+:func:`lunarcap.optim.solve.solve_burn_problem` (not the disk cache), so they test the optimiser
 and not a stored result. The book pages behind these checks are
 notebooks/free_ignition.ipynb, steering_laws.ipynb and joint_capture.ipynb.
 """
@@ -11,7 +11,7 @@ import pytest
 
 from lunarcap.mission.plan import CapturePlan, load_plan, plan_ephemeris
 from lunarcap.optim.problem import burn_problem
-from lunarcap.optim.solve import solve_burn
+from lunarcap.optim.solve import solve_burn_problem
 from lunarcap.paper.printed import PAPER_STARTS_MIN
 from lunarcap.runs.chain import arrival_for
 from lunarcap.runs.joint import solve_plan_jointly
@@ -30,7 +30,7 @@ def _burn1(plan, start, steering="optimal"):
     p = plan.with_steering(0, steering)
     prob = burn_problem(p, 0, arrival_for(p.arrival).state, plan_ephemeris(None),
                         start_min=start)
-    sol = solve_burn(prob)
+    sol = solve_burn_problem(prob)
     assert sol.verification.passed, sol.verification.failures()
     return sol
 

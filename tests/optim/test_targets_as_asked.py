@@ -22,6 +22,7 @@ import pytest
 from lunarcap.mission.plan import CapturePlan, PlanError
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import rv_from_mee
+from lunarcap.repro.cache import caching
 from lunarcap.runs.chain import solve_plan
 
 pytestmark = pytest.mark.slow
@@ -55,7 +56,8 @@ ASKED = [{"target_period_h": 12.235, "start_min": "free"},
 
 @pytest.mark.parametrize("dynamics", ["two-body", "full"])
 def test_a_period_and_an_ellipse_are_met_as_asked_on_the_reflown_state(dynamics):
-    sols = solve_plan(plan_of(ASKED, dynamics), use_cache=False)
+    with caching(False):
+        sols = solve_plan(plan_of(ASKED, dynamics))
     assert all(s.verification.passed for s in sols)
     rp1, _, period1, _ = osculating(sols[0].end_state)
     rp2, ra2, _, inc2 = osculating(sols[1].end_state)
@@ -72,7 +74,8 @@ def test_a_period_and_an_ellipse_are_met_as_asked_on_the_reflown_state(dynamics)
 def test_the_paper_formulation_meets_a_timing_not_the_orbit():
     """The contrast that makes the test above discriminate: Eq. (17) misses the orbit."""
     burns = [ASKED[0], {"target_apolune_altitude_km": 300, "start_min": "free"}]
-    sols = solve_plan(plan_of(burns, formulation="song2011"), use_cache=False)
+    with caching(False):
+        sols = solve_plan(plan_of(burns, formulation="song2011"))
     assert all(s.verification.passed for s in sols)   # Eq. (17) holds: it is what it asks
     _, _, period1, _ = osculating(sols[0].end_state)
     _, ra2, _, _ = osculating(sols[1].end_state)
@@ -87,7 +90,8 @@ RETRO = [{"target_period_h": 12.0, "start_min": "free"},
 @pytest.mark.parametrize("dynamics", ["two-body", "full"])
 @pytest.mark.parametrize("inclination", [30.0, 60.0, 90.0, 120.0, 150.0, 170.0])
 def test_any_inclination_is_met_as_asked(inclination, dynamics):
-    sols = solve_plan(plan_of(RETRO, dynamics, inclination), use_cache=False)
+    with caching(False):
+        sols = solve_plan(plan_of(RETRO, dynamics, inclination))
     assert all(s.verification.passed for s in sols)
     rp, ra, _, inc = osculating(sols[-1].end_state)
     assert abs(inc - inclination) < 1e-4
@@ -146,7 +150,8 @@ def test_every_generated_plan_accepted_at_load_solves_and_meets_its_targets():
     plans, refused = plan_family(seed=16, count=10)
     assert len(plans) >= 6, refused
     for plan in plans:
-        sols = solve_plan(plan, use_cache=False)
+        with caching(False):
+            sols = solve_plan(plan)
         assert all(s.verification.passed for s in sols), plan.name
         target = plan.targets[-1]
         rp, ra, _, inc = osculating(sols[-1].end_state)
@@ -162,7 +167,7 @@ def test_a_small_burn_that_must_also_turn_the_plane_is_not_bounded_by_its_impuls
     # two-body impulse, 2.6 m/s, only changes the period). Bounded by 3 x Eq. (19) the
     # burn could give 7.9 m/s and IPOPT reported the problem infeasible on every mesh.
     from lunarcap.optim.problem import burn_problem
-    from lunarcap.optim.solve import solve_burn
+    from lunarcap.optim.solve import solve_burn_problem
     from lunarcap.physics.elements import mee_from_coe
     plan = plan_of([{"target_period_h": 12.446, "start_min": "free"},
                     {"target_period_h": 12.182, "start_min": "free"}],
@@ -171,7 +176,7 @@ def test_a_small_burn_that_must_also_turn_the_plane_is_not_bounded_by_its_impuls
                                 2.4489780, 0.0), 923.25])
     t_peri = plan.nominal_perilunes_s[1]
     prob = burn_problem(plan, 1, x, plan.ephemeris_model(), t_perilune_s=t_peri)
-    sol = solve_burn(prob)
+    sol = solve_burn_problem(prob)
     assert sol.verification.passed
     rp, _, period_s, inc = osculating(sol.end_state)
     assert abs(rp - (C.R_MOON + 100)) < 0.01 and abs(inc - 38.2) < 1e-4

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from lunarcap.errors import InputError
+from lunarcap.mission.scenario import paper_engines
 from lunarcap.physics import constants as C
 from lunarcap.physics import dynamics as dyn
 from lunarcap.physics import elements as el
@@ -198,7 +199,7 @@ def test_two_body_coast_conserves_elements_exactly():
         assert xdot[5] == pytest.approx(np.linalg.norm(np.cross(r, v)) / (r @ r), rel=1e-12)
 
 
-@pytest.mark.parametrize("thrust,isp", C.PAPER_ENGINES)
+@pytest.mark.parametrize("thrust,isp", tuple(paper_engines().items()))
 def test_mass_flow_is_thrust_over_exhaust_speed(thrust, isp):
     # Eq. (3): m' = -T / (g0 Isp), g0 = 9.80665 m/s^2; e.g. 150 N / 200 s -> -0.07648 kg/s
     f = dyn.rhs_function()

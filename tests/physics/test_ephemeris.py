@@ -13,15 +13,15 @@ import pytest
 from jplephem.ephem import Ephemeris as RawEphemeris
 
 from lunarcap.errors import EphemerisRangeError, InputError
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics import ephemeris
-from lunarcap.physics.constants import ARRIVAL_EPOCH_TDB
 from lunarcap.physics.epochs import seconds_from_calendar
 from lunarcap.physics.frames import icrf_to_mme
 
 C_ICRF_TO_MME = icrf_to_mme()  # the default pole's rotation
 
 RAW = RawEphemeris(de405)
-T_ARRIVAL = seconds_from_calendar(ARRIVAL_EPOCH_TDB)
+T_ARRIVAL = seconds_from_calendar(paper_scenario().epoch_tdb)
 #: 1 m, in km: the accuracy the brief asks of every ephemeris path against raw DE405.
 ONE_METRE = 1e-3
 

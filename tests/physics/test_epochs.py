@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from lunarcap.errors import InputError
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics import epochs
-from lunarcap.physics.constants import ARRIVAL_EPOCH_TDB
 
 J2000 = datetime(2000, 1, 1, 12, 0, 0)
 
@@ -28,7 +28,7 @@ def test_paper_epoch_form_parses():
     # Song 2011 prints epochs as '20-Feb-2017 03:41:26 (TDB)'; both spellings must give the
     # same number, and it must equal datetime's count of seconds (integers: exact).
     t_paper = epochs.seconds_from_calendar("20-Feb-2017 03:41:26 (TDB)")
-    t_iso = epochs.seconds_from_calendar(ARRIVAL_EPOCH_TDB)
+    t_iso = epochs.seconds_from_calendar(paper_scenario().epoch_tdb)
     expected = (datetime(2017, 2, 20, 3, 41, 26) - J2000).total_seconds()
     assert t_paper == t_iso == expected
     # the variants the parser advertises: 'T' separator, lower-case month; a string without
@@ -44,7 +44,7 @@ def test_paper_epoch_julian_date():
     # ~4e-5 s, i.e. 5e-10 day: tolerance 1e-9 day.
     days = (datetime(2017, 2, 20) - J2000).days + 0.5  # J2000 is noon
     jd_expected = 2451545.0 + days + (3 * 3600 + 41 * 60 + 26) / 86400.0
-    t = epochs.seconds_from_calendar(ARRIVAL_EPOCH_TDB)
+    t = epochs.seconds_from_calendar(paper_scenario().epoch_tdb)
     assert epochs.jd_from_seconds(t) == pytest.approx(jd_expected, abs=1e-9)
     whole, frac = epochs.jd_split_from_seconds(t)
     assert whole == 2451545.0 + 6259.0  # whole days past J2000 noon: exact
@@ -119,7 +119,7 @@ def test_epoch_without_scale_is_refused_with_the_reason():
 def test_utc_and_tdb_of_the_paper_arrival():
     # TDB - UTC = 37 s (leap seconds since 1972, TAI - UTC from 2017-01-01) + 32.184 s
     # (TT - TAI) + TDB - TT (-1.24 ms on 2017-02-20, eraDtdb at the geocentre).
-    t = epochs.seconds_from_calendar(ARRIVAL_EPOCH_TDB)
+    t = epochs.seconds_from_calendar(paper_scenario().epoch_tdb)
     utc = epochs.calendar_from_seconds(t, 6, scale="UTC")
     assert utc == "2017-02-20 03:40:16.814760 UTC"
     assert epochs.seconds_from_calendar(utc) == t           # same instant: bit for bit

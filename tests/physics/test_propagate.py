@@ -8,6 +8,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from lunarcap.errors import InputError
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics import constants as C
 from lunarcap.physics import dynamics as dyn
 from lunarcap.physics import elements as el
@@ -47,7 +48,7 @@ def test_full_coast_mee_equals_cartesian_after_12h(arrival, fit):
     # within 1 m; each integrator at rtol 1e-12 contributes ~1e-12 x 4e4 km ~ 4e-8 km.
     model = dyn.Model("full", fit=fit)
     t0 = arrival.epoch_s
-    t1 = t0 + C.CAPTURE_PERIODS_S[0]
+    t1 = t0 + paper_scenario().capture_periods_s[0]
     traj = prop.propagate(model, t0, arrival.state, t1)
     assert traj.t[-1] == t1
     cart = _cartesian(model, t0, arrival.state, t1)
@@ -85,7 +86,7 @@ def test_two_body_ellipse_returns_after_one_period():
     # Kepler: after exactly one period the state repeats; L advances by 2 pi. Over ~200
     # steps at rtol 1e-12 the phase error stays far below 1e-9 rad.
     model = dyn.Model("two-body")
-    T = C.CAPTURE_PERIODS_S[0]
+    T = paper_scenario().capture_periods_s[0]
     a = el.semi_major_axis_from_period(T, MU)
     rp = C.R_MOON + 100.0
     x0 = np.array([*el.mee_from_coe(a, 1 - rp / a, np.radians(90.0), 0.3, 1.2, 0.5), 500.0])

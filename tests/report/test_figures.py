@@ -7,6 +7,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from lunarcap.mission.scenario import paper_engines, paper_scenario
 from lunarcap.paper.audit import AUDIT_CHECK_TITLES
 from lunarcap.physics import constants as C
 from lunarcap.physics.frames import thrust_angles_deg, thrust_direction_rtn
@@ -209,7 +210,7 @@ def capture():
 @pytest.mark.slow
 def test_capture_geometry_burn_arcs_lie_near_the_100km_perilune(capture):
     sols, plan, geo = capture
-    rp = C.R_MOON + C.PERILUNE_ALTITUDE_KM
+    rp = C.R_MOON + paper_scenario().perilune_altitude_km
     burns = geo.select("burn")
     assert [a.burn for a in burns] == [1, 2, 3]
     assert geo.max_out_of_plane_km < 10.0           # the chain stays in the arrival plane
@@ -245,7 +246,8 @@ def test_capture_geometry_arcs_join_up(capture):
                                        atol=1e-2)
             assert coasts[n].t_s[-1] == pytest.approx(sols[n + 1].problem.t_ign_s)
     final = geo.select("final")[0]
-    np.testing.assert_allclose(final.radius_km, C.R_MOON + C.PERILUNE_ALTITUDE_KM, atol=25.0)
+    rp_km = C.R_MOON + paper_scenario().perilune_altitude_km
+    np.testing.assert_allclose(final.radius_km, rp_km, atol=25.0)
     # the hyperbola without LOI 1 leaves the Moon; the captured path does not
     assert geo.select("uncaptured")[0].radius_km[-1] > 3 * C.R_MOON
     assert coasts[0].radius_km.max() < 8 * C.R_MOON
@@ -336,7 +338,7 @@ def test_paper_tables_long_has_every_printed_number():
 
 def _fake_chain(thrust, isp):
     from lunarcap.paper import printed as paper
-    out, m = [], C.ARRIVAL_MASS_KG
+    out, m = [], paper_scenario().mass_kg
     for n in (1, 2, 3):
         b = paper.paper_best(thrust, n)
         imp = paper.PAPER_IMPULSIVE_DV_MPS[n - 1]
@@ -352,9 +354,9 @@ def _fake_chain(thrust, isp):
 
 def test_quote_equivalents_and_comparison():
     from lunarcap.paper import printed as paper
-    chains = {t: _fake_chain(t, isp) for t, isp in C.PAPER_ENGINES}
+    chains = {t: _fake_chain(t, isp) for t, isp in tuple(paper_engines().items())}
     ours = reproduction.quote_equivalents(
-        chains, impulsive_final_mass_kg={t: 340.0 for t, _ in C.PAPER_ENGINES},
+        chains, impulsive_final_mass_kg={t: 340.0 for t, _ in tuple(paper_engines().items())},
         best_starts={(150.0, 1): -10.0, (150.0, 2): -6.0, (150.0, 3): -5.0},
         audit_values={"period/final": 117.868})
     assert set(ours) <= set(paper.QUOTES)
@@ -369,8 +371,8 @@ def test_quote_equivalents_and_comparison():
     assert by.loc["loss_total_150N_percent", "ours"] == pytest.approx(2.3776, abs=1e-4)
     assert by.loc["burn_total_150N_min", "ours"] == pytest.approx(41.02, abs=1e-9)
     assert by.loc["fuel_finite_150N_kg", "ours"] == pytest.approx(
-        C.ARRIVAL_MASS_KG - chains[150.0][2]["m_end_kg"])
-    assert by.loc["fuel_impulsive_150N_kg", "ours"] == pytest.approx(C.ARRIVAL_MASS_KG - 340)
+        paper_scenario().mass_kg - chains[150.0][2]["m_end_kg"])
+    assert by.loc["fuel_impulsive_150N_kg", "ours"] == pytest.approx(paper_scenario().mass_kg - 340)
     assert by.loc["eq19_half_loi3_150N_min", "ours"] == pytest.approx(15.0)
     assert "117.868" in by.loc["period_final_min", "note"]
     assert by.loc["mu_sun_km3s2", "ours"] == C.MU_SUN
@@ -385,8 +387,8 @@ def test_quote_equivalents_and_comparison():
 def test_epochs_comparison():
     from lunarcap.physics.epochs import seconds_from_calendar
 
-    t0 = seconds_from_calendar(C.ARRIVAL_EPOCH_TDB)
-    ep = np.cumsum([t0, *C.CAPTURE_PERIODS_S])
+    t0 = seconds_from_calendar(paper_scenario().epoch_tdb)
+    ep = np.cumsum([t0, *paper_scenario().capture_periods_s])
     t = reproduction.epochs_comparison(ep)
     assert list(t.perilune) == [1, 2, 3]
     np.testing.assert_allclose(t.difference_s, [0.0, -1.0, -3.0], atol=1e-6)
@@ -401,7 +403,7 @@ def test_short_where_and_check_titles():
 
 
 def test_quotes_display_is_compact_and_keeps_every_row():
-    chains = {t: _fake_chain(t, isp) for t, isp in C.PAPER_ENGINES}
+    chains = {t: _fake_chain(t, isp) for t, isp in tuple(paper_engines().items())}
     q = reproduction.quotes_comparison(reproduction.quote_equivalents(chains))
     d = reproduction.quotes_display(q, max_words=40)
     assert len(d) == len(q) and list(d.columns) == ["words", "printed", "ours",

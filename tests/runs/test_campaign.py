@@ -88,14 +88,17 @@ def test_guarded_turns_a_bug_into_a_row_and_restores_the_cache_setting(monkeypat
     from lunarcap.repro import cache
 
     monkeypatch.delenv("LUNARCAP_NO_CACHE", raising=False)
+    env = dict(os.environ)
     seen = []
     r, err = campaign.guarded(lambda: seen.append(cache.location()) or 7, use_cache=False)
     assert (r, err) == (7, None) and seen == [None]       # no disk cache inside the call
-    assert "LUNARCAP_NO_CACHE" not in os.environ          # and restored after it
-    monkeypatch.setenv("LUNARCAP_NO_CACHE", "0")
+    assert cache.enabled() and dict(os.environ) == env    # restored, environment untouched
     r, err = campaign.guarded(lambda: 1 / 0, use_cache=False)
     assert r is None and err == {"status": "error", "error": "ZeroDivisionError: division by zero"}
-    assert os.environ["LUNARCAP_NO_CACHE"] == "0"
+    assert cache.enabled() and dict(os.environ) == env
+    with cache.caching(False):   # None ships the submitting thread's position
+        r, _ = campaign.guarded(lambda: cache.enabled())
+    assert r is False
 
 
 #: Calls of the fake burns task below: (n_burns, use_cache).

@@ -16,6 +16,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from lunarcap.errors import InputError, SolveError
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics import constants as C
 from lunarcap.physics import losses as fbt
 from lunarcap.physics.rocket import burn_duration_estimate_s
@@ -337,15 +338,16 @@ def test_a_table_in_use_is_refused(tmp_path):
 
 # ------------------------------------------------------------------ analytic estimate
 def test_robbins_formula_value_and_burn_time_squared_scaling():
-    w = fbt.schuler_rate_rad_s(fbt.PERILUNE_RADIUS_KM)
+    w = fbt.schuler_rate_rad_s(C.R_MOON + 100.0)
     assert w == pytest.approx(math.sqrt(C.MU_MOON / (C.R_MOON + 100.0) ** 3))
-    assert fbt.robbins_loss_mps(240.0, 1.0 / w) == pytest.approx(10.0)
-    base = fbt.robbins_loss_mps(300.0, 600.0)
-    assert fbt.robbins_loss_mps(300.0, 1200.0) == pytest.approx(4 * base)
-    assert fbt.robbins_loss_mps(600.0, 600.0) == pytest.approx(2 * base)
-    assert fbt.robbins_loss_mps(300.0, 0.0) == 0.0
+    r = C.R_MOON + 100.0   # the paper's perilune radius, km
+    assert fbt.robbins_loss_mps(240.0, 1.0 / w, r) == pytest.approx(10.0)
+    base = fbt.robbins_loss_mps(300.0, 600.0, r)
+    assert fbt.robbins_loss_mps(300.0, 1200.0, r) == pytest.approx(4 * base)
+    assert fbt.robbins_loss_mps(600.0, 600.0, r) == pytest.approx(2 * base)
+    assert fbt.robbins_loss_mps(300.0, 0.0, r) == 0.0
     with pytest.raises(InputError):
-        fbt.robbins_loss_mps(300.0, -1.0)
+        fbt.robbins_loss_mps(300.0, -1.0, r)
 
 
 def test_analytic_loss_vanishes_as_thrust_grows_like_one_over_thrust_squared():
@@ -359,7 +361,7 @@ def test_analytic_loss_vanishes_as_thrust_grows_like_one_over_thrust_squared():
 
 def test_chain_estimate_uses_eq19_with_the_impulsive_chain_masses():
     est = study.capture_chain_estimate(150.0, 200.0)
-    m = C.ARRIVAL_MASS_KG
+    m = paper_scenario().mass_kg
     for e in est:
         assert e["m_before_kg"] == pytest.approx(m)
         tb = burn_duration_estimate_s(m, e["impulsive_delta_v_mps"], 150.0, 200.0)
@@ -394,11 +396,11 @@ def _fixed_direction_burn_loss(r_km, v_kmps, dv_mps, omega_tb):
 def test_robbins_is_the_leading_order_loss_of_a_fixed_direction_burn(orbit, omega_tb):
     # the limit the formula must reach: dV << v, omega t_b << 1, constant acceleration in
     # a fixed inertial direction, centred on an apse
-    r = fbt.PERILUNE_RADIUS_KM
+    r = C.R_MOON + 100.0   # the paper's perilune radius, km
     if orbit == "circular":
         v = math.sqrt(C.MU_MOON / r)
     else:
-        a = (C.MU_MOON * (C.CAPTURE_PERIODS_S[0] / (2 * math.pi)) ** 2) ** (1 / 3)
+        a = (C.MU_MOON * (paper_scenario().capture_periods_s[0] / (2 * math.pi)) ** 2) ** (1 / 3)
         v = math.sqrt(C.MU_MOON * (2 / r - 1 / a))
     dv = 0.5  # m/s
     loss = _fixed_direction_burn_loss(r, v, dv, omega_tb)

@@ -14,9 +14,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.paper import printed as paper
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_IMPULSIVE_DV_MPS
-from lunarcap.physics import constants as C
 from lunarcap.runs import sweeps as tables
 
 #: Unit suffixes of numeric columns, and the numeric columns that are counts or flags.
@@ -153,7 +153,7 @@ def test_sequence_table_and_totals_of_a_chain():
     assert list(df.loi) == [1, 2, 3]
     assert tuple(df.start_min) == PAPER_BEST_STARTS_MIN[150.0]
     # the mass carries through the chain
-    assert df.m_start_kg.iloc[0] == pytest.approx(C.ARRIVAL_MASS_KG)
+    assert df.m_start_kg.iloc[0] == pytest.approx(paper_scenario().mass_kg)
     np.testing.assert_allclose(df.m_start_kg.iloc[1:], df.m_end_kg.iloc[:-1])
     np.testing.assert_allclose(df.fuel_kg, df.m_start_kg - df.m_end_kg)
     np.testing.assert_allclose(df.loss_mps, df.delta_v_mps - df.paper_impulsive_delta_v_mps)
@@ -163,7 +163,7 @@ def test_sequence_table_and_totals_of_a_chain():
     t = tables.sequence_totals(df)
     assert t["total_loss_mps"] == pytest.approx(df.loss_mps.sum())
     assert t["total_fuel_kg"] == pytest.approx(df.fuel_kg.sum())
-    assert t["final_mass_kg"] == pytest.approx(C.ARRIVAL_MASS_KG - t["total_fuel_kg"])
+    assert t["final_mass_kg"] == pytest.approx(paper_scenario().mass_kg - t["total_fuel_kg"])
     assert t["total_burn_duration_min"] == pytest.approx(df.burn_duration_min.sum())
 
 

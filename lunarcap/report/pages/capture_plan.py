@@ -23,6 +23,7 @@ import pandas as pd
 
 from lunarcap.mission.plan import PLAN_DIR, CapturePlan, load_plan, paper_plan
 from lunarcap.physics import constants as C
+from lunarcap.physics.elements import period_from_semi_major_axis, semi_major_axis_from_period
 from lunarcap.report import figdata, figures
 from lunarcap.report.display import verdict
 from lunarcap.report.labels import period_text
@@ -55,12 +56,12 @@ def _load(plan) -> tuple:
 
 
 def _circle_period_s(r_km: float) -> float:
-    return 2 * math.pi * math.sqrt(r_km ** 3 / C.MU_MOON)
+    return float(period_from_semi_major_axis(r_km, C.MU_MOON))
 
 
 def _apolune_altitude_km(period_s: float, rp_km: float) -> float:
     """Two-body apolune altitude of the ellipse of perilune radius rp and this period, km."""
-    a = (C.MU_MOON * (period_s / (2 * math.pi)) ** 2) ** (1.0 / 3.0)
+    a = float(semi_major_axis_from_period(period_s, C.MU_MOON))
     return 2 * a - rp_km - C.R_MOON
 
 
@@ -105,7 +106,7 @@ def mass_table(burns: pd.DataFrame) -> pd.DataFrame:
                          "fuel_kg": burns.fuel_kg})
 
 
-def verification_table(burns: pd.DataFrame) -> pd.DataFrame:
+def plan_verification_table(burns: pd.DataFrame) -> pd.DataFrame:
     """The gate's verdict and residuals of each burn (re-propagated − optimiser / target).
 
     Radius errors in mm (the gate's tolerance is 10 m), the others in the row's units.
@@ -377,7 +378,7 @@ def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str) -> None:
                  "after, and the propellant burned."),
         floatfmt={"m_start_kg": ",.3f", "m_end_kg": ",.3f", "fuel_kg": ".3f"})
     page.table(
-        "verification", verification_table(burns),
+        "verification", plan_verification_table(burns),
         caption=("The re-propagation gate of each burn (see the {doc}`verification` page): "
                  "the optimal steering flown again from the initial state by CVODES (rtol "
                  "1e-13). End position (m): distance between the flown and the optimiser's "

@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.mission.plan import paper_plan
+from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
@@ -25,7 +26,7 @@ from lunarcap.runs import chain
 NOTEBOOK = "notebooks/capture_sequence.ipynb"
 
 #: The case Sec. 3.3 of the paper describes: engine (N, s) and ignition offsets (min).
-PAPER_ENGINE = (150.0, 200.0)
+PAPER_ENGINE = paper_engine_pairs()[0]
 PAPER_STARTS_MIN = (-10.0, -6.0, -5.0)
 
 

@@ -13,6 +13,7 @@ import math
 
 import matplotlib.pyplot as plt
 
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics import constants as C
 from lunarcap.report import figdata, figures
 from lunarcap.report.page import Page
@@ -50,7 +51,8 @@ def build(alpha_deg: float = 55.0, beta_deg: float = 30.0, true_anomaly_deg: flo
         caption=(
             "Thrust geometry of Song et al. (2011), Fig. 1, redrawn. "
             f"(a) The capture ellipse of period {period_h:g} h with a "
-            f"{C.PERILUNE_ALTITUDE_KM:g} km perilune altitude, in its orbit plane, in lunar "
+            f"{paper_scenario().perilune_altitude_km:g} km perilune altitude, in its orbit "
+            "plane, in lunar "
             f"units (1 LU = R<sub>Moon</sub> = {C.LU_KM:g} km), x towards perilune. The "
             f"spacecraft is at true anomaly {true_anomaly_deg:g}°; shown are the radial and "
             "tangential unit vectors $\\hat\\imath_r$, $\\hat\\imath_t$, the velocity "

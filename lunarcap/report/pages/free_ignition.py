@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.mission.plan import paper_plan
+from lunarcap.mission.scenario import paper_engine_pairs, paper_engines
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_IMPULSIVE_DV_MPS, PAPER_STARTS_MIN
 from lunarcap.report import figures
 from lunarcap.report.labels import engine_label
@@ -31,8 +32,6 @@ CHAIN_EXTRA_MPS = 0.1
 #: The rule "holds well" if the optimum is within this % of the Eq. (19) duration from it.
 RULE_GOOD_PERCENT = 10.0
 
-#: The engines the paper solves: thrust (N) -> Isp (s).
-PAPER_ENGINES = {150.0: 200.0, 300.0: 250.0, 450.0: 300.0}
 
 
 
@@ -65,7 +64,7 @@ def gain_table(engines, dynamics: str) -> pd.DataFrame:
         "verified"]]
 
 
-def chain_table(engines, dynamics: str) -> tuple[pd.DataFrame, dict]:
+def free_chain_table(engines, dynamics: str) -> tuple[pd.DataFrame, dict]:
     """The paper's best grid chain (Table B1 offsets) against the free chain, per engine.
 
     Returns the table (engine, grid_starts, free_starts, total delta-Vs, gain, final
@@ -77,7 +76,7 @@ def chain_table(engines, dynamics: str) -> tuple[pd.DataFrame, dict]:
         free_seq = sweeps.sequence_table(t, i, ("free",) * 3, dynamics,
                                          with_impulsive_model=False)
         ft = sweeps.sequence_totals(free_seq)
-        grid = PAPER_BEST_STARTS_MIN.get(t) if PAPER_ENGINES.get(t) == float(i) else None
+        grid = PAPER_BEST_STARTS_MIN.get(t) if paper_engines().get(t) == float(i) else None
         if grid is not None:
             grid_seq = sweeps.sequence_table(t, i, grid, dynamics, with_impulsive_model=False)
             gt = sweeps.sequence_totals(grid_seq)
@@ -363,7 +362,7 @@ def _add_checks(page: Page, gain, chain, rule, engines, dynamics: str) -> None:
         page.expect("300 N burn 1 is the largest J gain", j == jg.max())
 
 
-def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
+def build(engines=paper_engine_pairs(), dynamics: str = "full",
           output_name: str = "free_ignition", quick: bool = False) -> Page:
     """The free-ignition page (see the module docstring)."""
     engines = [(float(t), float(i)) for t, i in engines]
@@ -373,7 +372,7 @@ def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: st
     solver["gate"] = solver.pop("gate")
     page = Page(NOTEBOOK, params, output_name, quick, solver)
     gain = gain_table(engines, dynamics)
-    chain, legs = chain_table(engines, dynamics)
+    chain, legs = free_chain_table(engines, dynamics)
     rule = rule_table(gain, dynamics)
     _add_tables(page, gain, chain, dynamics)
     _add_rule(page, rule, engines)

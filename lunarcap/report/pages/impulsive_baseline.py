@@ -21,6 +21,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.mission.impulsive import impulsive_sequence, v_inf_from_loi1
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
@@ -136,7 +137,7 @@ def _add_checks(page: Page, burns, printed_min, altitude_km: float, eq19_paper: 
     dv = np.array([b.delta_v_mps for b in burns])
     t19 = np.array([b.eq19_duration_min for b in burns])
     paper_dv = np.array(paper.PAPER_IMPULSIVE_DV_MPS)
-    if altitude_km == C.PERILUNE_ALTITUDE_KM:
+    if altitude_km == paper_scenario().perilune_altitude_km:
         page.expect("LOI 1 is the paper's 353.272 m/s (by construction)",
                     abs(dv[0] - paper_dv[0]) < 1e-3, f"{dv[0]:.4f} m/s")
         for n in (2, 3):
@@ -150,8 +151,8 @@ def _add_checks(page: Page, burns, printed_min, altitude_km: float, eq19_paper: 
                         f"{t19[n - 1]:.3f} vs {printed_min[n - 1]:.2f} min")
 
 
-def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRIVAL_MASS_KG,
-          altitude_km: float = C.PERILUNE_ALTITUDE_KM, eq19_masses: str = "paper",
+def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = paper_scenario().mass_kg,
+          altitude_km: float = paper_scenario().perilune_altitude_km, eq19_masses: str = "paper",
           output_name: str = "impulsive_baseline", quick: bool = False) -> Page:
     """The page of the impulsive baseline (see the module docstring).
 
@@ -212,13 +213,14 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = C.ARRI
 
     for name, v in prose_values(burns, v_inf, rp_km, printed_min).items():
         page.value(name, v)
+    paper = paper_scenario()
     paper_case = ((float(thrust_N), float(isp_s)) == (150.0, 200.0)
-                  and mass_kg == C.ARRIVAL_MASS_KG and altitude_km == C.PERILUNE_ALTITUDE_KM)
+                  and mass_kg == paper.mass_kg and altitude_km == paper.perilune_altitude_km)
     page.note("eq19_masses_note",
               _masses_note(burns, chain, thrust_N, isp_s, printed_min) if paper_case else
               "The paper prints its Eq. (19) estimates and its finite-burn masses only for "
-              f"its 150 N / 200 s engine from {C.ARRIVAL_MASS_KG:g} kg with "
-              f"{C.PERILUNE_ALTITUDE_KM:g} km perilunes: there is nothing to compare with "
+              f"its 150 N / 200 s engine from {paper.mass_kg:g} kg with "
+              f"{paper.perilune_altitude_km:g} km perilunes: there is nothing to compare with "
               "here.")
 
     _add_checks(page, burns, printed_min, altitude_km, paper_case and eq19_masses == "paper")

@@ -13,6 +13,7 @@ import inspect
 
 import pandas as pd
 
+from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page
@@ -165,7 +166,7 @@ def _add_checks(page: Page, per_leg: pd.DataFrame, totals: pd.DataFrame,
                     d.iloc[1] < 0 < d.iloc[2] and abs(d.sum()) < 0.1 * d.abs().max())
 
 
-def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
+def build(engines=paper_engine_pairs(), dynamics: str = "full",
           output_name: str = "joint_capture", quick: bool = False) -> Page:
     """The page of the joint capture (see the module docstring)."""
     engines = [(float(t), float(i)) for t, i in engines]

@@ -28,8 +28,8 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.mission.plan import paper_plan
+from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
-from lunarcap.physics.constants import ARRIVAL_MASS_KG
 from lunarcap.report import figures
 from lunarcap.report.display import verdict
 from lunarcap.report.page import Page, solver_description
@@ -227,8 +227,8 @@ def _add_totals_tables(page: Page, totals: pd.DataFrame, ignition: str,
         "budget", totals[["engine", "total_fuel_kg", "total_burn_duration_min",
                           "loi1_burn_duration_min", "final_mass_kg"]],
         caption=(f"Propellant of LOI 1–3 (kg), burn time of the three LOIs and of LOI 1 (min) "
-                 f"and mass after LOI 3 (kg, from {ARRIVAL_MASS_KG:g} kg) per engine (thrust / "
-                 f"Isp), ignition {ignition}."),
+                 f"and mass after LOI 3 (kg, from {paper_scenario().mass_kg:g} kg) per engine "
+                 f"(thrust / Isp), ignition {ignition}."),
         columns=LOSS_LABELS | {"total_fuel_kg": "propellant (kg)",
                                "total_burn_duration_min": "burn time (min)"},
         floatfmt={"total_fuel_kg": ".3f", "total_burn_duration_min": ".2f",
@@ -309,7 +309,7 @@ def _add_measured_checks(page: Page, totals: pd.DataFrame, seqs: dict, rows,
 
 def build(engines=((320.0, 200.0), (500.0, 300.0)),
           engine_names=("LRO-class", "SELENE-class"),
-          paper_engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)),
+          paper_engines=paper_engine_pairs(),
           starts=("free", "free", "free"), dynamics: str = "full", model_loss: bool = True,
           output_name: str = "other_engines", quick: bool = False) -> Page:
     """The page of the engines cited in Sec. 3.1 (see the module docstring)."""
@@ -329,7 +329,7 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
         if model_loss:  # the same chain and impulsive limits, as the plan's result
             results[lab] = chain.plan_result(paper_plan(t, i, start_arg, dynamics))
     ignition = _start_text(start_arg)
-    case = (f"the paper's spacecraft ({ARRIVAL_MASS_KG:g} kg at the first perilune) and "
+    case = (f"the paper's spacecraft ({paper_scenario().mass_kg:g} kg at the first perilune) and "
             f"orbits, {dynamics} dynamics, ignition {ignition}")
     _add_burn_tables(page, burns_frame(seqs, rows, model_loss), case, model_loss)
     totals = totals_frame(seqs, rows, model_loss)

@@ -21,6 +21,7 @@ import re
 import pandas as pd
 
 from lunarcap.mission.plan import paper_plan
+from lunarcap.mission.scenario import paper_engine_pairs, paper_engines
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
@@ -245,11 +246,11 @@ def _part_a(page: Page, engines, dynamics: str, output_name: str):
 def _part_b(page: Page, sweeps: dict, dynamics: str, output_name: str, findings):
     """The numbers of the prose and the perilune epochs; returns (chains, quotes)."""
     solutions = {float(t): solve_plan(paper_plan(t, isp, dynamics=dynamics))
-                 for t, isp in C.PAPER_ENGINES}
+                 for t, isp in tuple(paper_engines().items())}
     chains = {t: rep.paper_chain_rows([s.summary() for s in sols])
               for t, sols in solutions.items()}
     imp_final = {float(t): paper_plan(t, isp).impulsive()[-1].m_after_kg
-                 for t, isp in C.PAPER_ENGINES}
+                 for t, isp in tuple(paper_engines().items())}
     best_starts = {k: float(df.loc[df.best, "start_min"].iloc[0]) for k, df in sweeps.items()}
     fig4 = figdata.fig4_steering(solutions[150.0][0])
     ours = rep.quote_equivalents(chains, imp_final, best_starts, fig4,
@@ -429,7 +430,7 @@ def _part_c(page: Page, findings, chains: dict, dur: pd.DataFrame, output_name: 
     page.data.update(findings=ft)
 
 
-def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
+def build(engines=paper_engine_pairs(), dynamics: str = "full",
           output_name: str = "reproduction_report", quick: bool = False) -> Page:
     """The reproduction report (see the module docstring).
 

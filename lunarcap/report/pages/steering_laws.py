@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import pandas as pd
 
+from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.report import figures
 from lunarcap.report.display import verdict
 from lunarcap.report.labels import engine_label
@@ -170,7 +171,7 @@ def _add_checks(page: Page, steer: pd.DataFrame, dynamics: str) -> None:
         page.expect("450 N LOI 1: antivelocity 1.5-4 km low", -4.0 < rp < -1.5, f"{rp}")
 
 
-def build(engines=((150.0, 200.0), (300.0, 250.0), (450.0, 300.0)), dynamics: str = "full",
+def build(engines=paper_engine_pairs(), dynamics: str = "full",
           output_name: str = "steering_laws", quick: bool = False) -> Page:
     """The page of the steering-law comparison (see the module docstring)."""
     engines = [(float(t), float(i)) for t, i in engines]

@@ -16,9 +16,10 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
-from lunarcap.physics.constants import ARRIVAL_MASS_KG, G0_MPS2
+from lunarcap.physics.constants import G0_MPS2
 from lunarcap.report import figures
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
@@ -28,7 +29,7 @@ from lunarcap.runs import sweeps
 NOTEBOOK = "notebooks/summary.ipynb"
 
 #: The paper's engines (thrust N, Isp s), in its order.
-PAPER_ENGINES = tuple((float(t), float(i)) for t, i in paper.PAPER_ENGINES.items())
+PAPER_ENGINES = paper_engine_pairs()
 
 #: Totals of a chain (quantity, unit, key of :func:`lunarcap.runs.sweeps.sequence_totals`,
 #: name of the number the paper prints in its prose, or None).
@@ -250,7 +251,8 @@ def engine_values(seqs: dict, totals: dict) -> dict:
 
 
 def mass_gap_values(final_mass_kg: dict, paper_final_mass_kg: dict,
-                    implied_arrival_kg: float, arrival_kg: float = ARRIVAL_MASS_KG) -> dict:
+                    implied_arrival_kg: float,
+                    arrival_kg: float = paper_scenario().mass_kg) -> dict:
     """The arrival-mass gap (ours - the paper's implied) carried to the end of each chain.
 
     The rocket equation scales a mass by the mass ratio, so the gap at the end is
@@ -339,8 +341,8 @@ def _add_totals(page: Page, engines, chains: dict, totals: dict) -> None:
                  "to the paper's Table B1 (sums, the loss over the total impulsive delta-V "
                  f"{sum(paper.PAPER_IMPULSIVE_DV_MPS):.3f} m/s, the mean of the per-burn "
                  "percentages; Table B1 prints no masses); ours, from our best chains starting "
-                 f"with {ARRIVAL_MASS_KG:g} kg at the first perilune; ours minus the printed "
-                 "value; where the paper prints it."),
+                 f"with {paper_scenario().mass_kg:g} kg at the first perilune; ours minus the "
+                 "printed value; where the paper prints it."),
         columns={"engine": "engine (thrust / Isp)", "paper_printed": "paper, printed",
                  "paper_from_table_b1": "paper, from Table B1", "ours": "ours",
                  "ours_minus_printed": "ours − printed", "printed_in": "printed in"},

@@ -4,6 +4,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.report.labels import label
@@ -25,7 +26,7 @@ def test_burns_follow_the_rocket_equation_from_the_arrival_mass(page):
     df = page.items["burns"].df
     assert list(df.burn) == [1, 2, 3] and (df.verified == "passed").all()
     ve = C.G0_MPS2 * ISP_S
-    m0 = np.r_[C.ARRIVAL_MASS_KG, df.m_end_kg.to_numpy()[:-1]]
+    m0 = np.r_[paper_scenario().mass_kg, df.m_end_kg.to_numpy()[:-1]]
     # mass after each burn: m0 exp(-dV / (g0 Isp)), each burn starting with the last's mass
     np.testing.assert_allclose(df.m_end_kg, m0 * np.exp(-df.delta_v_mps / ve), rtol=1e-6)
     # constant thrust: the propellant burnt is T t / (g0 Isp)

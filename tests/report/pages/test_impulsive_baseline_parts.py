@@ -2,6 +2,7 @@
 
 import pytest
 
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.report.pages import impulsive_baseline as ib
@@ -9,11 +10,11 @@ from lunarcap.report.pages import impulsive_baseline as ib
 
 @pytest.fixture(scope="module")
 def burns():
-    return ib.impulsive_sequence(150.0, 200.0, C.ARRIVAL_MASS_KG, C.PERILUNE_ALTITUDE_KM)
+    return ib.impulsive_sequence(150.0, 200.0, paper_scenario().mass_kg, paper_scenario().perilune_altitude_km)
 
 
 def test_delta_v_table_beside_the_paper(burns):
-    t = ib.delta_v_table(burns, C.R_MOON + C.PERILUNE_ALTITUDE_KM)
+    t = ib.delta_v_table(burns, C.R_MOON + paper_scenario().perilune_altitude_km)
     assert t.difference_mps.tolist() == pytest.approx(
         [b.delta_v_mps - p for b, p in zip(burns, paper.PAPER_IMPULSIVE_DV_MPS)])
     assert [s.startswith("circle, ") for s in t.to_orbit] == [False, False, True]

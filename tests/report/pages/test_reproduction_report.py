@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from lunarcap.mission.plan import paper_plan
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
@@ -70,7 +71,7 @@ def test_quotes_are_the_papers_with_our_equivalents(page):
     loss = sum(r["delta_v_mps"] for r in chain) - sum(paper.PAPER_IMPULSIVE_DV_MPS)
     assert q.loc["loss_total_150N_mps", "ours"] == pytest.approx(loss)
     assert q.loc["fuel_finite_150N_kg", "ours"] == pytest.approx(
-        C.ARRIVAL_MASS_KG - chain[2]["m_end_kg"])
+        paper_scenario().mass_kg - chain[2]["m_end_kg"])
     # Eq. (19) from the paper's impulsive delta-V and the arrival mass: 18.854 min
     assert q.loc["eq19_loi1_150N_min", "ours"] == pytest.approx(18.8544, abs=1e-4)
     assert q.loc["best_start_loi1_150N_min", "ours"] > 0  # printed as "minutes before"
