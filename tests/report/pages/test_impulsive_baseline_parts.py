@@ -10,7 +10,8 @@ from lunarcap.report.pages import impulsive_baseline as ib
 
 @pytest.fixture(scope="module")
 def burns():
-    return ib.impulsive_sequence(150.0, 200.0, paper_scenario().mass_kg, paper_scenario().perilune_altitude_km)
+    paper = paper_scenario()
+    return ib.impulsive_sequence(150.0, 200.0, paper.mass_kg, paper.perilune_altitude_km)
 
 
 def test_delta_v_table_beside_the_paper(burns):
