@@ -5,8 +5,10 @@ import math
 import pandas as pd
 import pytest
 
-from lunarcap.physics.constants import ARRIVAL_MASS_KG
+from lunarcap.mission.scenario import paper_scenario
 from lunarcap.report.pages import other_engines as oe
+
+M0 = paper_scenario().mass_kg  # the paper's arrival mass, kg
 
 
 def _seq(scale: float, model: bool = True) -> pd.DataFrame:
@@ -15,7 +17,7 @@ def _seq(scale: float, model: bool = True) -> pd.DataFrame:
         "loi": [1, 2, 3], "start_min": [-5.0, -3.0, -2.0],
         "burn_duration_min": [10.0 * scale, 6.0 * scale, 5.0 * scale],
         "delta_v_mps": [360.0, 256.0, 246.0], "fuel_kg": [80.0, 50.0, 40.0],
-        "m_end_kg": [ARRIVAL_MASS_KG - 80.0, ARRIVAL_MASS_KG - 130.0, ARRIVAL_MASS_KG - 170.0],
+        "m_end_kg": [M0 - 80.0, M0 - 130.0, M0 - 170.0],
         "verified": [True, True, True],
         "paper_impulsive_delta_v_mps": [353.0, 254.0, 245.0],
         "loss_mps": [7.0 * scale, 2.0 * scale, 1.0 * scale], "loss_percent": [2.0, 0.8, 0.4]})
