@@ -1,0 +1,273 @@
+#!/usr/bin/env python3
+"""Rename reported quantities (CSV columns, JSON keys) to the names of lunarcap.quantities.
+
+Re-runnable and idempotent: run it after merging a branch that still writes an old name::
+
+    python tools/rename_quantities.py          # rewrite the files, print what changed
+    python tools/rename_quantities.py --check  # exit 1 if anything would change
+
+It edits ``lunarcap/``, ``notebooks/``, ``tests/`` and ``book/*.md`` in three passes, each
+a regular expression applied to whole files:
+
+1. :data:`CONTEXT`: a name whose meaning depends on what surrounds it (``loss_mps`` of
+   Robbins' estimate inside the trade study, which otherwise means the objective loss);
+2. :data:`PER_FILE`: a name whose meaning depends on the module (``loss_mps`` is delta-V
+   minus our impulsive limit in ``runs/chain.py``, minus the paper's printed impulse in
+   ``runs/sweeps.py``, the objective loss in ``runs/study.py``);
+3. :data:`GLOBAL`: a name with one meaning everywhere, renamed on word boundaries.
+
+A context rule that finds nothing is listed at the end (already applied, or the code
+around it changed: look at it). Names of the glossary never contain an old name on a word
+boundary, so a second run changes nothing.
+"""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SCOPE = ("lunarcap/**/*.py", "lunarcap/**/*.yaml", "notebooks/*.ipynb", "tests/**/*.py",
+         "book/*.md")
+SKIP = ("lunarcap/quantities.py", "tests/test_glossary.py")
+
+# ------------------------------------------------------------------ the meanings of "loss"
+#: delta-V minus the impulsive limit in the same dynamics
+DV_LOSS = {"loss_mps": "delta_v_loss_mps", "loss_percent": "delta_v_loss_percent",
+           "total_loss_mps": "total_delta_v_loss_mps",
+           "total_loss_percent": "total_delta_v_loss_percent",
+           "impulsive_delta_v_mps": "impulsive_limit_mps",
+           "total_impulsive_delta_v_mps": "total_impulsive_limit_mps"}
+#: delta-V minus the paper's printed impulse; "model" is our impulsive limit
+VS_PAPER = {"loss_mps": "loss_vs_paper_impulse_mps",
+            "loss_percent": "loss_vs_paper_impulse_percent",
+            "total_loss_mps": "total_loss_vs_paper_impulse_mps",
+            "total_loss_percent": "total_loss_vs_paper_impulse_percent",
+            "model_loss_mps": "delta_v_loss_mps", "model_loss_percent": "delta_v_loss_percent",
+            "total_model_loss_mps": "total_delta_v_loss_mps",
+            "total_model_loss_percent": "total_delta_v_loss_percent",
+            "model_impulsive_delta_v_mps": "impulsive_limit_mps",
+            "total_model_impulsive_delta_v_mps": "total_impulsive_limit_mps"}
+#: the trade study's loss: by the objective of Eq. (9)
+OBJECTIVE = {"loss_mps": "objective_loss_mps", "loss_percent": "objective_loss_percent",
+             "loss_mps_sequence": "objective_loss_mps_sequence",
+             "loss_percent_sequence": "objective_loss_percent_sequence",
+             "loss_percent_loi1": "objective_loss_percent_loi1",
+             "loss_percent_loi2": "objective_loss_percent_loi2",
+             "loss_percent_loi3": "objective_loss_percent_loi3",
+             "impulsive_delta_v_mps": "impulsive_limit_mps"}
+
+#: Pass 2: ``{file glob: {old: new}}`` (the first matching glob of a file wins).
+PER_FILE = {
+    "lunarcap/runs/chain.py": DV_LOSS, "lunarcap/cli.py": DV_LOSS,
+    "lunarcap/runs/burns.py": DV_LOSS, "lunarcap/report/pages/capture_plan.py": DV_LOSS,
+    "lunarcap/report/pages/burn_count.py": DV_LOSS, "tests/test_cli_plan.py": DV_LOSS,
+    "tests/report/pages/test_capture_plan.py": DV_LOSS, "tests/runs/test_burns.py": DV_LOSS,
+    "tests/report/pages/test_studies_pages.py": DV_LOSS, "book/rerun.md": DV_LOSS,
+    "lunarcap/runs/sweeps.py": VS_PAPER, "lunarcap/report/pages/other_engines.py": VS_PAPER,
+    "lunarcap/report/pages/summary.py": VS_PAPER, "lunarcap/report/reproduction.py": VS_PAPER,
+    "tests/runs/test_sweeps.py": VS_PAPER, "tests/report/pages/test_other_engines.py": VS_PAPER,
+    "tests/report/pages/test_summary.py": VS_PAPER,
+    "tests/report/pages/test_reproduction_report.py": VS_PAPER,
+    "lunarcap/runs/study.py": OBJECTIVE, "lunarcap/report/pages/trade_study.py": OBJECTIVE,
+    "tests/runs/test_study.py": OBJECTIVE, "tests/report/pages/test_trade_study.py": OBJECTIVE,
+}
+
+_ANALYTIC = {"loss_mps": "analytic_loss_mps", "loss_percent": "analytic_loss_percent"}
+_PAPER_LOSS = {"loss_mps": "paper_delta_v_loss_mps",
+               "loss_percent": "paper_delta_v_loss_percent"}
+
+
+def _keys(prefix: str, names: dict, quote: str = '"') -> list:
+    """Rules renaming ``prefix["old"]`` (or ``prefix.old``) to the new names."""
+    out = []
+    for old, new in names.items():
+        if quote == ".":
+            out.append((re.escape(prefix) + r"\." + old + r"\b", f"{prefix}.{new}"))
+        else:
+            out.append((re.escape(f'{prefix}["{old}"]'), f'{prefix}["{new}"]'))
+    return out
+
+
+#: Pass 1: ``[(file glob, regex, replacement)]``, in order.
+CONTEXT = [
+    # the burn's loss record (lunarcap.runs.chain.burn_loss) read elsewhere
+    *[("lunarcap/runs/*.py", p, r) for p, r in _keys("loss", {
+        k: DV_LOSS[k] for k in ("loss_mps", "loss_percent", "impulsive_delta_v_mps")})],
+    ("lunarcap/report/pages/other_engines.py", re.escape('res.totals()["total_loss_mps"]'),
+     'res.totals()["total_delta_v_loss_mps"]'),
+    # the trade study: Robbins' estimate (capture_chain_estimate, analytic_curves) ...
+    *[("lunarcap/runs/study.py", p, r) for p, r in _keys("theory[i]", _ANALYTIC)],
+    *[("lunarcap/runs/study.py", p, r) for pre in ("t", "e") for p, r in _keys(pre, {
+        "loss_mps": "analytic_loss_mps", "impulsive_delta_v_mps": "paper_impulsive_delta_v_mps"})],
+    ("lunarcap/runs/study.py", r'"loss_mps": loss,(\s+)"loss_percent": 100\.0 \* loss / dv',
+     r'"analytic_loss_mps": loss,\1"analytic_loss_percent": 100.0 * loss / dv'),
+    ("lunarcap/runs/study.py", r'"loss_mps": loss, "loss_percent": 100\.0 \* loss / imp,',
+     '"analytic_loss_mps": loss, "analytic_loss_percent": 100.0 * loss / imp,'),
+    ("lunarcap/runs/study.py", r'"impulsive_delta_v_mps": float\(dv\)',
+     '"paper_impulsive_delta_v_mps": float(dv)'),
+    # ... and the paper's engines as printed (paper_points; Table B1's own columns stay)
+    ("lunarcap/runs/study.py",
+     r'"loss_mps": r\.delta_v_mps - r\.impulsive_delta_v_mps,(\s+)"loss_percent": r\.diff',
+     r'"paper_delta_v_loss_mps": r.delta_v_mps - r.@@B1@@,\1"paper_delta_v_loss_percent": r.diff'),
+    ("lunarcap/runs/study.py", r'g\.impulsive_delta_v_mps', 'g.@@B1@@'),
+    ("lunarcap/runs/study.py",
+     r'"burn_duration_min": float\(g\.burn_duration_min\.sum\(\)\), "loss_mps": loss,(\s+)'
+     r'"loss_percent":', r'"burn_duration_min": float(g.burn_duration_min.sum()), '
+     r'"paper_delta_v_loss_mps": loss,\1"paper_delta_v_loss_percent":'),
+    ("lunarcap/runs/study.py", r'``loss_mps``, ``loss_percent``\.',
+     '``analytic_loss_mps``, ``analytic_loss_percent``.'),
+    ("lunarcap/runs/study.py", r"part, burn_duration_min, loss_mps,\n(\s+)loss_percent \(",
+     r"part, burn_duration_min, paper_delta_v_loss_mps,\n\1paper_delta_v_loss_percent ("),
+    ("lunarcap/runs/study.py", r"part, eq19_duration_min, loss_mps,\n(\s+)loss_percent \(",
+     r"part, eq19_duration_min, analytic_loss_mps,\n\1analytic_loss_percent ("),
+    ("lunarcap/runs/study.py", r"loss_percent_loi1\.\.3", "objective_loss_percent_loi1..3"),
+    ("lunarcap/runs/study.py", r'row\[f"loss_percent_\{p\.lower\(\)\}"\]',
+     'row[f"objective_loss_percent_{p.lower()}"]'),
+    ("lunarcap/report/pages/trade_study.py", r'"paper_loss_percent": r\.loss_percent',
+     '"paper_loss_percent": r.paper_delta_v_loss_percent'),
+    ("lunarcap/report/pages/trade_study.py", r'robbins\.loc\[r\.part, "loss_percent"\]',
+     'robbins.loc[r.part, "analytic_loss_percent"]'),
+    ("lunarcap/report/pages/trade_study.py", r'theory\.groupby\(\["isp_s", "part"\]\)\.loss_',
+     'theory.groupby(["isp_s", "part"]).analytic_loss_'),
+    ("lunarcap/report/figures.py", r"(ok|d)\.loss_percent\b", r"\1.objective_loss_percent"),
+    ("lunarcap/report/figures.py", r"th\.loss_percent\b", "th.analytic_loss_percent"),
+    ("lunarcap/report/figures.py", r"r\.loss_percent\b", "r.paper_delta_v_loss_percent"),
+    ("lunarcap/report/figures.py", r"``part``, ``isp_s``, ``thrust_to_weight``,\n(\s+)"
+     r"``loss_percent``\)", r"``part``, ``isp_s``, ``thrust_to_weight``,\n\1"
+     r"``objective_loss_percent``)"),
+    ("lunarcap/report/figures.py", r"\(same columns\)", "(``analytic_loss_percent``)"),
+    ("lunarcap/report/figures.py", r"``part``, ``loss_percent``\), drawn as stars",
+     "``part``, ``paper_delta_v_loss_percent``), drawn as stars"),
+    ("lunarcap/report/figures.py", r"``paper_impulsive_delta_v_mps``, ``loss_mps``,\n(\s+)"
+     r"``model_loss_mps``\)", r"``paper_impulsive_delta_v_mps``, "
+     r"``loss_vs_paper_impulse_mps``,\n\1``delta_v_loss_mps``)"),
+    ("lunarcap/report/figures.py", r"s\.loss_mps\b", "s.loss_vs_paper_impulse_mps"),
+    ("lunarcap/report/figures.py", r"s\.model_loss_mps\b", "s.delta_v_loss_mps"),
+    ("lunarcap/report/figures.py", r"\btotal_loss_mps\b", "total_delta_v_loss_mps"),
+    # tests of the trade study's estimate and of the figures
+    ("lunarcap/runs/study.py", r"One per LOI: ``loi``, ``impulsive_delta_v_mps``",
+     "One per LOI: ``loi``, ``paper_impulsive_delta_v_mps``"),
+    ("tests/runs/test_study.py", r'(p\.loc\[\([^)]*\), ")loss_', r"\1paper_delta_v_loss_"),
+    ("tests/runs/test_study.py", r"row\.loss_mps == pytest\.approx\(sum\(e",
+     "row.analytic_loss_mps == pytest.approx(sum(e"),
+    ("tests/runs/test_study.py", r'e\["loss_mps"\]', 'e["analytic_loss_mps"]'),
+    ("tests/runs/test_study.py", r'e\["impulsive_delta_v_mps"\]',
+     'e["paper_impulsive_delta_v_mps"]'),
+    ("tests/runs/test_study.py", r'r\["loss_mps"\] for r in study\.capture_chain_estimate',
+     'r["analytic_loss_mps"] for r in study.capture_chain_estimate'),
+    ("tests/report/pages/test_trade_study.py", r'e\["loss_mps"\]', 'e["analytic_loss_mps"]'),
+    ("tests/report/pages/test_trade_study.py", r'e\["impulsive_delta_v_mps"\]',
+     'e["paper_impulsive_delta_v_mps"]'),
+    ("tests/report/pages/test_trade_study.py",
+     r'capture_chain_estimate\(thrust_N, 250\.0\)\[loi - 1\]\["loss_mps"\]',
+     'capture_chain_estimate(thrust_N, 250.0)[loi - 1]["analytic_loss_mps"]'),
+    ("tests/report/test_figure_legibility.py", r"\bloss_percent=", "objective_loss_percent="),
+    ("tests/report/test_figure_legibility.py", r"loss_mps=\[15\.0, 4\.0, 3\.0\], "
+     r"model_loss_mps=", "loss_vs_paper_impulse_mps=[15.0, 4.0, 3.0], delta_v_loss_mps="),
+    ("tests/report/test_figure_legibility.py", r"\bloss_mps=\[20\.0", "delta_v_loss_mps=[20.0"),
+    ("tests/report/test_figure_legibility.py", r'totals, "loss_mps"',
+     'totals, "delta_v_loss_mps"'),
+    ("tests/report/test_figure_legibility.py", r"\btotal_loss_mps=", "total_delta_v_loss_mps="),
+    ("tests/report/test_figures.py", r'"loss_percent": p\.diff_percent',
+     '"paper_delta_v_loss_percent": p.diff_percent'),
+    ("tests/report/test_figures.py", r'\{"loss_mps": b\["delta_v_mps"\] - imp,',
+     '{"loss_vs_paper_impulse_mps": b["delta_v_mps"] - imp,'),
+    ("tests/report/test_figures.py", r'"loss_percent": 100 \* \(b\["delta_v_mps"\] - imp\)',
+     '"loss_vs_paper_impulse_percent": 100 * (b["delta_v_mps"] - imp)'),
+    # the impulsive command: its delta-V is the two-body impulse, its duration Eq. (19)'s
+    ("lunarcap/cli.py", r'"delta_v_mps": b\.delta_v_mps', '"impulsive_delta_v_two_body_mps": '
+     'b.delta_v_mps'),
+    ("lunarcap/cli.py", r"""sum\(r\["delta_v_mps"\] for r in rows\)""",
+     'sum(r["impulsive_delta_v_two_body_mps"] for r in rows)'),
+    ("lunarcap/cli.py", r"""sum\(r\['delta_v_mps'\] for r in rows\)""",
+     "sum(r['impulsive_delta_v_two_body_mps'] for r in rows)"),
+    ("lunarcap/cli.py", r'"total_delta_v_mps": sum\(r\["impulsive_delta_v_two_body_mps"\]',
+     '"total_impulsive_delta_v_two_body_mps": sum(r["impulsive_delta_v_two_body_mps"]'),
+    ("lunarcap/cli.py", r"\{r\['delta_v_mps'\]:9\.3f\} \{r\['period_after_h'\]",
+     "{r['impulsive_delta_v_two_body_mps']:9.3f} {r['period_after_h']"),
+    # the solution's target kind (the plan's orbit in words is target_orbit)
+    ("lunarcap/optim/solution.py", r'"target": prob\.target\.kind', '"target_kind": '
+     'prob.target.kind'),
+    *[(g, r'"target"(?=[:,\]])', '"target_orbit"') for g in (
+        "lunarcap/runs/burns.py", "lunarcap/runs/missed.py", "lunarcap/report/pages/burn_count.py",
+        "lunarcap/report/pages/missed_thrust.py")],
+    # the verification's branch: e cos(nu) at the end of the coast
+    ("lunarcap/optim/verify.py", r"\bbranch: float \| None = None",
+     "end_e_cos_nu: float | None = None"),
+    ("lunarcap/optim/verify.py", r"self\.branch\b", "self.end_e_cos_nu"),
+]
+
+#: Pass 3: names with one meaning everywhere.
+GLOBAL = {
+    "impulsive_two_body_mps": "impulsive_delta_v_two_body_mps",
+    "two_body_impulsive_total_mps": "total_impulsive_delta_v_two_body_mps",
+    "objective_mps": "objective_j_mps",
+    "verification_branch": "verification_end_e_cos_nu",
+    "eq19_burn_duration_min": "eq19_duration_min",
+}
+
+#: Placeholders of pass 1 for names that must keep their old spelling (a column of the
+#: paper's printed tables, which are not renamed), restored after pass 3.
+PLACEHOLDERS = {"@@B1@@": "impulsive_delta_v_mps"}
+
+
+def _files(root: Path) -> list:
+    out = set()
+    for pattern in SCOPE:
+        out.update(p for p in root.glob(pattern) if p.is_file())
+    return sorted(p for p in out if p.relative_to(root).as_posix() not in SKIP)
+
+
+def _word(old: str) -> str:
+    return r"(?<![\w@])" + re.escape(old) + r"(?![\w@])"
+
+
+def rename_text(rel: str, text: str, hits: dict | None = None) -> str:
+    """``text`` of the file at ``rel`` (POSIX path from the root) with every rule applied."""
+    for i, (glob, pattern, repl) in enumerate(CONTEXT):
+        if fnmatch.fnmatch(rel, glob):
+            text, n = re.subn(pattern, repl, text)
+            if hits is not None:
+                hits[i] = hits.get(i, 0) + n
+    for glob, names in PER_FILE.items():
+        if fnmatch.fnmatch(rel, glob):
+            for old, new in sorted(names.items(), key=lambda kv: -len(kv[0])):
+                text = re.sub(_word(old), new, text)
+            break
+    for old, new in GLOBAL.items():
+        text = re.sub(_word(old), new, text)
+    for mark, name in PLACEHOLDERS.items():
+        text = text.replace(mark, name)
+    return text
+
+
+def main(argv=None) -> int:
+    """Rewrite the files (or ``--check``); print the changed files and unused context rules."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--check", action="store_true", help="change nothing; exit 1 if needed")
+    ap.add_argument("--root", type=Path, default=ROOT)
+    args = ap.parse_args(argv)
+    hits, changed = {}, []
+    for path in _files(args.root):
+        rel = path.relative_to(args.root).as_posix()
+        old = path.read_text(encoding="utf-8")
+        new = rename_text(rel, old, hits)
+        if new != old:
+            changed.append(rel)
+            if not args.check:
+                path.write_text(new, encoding="utf-8")
+    for rel in changed:
+        print(("would change " if args.check else "changed ") + rel)
+    unused = [CONTEXT[i] for i in range(len(CONTEXT)) if not hits.get(i)]
+    for glob, pattern, _ in unused:
+        print(f"context rule found nothing (applied already?): {glob}: {pattern}",
+              file=sys.stderr)
+    return 1 if args.check and changed else 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
