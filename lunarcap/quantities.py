@@ -135,8 +135,9 @@ _add("impulsive_delta_v_two_body_mps", "two-body impulse",
 _add("impulsive_limit_mps", "impulsive limit",
      "Impulsive limit of the burn in the same dynamics: the finite burn's delta-V "
      "extrapolated to zero duration (Table 1's 353.110 m/s for LOI 1 in full dynamics).")
-_add("impulsive_limit_j_mps", "impulsive limit of J",
-     "Objective J of Eq. (9) at the impulsive limit, same dynamics.")
+_add("paper_impulsive_delta_v_mps", "impulse, paper",
+     "Impulsive delta-V Song et al. (2011) print for the burn, taken from Song et al. "
+     "(2009c) (353.272 m/s for LOI 1, equal to our two-body impulse).")
 _add("impulsive_verified", "impulsive limit verified",
      "True if both short burns defining the impulsive limit passed verification.",
      "boolean")
@@ -240,9 +241,6 @@ _add("time_to_final_orbit_h", "time to final orbit",
 _add("complete", "complete", "True if every burn of the plan was solved.", "boolean")
 _add("totals", "totals", "Totals over the plan's burns.", "object")
 _add("burns", "burns", "One record per burn.", "array")
-_add("impulsive_two_body_total_delta_v_mps", "two-body impulses, total",
-     "Sum of the closed-form two-body impulses of the burns (telescopes to the impulse "
-     "from the hyperbola to the final orbit).")
 # ------------------------------------------------------------------ studies
 _add("status", "status", "Outcome of a case (each study lists its statuses).", "string")
 _add("error", "error", "The error message of a failed case.", "string")
@@ -259,8 +257,210 @@ _add("cases", "cases", "One record per case.", "array")
 _add("samples", "samples", "One record per Monte Carlo sample.", "array")
 _add("summary", "summary", "Statistics of the samples.", "object")
 _add("seed", "seed", "Seed of the random generator.", "integer")
-_add("error_model", "error model", "Standard deviations of the execution errors.", "object")
 _add("description", "description", "Words describing the record.", "string")
+
+# ------------------------------------------------------------------ a plan file's keys
+_add("name", "name", "Name of the plan.", "string")
+_add("arrival", "arrival", "The arrival: perilune epoch, altitude, inclination, mass "
+     "(or a state).", "object")
+_add("epoch", "epoch (TDB)", "Calendar epoch of the arrival perilune (or state), TDB.",
+     "string")
+_add("perilune_altitude_km", "perilune altitude", "Altitude of a perilune above the mean "
+     "lunar radius 1738.2 km.")
+_add("apolune_altitude_km", "apolune altitude", "Altitude of an apolune above the mean "
+     "lunar radius.")
+_add("inclination_deg", "inclination", "Inclination to the M-MME2000 equator.")
+_add("impulsive_loi1_mps", "LOI 1 impulse", "Two-body impulse of the first burn from which "
+     "the plan derives the arrival v∞ (the paper's way of stating its arrival).")
+_add("hemisphere", "hemisphere", "Lunar hemisphere of the arrival perilune.", "string")
+_add("approach_dir", "approach direction", "Unit vector of the approach (M-MME2000).",
+     "array")
+_add("frame", "frame", "Reference frame of a state.", "string")
+_add("position_km", "position", "Position vector.", "array")
+_add("velocity_kmps", "velocity", "Velocity vector.", "array")
+_add("opm", "OPM", "CCSDS OPM file of the arrival state.", "string")
+_add("ephemeris", "ephemeris", "SPK file of the Earth and Sun.", "string")
+_add("lunar_pole", "lunar pole", "Pole fixing M-MME2000.", "string")
+_add("formulation", "formulation", "How the burns are targeted: song2011 (the next "
+     "perilune at the plan's epoch) or orbit (the orbit asked, free epoch).", "string")
+_add("target", "target", "Plan file: the orbit a burn is asked for ('circular', or an "
+     "object of perilune and apolune altitudes).", "string")
+_add("target_apolune_altitude_km", "apolune asked", "Apolune altitude a plan asks of an "
+     "ellipse.")
+_add("coast_min", "coast", "Coast after a burn to the perilune where its target is met.")
+# ------------------------------------------------------------------ a study's run log
+for _k, _l, _d, _t in (
+        ("study", "study", "Which study.", "string"),
+        ("started_utc", "started (UTC)", "When the run started, UTC.", "string"),
+        ("wall_s", "wall", "Wall time of the run.", "number"),
+        ("cluster_start_s", "cluster start", "Time to start the Dask cluster.", "number"),
+        ("scheduler", "scheduler", "Dask scheduler used.", "string"),
+        ("workers", "workers", "Dask workers.", "integer"),
+        ("computed", "computed", "Cases computed by this run.", "integer"),
+        ("reused", "reused", "Cases taken from the table.", "integer"),
+        ("failed_computed", "failed", "Cases computed that failed.", "integer"),
+        ("interrupted", "interrupted", "True if the run was interrupted.", "boolean"),
+        ("cache", "cache", "Where the solve cache lives (or 'off').", "string"),
+        ("host", "host", "Host name.", "string"),
+        ("cpu_count", "CPUs", "CPUs of the host.", "integer"),
+        ("load_avg_1min_start", "load at start", "1-minute load average at the start "
+         "(dimensionless).", "number"),
+        ("load_avg_1min_end", "load at end", "1-minute load average at the end "
+         "(dimensionless).", "number"),
+        ("grid", "grid", "The study's grid.", "object"),
+        ("plan_id", "plan id", "Hash of what a plan's solves depend on.", "string"),
+        ("reason", "reason", "Why a case failed or was infeasible, in physical terms.",
+         "string"),
+        ("nominal_perilune_epoch", "nominal perilune (TDB)", "The perilune the burn's start "
+         "is measured from, TDB.", "string"),
+        ("total_ipopt_iterations", "iterations", "IPOPT iterations of the whole solve.",
+         "integer"),
+        ("failures", "failures", "The verification gates that failed, in words.", "array")):
+    _add(_k, _l, _d, _t)
+# ------------------------------------------------------------------ missed thrust
+for _k, _l, _d, _t in (
+        ("contingency", "contingency", "'cut-off' (the engine stops early) or 'late "
+         "ignition'.", "string"),
+        ("fraction", "fraction flown", "Share of the nominal burn flown before the cut-off "
+         "(dimensionless).", "number"),
+        ("delay_min", "delay", "Time from the cut-off to the recovery.", "number"),
+        ("late_min", "late by", "Ignition delay of a late ignition.", "number"),
+        ("captured", "captured", "True if the orbit at the cut-off is bound to the Moon.",
+         "boolean"),
+        ("cutoff_orbit", "orbit at cut-off", "'escape', 'captured' or 'beyond the sphere of "
+         "influence'.", "string"),
+        ("cutoff_epoch", "cut-off (TDB)", "Epoch of the cut-off, TDB.", "string"),
+        ("cutoff_min_after_ignition", "cut-off after ignition", "Time from ignition to the "
+         "cut-off, min.", "number"),
+        ("partial_delta_v_mps", "ΔV before cut-off", "Delta-V flown before the cut-off.",
+         "number"),
+        ("nominal_burn_duration_min", "nominal duration", "Duration of the nominal burn.",
+         "number"),
+        ("nominal_burn_delta_v_mps", "nominal ΔV", "Delta-V of the nominal burn.", "number"),
+        ("cutoff_energy_km2ps2", "energy at cut-off", "Specific orbital energy at the "
+         "cut-off, km²/s².", "number"),
+        ("cutoff_e", "e at cut-off", "Eccentricity at the cut-off (dimensionless).",
+         "number"),
+        ("cutoff_rp_km", "r_p at cut-off", "Perilune radius at the cut-off.", "number"),
+        ("cutoff_ra_km", "r_a at cut-off", "Apolune radius at the cut-off.", "number"),
+        ("cutoff_period_h", "period at cut-off", "Period at the cut-off.", "number"),
+        ("cutoff_soi_radius_km", "sphere of influence", "The Moon's sphere of influence.",
+         "number"),
+        ("recovery_start_e", "e at recovery", "Eccentricity where the recovery starts "
+         "(dimensionless).", "number"),
+        ("recovery_delta_v_mps", "recovery ΔV", "Delta-V of the recovery burns.", "number"),
+        ("penalty_mps", "penalty", "Partial plus recovery delta-V minus the nominal delta-V "
+         "of the burns they replace.", "number"),
+        ("nominal_remaining_delta_v_mps", "nominal remaining ΔV", "Nominal delta-V from the "
+         "missed burn on.", "number"),
+        ("make_up_delta_v_mps", "make-up ΔV", "Delta-V of the first recovery burn.",
+         "number"),
+        ("make_up_estimate_mps", "make-up estimate", "Two-body estimate of the make-up "
+         "delta-V.", "number"),
+        ("make_up_period_h", "make-up period", "Osculating period after the make-up burn.",
+         "number"),
+        ("nominal_period_after_burn_h", "nominal period after", "Period the nominal burn "
+         "leaves.", "number"),
+        ("first_coast_h", "first coast", "Coast from the cut-off to the make-up burn.",
+         "number"),
+        ("make_up_estimate_h", "make-up time estimate", "Two-body estimate of the first "
+         "coast.", "number"),
+        ("recovery_burns", "recovery burns", "One record per recovery burn.", "array"),
+        ("ignition_min_after_fault", "ignition after fault", "Time from the cut-off (or "
+         "late ignition) to the burn's ignition.", "number"),
+        ("error_model", "error model", "Standard deviations of the execution errors.",
+         "object")):
+    _add(_k, _l, _d, _t)
+# ------------------------------------------------------------------ dispersions
+for _k, _l, _d, _t in (
+        ("sample", "sample", "Index of a Monte Carlo sample.", "integer"),
+        ("antithetic", "antithetic", "True if the sample is the negated draws of its pair.",
+         "boolean"),
+        ("thrust_sigma_pct", "σ thrust", "One-sigma thrust error, %.", "number"),
+        ("isp_sigma_pct", "σ Isp", "One-sigma Isp error, %.", "number"),
+        ("pointing_sigma_deg", "σ pointing", "One-sigma pointing error per axis.", "number"),
+        ("ignition_sigma_s", "σ ignition", "One-sigma ignition-time error.", "number"),
+        ("arrival_sigma_km", "σ arrival position", "One-sigma arrival position error per "
+         "axis.", "number"),
+        ("arrival_sigma_mps", "σ arrival velocity", "One-sigma arrival velocity error per "
+         "axis.", "number"),
+        ("arrival_cov", "arrival covariance", "Hash of the arrival covariance file (empty "
+         "if none).", "string"),
+        ("burns_flown", "burns flown", "Burns flown before the sample ended.", "integer"),
+        ("propellant_kg", "propellant", "Propellant of the burns flown.", "number"),
+        ("delta_v_above_nominal_mps", "ΔV above nominal", "Total delta-V minus the nominal "
+         "plan's.", "number"),
+        ("final_rp_error_km", "final r_p error", "Final perilune radius minus its target.",
+         "number"),
+        ("final_ra_error_km", "final r_a error", "Final apolune radius minus its target.",
+         "number"),
+        ("final_inc_error_deg", "final i error", "Final inclination minus its target.",
+         "number"),
+        ("final_rp_altitude_km", "final perilune altitude", "Final perilune altitude.",
+         "number"),
+        ("final_ra_altitude_km", "final apolune altitude", "Final apolune altitude.",
+         "number"),
+        ("arrival_dr_km", "arrival position error", "Size of the sample's arrival position "
+         "error.", "number"),
+        ("arrival_dv_mps", "arrival velocity error", "Size of the sample's arrival velocity "
+         "error.", "number"),
+        ("task_cpu_s", "task CPU", "CPU time of the study task.", "number"),
+        ("sample_wall_s", "sample wall", "Wall time of the sample.", "number"),
+        ("sample_cpu_s", "sample CPU", "CPU time of the sample.", "number"),
+        ("planned_delta_v_mps", "planned ΔV", "Delta-V of the burn as re-planned.", "number"),
+        ("ignition_min", "ignition", "Ignition relative to the perilune reached.", "number"),
+        ("duration_min", "duration", "Planned burn duration (cut off on the timer).",
+         "number"),
+        ("thrust_error_pct", "thrust error", "The burn's thrust error, %.", "number"),
+        ("isp_error_pct", "Isp error", "The burn's Isp error, %.", "number"),
+        ("pointing_error_deg", "pointing error", "Angle of the burn's pointing error.",
+         "number"),
+        ("ignition_error_s", "ignition error", "The burn's ignition-time error.", "number"),
+        ("captured_and_corrected", "captured and corrected", "Samples captured and "
+         "corrected to the final orbit.", "integer"),
+        ("ci_level", "confidence level", "Confidence level of the intervals (dimensionless).",
+         "number"),
+        ("budget_p99_above_nominal_mps", "99 % budget above nominal", "99th percentile of "
+         "the total delta-V minus the nominal.", "number"),
+        ("budget_p99_ci_mps", "99 % budget interval", "Distribution-free confidence interval "
+         "of budget_p99_above_nominal_mps.", "array"),
+        ("budget_p99_ci_ranks", "interval ranks", "Order statistics bounding the interval.",
+         "array"),
+        ("p_not_captured", "P(not captured)", "Share of samples not captured "
+         "(dimensionless).", "number"),
+        ("p_not_captured_upper95", "P(not captured), 95 % bound", "Clopper-Pearson upper "
+         "bound of p_not_captured (dimensionless).", "number"),
+        ("p_correction_failed", "P(correction failed)", "Share of samples whose correction "
+         "failed (dimensionless).", "number"),
+        ("p_correction_failed_upper95", "P(correction failed), 95 % bound", "Clopper-Pearson "
+         "upper bound of p_correction_failed (dimensionless).", "number"),
+        ("final_rms_rp_error_km", "RMS final r_p error", "RMS of final_rp_error_km over the "
+         "captured samples.", "number"),
+        ("final_rms_ra_error_km", "RMS final r_a error", "RMS of final_ra_error_km.",
+         "number"),
+        ("final_rms_inc_error_deg", "RMS final i error", "RMS of final_inc_error_deg.",
+         "number")):
+    _add(_k, _l, _d, _t)
+for _k, _l, _d, _t in (
+        ("iterations", "iterations", "IPOPT iterations of one mesh attempt.", "integer"),
+        ("fractions", "fractions", "The cut-off fractions of a missed-thrust run.", "array"),
+        ("delays_min", "delays", "The recovery delays of a missed-thrust run, min.", "array"),
+        ("burns_json", "burns (JSON)", "CSV only: the per-burn records of the row as JSON "
+         "text (the CLI's JSON gives them as 'burns').", "string"),
+        ("recovery_burns_json", "recovery burns (JSON)", "CSV only: the recovery burns as "
+         "JSON text (the CLI's JSON gives them as 'recovery_burns').", "string"),
+        ("final_max_abs_rp_error_km", "max |final r_p error|", "Largest |final_rp_error_km| "
+         "over the captured samples.", "number"),
+        ("final_max_abs_ra_error_km", "max |final r_a error|", "Largest |final_ra_error_km|.",
+         "number"),
+        ("final_max_abs_inc_error_deg", "max |final i error|", "Largest "
+         "|final_inc_error_deg|.", "number")):
+    _add(_k, _l, _d, _t)
+for _q in (1, 5, 10, 50, 90, 95, 99):
+    _add(f"delta_v_p{_q}_mps", f"ΔV, {_q}th percentile", f"{_q}th percentile of the total "
+         "delta-V over every sample (a failed one counts as infinite).")
+    _add(f"propellant_p{_q}_kg", f"propellant, {_q}th percentile", f"{_q}th percentile of "
+         "the propellant over every sample.")
 
 #: Every quantity by name.
 GLOSSARY: dict = {q.name: q for q in _Q}

@@ -15,7 +15,8 @@ from lunarcap.physics.rocket import burn_duration_estimate_s
 _TABLE_QUANTITIES = (
     ("burn duration", "min", "paper_burn_duration_min", "burn_duration_min"),
     ("delta-V", "m/s", "paper_delta_v_mps", "delta_v_mps"),
-    ("difference from impulsive", "%", "paper_loss_percent", "loss_percent"),
+    ("difference from impulsive", "%", "paper_delta_v_loss_percent",
+     "loss_vs_paper_impulse_percent"),
 )
 
 
@@ -74,7 +75,7 @@ def paper_tables_long(sweeps: dict, impulsive_dv_mps=None):
                                            "burn_duration_min"),
                                           ("delta-V", "m/s", b.delta_v_mps, "delta_v_mps"),
                                           ("difference from impulsive", "%", b.diff_percent,
-                                           "loss_percent")):
+                                           "loss_vs_paper_impulse_percent")):
                 o = float(r[ocol])
                 rows.append({"source": "Table B1", "thrust_N": float(thrust),
                              "isp_s": float(isp), "loi": int(loi),
@@ -108,7 +109,8 @@ def paper_chain_rows(summaries) -> list[dict]:
     Returns
     -------
     list of dict
-        Copies with ``loss_mps``, ``loss_percent`` (vs the paper's impulsive delta-V of
+        Copies with ``loss_vs_paper_impulse_mps``, ``loss_vs_paper_impulse_percent`` (vs the
+        paper's impulsive delta-V of
         that burn) and ``eq19_duration_min`` (Eq. (19), corrected 19a, with the paper's
         impulsive delta-V and our mass at ignition) set.
     """
@@ -117,8 +119,8 @@ def paper_chain_rows(summaries) -> list[dict]:
     for s in summaries:
         imp = P.PAPER_IMPULSIVE_DV_MPS[int(s["burn"]) - 1]
         row = dict(s)
-        row["loss_mps"] = s["delta_v_mps"] - imp
-        row["loss_percent"] = 100.0 * (s["delta_v_mps"] - imp) / imp
+        row["loss_vs_paper_impulse_mps"] = s["delta_v_mps"] - imp
+        row["loss_vs_paper_impulse_percent"] = 100.0 * (s["delta_v_mps"] - imp) / imp
         row["eq19_duration_min"] = burn_duration_estimate_s(
             s["m_start_kg"], imp, s["thrust_N"], s["isp_s"]) / 60.0
         out.append(row)
@@ -196,8 +198,8 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
         s = list(chain)
         if len(s) != 3:
             continue
-        loss = [x["loss_mps"] for x in s]
-        pct = [x["loss_percent"] for x in s]
+        loss = [x["loss_vs_paper_impulse_mps"] for x in s]
+        pct = [x["loss_vs_paper_impulse_percent"] for x in s]
         dur = [x["burn_duration_min"] for x in s]
         total_pct = 100.0 * sum(loss) / imp_total
         totals_pct[t] = total_pct
@@ -226,10 +228,11 @@ def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,
                                                    "100 (finite - impulsive) / impulsive")
         for n in (1, 2, 3):
             x = s[n - 1]
-            out[f"loss_loi{n}_{k}_mps"] = (x["loss_mps"], "vs the paper's impulsive delta-V")
-            out[f"loss_loi{n}_{k}_percent"] = (x["loss_percent"],
+            out[f"loss_loi{n}_{k}_mps"] = (x["loss_vs_paper_impulse_mps"],
+                                           "vs the paper's impulsive delta-V")
+            out[f"loss_loi{n}_{k}_percent"] = (x["loss_vs_paper_impulse_percent"],
                                                "vs the paper's impulsive delta-V")
-            out[f"loss_pct_loi{n}_{k}_summary"] = (x["loss_percent"],
+            out[f"loss_pct_loi{n}_{k}_summary"] = (x["loss_vs_paper_impulse_percent"],
                                                    "vs the paper's impulsive delta-V")
             for nm in (f"burn_loi{n}_{k}_min", f"burn_loi{n}_{k}_summary_min",
                        f"burn_loi{n}_{k}_about_min"):
