@@ -230,6 +230,11 @@ CONTEXT = [
      "``ipopt_status``, ``total_ipopt_iterations``"),
     ("lunarcap/report/pages/burn_count.py", r'"total_delta_v_loss_mps", "fuel_kg"',
      '"total_delta_v_loss_mps", "total_fuel_kg"'),
+    # ... and its test
+    ("tests/test_cli.py", r'(burns\[0\]|\bb)\["delta_v_mps"\]',
+     r'\1["impulsive_delta_v_two_body_mps"]'),
+    ("tests/test_cli.py", r'out\["total_delta_v_mps"\]',
+     'out["total_impulsive_delta_v_two_body_mps"]'),
     # the solution's target kind (the plan's orbit in words is target_orbit)
     ("lunarcap/optim/solution.py", r'"target": prob\.target\.kind', '"target_kind": '
      'prob.target.kind'),
