@@ -228,8 +228,8 @@ CONTEXT = [
      '"ipopt_status", "total_ipopt_iterations", "burns_json"'),
     ("lunarcap/runs/burns.py", r"``ipopt_status``, ``iterations``",
      "``ipopt_status``, ``total_ipopt_iterations``"),
-    ("lunarcap/report/pages/burn_count.py", r'"total_delta_v_loss_mps", "fuel_kg"',
-     '"total_delta_v_loss_mps", "total_fuel_kg"'),
+    ("lunarcap/report/pages/burn_count.py", r'("total_(?:delta_v_)?loss_mps"), "fuel_kg"',
+     r'\1, "total_fuel_kg"'),
     # ... and its test
     ("tests/test_cli.py", r'(burns\[0\]|\bb)\["delta_v_mps"\]',
      r'\1["impulsive_delta_v_two_body_mps"]'),
