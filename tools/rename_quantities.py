@@ -247,6 +247,9 @@ CONTEXT = [
     ("lunarcap/optim/verify*.py", r"\bbranch: float \| None = None",
      "end_e_cos_nu: float | None = None"),
     ("lunarcap/optim/verify*.py", r"self\.branch\b", "self.end_e_cos_nu"),
+    ("tests/optim/test_gate*.py", r"\bbranch=None if circular", "end_e_cos_nu=None if circular"),
+    ("tests/optim/test_gate*.py", r'\("branch", -0\.01, "apolune"\)',
+     '("end_e_cos_nu", -0.01, "apolune")'),
 ]
 
 #: Pass 3: names with one meaning everywhere.
