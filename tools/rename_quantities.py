@@ -170,6 +170,9 @@ CONTEXT = [
     *[(g, r"(?<![\w@])total_model_loss_(mps|percent)_(?=\d)", r"total_delta_v_loss_\1_")
       for g in ("notebooks/summary.ipynb", "tests/report/pages/test_summary*.py",
                 "book/index.md")],
+    # the index quotes the capture-plan pages' totals (notebooks/capture_plan.ipynb)
+    ("book/index.md", r"(plan_lro_like|plan_two_burn)\.ipynb::total_loss_(mps|percent)\b",
+     r"\1.ipynb::total_delta_v_loss_\2"),
     # the other-engines test compares with the plan's own table (lunarcap.runs.chain)
     ("tests/report/pages/test_other_engines*.py", r"rows\.loss_mps\b", "rows.delta_v_loss_mps"),
     # tests of the trade study's estimate and of the figures
