@@ -240,6 +240,8 @@ CONTEXT = [
      r'\1["impulsive_delta_v_two_body_mps"]'),
     ("tests/test_cli.py", r'out\["total_delta_v_mps"\]',
      'out["total_impulsive_delta_v_two_body_mps"]'),
+    ("tests/runs/test_campaign*.py", r'"total_impulsive_delta_v_mps", "fuel_kg",',
+     '"total_impulsive_limit_mps", "total_fuel_kg",'),
     # the solution's target kind (the plan's orbit in words is target_orbit)
     ("lunarcap/optim/solution*.py", r'"target": prob\.target\.kind', '"target_kind": '
      'prob.target.kind'),
