@@ -88,15 +88,16 @@ def cmd_impulsive(args) -> int:
     """Print the plan's two-body impulsive chain and Eq. (19) estimates."""
     plan = _plan_from_args(args)
     burns = plan.impulsive()
-    rows = [{"burn": b.burn, "delta_v_mps": b.delta_v_mps,
+    rows = [{"burn": b.burn, "impulsive_delta_v_two_body_mps": b.delta_v_mps,
              "period_before_h": b.period_before_h, "period_after_h": b.period_after_h,
              "v_perilune_before_kmps": b.v_before_kmps, "v_perilune_after_kmps": b.v_after_kmps,
              "m_before_kg": b.m_before_kg, "m_after_kg": b.m_after_kg, "fuel_kg": b.fuel_kg,
-             "eq19_burn_duration_min": b.eq19_duration_min} for b in burns]
+             "eq19_duration_min": b.eq19_duration_min} for b in burns]
     if args.json:
         out = {"plan": plan.name, "thrust_N": plan.engine.thrust_N, "isp_s": plan.engine.isp_s,
                "mass_kg": plan.arrival.mass_kg, "v_inf_kmps": plan.arrival.v_inf_kmps,
-               "total_delta_v_mps": sum(r["delta_v_mps"] for r in rows), "burns": rows}
+               "total_impulsive_delta_v_two_body_mps":
+                   sum(r["impulsive_delta_v_two_body_mps"] for r in rows), "burns": rows}
         print(json.dumps(_jsonable(out), indent=2))
         return 0
     print(f"Two-body impulsive capture of plan {plan.name}: {plan.engine.thrust_N:g} N / "
@@ -105,10 +106,11 @@ def cmd_impulsive(args) -> int:
     print(f"{'burn':>4} {'dV m/s':>9} {'P after h':>9} {'m before kg':>11} {'m after kg':>10} "
           f"{'fuel kg':>8} {'Eq.19 min':>9}")
     for r in rows:
-        print(f"{r['burn']:>4} {r['delta_v_mps']:9.3f} {r['period_after_h']:9.3f} "
+        print(f"{r['burn']:>4} {r['impulsive_delta_v_two_body_mps']:9.3f} "
+              f"{r['period_after_h']:9.3f} "
               f"{r['m_before_kg']:11.3f} {r['m_after_kg']:10.3f} {r['fuel_kg']:8.3f} "
-              f"{r['eq19_burn_duration_min']:9.2f}")
-    print(f"total {sum(r['delta_v_mps'] for r in rows):.3f} m/s")
+              f"{r['eq19_duration_min']:9.2f}")
+    print(f"total {sum(r['impulsive_delta_v_two_body_mps'] for r in rows):.3f} m/s")
     return 0
 
 
@@ -146,15 +148,16 @@ def _print_burn_row(plan, r: dict) -> None:
     print(f"{r['burn']:>4}  {b.describe():<{_target_width(plan)}} {r['ignition_epoch']:<27} "
           f"{r['start_min']:9.3f} "
           f"{r['burn_duration_min']:7.2f} {r['delta_v_mps']:9.3f} "
-          f"{_fmt(r['impulsive_delta_v_mps'], '.3f', 9)} {_fmt(r['loss_mps'], '.3f', 8)} "
-          f"{_fmt(r['loss_percent'], '.2f', 6)} {r['m_start_kg']:10.3f} {r['m_end_kg']:9.3f}  "
+          f"{_fmt(r['impulsive_limit_mps'], '.3f', 9)} {_fmt(r['delta_v_loss_mps'], '.3f', 8)} "
+          f"{_fmt(r['delta_v_loss_percent'], '.2f', 6)} {r['m_start_kg']:10.3f} "
+          f"{r['m_end_kg']:9.3f}  "
           f"{ver}", flush=True)
 
 
 def _print_totals(tot: dict) -> None:
-    loss = "" if tot["total_loss_mps"] is None else \
-        (f", impulsive {tot['total_impulsive_delta_v_mps']:.3f} m/s, loss "
-         f"{tot['total_loss_mps']:.3f} m/s ({tot['total_loss_percent']:.2f} %)")
+    loss = "" if tot["total_delta_v_loss_mps"] is None else \
+        (f", impulsive {tot['total_impulsive_limit_mps']:.3f} m/s, loss "
+         f"{tot['total_delta_v_loss_mps']:.3f} m/s ({tot['total_delta_v_loss_percent']:.2f} %)")
     print(f"total: dV {tot['total_delta_v_mps']:.3f} m/s{loss}; burns "
           f"{tot['total_burn_duration_min']:.2f} min; fuel {tot['total_fuel_kg']:.3f} kg, final "
           f"mass {tot['final_mass_kg']:.3f} kg; final orbit {tot['final_rp_km'] - R_MOON:.1f} x "
@@ -185,7 +188,8 @@ def cmd_plan(args) -> int:
         if args.json:
             partial = PlanResult(plan, done)
             out = {"plan": plan.to_dict(), "complete": len(done) == plan.n_burns,
-                   "burns": [b.row() for b in done],
+                   "burns": [b.row() | {"target_orbit": plan.burns[i].describe()}
+                             for i, b in enumerate(done)],
                    "totals": partial.totals() if done else None}
             print(json.dumps(_jsonable(out), indent=2))
     if not args.json:
@@ -248,8 +252,10 @@ def cmd_solve(args) -> int:
     if args.json:
         out = sol.to_dict()
         row = r.row()
-        for k in ("impulsive_delta_v_mps", "loss_mps", "loss_percent", "objective_loss_mps"):
+        for k in ("impulsive_limit_mps", "delta_v_loss_mps", "delta_v_loss_percent",
+                  "objective_loss_mps"):
             out[k] = row[k]
+        out["target_orbit"] = plan.burns[n - 1].describe()
         out["plan"] = plan.name
         out["previous_starts_min"] = [b.start_min for b in plan.burns[:n - 1]]
         print(json.dumps(_jsonable(out), indent=2))
@@ -316,6 +322,11 @@ def cmd_study(args) -> int:
     return 0 if res.failures.empty else 3
 
 
+def _periods_h(text) -> list:
+    """The intermediate periods (h) of a burns-table cell ("8.365;3.5", empty or NaN)."""
+    return [float(p) for p in text.split(";") if p] if isinstance(text, str) else []
+
+
 def cmd_burns(args) -> int:
     """How many capture burns: the plan's capture in N burns, the periods optimised."""
     from lunarcap.runs import burns
@@ -334,7 +345,8 @@ def cmd_burns(args) -> int:
         out = {"plan": plan.to_dict(), "max_period_h": max_period_h, "max_days": max_days,
                "table": str(res.path), "run": res.run,
                "counts": [dict({k: v for k, v in r.items() if k != "burns_json"},
-                               burns=burns.burns_of(r)) for r in rows]}
+                               periods_h=_periods_h(r["periods_h"]), burns=burns.burns_of(r))
+                          for r in rows]}
         print(json.dumps(_jsonable(out), indent=2))
     else:
         print(burns.format_rows(plan, rows, res))

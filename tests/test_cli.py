@@ -61,14 +61,15 @@ def test_impulsive_json_subprocess():
         assert key in UNITLESS_KEYS or key.endswith(UNIT_SUFFIXES), f"{key} names no unit"
     burns = out["burns"]
     assert [b["burn"] for b in burns] == [1, 2, 3]
-    assert burns[0]["delta_v_mps"] == pytest.approx(353.272, abs=1e-9)  # by construction
+    # by construction
+    assert burns[0]["impulsive_delta_v_two_body_mps"] == pytest.approx(353.272, abs=1e-9)
     # JSON carries the full double: the same numbers as the library call
     lib = imp.impulsive_sequence(150.0, 200.0, 524.895)
     for b, ref in zip(burns, lib):
-        assert b["delta_v_mps"] == ref.delta_v_mps
+        assert b["impulsive_delta_v_two_body_mps"] == ref.delta_v_mps
         assert b["m_after_kg"] == ref.m_after_kg
-    assert out["total_delta_v_mps"] == pytest.approx(sum(b["delta_v_mps"] for b in burns),
-                                                     rel=1e-15)
+    assert out["total_impulsive_delta_v_two_body_mps"] == pytest.approx(
+        sum(b["impulsive_delta_v_two_body_mps"] for b in burns), rel=1e-15)
     assert burns[0]["period_before_h"] is None
     assert out["thrust_N"] == 150.0 and out["isp_s"] == 200.0 and out["mass_kg"] == 524.895
 

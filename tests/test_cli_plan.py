@@ -16,7 +16,7 @@ from lunarcap.mission.plan import load_plan
 
 pytestmark = pytest.mark.slow
 
-REQUIRED = ["delta_v_mps", "impulsive_delta_v_mps", "loss_percent", "burn_duration_min",
+REQUIRED = ["delta_v_mps", "impulsive_limit_mps", "delta_v_loss_percent", "burn_duration_min",
             "start_min", "m_start_kg", "m_end_kg", "v_end_kmps", "solve_wall_s"]
 
 
@@ -58,9 +58,9 @@ def test_solve_json_keys_and_physics():
     assert abs(dv - d["delta_v_mps"]) < 1e-6
     # two-body: the impulsive limit is the vis-viva 353.272 m/s, the finite burn costs more,
     # by < 1 %
-    assert abs(d["impulsive_delta_v_mps"] - 353.272) < 0.01
+    assert abs(d["impulsive_limit_mps"] - 353.272) < 0.01
     assert 353.272 < d["delta_v_mps"] < 353.272 * 1.01
-    assert d["loss_mps"] == pytest.approx(d["delta_v_mps"] - d["impulsive_delta_v_mps"])
+    assert d["delta_v_loss_mps"] == pytest.approx(d["delta_v_mps"] - d["impulsive_limit_mps"])
     assert d["verification"]["passed"]
 
 
@@ -75,7 +75,7 @@ def test_plan_json_totals_and_chain(plan_file):
     # mass carries through the chain, the loss is positive, the final orbit is the circle
     a, b = d["burns"]
     assert a["m_end_kg"] == pytest.approx(b["m_start_kg"], abs=1e-9)  # collocation vs flight
-    assert tot["total_loss_mps"] > 0
+    assert tot["total_delta_v_loss_mps"] > 0
     assert tot["final_rp_km"] == pytest.approx(1838.2, abs=0.01)
     assert tot["final_ra_km"] == pytest.approx(1838.2, abs=0.01)
     assert tot["all_verified"]

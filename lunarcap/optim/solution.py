@@ -65,7 +65,8 @@ class Solution:
     def summary(self) -> dict:
         """Flat summary with units in the keys (the CLI's JSON).
 
-        ``impulsive_two_body_mps`` is the closed-form two-body impulse of this burn (vis-viva,
+        ``impulsive_delta_v_two_body_mps`` is the closed-form two-body impulse of this burn
+        (vis-viva,
         tangential at perilune) from which Eq. (19) estimates ``eq19_duration_min``; the
         impulsive limit in the same dynamics, and the loss against it, are computed by
         :mod:`lunarcap.runs.chain`.
@@ -74,18 +75,18 @@ class Solution:
         tv = orbit_summary(self.end_state, C.MU_MOON)
         return {
             "burn": prob.index, "thrust_N": prob.model.thrust_N, "isp_s": prob.model.isp_s,
-            "dynamics": prob.model.mode, "steering": prob.steering, "target": prob.target.kind,
+            "dynamics": prob.model.mode, "steering": prob.steering, "target_kind": prob.target.kind,
             "free_start": prob.free_start, "start_min": prob.start_min,
             "ignition_epoch": calendar_from_seconds(prob.t_ign_s),
             "end_epoch": calendar_from_seconds(prob.t_end_s),
             "burn_duration_min": raw.t1_s / 60.0, "delta_v_mps": raw.delta_v_mps,
-            "impulsive_two_body_mps": prob.dv_impulsive_mps,
+            "impulsive_delta_v_two_body_mps": prob.dv_impulsive_mps,
             "m_start_kg": prob.x0[6], "m_end_kg": float(raw.x_burn[6, -1]),
             "fuel_kg": prob.x0[6] - float(raw.x_burn[6, -1]),
             "v_end_kmps": tv["v_kmps"], "rp_end_km": tv["rp_km"], "ra_end_km": tv["ra_km"],
             "inc_end_deg": tv["inc_deg"], "period_end_h": _period_h(tv),
             "eq19_duration_min": prob.eq19_duration_s / 60.0,
-            "objective_mps": raw.objective_kmps * 1e3,
+            "objective_j_mps": raw.objective_kmps * 1e3,
             "ipopt_status": raw.status, "ipopt_iterations": raw.iterations,
             "mesh": raw.mesh.label(), "nlp_solve_s": raw.solve_s, "solve_wall_s": self.wall_s,
             "u_inertial": None if raw.u_inertial is None else list(raw.u_inertial),

@@ -82,7 +82,7 @@ class Verification:
     passed: bool
     nfev: int
     released: tuple = ()          # targets the steering law leaves free (not gated)
-    branch: float | None = None   # e cos(nu) at the end (>= 0: perilune branch)
+    end_e_cos_nu: float | None = None   # e cos(nu) at the end (>= 0: perilune branch)
     end_speed_diff_mps: float = 0.0  # |v(propagated)| - |v(collocation)| at the end
     period_error_s: float | None = None  # ellipse targets only (osculating, at the end)
     ellipse: bool = False         # an ellipse as asked: apolune and period gated
@@ -113,8 +113,8 @@ class Verification:
             out.append(f"inclination off by {self.inc_error_deg:.3g} deg")
         if self.gamma_error_deg is not None and not abs(self.gamma_error_deg) < TOL_ANGLE_DEG:
             out.append(f"flight-path angle off by {self.gamma_error_deg:.3g} deg")
-        if self.branch is not None and not self.branch >= 0:
-            out.append(f"the coast ends at an apolune (e cos(nu) = {self.branch:.3g}), "
+        if self.end_e_cos_nu is not None and not self.end_e_cos_nu >= 0:
+            out.append(f"the coast ends at an apolune (e cos(nu) = {self.end_e_cos_nu:.3g}), "
                        "not a perilune")
         return out
 

@@ -79,11 +79,12 @@ def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict,
     Parameters
     ----------
     ok : DataFrame of the study's verified rows (``part``, ``isp_s``, ``thrust_to_weight``,
-        ``loss_percent``); rows with a loss <= 0 are not drawn (log axis)
-    theory : DataFrame of Robbins' estimate on a dense grid (same columns), only where it
+        ``objective_loss_percent``); rows with a loss <= 0 are not drawn (log axis)
+    theory : DataFrame of Robbins' estimate on a dense grid (``analytic_loss_percent``), only where
+    it
         is to be drawn
     paper : DataFrame of the paper's engines (``thrust_N``, ``isp_s``, ``thrust_to_weight``,
-        ``part``, ``loss_percent``), drawn as stars
+        ``part``, ``paper_delta_v_loss_percent``), drawn as stars
     isp_s : the specific impulses (s), one colour each
     part_titles : ``{part: panel title}``, in panel order (four panels, 2 x 2)
     newton_per_ratio : thrust (N) of a thrust-to-weight ratio of 1 (top axis)
@@ -98,18 +99,19 @@ def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict,
                              sharex=True)
     for ax, part in zip(axes.flat, part_titles):
         for k, isp in enumerate(isp_s):
-            d = ok[(ok.part == part) & (ok.isp_s == isp) & (ok.loss_percent > 0)]
+            d = ok[(ok.part == part) & (ok.isp_s == isp) & (ok.objective_loss_percent > 0)]
             d = d.sort_values("thrust_to_weight")
-            ax.plot(d.thrust_to_weight, d.loss_percent, "-", marker=ISP_MARKERS[k % 6], ms=4,
+            ax.plot(d.thrust_to_weight, d.objective_loss_percent, "-", marker=ISP_MARKERS[k % 6],
+                    ms=4,
                     lw=1.4, color=colours[float(isp)], label=f"optimal, Isp {isp:g} s")
             th = theory[(theory.part == part) & (theory.isp_s == isp)]
-            ax.plot(th.thrust_to_weight, th.loss_percent, ls=(0, (5, 2)),
+            ax.plot(th.thrust_to_weight, th.analytic_loss_percent, ls=(0, (5, 2)),
                     color=colours[float(isp)], lw=1.6, label=f"Robbins (1966), Isp {isp:g} s")
         for r in paper[paper.part == part].itertuples(index=False):
-            ax.plot(r.thrust_to_weight, r.loss_percent, marker="*", ms=13, ls="none",
+            ax.plot(r.thrust_to_weight, r.paper_delta_v_loss_percent, marker="*", ms=13, ls="none",
                     color=colours.get(float(r.isp_s), "black"), mec="black", mew=0.7)
             ax.annotate(f"{r.thrust_N:g} N / {r.isp_s:g} s",
-                        (r.thrust_to_weight, r.loss_percent), xytext=(6, 3),
+                        (r.thrust_to_weight, r.paper_delta_v_loss_percent), xytext=(6, 3),
                         textcoords="offset points", fontsize=9)
         _trade_axes(ax, newton_per_ratio)
         ax.set_yscale("log")
@@ -174,8 +176,9 @@ def plot_summary_loss(chains: dict):
     Parameters
     ----------
     chains : {engine label: DataFrame} from :func:`lunarcap.runs.sweeps.sequence_table`
-        (``loi``, ``paper_delta_v_mps``, ``paper_impulsive_delta_v_mps``, ``loss_mps``,
-        ``model_loss_mps``), one bar group per LOI, one panel per engine.
+        (``loi``, ``paper_delta_v_mps``, ``paper_impulsive_delta_v_mps``,
+        ``loss_vs_paper_impulse_mps``,
+        ``delta_v_loss_mps``), one bar group per LOI, one panel per engine.
 
     Returns
     -------
@@ -189,8 +192,9 @@ def plot_summary_loss(chains: dict):
         x = np.arange(len(s))
         ax.bar(x - w, s.paper_delta_v_mps - s.paper_impulsive_delta_v_mps, w, color="C1",
                label="paper (Table B1)")
-        ax.bar(x, s.loss_mps, w, color="C0", label="ours vs the paper's impulsive ΔV")
-        ax.bar(x + w, s.model_loss_mps, w, color="C2", label="ours vs our impulsive ΔV")
+        ax.bar(x, s.loss_vs_paper_impulse_mps, w, color="C0",
+               label="ours vs the paper's impulsive ΔV")
+        ax.bar(x + w, s.delta_v_loss_mps, w, color="C2", label="ours vs our impulsive ΔV")
         ax.set_xticks(x, [f"LOI {k}" for k in s.loi])
         ax.set_title(name, fontsize=10)
         ax.grid(axis="y", alpha=0.3)
@@ -384,7 +388,7 @@ def plot_burn_count(counts):
     Parameters
     ----------
     counts : DataFrame, one row per (plan, count) with ``label``, ``n_burns``, ``status``,
-        ``total_loss_mps`` and ``time_to_final_orbit_h`` (rows not "ok" are drawn as an
+        ``total_delta_v_loss_mps`` and ``time_to_final_orbit_h`` (rows not "ok" are drawn as an
         open marker on the axis: no capture with that count)
 
     Returns
@@ -398,7 +402,7 @@ def plot_burn_count(counts):
         ok = g[g.status == "ok"]
         c = f"C{j}"
         m = ISP_MARKERS[j % len(ISP_MARKERS)]
-        ax.plot(ok.n_burns, ok.total_loss_mps, "-", marker=m, color=c, label=label)
+        ax.plot(ok.n_burns, ok.total_delta_v_loss_mps, "-", marker=m, color=c, label=label)
         bx.plot(ok.n_burns, ok.time_to_final_orbit_h, "-", marker=m, color=c, label=label)
         bad = g[g.status != "ok"]
         for a in (ax, bx):

@@ -1,69 +1,39 @@
-"""Column labels and units of the book's tables, defined once.
+"""Column labels and units of the book's tables and axes, read from the glossary.
 
-A column name carries its unit as a suffix (``delta_v_mps``, ``burn_duration_min``); the
-label shown in the book is composed from the quantity's words and the unit
-(:func:`label`: ``"ΔV (m/s)"``, ``"duration (min)"``). A ``paper_`` prefix adds
-", paper"; an ``impulsive_`` prefix "impulsive ". Names that read better otherwise are
-listed in :data:`LABELS`.
+A reported quantity's header is its glossary label and unit
+(:class:`lunarcap.quantities.Quantity`: ``delta_v_loss_mps`` -> ``"ΔV loss (m/s)"``), so
+a column reads the same in every table, axis and JSON key. A column that is a page's own
+(not a reported quantity) is composed from its name: the words of the stem and the unit
+its suffix states (:func:`lunarcap.quantities.unit_of`).
 
 Examples
 --------
->>> label("delta_v_mps"), label("paper_delta_v_mps"), label("loss_percent")
-('ΔV (m/s)', 'ΔV, paper (m/s)', 'loss (%)')
+>>> label("delta_v_mps"), label("paper_delta_v_mps"), label("delta_v_loss_percent")
+('ΔV (m/s)', 'ΔV, paper (m/s)', 'ΔV loss (%)')
 >>> labels(["start_min", "thrust_N"])
 {'start_min': 'start (min)', 'thrust_N': 'thrust (N)'}
 """
 
 from __future__ import annotations
 
-#: Unit suffixes of column names and the unit shown (longest suffix first when matching).
-UNITS = {
-    "_mps2": "m/s²", "_kmps2": "km/s²", "_kmps": "km/s", "_mps": "m/s", "_percent": "%",
-    "_min": "min", "_deg": "deg", "_kg": "kg", "_km": "km", "_mm": "mm", "_m": "m", "_s": "s",
-    "_h": "h", "_N": "N", "_LU": "LU",
-}
+from lunarcap import quantities as Q
 
-#: Words of the quantities (the stem of a column name, without unit and prefix).
-QUANTITIES = {
-    "delta_v": "ΔV", "burn_duration": "duration", "start": "start", "loss": "loss",
-    "thrust": "thrust", "isp": "Isp", "fuel": "propellant", "m_start": "mass before",
-    "m_end": "mass after", "m0": "m₀", "final_mass": "final mass", "eq19_duration": "Eq. (19)",
-    "v_end": "speed at the end", "rp_error": "r_p error", "ra_error": "r_a error",
-    "inc_error": "i error", "gamma_error": "γ error", "objective": "J", "solve_wall": "wall",
-    "nlp_solve": "IPOPT", "total_delta_v": "total ΔV", "total_loss": "total loss",
-    "total_fuel": "propellant", "total_burn_duration": "burn time", "period": "period",
-    "altitude": "altitude", "inclination": "inclination",
-    "time_to_final_orbit": "time to final orbit",
-    "objective_loss": "J loss", "robbins_loss": "Robbins' estimate",
-}
-
-#: Labels that are not composed from the name.
-LABELS = {
-    "burn": "burn", "loi": "LOI", "target": "target", "steering": "steering",
-    "verified": "verified", "passed": "passed", "mesh": "mesh", "ipopt_status": "IPOPT status",
-    "ipopt_iterations": "iterations", "thrust_to_weight": "T/(m₀g₀)", "engine": "engine",
-    "best": "best", "part": "burn", "ignition_epoch": "ignition (TDB)",
-}
+#: Unit suffixes of column names and the unit shown (the glossary's).
+UNITS = Q.UNIT_SUFFIXES
 
 
 def label(column: str) -> str:
-    """The book's header of a column (words and unit)."""
-    if column in LABELS:
-        return LABELS[column]
-    suffix = ""
-    for s in sorted(UNITS, key=len, reverse=True):
-        if column.endswith(s) and len(column) > len(s):
-            suffix = s
-            break
+    """The book's header of a column: the glossary's label and unit, else words and unit."""
+    try:
+        return Q.lookup(column).header
+    except KeyError:
+        pass
+    unit = Q.unit_of(column)
+    suffix = next((s for s in sorted(UNITS, key=len, reverse=True)
+                   if unit and column.endswith(s)), "")
     stem = column[: len(column) - len(suffix)] if suffix else column
-    extra = ""
-    if stem.startswith("paper_"):
-        stem, extra = stem[len("paper_"):], ", paper"
-    before = ""
-    if stem.startswith("impulsive_"):
-        stem, before = stem[len("impulsive_"):], "impulsive "
-    words = before + QUANTITIES.get(stem, stem.replace("_", " "))
-    return f"{words}{extra}" + (f" ({UNITS[suffix]})" if suffix else "")
+    words = stem.replace("_", " ")
+    return f"{words} ({unit})" if unit else words
 
 
 def labels(columns, **overrides) -> dict:

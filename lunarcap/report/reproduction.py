@@ -16,7 +16,8 @@ from lunarcap.physics.rocket import burn_duration_estimate_s
 _TABLE_QUANTITIES = (
     ("burn duration", "min", "paper_burn_duration_min", "burn_duration_min"),
     ("delta-V", "m/s", "paper_delta_v_mps", "delta_v_mps"),
-    ("difference from impulsive", "%", "paper_loss_percent", "loss_percent"),
+    ("difference from impulsive", "%", "paper_delta_v_loss_percent",
+     "loss_vs_paper_impulse_percent"),
 )
 
 
@@ -75,7 +76,7 @@ def paper_tables_long(sweeps: dict, impulsive_dv_mps=None):
                                            "burn_duration_min"),
                                           ("delta-V", "m/s", b.delta_v_mps, "delta_v_mps"),
                                           ("difference from impulsive", "%", b.diff_percent,
-                                           "loss_percent")):
+                                           "loss_vs_paper_impulse_percent")):
                 o = float(r[ocol])
                 rows.append({"source": "Table B1", "thrust_N": float(thrust),
                              "isp_s": float(isp), "loi": int(loi),
@@ -109,7 +110,8 @@ def paper_chain_rows(summaries) -> list[dict]:
     Returns
     -------
     list of dict
-        Copies with ``loss_mps``, ``loss_percent`` (vs the paper's impulsive delta-V of
+        Copies with ``loss_vs_paper_impulse_mps``, ``loss_vs_paper_impulse_percent`` (vs the
+        paper's impulsive delta-V of
         that burn) and ``eq19_duration_min`` (Eq. (19), corrected 19a, with the paper's
         impulsive delta-V and our mass at ignition) set.
     """
@@ -118,8 +120,8 @@ def paper_chain_rows(summaries) -> list[dict]:
     for s in summaries:
         imp = P.PAPER_IMPULSIVE_DV_MPS[int(s["burn"]) - 1]
         row = dict(s)
-        row["loss_mps"] = s["delta_v_mps"] - imp
-        row["loss_percent"] = 100.0 * (s["delta_v_mps"] - imp) / imp
+        row["loss_vs_paper_impulse_mps"] = s["delta_v_mps"] - imp
+        row["loss_vs_paper_impulse_percent"] = 100.0 * (s["delta_v_mps"] - imp) / imp
         row["eq19_duration_min"] = burn_duration_estimate_s(
             s["m_start_kg"], imp, s["thrust_N"], s["isp_s"]) / 60.0
         out.append(row)
@@ -172,8 +174,8 @@ def _chain_equivalents(t: float, s: list, impulsive_final_mass_kg: dict | None) 
     k = _key(t)
     m0 = paper_scenario().mass_kg
     imp_total = float(sum(P.PAPER_IMPULSIVE_DV_MPS))
-    loss = [x["loss_mps"] for x in s]
-    pct = [x["loss_percent"] for x in s]
+    loss = [x["loss_vs_paper_impulse_mps"] for x in s]
+    pct = [x["loss_vs_paper_impulse_percent"] for x in s]
     dur = [x["burn_duration_min"] for x in s]
     total_pct = 100.0 * sum(loss) / imp_total
     mean_pct = float(np.mean(pct))
@@ -200,10 +202,11 @@ def _chain_equivalents(t: float, s: list, impulsive_final_mass_kg: dict | None) 
                                                "100 (finite - impulsive) / impulsive")
     for n in (1, 2, 3):
         x = s[n - 1]
-        out[f"loss_loi{n}_{k}_mps"] = (x["loss_mps"], "vs the paper's impulsive delta-V")
-        out[f"loss_loi{n}_{k}_percent"] = (x["loss_percent"],
+        out[f"loss_loi{n}_{k}_mps"] = (x["loss_vs_paper_impulse_mps"],
+                                       "vs the paper's impulsive delta-V")
+        out[f"loss_loi{n}_{k}_percent"] = (x["loss_vs_paper_impulse_percent"],
                                            "vs the paper's impulsive delta-V")
-        out[f"loss_pct_loi{n}_{k}_summary"] = (x["loss_percent"],
+        out[f"loss_pct_loi{n}_{k}_summary"] = (x["loss_vs_paper_impulse_percent"],
                                                "vs the paper's impulsive delta-V")
         for nm in (f"burn_loi{n}_{k}_min", f"burn_loi{n}_{k}_summary_min",
                    f"burn_loi{n}_{k}_about_min"):
@@ -242,7 +245,8 @@ def _chain_150N_equivalents(s: list) -> dict:
 def chain_totals_percent(s: list) -> float:
     """Total loss of a chain over the paper's total impulsive delta-V, %."""
     from lunarcap.paper import printed as P
-    return 100.0 * sum(x["loss_mps"] for x in s) / float(sum(P.PAPER_IMPULSIVE_DV_MPS))
+    return (100.0 * sum(x["loss_vs_paper_impulse_mps"] for x in s)
+            / float(sum(P.PAPER_IMPULSIVE_DV_MPS)))
 
 
 def quote_equivalents(chains: dict, impulsive_final_mass_kg: dict | None = None,

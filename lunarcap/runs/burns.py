@@ -144,14 +144,14 @@ def _burn_rows(plan: CapturePlan, legs: list, imps: list | None) -> list[dict]:
         b = plan.burns[k]
         imp = None if imps is None else imps[k]["delta_v_mps"]
         rows.append({
-            "burn": k + 1, "target": b.describe(),
+            "burn": k + 1, "target_orbit": b.describe(),
             "period_after_h": (b.period_s / 3600.0 if b.target != CIRCULAR
                                else circle_period_s(plan.perilune_radius_km) / 3600.0),
             "nominal_perilune_epoch": calendar_from_seconds(t[k]),
             "ignition_epoch": s["ignition_epoch"], "start_min": s["start_min"],
             "burn_duration_min": s["burn_duration_min"], "delta_v_mps": s["delta_v_mps"],
-            "impulsive_delta_v_mps": imp,
-            "loss_mps": None if imp is None else s["delta_v_mps"] - imp,
+            "impulsive_limit_mps": imp,
+            "delta_v_loss_mps": None if imp is None else s["delta_v_mps"] - imp,
             "m_start_kg": s["m_start_kg"], "m_end_kg": s["m_end_kg"],
             "fuel_kg": s["fuel_kg"], "rp_end_km": s["rp_end_km"], "ra_end_km": s["ra_end_km"],
             "verified": bool(sol.verification.passed),
@@ -175,17 +175,17 @@ def solve_count(plan: CapturePlan, n: int, max_period_s: float, max_time_s: floa
         ``n_burns``, ``status`` ("ok", "infeasible" or "failed"), ``reason`` (why not ok),
         ``periods_h`` (the optimal intermediate periods), ``burns`` (one row per burn:
         target, ignition, duration, delta-V, impulsive limit, loss, masses, verdicts),
-        ``total_delta_v_mps``, ``total_impulsive_delta_v_mps`` (sum of the limits),
-        ``total_loss_mps``, ``two_body_impulsive_total_mps`` (the closed form),
-        ``fuel_kg``, ``final_mass_kg``, ``time_to_final_orbit_h`` (arrival perilune to
-        the end of the last burn), ``ipopt_status``, ``iterations``, ``wall_s``.
+        ``total_delta_v_mps``, ``total_impulsive_limit_mps`` (sum of the limits),
+        ``total_delta_v_loss_mps``, ``total_impulsive_delta_v_two_body_mps`` (the closed form),
+        ``total_fuel_kg``, ``final_mass_kg``, ``time_to_final_orbit_h`` (arrival perilune to
+        the end of the last burn), ``ipopt_status``, ``total_ipopt_iterations``, ``wall_s``.
     """
     t_start = time.perf_counter()
     n = int(n)
     out = {"n_burns": n, "status": "ok", "reason": "", "periods_h": [], "burns": [],
-           "two_body_impulsive_total_mps": capture_total_mps(plan.perilune_radius_km,
+           "total_impulsive_delta_v_two_body_mps": capture_total_mps(plan.perilune_radius_km,
                                                              plan.arrival.v_inf_kmps),
-           "ipopt_status": "", "iterations": None}
+           "ipopt_status": "", "total_ipopt_iterations": None}
     try:
         guess = count_guess(plan, n, max_period_s)
         fit = _fit_for(guess, n, max_period_s, max_time_s)
@@ -282,19 +282,20 @@ def _totals(res, imps: list | None) -> dict:
     opt = res.plan
     rows = _burn_rows(opt, res.legs, imps)
     dv = sum(r["delta_v_mps"] for r in rows)
-    imp_total = None if imps is None else sum(r["impulsive_delta_v_mps"] for r in rows)
+    imp_total = None if imps is None else sum(r["impulsive_limit_mps"] for r in rows)
     last = res.legs[-1]
     t0 = opt.nominal_perilunes_s[0]
     return dict(
         periods_h=[b.period_s / 3600.0 for b in opt.burns[:-1]], burns=rows,
-        total_delta_v_mps=dv, total_impulsive_delta_v_mps=imp_total,
-        total_loss_mps=None if imp_total is None else dv - imp_total,
-        fuel_kg=rows[0]["m_start_kg"] - rows[-1]["m_end_kg"],
+        total_delta_v_mps=dv, total_impulsive_limit_mps=imp_total,
+        total_delta_v_loss_mps=None if imp_total is None else dv - imp_total,
+        total_fuel_kg=rows[0]["m_start_kg"] - rows[-1]["m_end_kg"],
         final_mass_kg=rows[-1]["m_end_kg"],
         total_burn_duration_min=sum(r["burn_duration_min"] for r in rows),
         time_to_final_orbit_h=time_to_final_orbit_h(t0, last),
         all_verified=all(r["verified"] for r in rows),
-        ipopt_status=res.ipopt_status, iterations=res.iterations, nlp_solve_s=res.solve_s)
+        ipopt_status=res.ipopt_status, total_ipopt_iterations=res.iterations,
+        nlp_solve_s=res.solve_s)
 
 
 def count_result(plan: CapturePlan, n: int, max_period_h: float = DEFAULT_MAX_PERIOD_H,
@@ -315,9 +316,10 @@ def count_result(plan: CapturePlan, n: int, max_period_h: float = DEFAULT_MAX_PE
 #: Columns of the study's table (one row per plan and count; units in the names).
 COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "n_burns", "max_period_h",
            "max_days", "status", "reason", "periods_h", "total_delta_v_mps",
-           "total_impulsive_delta_v_mps", "total_loss_mps", "two_body_impulsive_total_mps",
-           "fuel_kg", "final_mass_kg", "total_burn_duration_min", "time_to_final_orbit_h",
-           "all_verified", "ipopt_status", "iterations", "burns_json", "task_wall_s",
+           "total_impulsive_limit_mps", "total_delta_v_loss_mps",
+           "total_impulsive_delta_v_two_body_mps",
+           "total_fuel_kg", "final_mass_kg", "total_burn_duration_min", "time_to_final_orbit_h",
+           "all_verified", "ipopt_status", "total_ipopt_iterations", "burns_json", "task_wall_s",
            "worker", "code_version", "completed_utc", "error")
 KEY = ("plan_id", "n_burns", "max_period_h", "max_days")
 
@@ -461,8 +463,9 @@ def format_rows(plan: CapturePlan, rows: list, result) -> str:
         periods = r["periods_h"] if isinstance(r["periods_h"], str) else ""
         lines.append(
             f"N = {n}: total dV {r['total_delta_v_mps']:.3f} m/s, impulsive "
-            f"{_num(r['total_impulsive_delta_v_mps'])} m/s, loss {_num(r['total_loss_mps'])} "
-            f"m/s; fuel {r['fuel_kg']:.2f} kg; final orbit {r['time_to_final_orbit_h']:.2f} h "
+            f"{_num(r['total_impulsive_limit_mps'])} m/s, loss {_num(r['total_delta_v_loss_mps'])} "
+            f"m/s; fuel {r['total_fuel_kg']:.2f} kg; final orbit {r['time_to_final_orbit_h']:.2f} "
+            f"h "
             f"after arrival; periods "
             + (", ".join(f"{float(p):.3f}" for p in periods.split(";")) + " h" if periods
                else "none"))
@@ -470,7 +473,7 @@ def format_rows(plan: CapturePlan, rows: list, result) -> str:
             lines.append(f"    burn {b['burn']}: {b['target']:<20} ignition {b['ignition_epoch']}"
                          f" ({b['start_min']:+.2f} min), {b['burn_duration_min']:6.2f} min, "
                          f"dV {b['delta_v_mps']:8.3f} m/s, impulsive "
-                         f"{_num(b['impulsive_delta_v_mps'])}, loss {_num(b['loss_mps'])} m/s"
+                         f"{_num(b['impulsive_limit_mps'])}, loss {_num(b['delta_v_loss_mps'])} m/s"
                          f"{'' if b['verified'] else ', NOT VERIFIED'}")
     run = result.run
     lines.append(f"{run['computed']} count(s) computed, {run['reused']} taken from the table; "

@@ -192,7 +192,7 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
 
     Returns
     -------
-    dict with delta_v_mps (extrapolated), objective_mps (likewise), the two finite-limit
+    dict with delta_v_mps (extrapolated), objective_j_mps (likewise), the two finite-limit
     delta-Vs, the impulse's epoch offset (min), end speed (km/s) and the verdicts.
     """
     i = plan.n_burns - 1
@@ -226,7 +226,7 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
             "burn_long_s": s_long.raw.t1_s, "burn_short_s": s_short.raw.t1_s,
             "impulse_offset_min": centre_min,
             "v_end_kmps": s_short.summary()["v_end_kmps"],
-            "objective_mps": (4 * s_short.raw.objective_kmps - s_long.raw.objective_kmps) / 3
+            "objective_j_mps": (4 * s_short.raw.objective_kmps - s_long.raw.objective_kmps) / 3
             * 1e3,
             "m_before_kg": float(x_peri[6]), "dynamics": plan.dynamics,
             "verification_passed": bool(s_long.verification.passed
@@ -247,7 +247,7 @@ def burn_loss(finite: dict, impulsive: dict) -> dict:
     """The loss of a burn against its impulsive limit, in m/s and %, two ways.
 
     ``finite``: :meth:`Solution.summary` (or any dict with ``delta_v_mps`` and
-    ``objective_mps``); ``impulsive``: :func:`impulsive_limit` of the same burn. The
+    ``objective_j_mps``); ``impulsive``: :func:`impulsive_limit` of the same burn. The
     delta-V loss is what the paper tabulates; the objective loss compares Eq. (9),
     delta-V plus the speed at the next perilune, which is nearly flat along the ignition
     epoch: where a per-burn delta-V is uncertain by ~0.2 m/s (see
@@ -255,9 +255,9 @@ def burn_loss(finite: dict, impulsive: dict) -> dict:
     an optimal burn (an impulse from the same orbit does at least as well).
     """
     dv, imp = finite["delta_v_mps"], impulsive["delta_v_mps"]
-    jl = finite["objective_mps"] - impulsive["objective_mps"]
-    return {"impulsive_delta_v_mps": imp, "loss_mps": dv - imp,
-            "loss_percent": 100.0 * (dv - imp) / imp, "objective_loss_mps": jl,
+    jl = finite["objective_j_mps"] - impulsive["objective_j_mps"]
+    return {"impulsive_limit_mps": imp, "delta_v_loss_mps": dv - imp,
+            "delta_v_loss_percent": 100.0 * (dv - imp) / imp, "objective_loss_mps": jl,
             "objective_loss_percent": 100.0 * jl / imp}
 
 
@@ -275,7 +275,8 @@ class BurnResult:
         s.pop("u_inertial")
         row = dict(s)
         if self.impulsive is None:
-            row.update(dict.fromkeys(("impulsive_delta_v_mps", "loss_mps", "loss_percent",
+            row.update(dict.fromkeys(("impulsive_limit_mps", "delta_v_loss_mps",
+                                      "delta_v_loss_percent",
                                       "objective_loss_mps", "objective_loss_percent")))
         else:
             row.update(burn_loss(s, self.impulsive))
@@ -302,14 +303,14 @@ class PlanResult:
         """Totals of the chain: delta-V, impulsive, loss, fuel, burn time, final orbit."""
         rows = [b.row() for b in self.burns]
         dv = sum(r["delta_v_mps"] for r in rows)
-        imps = [r["impulsive_delta_v_mps"] for r in rows]
+        imps = [r["impulsive_limit_mps"] for r in rows]
         imp = None if any(x is None for x in imps) else sum(imps)
         last = rows[-1]
         # the perilunes reached (an ellipse as asked moves them), not the plan's estimate
         t = (self.plan.nominal_perilunes_s[0], self.burns[-1].solution.problem.t_end_s)
-        return {"total_delta_v_mps": dv, "total_impulsive_delta_v_mps": imp,
-                "total_loss_mps": None if imp is None else dv - imp,
-                "total_loss_percent": None if imp is None else 100 * (dv - imp) / imp,
+        return {"total_delta_v_mps": dv, "total_impulsive_limit_mps": imp,
+                "total_delta_v_loss_mps": None if imp is None else dv - imp,
+                "total_delta_v_loss_percent": None if imp is None else 100 * (dv - imp) / imp,
                 "total_fuel_kg": self.plan.arrival.mass_kg - last["m_end_kg"],
                 "total_burn_duration_min": sum(r["burn_duration_min"] for r in rows),
                 "final_mass_kg": last["m_end_kg"],

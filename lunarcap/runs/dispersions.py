@@ -285,7 +285,7 @@ def nominal_totals(plan: CapturePlan) -> dict:
     sols = nominal(plan)
     return {"nominal_delta_v_mps": float(sum(s.delta_v_mps for s in sols)),
             "nominal_propellant_kg": float(plan.initial_mass_kg - sols[-1].end_state[6]),
-            "impulsive_two_body_mps": float(sum(b.delta_v_mps for b in plan.impulsive()))}
+            "impulsive_delta_v_two_body_mps": float(sum(b.delta_v_mps for b in plan.impulsive()))}
 
 
 # ====================================================================== one sample

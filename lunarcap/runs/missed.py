@@ -335,7 +335,7 @@ def _solved(out: dict, res, est, burn: int, t_r: float, t_arrival_s: float,
     for k, s in enumerate(res.legs):
         sm = s.summary()
         rows.append({"burn": burn + k,
-                     "target": res.plan.burns[k].describe(),
+                     "target_orbit": res.plan.burns[k].describe(),
                      "ignition_epoch": sm["ignition_epoch"],
                      "ignition_min_after_fault": (s.problem.t_ign_s - t_r) / 60.0,
                      "burn_duration_min": sm["burn_duration_min"],
@@ -346,7 +346,7 @@ def _solved(out: dict, res, est, burn: int, t_r: float, t_arrival_s: float,
         xf = res.legs[0].end_state
         a = xf[0] / (1 - xf[1] ** 2 - xf[2] ** 2)
         period = period_s(a) / 3600.0 if a > 0 else math.inf
-        rows[0]["target"] = f"ellipse, {period:.6g} h (free)"
+        rows[0]["target_orbit"] = f"ellipse, {period:.6g} h (free)"
     out.update(status="recovered", recovery_delta_v_mps=rec_dv,
                total_delta_v_mps=partial + rec_dv,
                penalty_mps=partial + rec_dv - out["nominal_remaining_delta_v_mps"],

@@ -22,7 +22,7 @@ Loss
     Measured against the impulsive limit of the same burn in the same dynamics, from the
     same orbit (:func:`lunarcap.runs.chain.impulsive_limit`: one impulse at the best
     epoch, as the limit of ever shorter burns), so it goes to zero as the thrust grows.
-    ``loss_mps`` is the objective-based loss (:func:`lunarcap.runs.chain.burn_loss`):
+    ``objective_loss_mps`` is the objective-based loss (:func:`lunarcap.runs.chain.burn_loss`):
     Eq. (9)'s delta-V plus the speed at the next perilune, finite minus impulsive, i.e.
     the extra delta-V of the burn plus the extra speed it leaves for the next one. It is
     never negative for an optimal burn and, unlike the delta-V difference, is well
@@ -110,7 +110,7 @@ COLUMNS = (
     "thrust_N", "isp_s", "dynamics", "part", "status",
     "thrust_to_weight", "thrust_to_lunar_weight",
     "start_min", "burn_duration_min", "eq19_duration_min", "burn_to_eq19_ratio",
-    "delta_v_mps", "impulsive_delta_v_mps", "loss_mps", "loss_percent",
+    "delta_v_mps", "impulsive_limit_mps", "objective_loss_mps", "objective_loss_percent",
     "delta_v_loss_mps", "delta_v_loss_percent", "impulsive_verified",
     "analytic_eq19_duration_min", "analytic_loss_mps", "analytic_loss_percent",
     "m_start_kg", "m_end_kg", "fuel_kg",
@@ -307,14 +307,16 @@ def engine_rows(thrust_N: float, isp_s: float, dynamics: str, summaries: list,
         row = dict.fromkeys(COLUMNS, np.nan)
         row.update(base, part=PARTS[i],
                    analytic_eq19_duration_min=theory[i]["eq19_duration_min"],
-                   analytic_loss_mps=theory[i]["loss_mps"],
-                   analytic_loss_percent=theory[i]["loss_percent"], ipopt_status="", mesh="",
+                   analytic_loss_mps=theory[i]["analytic_loss_mps"],
+                   analytic_loss_percent=theory[i]["analytic_loss_percent"], ipopt_status="",
+                   mesh="",
                    error="")
         if i < len(summaries):
             s = summaries[i]
             row.update({k: s[k] for k in ("start_min", "burn_duration_min", "eq19_duration_min",
-                                          "delta_v_mps", "impulsive_delta_v_mps", "loss_mps",
-                                          "loss_percent", "delta_v_loss_mps",
+                                          "delta_v_mps", "impulsive_limit_mps",
+                                          "objective_loss_mps",
+                                          "objective_loss_percent", "delta_v_loss_mps",
                                           "delta_v_loss_percent", "m_start_kg", "m_end_kg",
                                           "fuel_kg", "ipopt_status", "ipopt_iterations", "mesh",
                                           "solve_wall_s")})
@@ -332,18 +334,19 @@ def engine_rows(thrust_N: float, isp_s: float, dynamics: str, summaries: list,
     seq = dict.fromkeys(COLUMNS, np.nan)
     seq.update(base, part="sequence", ipopt_status="", mesh="", error="")
     seq.update(analytic_eq19_duration_min=sum(t["eq19_duration_min"] for t in theory),
-               analytic_loss_mps=sum(t["loss_mps"] for t in theory))
+               analytic_loss_mps=sum(t["analytic_loss_mps"] for t in theory))
     # Robbins' estimate is relative to the two-body impulses it is built on
     seq["analytic_loss_percent"] = 100.0 * seq["analytic_loss_mps"] / sum(
-        t["impulsive_delta_v_mps"] for t in theory)
+        t["paper_impulsive_delta_v_mps"] for t in theory)
     if all(r["status"] == "ok" for r in rows):
-        for k in ("burn_duration_min", "eq19_duration_min", "delta_v_mps", "loss_mps",
-                  "delta_v_loss_mps", "impulsive_delta_v_mps", "fuel_kg", "ipopt_iterations",
+        for k in ("burn_duration_min", "eq19_duration_min", "delta_v_mps", "objective_loss_mps",
+                  "delta_v_loss_mps", "impulsive_limit_mps", "fuel_kg", "ipopt_iterations",
                   "solve_wall_s"):
             seq[k] = sum(r[k] for r in rows)
-        seq["loss_percent"] = 100.0 * seq["loss_mps"] / seq["impulsive_delta_v_mps"]
+        seq["objective_loss_percent"] = \
+            100.0 * seq["objective_loss_mps"] / seq["impulsive_limit_mps"]
         seq["delta_v_loss_percent"] = 100.0 * seq["delta_v_loss_mps"] / seq[
-            "impulsive_delta_v_mps"]
+            "impulsive_limit_mps"]
         seq["impulsive_verified"] = True
         seq["burn_to_eq19_ratio"] = seq["burn_duration_min"] / seq["eq19_duration_min"]
         seq.update(m_start_kg=rows[0]["m_start_kg"], m_end_kg=rows[-1]["m_end_kg"],
@@ -391,10 +394,11 @@ def solve_engine(thrust_N: float, isp_s: float, dynamics: str = "full") -> list[
             break
         s = sol.summary()
         loss = burn_loss(s, imp)
-        s.update(impulsive_delta_v_mps=loss["impulsive_delta_v_mps"],
-                 loss_mps=loss["objective_loss_mps"],
-                 loss_percent=loss["objective_loss_percent"],
-                 delta_v_loss_mps=loss["loss_mps"], delta_v_loss_percent=loss["loss_percent"],
+        s.update(impulsive_limit_mps=loss["impulsive_limit_mps"],
+                 objective_loss_mps=loss["objective_loss_mps"],
+                 objective_loss_percent=loss["objective_loss_percent"],
+                 delta_v_loss_mps=loss["delta_v_loss_mps"],
+                 delta_v_loss_percent=loss["delta_v_loss_percent"],
                  impulsive_verified=imp["verification_passed"])
         summaries.append(s)
     return engine_rows(thrust_N, isp_s, dynamics, summaries, failure,
@@ -539,8 +543,9 @@ def _task_error_rows(key: dict, message: str) -> list[dict]:
 def wide_table(table: pd.DataFrame) -> pd.DataFrame:
     """One row per engine: loss (% per LOI and sequence), durations, status.
 
-    Columns: thrust_N, isp_s, thrust_to_weight, loss_percent_loi1..3, loss_percent_sequence,
-    loss_mps_sequence, analytic_loss_percent_sequence, burn_duration_min_loi1..3,
+    Columns: thrust_N, isp_s, thrust_to_weight, objective_loss_percent_loi1..3,
+    objective_loss_percent_sequence,
+    objective_loss_mps_sequence, analytic_loss_percent_sequence, burn_duration_min_loi1..3,
     eq19_duration_min_loi1..3, status (the sequence row's), failed_part.
     """
     if table.empty:
@@ -550,10 +555,12 @@ def wide_table(table: pd.DataFrame) -> pd.DataFrame:
         g = g.set_index("part")
         row = {"thrust_N": t, "isp_s": i, "thrust_to_weight": thrust_to_weight(t)}
         for p in PARTS[:3]:
-            row[f"loss_percent_{p.lower()}"] = g.loc[p, "loss_percent"] if p in g.index else np.nan
+            row[f"objective_loss_percent_{p.lower()}"] = \
+                g.loc[p, "objective_loss_percent"] if p in g.index else np.nan
         seq = g.loc["sequence"] if "sequence" in g.index else None
-        row["loss_percent_sequence"] = np.nan if seq is None else seq["loss_percent"]
-        row["loss_mps_sequence"] = np.nan if seq is None else seq["loss_mps"]
+        row["objective_loss_percent_sequence"] = \
+            np.nan if seq is None else seq["objective_loss_percent"]
+        row["objective_loss_mps_sequence"] = np.nan if seq is None else seq["objective_loss_mps"]
         row["analytic_loss_percent_sequence"] = np.nan if seq is None else \
             seq["analytic_loss_percent"]
         for p in PARTS[:3]:
@@ -580,9 +587,9 @@ def format_summary(result: StudyResult) -> str:
         ratio = r.burn_duration_min_loi1 / r.eq19_duration_min_loi1
         lines.append(
             f"{r.thrust_N:9.4g} {r.isp_s:6.4g} {r.thrust_to_weight:7.4f} | "
-            f"{_f(r.loss_percent_loi1, 12)} {_f(r.loss_percent_loi2, 6)} "
-            f"{_f(r.loss_percent_loi3, 6)} {_f(r.loss_percent_sequence, 6)} "
-            f"{_f(r.loss_mps_sequence, 8)} | {_f(ratio, 15)} | "
+            f"{_f(r.objective_loss_percent_loi1, 12)} {_f(r.objective_loss_percent_loi2, 6)} "
+            f"{_f(r.objective_loss_percent_loi3, 6)} {_f(r.objective_loss_percent_sequence, 6)} "
+            f"{_f(r.objective_loss_mps_sequence, 8)} | {_f(ratio, 15)} | "
             + (r.status if r.status == "ok" else f"{r.status}: {r.failed_part}"))
     run = result.run
     n_bad = int((w.status != "ok").sum()) if len(w) else 0
@@ -600,8 +607,8 @@ def _f(v, width: int, fmt: str = ".3f") -> str:
 def analytic_curves(thrusts_N, isp_s) -> pd.DataFrame:
     """Robbins' estimate and the Eq. (19) duration on a (dense) thrust grid, per Isp.
 
-    Columns: thrust_N, isp_s, thrust_to_weight, part, eq19_duration_min, loss_mps,
-    loss_percent (closed form, :func:`lunarcap.physics.losses.capture_chain_estimate`),
+    Columns: thrust_N, isp_s, thrust_to_weight, part, eq19_duration_min, analytic_loss_mps,
+    analytic_loss_percent (closed form, :func:`lunarcap.physics.losses.capture_chain_estimate`),
     omega_t_rad: the expansion variable omega_s t_b of Robbins' estimate (Schuler rate at
     the perilune times the Eq. (19) duration; for the sequence the largest of the three).
     """
@@ -613,13 +620,14 @@ def analytic_curves(thrusts_N, isp_s) -> pd.DataFrame:
             for e in est:
                 rows.append({"thrust_N": float(t), "isp_s": isp, "part": f"LOI{e['loi']}",
                              "eq19_duration_min": e["eq19_duration_min"],
-                             "loss_mps": e["loss_mps"], "loss_percent": e["loss_percent"],
+                             "analytic_loss_mps": e["analytic_loss_mps"],
+                             "analytic_loss_percent": e["analytic_loss_percent"],
                              "omega_t_rad": w * 60.0 * e["eq19_duration_min"]})
-            loss = sum(e["loss_mps"] for e in est)
-            imp = sum(e["impulsive_delta_v_mps"] for e in est)
+            loss = sum(e["analytic_loss_mps"] for e in est)
+            imp = sum(e["paper_impulsive_delta_v_mps"] for e in est)
             rows.append({"thrust_N": float(t), "isp_s": isp, "part": "sequence",
                          "eq19_duration_min": sum(e["eq19_duration_min"] for e in est),
-                         "loss_mps": loss, "loss_percent": 100.0 * loss / imp,
+                         "analytic_loss_mps": loss, "analytic_loss_percent": 100.0 * loss / imp,
                          "omega_t_rad": w * 60.0 * max(e["eq19_duration_min"] for e in est)})
     df = pd.DataFrame(rows)
     df.insert(2, "thrust_to_weight", thrust_to_weight(df.thrust_N.to_numpy()))

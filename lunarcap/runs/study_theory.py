@@ -74,8 +74,8 @@ def capture_chain_estimate(thrust_N: float, isp_s: float,
     Returns
     -------
     list of dict
-        One per LOI: ``loi``, ``impulsive_delta_v_mps``, ``m_before_kg``,
-        ``eq19_duration_min``, ``loss_mps``, ``loss_percent``.
+        One per LOI: ``loi``, ``paper_impulsive_delta_v_mps``, ``m_before_kg``,
+        ``eq19_duration_min``, ``analytic_loss_mps``, ``analytic_loss_percent``.
     """
     check_engine(thrust_N, isp_s, mass_kg)
     if len(dv_mps) != 3:
@@ -84,9 +84,9 @@ def capture_chain_estimate(thrust_N: float, isp_s: float,
     for i, dv in enumerate(dv_mps):
         tb = float(burn_duration_estimate_s(m, dv, thrust_N, isp_s))
         loss = robbins_loss_mps(dv, tb, r_km, mu)
-        rows.append({"loi": i + 1, "impulsive_delta_v_mps": float(dv), "m_before_kg": m,
-                     "eq19_duration_min": tb / 60.0, "loss_mps": loss,
-                     "loss_percent": 100.0 * loss / dv})
+        rows.append({"loi": i + 1, "paper_impulsive_delta_v_mps": float(dv), "m_before_kg": m,
+                     "eq19_duration_min": tb / 60.0, "analytic_loss_mps": loss,
+                     "analytic_loss_percent": 100.0 * loss / dv})
         m = float(rocket_mass_after(m, dv, isp_s))
     return rows
 
@@ -94,8 +94,9 @@ def capture_chain_estimate(thrust_N: float, isp_s: float,
 def paper_points() -> pd.DataFrame:
     """The paper's three engines with their Table B1 losses, per LOI and for the sequence.
 
-    Columns: thrust_N, isp_s, thrust_to_weight, part, burn_duration_min, loss_mps,
-    loss_percent (per LOI the percentage as printed in Table B1; for the sequence the sum of
+    Columns: thrust_N, isp_s, thrust_to_weight, part, burn_duration_min, paper_delta_v_loss_mps,
+    paper_delta_v_loss_percent (per LOI the percentage as printed in Table B1; for the sequence the
+    sum of
     the losses in % of the summed impulsive delta-V).
     """
     from lunarcap.paper.printed import paper_table_b1
@@ -107,12 +108,14 @@ def paper_points() -> pd.DataFrame:
         for r in g.itertuples(index=False):
             rows.append({"thrust_N": float(t), "isp_s": isp, "part": f"LOI{r.loi}",
                          "burn_duration_min": r.burn_duration_min,
-                         "loss_mps": r.delta_v_mps - r.impulsive_delta_v_mps,
-                         "loss_percent": r.diff_percent})
+                         "paper_delta_v_loss_mps": r.delta_v_mps - r.impulsive_delta_v_mps,
+                         "paper_delta_v_loss_percent": r.diff_percent})
         loss = float((g.delta_v_mps - g.impulsive_delta_v_mps).sum())
         rows.append({"thrust_N": float(t), "isp_s": isp, "part": "sequence",
-                     "burn_duration_min": float(g.burn_duration_min.sum()), "loss_mps": loss,
-                     "loss_percent": 100.0 * loss / float(g.impulsive_delta_v_mps.sum())})
+                     "burn_duration_min": float(g.burn_duration_min.sum()),
+                     "paper_delta_v_loss_mps": loss,
+                     "paper_delta_v_loss_percent":
+                         100.0 * loss / float(g.impulsive_delta_v_mps.sum())})
     df = pd.DataFrame(rows)
     df.insert(2, "thrust_to_weight", thrust_to_weight(df.thrust_N.to_numpy()))
     return df

@@ -77,8 +77,8 @@ def sweep_table(thrust_N: float, isp_s: float, loi: int, starts, previous_starts
             "burn_duration_min": sm["burn_duration_min"],
             "paper_delta_v_mps": np.nan if p is None else p.delta_v_mps,
             "delta_v_mps": sm["delta_v_mps"],
-            "paper_loss_percent": np.nan if p is None else p.diff_percent,
-            "loss_percent": _paper_loss_percent(sm["delta_v_mps"], loi),
+            "paper_delta_v_loss_percent": np.nan if p is None else p.diff_percent,
+            "loss_vs_paper_impulse_percent": _paper_loss_percent(sm["delta_v_mps"], loi),
             "eq19_duration_min": sm["eq19_duration_min"],
             "m_start_kg": sm["m_start_kg"], "m_end_kg": sm["m_end_kg"],
             "verified": ver["passed"], "rp_error_m": ver["rp_error_m"],
@@ -132,18 +132,18 @@ def sequence_table(thrust_N: float, isp_s: float, starts=None, dynamics: str = "
                "delta_v_mps": sm["delta_v_mps"],
                "paper_delta_v_mps": np.nan if pb is None else pb["delta_v_mps"],
                "paper_impulsive_delta_v_mps": PAPER_IMPULSIVE_DV_MPS[i],
-               "loss_mps": sm["delta_v_mps"] - PAPER_IMPULSIVE_DV_MPS[i],
-               "loss_percent": _paper_loss_percent(sm["delta_v_mps"], loi),
-               "paper_loss_percent": np.nan if pb is None else pb["diff_percent"],
+               "loss_vs_paper_impulse_mps": sm["delta_v_mps"] - PAPER_IMPULSIVE_DV_MPS[i],
+               "loss_vs_paper_impulse_percent": _paper_loss_percent(sm["delta_v_mps"], loi),
+               "paper_delta_v_loss_percent": np.nan if pb is None else pb["diff_percent"],
                "m_start_kg": sm["m_start_kg"], "m_end_kg": sm["m_end_kg"],
                "fuel_kg": sm["fuel_kg"], "v_end_kmps": sm["v_end_kmps"],
                "verified": sm["verification"]["passed"]}
         if with_impulsive_model:
             imp = paper_impulsive_case(thrust_N, isp_s, loi, starts[:i], dynamics)
             loss = burn_loss(sm, imp)
-            row["model_impulsive_delta_v_mps"] = imp["delta_v_mps"]
-            row["model_loss_mps"] = loss["loss_mps"]
-            row["model_loss_percent"] = loss["loss_percent"]
+            row["impulsive_limit_mps"] = imp["delta_v_mps"]
+            row["delta_v_loss_mps"] = loss["delta_v_loss_mps"]
+            row["delta_v_loss_percent"] = loss["delta_v_loss_percent"]
             row["objective_loss_mps"] = loss["objective_loss_mps"]
             row["objective_loss_percent"] = loss["objective_loss_percent"]
         rows.append(row)
@@ -161,20 +161,20 @@ def sequence_totals(df: pd.DataFrame, mass0_kg: float = paper_scenario().mass_kg
     """
     imp = df.paper_impulsive_delta_v_mps.sum()
     out = {"total_delta_v_mps": df.delta_v_mps.sum(), "total_impulsive_delta_v_mps": imp,
-           "total_loss_mps": df.loss_mps.sum(),
-           "total_loss_percent": 100 * df.loss_mps.sum() / imp,
-           "mean_of_burn_loss_percent": df.loss_percent.mean(),
+           "total_loss_vs_paper_impulse_mps": df.loss_vs_paper_impulse_mps.sum(),
+           "total_loss_vs_paper_impulse_percent": 100 * df.loss_vs_paper_impulse_mps.sum() / imp,
+           "mean_of_burn_loss_percent": df.loss_vs_paper_impulse_percent.mean(),
            "total_fuel_kg": mass0_kg - df.m_end_kg.iloc[-1],
            "total_burn_duration_min": df.burn_duration_min.sum(),
            "final_mass_kg": df.m_end_kg.iloc[-1]}
-    if "model_loss_mps" in df:
-        out["total_model_loss_mps"] = df.model_loss_mps.sum()
-        out["total_model_impulsive_delta_v_mps"] = df.model_impulsive_delta_v_mps.sum()
-        out["total_model_loss_percent"] = 100 * df.model_loss_mps.sum() / \
-            df.model_impulsive_delta_v_mps.sum()
+    if "delta_v_loss_mps" in df:
+        out["total_delta_v_loss_mps"] = df.delta_v_loss_mps.sum()
+        out["total_impulsive_limit_mps"] = df.impulsive_limit_mps.sum()
+        out["total_delta_v_loss_percent"] = 100 * df.delta_v_loss_mps.sum() / \
+            df.impulsive_limit_mps.sum()
         out["total_objective_loss_mps"] = df.objective_loss_mps.sum()
         out["total_objective_loss_percent"] = 100 * df.objective_loss_mps.sum() / \
-            df.model_impulsive_delta_v_mps.sum()
+            df.impulsive_limit_mps.sum()
     return out
 
 
@@ -218,8 +218,8 @@ def free_vs_grid_table(thrust_N: float, isp_s: float, dynamics: str = "full",
         loss = burn_loss(fs, paper_impulsive_case(thrust_N, isp_s, loi, prev_free, dynamics))
         row = {"loi": loi, "free_start_min": fs["start_min"],
                "free_burn_duration_min": fs["burn_duration_min"],
-               "free_delta_v_mps": fs["delta_v_mps"], "free_objective_mps": fs["objective_mps"],
-               "free_impulsive_delta_v_mps": loss["impulsive_delta_v_mps"],
+               "free_delta_v_mps": fs["delta_v_mps"], "free_objective_mps": fs["objective_j_mps"],
+               "free_impulsive_delta_v_mps": loss["impulsive_limit_mps"],
                "free_loss_mps": loss["objective_loss_mps"],
                "free_loss_percent": loss["objective_loss_percent"],
                "eq19_half_duration_min":
@@ -232,8 +232,8 @@ def free_vs_grid_table(thrust_N: float, isp_s: float, dynamics: str = "full",
             best = min(grid, key=lambda s: s.raw.objective_kmps)
             gs = best.summary()
             row.update({"grid_start_min": gs["start_min"], "grid_delta_v_mps": gs["delta_v_mps"],
-                        "grid_objective_mps": gs["objective_mps"],
-                        "objective_gain_mps": gs["objective_mps"] - fs["objective_mps"],
+                        "grid_objective_mps": gs["objective_j_mps"],
+                        "objective_gain_mps": gs["objective_j_mps"] - fs["objective_j_mps"],
                         "delta_v_gain_mps": gs["delta_v_mps"] - fs["delta_v_mps"]})
         rows.append(row)
     df = pd.DataFrame(rows)
@@ -264,9 +264,9 @@ def steering_table(thrust_N: float, isp_s: float, dynamics: str = "full",
                 ref = s
             rows.append({"loi": loi, "steering": law, "start_min": s["start_min"],
                          "burn_duration_min": s["burn_duration_min"],
-                         "delta_v_mps": s["delta_v_mps"], "objective_mps": s["objective_mps"],
+                         "delta_v_mps": s["delta_v_mps"], "objective_j_mps": s["objective_j_mps"],
                          "delta_v_penalty_mps": s["delta_v_mps"] - ref["delta_v_mps"],
-                         "objective_penalty_mps": s["objective_mps"] - ref["objective_mps"],
+                         "objective_penalty_mps": s["objective_j_mps"] - ref["objective_j_mps"],
                          "released_targets": ", ".join(v["released"]) or "none",
                          "rp_miss_km": v["rp_error_m"] / 1e3 if "rp" in v["released"] or
                          "p" in v["released"] else 0.0,

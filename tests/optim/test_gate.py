@@ -26,7 +26,7 @@ def _passing(circular=False):
         inc_error_deg=0.1 * V.TOL_ANGLE_DEG,
         gamma_error_deg=None if circular else 0.1 * V.TOL_ANGLE_DEG,
         final_position_diff_m=0.1 * V.TOL_POSITION_M, passed=True, nfev=0, released=(),
-        branch=None if circular else 0.5, end_speed_diff_mps=0.1 * V.TOL_SPEED_MPS)
+        end_e_cos_nu=None if circular else 0.5, end_speed_diff_mps=0.1 * V.TOL_SPEED_MPS)
 
 
 CRITERIA = [
@@ -36,7 +36,7 @@ CRITERIA = [
     ("gamma_error_deg", -2 * V.TOL_ANGLE_DEG, "flight-path angle"),
     ("final_position_diff_m", 2 * V.TOL_POSITION_M, "end position"),
     ("end_speed_diff_mps", -2 * V.TOL_SPEED_MPS, "end speed"),
-    ("branch", -0.01, "apolune"),
+    ("end_e_cos_nu", -0.01, "apolune"),
 ]
 
 

@@ -41,7 +41,7 @@ def free_loi1(plan):
 
 
 def _objective_mps(sol):
-    return sol.summary()["objective_mps"]
+    return sol.summary()["objective_j_mps"]
 
 
 def test_free_ignition_never_worse_than_the_paper_grid(plan, free_loi1):

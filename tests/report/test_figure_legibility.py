@@ -19,7 +19,9 @@ N_PER_RATIO = 524.895 * 9.80665
 def _trade_rows(parts):
     tw = np.geomspace(0.01, 0.4, 5)
     return pd.DataFrame([dict(part=p, isp_s=i, thrust_to_weight=t, thrust_N=t * N_PER_RATIO,
-                              loss_percent=1 / t / 10, burn_duration_min=30 * (0.01 / t),
+                              objective_loss_percent=1 / t / 10, analytic_loss_percent=1 / t / 10,
+                              paper_delta_v_loss_percent=1 / t / 10,
+                              burn_duration_min=30 * (0.01 / t),
                               start_min=-15 * (0.01 / t), eq19_duration_min=28 * (0.01 / t))
                          for p in parts for i in ISP for t in tw])
 
@@ -33,7 +35,9 @@ def _figures():
                                                         N_PER_RATIO)
     chain = pd.DataFrame(dict(loi=[1, 2, 3], paper_delta_v_mps=[370.0, 250.0, 280.0],
                               paper_impulsive_delta_v_mps=[353.0, 245.0, 275.0],
-                              loss_mps=[15.0, 4.0, 3.0], model_loss_mps=[14.0, 4.5, 2.5]))
+                              loss_vs_paper_impulse_mps=[15.0, 4.0, 3.0], delta_v_loss_mps=[14.0,
+                                                                                            4.5,
+                                                                                            2.5]))
     yield "summary loss", F.plot_summary_loss({f"{t} N": chain for t in (150, 300, 450)})
     rule = pd.DataFrame([dict(engine=f"{t} N", burn=b, rule_start_min=-10.0 / b,
                               free_start_min=-11.0 / b, grid_start_min=-10.0 / b,
@@ -49,10 +53,10 @@ def _figures():
                                isp_s=[200.0, 250.0, 300.0, 200.0, 300.0],
                                origin=["paper's engine"] * 3 + ["LRO-class", "SELENE-class"],
                                total_fuel_kg=[190.0, 155.0, 133.0, 186.0, 130.0],
-                               loss_mps=[20.0, 5.0, 2.0, 4.6, 1.5]))
-    yield "engine loss", F.plot_engine_loss(totals, "loss_mps", "total ΔV loss (m/s)")
+                               delta_v_loss_mps=[20.0, 5.0, 2.0, 4.6, 1.5]))
+    yield "engine loss", F.plot_engine_loss(totals, "delta_v_loss_mps", "total ΔV loss (m/s)")
     counts = pd.DataFrame([dict(label=lab, n_burns=n, status="ok" if n > 1 else "infeasible",
-                                total_loss_mps=100.0 / n, time_to_final_orbit_h=5.0 * n)
+                                total_delta_v_loss_mps=100.0 / n, time_to_final_orbit_h=5.0 * n)
                            for lab in ("song2011-150N", "song2011-300N", "lro-like-5burn")
                            for n in (1, 2, 3, 4, 5)])
     yield "burn count", F.plot_burn_count(counts)

@@ -312,8 +312,9 @@ def _fake_sweep(thrust, loi, isp):
         "start_min": p.start_min.astype(float), "free_start": False,
         "paper_burn_duration_min": p.burn_duration_min, "burn_duration_min":
             p.burn_duration_min + 0.01, "paper_delta_v_mps": p.delta_v_mps,
-        "delta_v_mps": p.delta_v_mps - 0.5, "paper_loss_percent": p.diff_percent,
-        "loss_percent": p.diff_percent + 0.1, "paper_best": p.best, "verified": True})
+        "delta_v_mps": p.delta_v_mps - 0.5, "paper_delta_v_loss_percent": p.diff_percent,
+        "loss_vs_paper_impulse_percent": p.diff_percent + 0.1, "paper_best": p.best,
+        "verified": True})
     df["best"] = df.delta_v_mps == df.delta_v_mps.min()
     df.attrs.update(thrust_N=float(thrust), isp_s=isp, loi=loi)
     return df
@@ -343,8 +344,8 @@ def _fake_chain(thrust, isp):
         b = paper.paper_best(thrust, n)
         imp = paper.PAPER_IMPULSIVE_DV_MPS[n - 1]
         m_end = m * math.exp(-b["delta_v_mps"] / (C.G0_MPS2 * isp))
-        out.append({"loss_mps": b["delta_v_mps"] - imp,
-                    "loss_percent": 100 * (b["delta_v_mps"] - imp) / imp,
+        out.append({"loss_vs_paper_impulse_mps": b["delta_v_mps"] - imp,
+                    "loss_vs_paper_impulse_percent": 100 * (b["delta_v_mps"] - imp) / imp,
                     "burn_duration_min": b["burn_duration_min"], "m_start_kg": m,
                     "m_end_kg": m_end, "fuel_kg": m - m_end, "eq19_duration_min": 10.0 * n,
                     "rp_end_km": C.R_MOON + 100.0, "inc_end_deg": 90.0})

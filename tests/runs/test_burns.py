@@ -42,19 +42,19 @@ def test_strong_engine_total_is_the_closed_form_for_any_count():
         assert r["all_verified"]
         assert len(r["burns"]) == n and len(r["periods_h"]) == n - 1
         # 20 kN: Robbins' loss of the longest (18 s) burn is ~0.02 m/s; 0.1 m/s is the bound
-        assert abs(r["total_delta_v_mps"] - r["two_body_impulsive_total_mps"]) < 0.1, n
+        assert abs(r["total_delta_v_mps"] - r["total_impulsive_delta_v_two_body_mps"]) < 0.1, n
 
 
 def test_weak_engine_loses_less_with_more_burns_and_limits_add_up_to_the_closed_form():
     plan = _plan(150.0)
     res = [count_result(plan, n, impulsive=True) for n in (1, 2, 3, 4)]
     assert all(r["status"] == "ok" for r in res), [r["reason"] for r in res]
-    losses = [r["total_loss_mps"] for r in res]
+    losses = [r["total_delta_v_loss_mps"] for r in res]
     assert all(a > b for a, b in zip(losses, losses[1:])), losses
     assert losses[-1] > 0
     for r in res:  # two-body: each limit is a tangential impulse, the sum telescopes
-        assert r["total_impulsive_delta_v_mps"] == pytest.approx(
-            r["two_body_impulsive_total_mps"], abs=0.1)
+        assert r["total_impulsive_limit_mps"] == pytest.approx(
+            r["total_impulsive_delta_v_two_body_mps"], abs=0.1)
 
 
 def test_free_periods_beat_the_fixed_ones_within_their_bounds():

@@ -41,7 +41,7 @@ def test_unwritable_table_paths_are_input_errors_before_any_work(tmp_path):
     assert campaign.check_output_path(tmp_path / "new" / "t.csv") == tmp_path / "new" / "t.csv"
 
 
-NUMBERS_BURNS = ["total_delta_v_mps", "total_impulsive_delta_v_mps", "fuel_kg",
+NUMBERS_BURNS = ["total_delta_v_mps", "total_impulsive_limit_mps", "total_fuel_kg",
                  "time_to_final_orbit_h"]
 NUMBERS_MISSED = ["partial_delta_v_mps", "cutoff_e", "recovery_delta_v_mps", "penalty_mps"]
 

@@ -270,7 +270,7 @@ def _synthetic_table(n=400, fail=(3, 7)):
         "nominal_delta_v_mps": 870.0, "nominal_propellant_kg": 174.0,
         "final_rp_error_km": rng.normal(size=n), "final_ra_error_km": rng.normal(size=n),
         "final_inc_error_deg": rng.normal(size=n) * 0.01, "task_wall_s": 1.0,
-        "impulsive_two_body_mps": 852.36})
+        "impulsive_delta_v_two_body_mps": 852.36})
 
 
 def test_summary_and_page_data_count_failures_as_the_most_expensive():

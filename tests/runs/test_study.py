@@ -33,8 +33,8 @@ def _fake_summary(thrust_N, isp_s, loi):
     loss = imp * 400.0 / thrust_N ** 2  # any smooth decreasing loss will do
     eq19 = 60.0 / thrust_N
     return {"start_min": -eq19 / 2, "burn_duration_min": 1.01 * eq19, "eq19_duration_min": eq19,
-            "delta_v_mps": imp + loss, "impulsive_delta_v_mps": imp, "loss_mps": loss,
-            "loss_percent": 100 * loss / imp, "delta_v_loss_mps": loss,
+            "delta_v_mps": imp + loss, "impulsive_limit_mps": imp, "objective_loss_mps": loss,
+            "objective_loss_percent": 100 * loss / imp, "delta_v_loss_mps": loss,
             "delta_v_loss_percent": 100 * loss / imp, "impulsive_verified": True,
             "m_start_kg": 500.0 - loi, "m_end_kg": 450.0 - loi,
             "fuel_kg": 50.0, "ipopt_status": "Solve_Succeeded", "ipopt_iterations": 9,
@@ -185,8 +185,9 @@ def test_study_writes_four_rows_per_engine_and_a_run_record(tmp_path):
     wide = res.wide()
     assert len(wide) == 6 and (wide.status == "ok").all()
     seq = res.table[res.table.part == "sequence"]
-    per_loi = res.table[res.table.part != "sequence"].groupby(["thrust_N", "isp_s"]).loss_mps.sum()
-    assert np.allclose(seq.set_index(["thrust_N", "isp_s"]).loss_mps.sort_index(),
+    per_loi = res.table[res.table.part != "sequence"].groupby(["thrust_N",
+                                                               "isp_s"]).objective_loss_mps.sum()
+    assert np.allclose(seq.set_index(["thrust_N", "isp_s"]).objective_loss_mps.sort_index(),
                        per_loi.sort_index())
     runs = study.read_runs(out)
     assert len(runs) == 1 and runs[0]["computed"] == 6 and runs[0]["reused"] == 0
@@ -308,12 +309,12 @@ def test_solve_error_in_the_chain_is_recorded_with_ipopt_status(monkeypatch):
         if loi == 2:
             raise SolveError("LOI 2 failed on every mesh", status="Maximum_Iterations_Exceeded")
         s = _fake_summary(key.engine.thrust_N, key.engine.isp_s, loi)
-        s["objective_mps"] = s["delta_v_mps"] + 2000.0
+        s["objective_j_mps"] = s["delta_v_mps"] + 2000.0
         return FakeSolution(s)
 
     def fake_impulsive_limit(key):
         imp = study_imp(key.n_burns)
-        return {"delta_v_mps": imp, "objective_mps": imp + 2000.0, "verification_passed": True}
+        return {"delta_v_mps": imp, "objective_j_mps": imp + 2000.0, "verification_passed": True}
 
     monkeypatch.setattr(sequence, "solve_burn", fake_solve_burn)
     monkeypatch.setattr(sequence, "impulsive_limit", fake_impulsive_limit)
@@ -324,7 +325,7 @@ def test_solve_error_in_the_chain_is_recorded_with_ipopt_status(monkeypatch):
     assert rows["LOI3"]["status"] == "not run" and "LOI 2" in rows["LOI3"]["error"]
     assert rows["sequence"]["status"] == "incomplete"
     assert "Maximum_Iterations_Exceeded" in rows["sequence"]["error"]
-    assert math.isnan(rows["sequence"]["loss_mps"])
+    assert math.isnan(rows["sequence"]["objective_loss_mps"])
     assert rows["sequence"]["analytic_loss_mps"] > 0  # closed form, always there
 
 
@@ -351,7 +352,7 @@ def test_robbins_formula_value_and_burn_time_squared_scaling():
 
 
 def test_analytic_loss_vanishes_as_thrust_grows_like_one_over_thrust_squared():
-    loss = [sum(r["loss_mps"] for r in study.capture_chain_estimate(t, 250.0))
+    loss = [sum(r["analytic_loss_mps"] for r in study.capture_chain_estimate(t, 250.0))
             for t in (1e2, 1e3, 1e4, 1e5)]
     assert all(a > b for a, b in zip(loss, loss[1:]))
     assert loss[-1] < 1e-4
@@ -364,9 +365,9 @@ def test_chain_estimate_uses_eq19_with_the_impulsive_chain_masses():
     m = paper_scenario().mass_kg
     for e in est:
         assert e["m_before_kg"] == pytest.approx(m)
-        tb = burn_duration_estimate_s(m, e["impulsive_delta_v_mps"], 150.0, 200.0)
+        tb = burn_duration_estimate_s(m, e["paper_impulsive_delta_v_mps"], 150.0, 200.0)
         assert e["eq19_duration_min"] == pytest.approx(tb / 60.0)
-        m *= math.exp(-e["impulsive_delta_v_mps"] / (C.G0_MPS2 * 200.0))
+        m *= math.exp(-e["paper_impulsive_delta_v_mps"] / (C.G0_MPS2 * 200.0))
 
 
 def _fixed_direction_burn_loss(r_km, v_kmps, dv_mps, omega_tb):
@@ -411,11 +412,12 @@ def test_robbins_is_the_leading_order_loss_of_a_fixed_direction_burn(orbit, omeg
 # ------------------------------------------------------------------ paper and curves
 def test_paper_points_are_table_b1():
     p = study.paper_points().set_index(["thrust_N", "part"])
-    assert p.loc[(150.0, "LOI1"), "loss_percent"] == 3.93
-    assert p.loc[(450.0, "LOI3"), "loss_percent"] == 0.22
+    assert p.loc[(150.0, "LOI1"), "paper_delta_v_loss_percent"] == 3.93
+    assert p.loc[(450.0, "LOI3"), "paper_delta_v_loss_percent"] == 0.22
     seq = (367.415 + 257.527 + 248.000) - (353.272 + 254.034 + 245.363)
-    assert p.loc[(150.0, "sequence"), "loss_mps"] == pytest.approx(seq)
-    assert p.loc[(150.0, "sequence"), "loss_percent"] == pytest.approx(100 * seq / 852.669)
+    assert p.loc[(150.0, "sequence"), "paper_delta_v_loss_mps"] == pytest.approx(seq)
+    assert p.loc[(150.0, "sequence"),
+                 "paper_delta_v_loss_percent"] == pytest.approx(100 * seq / 852.669)
     assert p.loc[(300.0, "LOI1"), "isp_s"] == 250.0
 
 
@@ -424,7 +426,7 @@ def test_analytic_curves_match_the_chain_estimate():
     assert len(df) == 8 and set(df.part) == set(study.PARTS)
     est = study.capture_chain_estimate(150.0, 200.0)
     row = df[(df.thrust_N == 150.0) & (df.part == "sequence")].iloc[0]
-    assert row.loss_mps == pytest.approx(sum(e["loss_mps"] for e in est))
+    assert row.analytic_loss_mps == pytest.approx(sum(e["analytic_loss_mps"] for e in est))
 
 
 # ------------------------------------------------------------------ end to end
@@ -441,7 +443,7 @@ def test_cli_small_two_body_study_and_resume(tmp_path):
     assert len(table) == 8 and set(table.status) == {"ok"}
     loi = table[table.part != "sequence"]
     assert (loi.burn_duration_min / loi.eq19_duration_min).between(0.95, 1.05).all()
-    assert (table.loss_percent.abs() < 0.2).all()  # strong engines: near-impulsive
+    assert (table.objective_loss_percent.abs() < 0.2).all()  # strong engines: near-impulsive
     res = subprocess.run(args, cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert res.returncode == 0 and "0 engine(s) computed, 2 taken from the table" in res.stdout
 
@@ -462,12 +464,13 @@ def test_strong_engine_loses_little_and_never_more_than_robbins():
     assert all(r["status"] == "ok" and r["verified"] for r in rows.values())
     for part in ("LOI1", "LOI2", "LOI3"):
         r = rows[part]
-        ratio = r["loss_mps"] / r["analytic_loss_mps"]
-        assert 0.99 < ratio <= 1.0 + 1e-6, (part, r["loss_mps"], r["analytic_loss_mps"])
-        assert r["impulsive_delta_v_mps"] == pytest.approx(
+        ratio = r["objective_loss_mps"] / r["analytic_loss_mps"]
+        assert 0.99 < ratio <= 1.0 + 1e-6, (part, r["objective_loss_mps"], r["analytic_loss_mps"])
+        assert r["impulsive_limit_mps"] == pytest.approx(
             {"LOI1": 353.272, "LOI2": 253.911, "LOI3": 245.178}[part], abs=2e-3)
-    assert rows["LOI3"]["loss_mps"] == pytest.approx(rows["LOI3"]["delta_v_loss_mps"], abs=1e-6)
+    assert rows["LOI3"]["objective_loss_mps"] == pytest.approx(rows["LOI3"]["delta_v_loss_mps"],
+                                                               abs=1e-6)
     seq = rows["sequence"]
-    assert seq["loss_mps"] == pytest.approx(sum(rows[p]["loss_mps"] for p in ("LOI1", "LOI2",
-                                                                            "LOI3")))
-    assert 0.99 * seq["analytic_loss_mps"] < seq["loss_mps"] <= seq["analytic_loss_mps"]
+    assert seq["objective_loss_mps"] == pytest.approx(
+        sum(rows[p]["objective_loss_mps"] for p in ("LOI1", "LOI2", "LOI3")))
+    assert 0.99 * seq["analytic_loss_mps"] < seq["objective_loss_mps"] <= seq["analytic_loss_mps"]

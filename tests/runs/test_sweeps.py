@@ -39,8 +39,8 @@ def _paper_chain(thrust_N):
     return pd.DataFrame({
         "loi": pb.loi, "delta_v_mps": pb.delta_v_mps,
         "paper_impulsive_delta_v_mps": pb.impulsive_delta_v_mps,
-        "loss_mps": pb.delta_v_mps - pb.impulsive_delta_v_mps,
-        "loss_percent": pb.diff_percent, "burn_duration_min": pb.burn_duration_min,
+        "loss_vs_paper_impulse_mps": pb.delta_v_mps - pb.impulsive_delta_v_mps,
+        "loss_vs_paper_impulse_percent": pb.diff_percent, "burn_duration_min": pb.burn_duration_min,
         "m_end_kg": np.nan})
 
 
@@ -60,36 +60,39 @@ def test_sequence_totals_arithmetic_on_a_synthetic_chain():
         "paper_impulsive_delta_v_mps": list(PAPER_IMPULSIVE_DV_MPS),
         "burn_duration_min": [19.0, 11.0, 9.0],
         "m_end_kg": [440.0, 390.0, 340.0],
-        "model_impulsive_delta_v_mps": [353.0, 254.0, 245.0],
+        "impulsive_limit_mps": [353.0, 254.0, 245.0],
     })
-    df["loss_mps"] = df.delta_v_mps - df.paper_impulsive_delta_v_mps
-    df["loss_percent"] = 100 * df.loss_mps / df.paper_impulsive_delta_v_mps
-    df["model_loss_mps"] = df.delta_v_mps - df.model_impulsive_delta_v_mps
+    df["loss_vs_paper_impulse_mps"] = df.delta_v_mps - df.paper_impulsive_delta_v_mps
+    df["loss_vs_paper_impulse_percent"] = \
+        100 * df.loss_vs_paper_impulse_mps / df.paper_impulsive_delta_v_mps
+    df["delta_v_loss_mps"] = df.delta_v_mps - df.impulsive_limit_mps
     df["objective_loss_mps"] = [7.5, 5.0, 5.0]
     t = tables.sequence_totals(df, mass0_kg=500.0)
     imp = sum(PAPER_IMPULSIVE_DV_MPS)
     assert t["total_delta_v_mps"] == pytest.approx(870.0)
     assert t["total_impulsive_delta_v_mps"] == pytest.approx(imp)
-    assert t["total_loss_mps"] == pytest.approx(870.0 - imp)          # sum of per-LOI losses
-    assert t["total_loss_mps"] == pytest.approx(df.loss_mps.sum())
-    assert t["total_loss_percent"] == pytest.approx(100 * (870.0 - imp) / imp)
-    assert t["mean_of_burn_loss_percent"] == pytest.approx(df.loss_percent.mean())
+    # the sum of the per-LOI losses
+    assert t["total_loss_vs_paper_impulse_mps"] == pytest.approx(870.0 - imp)
+    assert t["total_loss_vs_paper_impulse_mps"] == pytest.approx(df.loss_vs_paper_impulse_mps.sum())
+    assert t["total_loss_vs_paper_impulse_percent"] == pytest.approx(100 * (870.0 - imp) / imp)
+    assert t["mean_of_burn_loss_percent"] == pytest.approx(df.loss_vs_paper_impulse_percent.mean())
     assert t["total_fuel_kg"] == pytest.approx(160.0)                 # 500 - 340
     assert t["final_mass_kg"] == pytest.approx(340.0)
     assert t["total_burn_duration_min"] == pytest.approx(39.0)
-    assert t["total_model_loss_mps"] == pytest.approx(870.0 - 852.0)
-    assert t["total_model_impulsive_delta_v_mps"] == pytest.approx(852.0)
-    assert t["total_model_loss_percent"] == pytest.approx(100 * 18.0 / 852.0)
+    assert t["total_delta_v_loss_mps"] == pytest.approx(870.0 - 852.0)
+    assert t["total_impulsive_limit_mps"] == pytest.approx(852.0)
+    assert t["total_delta_v_loss_percent"] == pytest.approx(100 * 18.0 / 852.0)
     assert t["total_objective_loss_mps"] == pytest.approx(17.5)
     assert t["total_objective_loss_percent"] == pytest.approx(100 * 17.5 / 852.0)
     # the two percentages differ: a mean of ratios is not the ratio of the sums
-    assert t["mean_of_burn_loss_percent"] != pytest.approx(t["total_loss_percent"], abs=1e-3)
+    assert t["mean_of_burn_loss_percent"] != pytest.approx(
+        t["total_loss_vs_paper_impulse_percent"], abs=1e-3)
 
 
 def test_sequence_totals_without_model_columns_has_no_model_keys():
     df = _paper_chain(150)
     t = tables.sequence_totals(df)
-    assert "total_model_loss_mps" not in t
+    assert "total_delta_v_loss_mps" not in t
     assert math.isnan(t["total_fuel_kg"]) and math.isnan(t["final_mass_kg"])
 
 
@@ -100,7 +103,7 @@ def test_the_papers_percentages_are_means_of_the_per_burn_percentages(thrust_N):
     t = tables.sequence_totals(_paper_chain(thrust_N))
     printed = paper.quote(f"loss_total_{thrust_N}N_percent").value
     assert abs(t["mean_of_burn_loss_percent"] - printed) < 0.005
-    assert t["total_loss_percent"] - printed > 0.04
+    assert t["total_loss_vs_paper_impulse_percent"] - printed > 0.04
     assert t["total_burn_duration_min"] == pytest.approx(
         paper.quote(f"burn_total_{thrust_N}N_min").value, abs=0.015)
 
@@ -126,14 +129,14 @@ def test_sweep_table_differences_are_ours_minus_the_paper(sweep_two_body):
         p = printed.loc[int(r.start_min)]
         assert r.paper_delta_v_mps == p.delta_v_mps
         assert r.paper_burn_duration_min == p.burn_duration_min
-        assert r.paper_loss_percent == p.diff_percent
+        assert r.paper_delta_v_loss_percent == p.diff_percent
     np.testing.assert_allclose(df.delta_v_diff_mps, df.delta_v_mps - df.paper_delta_v_mps)
     np.testing.assert_allclose(df.burn_duration_diff_min,
                                df.burn_duration_min - df.paper_burn_duration_min)
     np.testing.assert_allclose(df.delta_v_diff_percent,
                                100 * df.delta_v_diff_mps / df.paper_delta_v_mps)
     imp = PAPER_IMPULSIVE_DV_MPS[0]
-    np.testing.assert_allclose(df.loss_percent, 100 * (df.delta_v_mps - imp) / imp)
+    np.testing.assert_allclose(df.loss_vs_paper_impulse_percent, 100 * (df.delta_v_mps - imp) / imp)
 
 
 @pytest.mark.slow
@@ -156,12 +159,13 @@ def test_sequence_table_and_totals_of_a_chain():
     assert df.m_start_kg.iloc[0] == pytest.approx(paper_scenario().mass_kg)
     np.testing.assert_allclose(df.m_start_kg.iloc[1:], df.m_end_kg.iloc[:-1])
     np.testing.assert_allclose(df.fuel_kg, df.m_start_kg - df.m_end_kg)
-    np.testing.assert_allclose(df.loss_mps, df.delta_v_mps - df.paper_impulsive_delta_v_mps)
+    np.testing.assert_allclose(df.loss_vs_paper_impulse_mps,
+                               df.delta_v_mps - df.paper_impulsive_delta_v_mps)
     for r in df.itertuples():
         pb = paper.paper_best(150, r.loi)
         assert (r.paper_delta_v_mps, r.paper_start_min) == (pb["delta_v_mps"], pb["start_min"])
     t = tables.sequence_totals(df)
-    assert t["total_loss_mps"] == pytest.approx(df.loss_mps.sum())
+    assert t["total_loss_vs_paper_impulse_mps"] == pytest.approx(df.loss_vs_paper_impulse_mps.sum())
     assert t["total_fuel_kg"] == pytest.approx(df.fuel_kg.sum())
     assert t["final_mass_kg"] == pytest.approx(paper_scenario().mass_kg - t["total_fuel_kg"])
     assert t["total_burn_duration_min"] == pytest.approx(df.burn_duration_min.sum())

@@ -22,10 +22,10 @@ from lunarcap.runs import burns
 NOTEBOOK = "notebooks/burn_count.ipynb"
 
 COUNT_SHOWN = ["plan", "n_burns", "status", "periods_h", "total_delta_v_mps",
-               "total_impulsive_delta_v_mps", "total_loss_mps", "fuel_kg",
+               "total_impulsive_limit_mps", "total_delta_v_loss_mps", "total_fuel_kg",
                "time_to_final_orbit_h"]
-BURN_SHOWN = ["plan", "n_burns", "burn", "target", "start_min", "burn_duration_min",
-              "delta_v_mps", "impulsive_delta_v_mps", "loss_mps", "verified"]
+BURN_SHOWN = ["plan", "n_burns", "burn", "target_orbit", "start_min", "burn_duration_min",
+              "delta_v_mps", "impulsive_limit_mps", "delta_v_loss_mps", "verified"]
 
 
 def label_of(plan) -> str:
@@ -60,15 +60,16 @@ def reading(table: pd.DataFrame) -> str:
         bad = g[g.status != "ok"]
         if len(ok) >= 2:
             a, b = ok.iloc[0], ok.iloc[-1]
-            step = ok.total_loss_mps.diff().iloc[-1]
+            step = ok.total_delta_v_loss_mps.diff().iloc[-1]
             out.append(f"{label}: from {int(a.n_burns)} to {int(b.n_burns)} burns the loss "
-                       f"goes from {a.total_loss_mps:.1f} to {b.total_loss_mps:.1f} m/s and "
+                       f"goes from {a.total_delta_v_loss_mps:.1f} to "
+                       f"{b.total_delta_v_loss_mps:.1f} m/s and "
                        f"the final orbit is reached {b.time_to_final_orbit_h:.1f} h after "
                        f"arrival instead of {a.time_to_final_orbit_h:.1f} h; the last burn "
                        f"added changes the loss by {step:+.2f} m/s.")
         elif len(ok) == 1:
             out.append(f"{label}: only N = {int(ok.n_burns.iloc[0])} solved "
-                       f"(loss {ok.total_loss_mps.iloc[0]:.1f} m/s).")
+                       f"(loss {ok.total_delta_v_loss_mps.iloc[0]:.1f} m/s).")
         if len(bad):
             out.append(f"{label}: " + " ".join(f"N = {int(r.n_burns)}: {r.status} "
                                                f"({str(r.reason)[:160]})."
@@ -89,10 +90,10 @@ def negative_losses(rows: pd.DataFrame) -> str:
     below zero but within the impulsive limit's resolution is that resolution, not a
     gain; one beyond it would be a defect (said so).
     """
-    neg = rows[rows.loss_mps < 0] if "loss_mps" in rows else rows.iloc[:0]
+    neg = rows[rows.delta_v_loss_mps < 0] if "delta_v_loss_mps" in rows else rows.iloc[:0]
     if neg.empty:
         return ""
-    worst = float(neg.loss_mps.min())
+    worst = float(neg.delta_v_loss_mps.min())
     within = worst > -IMPULSIVE_DV_RESOLUTION_MPS
     return (f"{len(neg)} burn(s) show a ΔV loss below zero (down to {worst:.3f} m/s): "
             + ("within the ~0.2 m/s to which the impulsive limit's ΔV is resolved along "
@@ -153,19 +154,20 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
     page.value("n_failed", int((~table.status.isin(["ok", "infeasible"])).sum()))
     for n in sorted(set(range(1, 6)) | set(counts)):  # the prose quotes N = 1 to 3
         row = ok[ok.n_burns == n]
-        page.value(f"loss_{n}_mps", float(row.total_loss_mps.iloc[0]) if len(row) else np.nan)
+        page.value(f"loss_{n}_mps",
+                   float(row.total_delta_v_loss_mps.iloc[0]) if len(row) else np.nan)
         page.value(f"time_{n}_h", float(row.time_to_final_orbit_h.iloc[0]) if len(row)
                    else np.nan)
     if len(ok) >= 2:
         a, b = ok.iloc[0], ok.iloc[-1]
         page.value("first_n", int(a.n_burns))
         page.value("last_n", int(b.n_burns))
-        page.value("loss_drop_mps", float(a.total_loss_mps - b.total_loss_mps))
+        page.value("loss_drop_mps", float(a.total_delta_v_loss_mps - b.total_delta_v_loss_mps))
         page.value("time_added_h", float(b.time_to_final_orbit_h - a.time_to_final_orbit_h))
-        steps = np.diff(ok.total_loss_mps.to_numpy(float))
+        steps = np.diff(ok.total_delta_v_loss_mps.to_numpy(float))
         page.value("last_step_gain_mps", float(-steps[-1]))
         page.expect("the loss falls as burns are added (reference plan)", bool(np.all(steps < 0)),
-                    f"losses {list(np.round(ok.total_loss_mps, 3))}")
+                    f"losses {list(np.round(ok.total_delta_v_loss_mps, 3))}")
     negative = negative_losses(burn_rows(table))
     page.note("reading", reading(table) + (f"\n\n* {negative}" if negative else ""))
     bugs = table[~table.status.isin(["ok", "infeasible", "failed"])]

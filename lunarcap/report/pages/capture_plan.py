@@ -123,9 +123,9 @@ def plan_verification_table(burns: pd.DataFrame) -> pd.DataFrame:
 #: Totals shown, in order: (key of :func:`totals_of`, words, unit).
 TOTALS = [
     ("total_delta_v_mps", "total ΔV", "m/s"),
-    ("total_impulsive_delta_v_mps", "total impulsive ΔV (same dynamics)", "m/s"),
-    ("total_loss_mps", "total loss", "m/s"),
-    ("total_loss_percent", "total loss, in % of the impulsive total", "%"),
+    ("total_impulsive_limit_mps", "total impulsive ΔV (same dynamics)", "m/s"),
+    ("total_delta_v_loss_mps", "total loss", "m/s"),
+    ("total_delta_v_loss_percent", "total loss, in % of the impulsive total", "%"),
     ("total_fuel_kg", "propellant", "kg"),
     ("final_mass_kg", "mass in the final orbit", "kg"),
     ("total_burn_duration_min", "burn time", "min"),
@@ -192,7 +192,7 @@ def lro_comparison(plan: CapturePlan, burns: pd.DataFrame, tot: dict) -> tuple:
               "lro_fuel_left_kg": LRO["fuel_kg"] - fuel,
               "lro_dv40_mps": dv40, "lro_vinf40_kmps": vinf40,
               "lro_ours_dv1_mps": float(b1.delta_v_mps),
-              "lro_ours_imp1_mps": float(b1.impulsive_delta_v_mps)}
+              "lro_ours_imp1_mps": float(b1.impulsive_limit_mps)}
     longer = "longer" if values["lro_burn_diff_min"] > 0 else "shorter"
     if values["lro_fuel_left_kg"] > 0:
         fuel_txt = (f"{values['lro_fuel_left_kg']:.0f} kg less than the 898 kg LRO carried "
@@ -239,8 +239,8 @@ def paper_comparison(plan: CapturePlan, tot: dict) -> tuple:
     ref = paper_plan(plan.engine.thrust_N, plan.engine.isp_s, dynamics=plan.dynamics)
     ref = ref.with_starts(["free"] * ref.n_burns)
     rt = totals_of(plan_result(ref))
-    keys = ["total_delta_v_mps", "total_impulsive_delta_v_mps", "total_loss_mps",
-            "total_loss_percent", "total_fuel_kg", "time_to_final_orbit_h"]
+    keys = ["total_delta_v_mps", "total_impulsive_limit_mps", "total_delta_v_loss_mps",
+            "total_delta_v_loss_percent", "total_fuel_kg", "time_to_final_orbit_h"]
     ours = {k: float(tot[k]) for k in keys}
     theirs = {k: float(rt[k]) for k in keys}
     d = {k: ours[k] - theirs[k] for k in keys}
@@ -250,27 +250,28 @@ def paper_comparison(plan: CapturePlan, tot: dict) -> tuple:
         {"capture": "this plan − the paper's", **d},
     ])
     values = {"paper_total_delta_v_mps": theirs["total_delta_v_mps"],
-              "paper_total_loss_mps": theirs["total_loss_mps"],
+              "paper_total_loss_mps": theirs["total_delta_v_loss_mps"],
               "paper_time_to_final_orbit_h": theirs["time_to_final_orbit_h"],
               "vs_paper_delta_v_mps": d["total_delta_v_mps"],
-              "vs_paper_loss_mps": d["total_loss_mps"],
+              "vs_paper_loss_mps": d["total_delta_v_loss_mps"],
               "vs_paper_time_h": d["time_to_final_orbit_h"],
               "vs_paper_fuel_kg": d["total_fuel_kg"]}
-    more = "more" if d["total_loss_mps"] > 0 else "less"
+    more = "more" if d["total_delta_v_loss_mps"] > 0 else "less"
     why = ("fewer, longer burns spend more of their thrust away from the perilune, where it "
-           "is most effective" if d["total_loss_mps"] > 0 else "its burns are shorter")
+           "is most effective" if d["total_delta_v_loss_mps"] > 0 else "its burns are shorter")
     sooner = "sooner" if d["time_to_final_orbit_h"] < 0 else "later"
     reading = (
         f"**Beside the paper's three-burn capture** (the same arrival and engine, "
         f"{plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} s, every ignition free, "
         f"{plan.dynamics} dynamics). All the burns are tangential near a perilune of the same "
         f"radius, so the impulsive totals agree to "
-        f"{abs(d['total_impulsive_delta_v_mps']):.2f} m/s: a chain of tangential perilune "
+        f"{abs(d['total_impulsive_limit_mps']):.2f} m/s: a chain of tangential perilune "
         f"impulses costs the difference between the arrival and the final perilune speeds, "
         f"whatever the orbits in between. What differs is the finite-burn loss: "
-        f"{ours['total_loss_mps']:.2f} m/s ({ours['total_loss_percent']:.2f} %) with "
-        f"{plan.n_burns} burns, {abs(d['total_loss_mps']):.2f} m/s {more} than the paper's "
-        f"{theirs['total_loss_mps']:.2f} m/s, because {why}. That costs "
+        f"{ours['total_delta_v_loss_mps']:.2f} m/s ({ours['total_delta_v_loss_percent']:.2f} %) "
+        f"with "
+        f"{plan.n_burns} burns, {abs(d['total_delta_v_loss_mps']):.2f} m/s {more} than the paper's "
+        f"{theirs['total_delta_v_loss_mps']:.2f} m/s, because {why}. That costs "
         f"{abs(d['total_fuel_kg']):.2f} kg of propellant "
         f"{'more' if d['total_fuel_kg'] > 0 else 'less'}; the final orbit is reached "
         f"{abs(d['time_to_final_orbit_h']):.2f} h {sooner} "
@@ -296,28 +297,28 @@ def solutions(result) -> list:
 def prose_values(n_burns: int, burns: pd.DataFrame, tot: dict) -> dict:
     """The numbers the prose quotes, from :func:`burn_table` and :func:`totals_of`."""
     return {"n_burns": n_burns, "total_delta_v_mps": tot["total_delta_v_mps"],
-            "total_impulsive_mps": tot["total_impulsive_delta_v_mps"],
-            "total_loss_mps": tot["total_loss_mps"],
-            "total_loss_percent": tot["total_loss_percent"],
+            "total_impulsive_mps": tot["total_impulsive_limit_mps"],
+            "total_delta_v_loss_mps": tot["total_delta_v_loss_mps"],
+            "total_delta_v_loss_percent": tot["total_delta_v_loss_percent"],
             "total_fuel_kg": tot["total_fuel_kg"], "final_mass_kg": tot["final_mass_kg"],
             "total_burn_min": tot["total_burn_duration_min"],
             "time_to_final_orbit_h": tot["time_to_final_orbit_h"],
             "final_rp_alt_km": tot["final_rp_altitude_km"],
             "final_ra_alt_km": tot["final_ra_altitude_km"],
-            "largest_loss_burn": int(burns.burn[burns.loss_mps.idxmax()]),
-            "largest_loss_mps": float(burns.loss_mps.max()),
-            "largest_loss_share_percent": 100 * float(burns.loss_mps.max())
-            / tot["total_loss_mps"],
+            "largest_loss_burn": int(burns.burn[burns.delta_v_loss_mps.idxmax()]),
+            "largest_loss_mps": float(burns.delta_v_loss_mps.max()),
+            "largest_loss_share_percent": 100 * float(burns.delta_v_loss_mps.max())
+            / tot["total_delta_v_loss_mps"],
             "n_verified": int(burns.verification_passed.sum()),
             "max_rp_error_m": float(burns.verification_rp_error_m.abs().max())}
 
 
 def negative_loss_note(burns: pd.DataFrame) -> str:
     """MyST note on the burns whose ΔV loss is negative (or that every loss is positive)."""
-    neg = burns[burns.loss_mps < 0]
+    neg = burns[burns.delta_v_loss_mps < 0]
     if not len(neg):
         return "Every burn's loss is positive."
-    items = ", ".join(f"burn {r.burn}: {r.loss_mps:+.3f} m/s, but "
+    items = ", ".join(f"burn {r.burn}: {r.delta_v_loss_mps:+.3f} m/s, but "
                       f"{r.objective_loss_mps:+.3f} m/s in the objective"
                       for r in neg.itertuples())
     return (
@@ -369,9 +370,10 @@ def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str) -> None:
                  "(the limit of 4 s and 2 s burns). Loss: ΔV − impulsive ΔV, in m/s and in % "
                  "of the impulsive ΔV. The CSV has every column of each burn's row."),
         show_columns=["burn", "start_min", "burn_duration_min", "delta_v_mps",
-                      "impulsive_delta_v_mps", "loss_mps", "loss_percent"],
+                      "impulsive_limit_mps", "delta_v_loss_mps", "delta_v_loss_percent"],
         floatfmt={"start_min": "+.3f", "burn_duration_min": ".2f", "delta_v_mps": ".3f",
-                  "impulsive_delta_v_mps": ".3f", "loss_mps": "+.3f", "loss_percent": "+.2f"})
+                  "impulsive_limit_mps": ".3f", "delta_v_loss_mps": "+.3f",
+                  "delta_v_loss_percent": "+.2f"})
     page.table(
         "masses", mass_table(burns),
         caption=(f"Ignition epochs (TDB) and masses (kg) of each burn of {case}: before, "
@@ -445,11 +447,12 @@ def _add_comparison(page: Page, p: CapturePlan, burns: pd.DataFrame, tot: dict,
                      "impulsive total and loss in m/s (loss: total ΔV − the impulsive total "
                      "in the same dynamics, also in %), propellant in kg, time from the "
                      "arrival perilune to the final orbit in h."),
-            columns={"capture": "capture", "total_impulsive_delta_v_mps": "impulsive (m/s)",
-                     "total_loss_mps": "loss (m/s)", "total_loss_percent": "loss (%)",
+            columns={"capture": "capture", "total_impulsive_limit_mps": "impulsive (m/s)",
+                     "total_delta_v_loss_mps": "loss (m/s)",
+                     "total_delta_v_loss_percent": "loss (%)",
                      "time_to_final_orbit_h": "to final orbit (h)"},
-            floatfmt={"total_delta_v_mps": ".3f", "total_impulsive_delta_v_mps": ".3f",
-                      "total_loss_mps": ".3f", "total_loss_percent": ".2f",
+            floatfmt={"total_delta_v_mps": ".3f", "total_impulsive_limit_mps": ".3f",
+                      "total_delta_v_loss_mps": ".3f", "total_delta_v_loss_percent": ".2f",
                       "total_fuel_kg": ".3f", "time_to_final_orbit_h": ".3f"})
     else:
         reading = ("Nothing to set this plan beside: it is neither the LRO-like plan nor a "
@@ -463,8 +466,8 @@ def _add_checks(page: Page, p: CapturePlan, burns: pd.DataFrame, tot: dict) -> N
                 bool(burns.verification_passed.all()),
                 str(burns.burn[~burns.verification_passed].tolist()))
     page.expect("every impulsive limit passes the gate", bool(burns.impulsive_verified.all()))
-    page.expect("the total loss is positive", tot["total_loss_mps"] > 0,
-                f"{tot['total_loss_mps']:.3f} m/s")
+    page.expect("the total loss is positive", tot["total_delta_v_loss_mps"] > 0,
+                f"{tot['total_delta_v_loss_mps']:.3f} m/s")
     if p.targets[-1].circular:
         rp = p.perilune_radius_km
         page.expect("the final orbit is the plan's circle",

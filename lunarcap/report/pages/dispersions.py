@@ -29,12 +29,12 @@ DEFAULT_SIGMAS = {"thrust_sigma_pct": 1.0, "isp_sigma_pct": 0.5, "pointing_sigma
 
 #: Shown on the page (fits the 688 px column at 1280 px; make screenshots measured the
 #: full set 349 px too wide): propellant, final-orbit errors and timings stay in the CSV.
-BUDGET_SHOWN = ["engine", "samples", "nominal_delta_v_mps", "impulsive_two_body_mps",
+BUDGET_SHOWN = ["engine", "samples", "nominal_delta_v_mps", "impulsive_delta_v_two_body_mps",
                 "delta_v_p50_mps", "delta_v_p99_mps", "budget_p99_above_nominal_mps",
                 "ci_lo_mps", "p_failure"]
 BUDGET_HEADS = {"engine": "engine", "samples": "samples",
                 "nominal_delta_v_mps": "nominal ΔV (m/s)",
-                "impulsive_two_body_mps": "impulsive ΔV, two-body (m/s)",
+                "impulsive_delta_v_two_body_mps": "impulsive ΔV, two-body (m/s)",
                 "delta_v_p50_mps": "ΔV 50 % (m/s)", "delta_v_p90_mps": "ΔV 90 % (m/s)",
                 "delta_v_p99_mps": "ΔV 99 % (m/s)",
                 "budget_p99_above_nominal_mps": "99 % above nominal (m/s)",
@@ -56,9 +56,9 @@ def budget_row(plan, table: pd.DataFrame) -> dict:
     return {"engine": f"{plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} s",
             "plan": plan.name, "samples": s["samples"],
             "nominal_delta_v_mps": s["nominal_delta_v_mps"],
-            "impulsive_two_body_mps": float(table.impulsive_two_body_mps.iloc[0])
-            if "impulsive_two_body_mps" in table else disp.nominal_totals(plan)[
-                "impulsive_two_body_mps"],
+            "impulsive_delta_v_two_body_mps": float(table.impulsive_delta_v_two_body_mps.iloc[0])
+            if "impulsive_delta_v_two_body_mps" in table else disp.nominal_totals(plan)[
+                "impulsive_delta_v_two_body_mps"],
             **{f"delta_v_p{q:g}_mps": s[f"delta_v_p{q:g}_mps"] for q in disp.PERCENTILES},
             **{f"propellant_p{q:g}_kg": s[f"propellant_p{q:g}_kg"] for q in disp.PERCENTILES},
             "budget_p99_above_nominal_mps": s["budget_p99_above_nominal_mps"],
@@ -159,7 +159,8 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
     runs = [res.run]
     for p in loaded:
         t = res.table[res.table.plan_id == plan_id(p)].copy()
-        t["impulsive_two_body_mps"] = disp.nominal_totals(p)["impulsive_two_body_mps"]
+        t["impulsive_delta_v_two_body_mps"] = \
+            disp.nominal_totals(p)["impulsive_delta_v_two_body_mps"]
         label = f"{p.engine.thrust_N:g} N / {p.engine.isp_s:g} s"
         tables[label] = t
         rows.append(budget_row(p, t))

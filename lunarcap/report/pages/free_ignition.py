@@ -121,7 +121,7 @@ def rule_table(gain: pd.DataFrame, dynamics: str) -> pd.DataFrame:
             "burn_midpoint_min": r.free_start_min + r.free_burn_duration_min / 2,
             "grid_start_min": r.grid_start_min,
             "rule_delta_v_cost_mps": s["delta_v_mps"] - r.free_delta_v_mps,
-            "rule_objective_cost_mps": s["objective_mps"] - r.free_objective_mps,
+            "rule_objective_cost_mps": s["objective_j_mps"] - r.free_objective_mps,
             "verified": "passed" if s["verification"]["passed"] else "failed"})
     return pd.DataFrame(rows)
 

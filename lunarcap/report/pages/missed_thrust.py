@@ -160,7 +160,7 @@ def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75
     page.table("recovery", recovery_rows(everything), caption=(
         "The recovery's burns: ignition (min after the fault is cleared, or after the late "
         "ignition), duration, ΔV."), floatfmt=".3f",
-        show_columns=["contingency", "fraction", "delay_min", "late_min", "burn", "target",
+        show_columns=["contingency", "fraction", "delay_min", "late_min", "burn", "target_orbit",
                       "ignition_min_after_fault", "burn_duration_min", "delta_v_mps",
                       "verified"])  # the ignition epochs: in the CSV
     _values(page, p, burn, t, late, res.run, max_period_h)

@@ -46,13 +46,15 @@ PROSE_THRUSTS_N = (320.0, 500.0, 150.0, 300.0, 450.0)
 #: Display labels of the loss columns: each names its impulsive reference.
 LOSS_LABELS = {
     "engine": "engine (thrust / Isp)",
-    "loss_mps": "loss vs paper (m/s)", "loss_percent": "loss vs paper (%)",
-    "model_impulsive_delta_v_mps": "impulsive ΔV, ours (m/s)",
-    "model_loss_mps": "ΔV above ours (m/s)", "model_loss_percent": "ΔV above ours (%)",
+    "loss_vs_paper_impulse_mps": "loss vs paper (m/s)",
+    "loss_vs_paper_impulse_percent": "loss vs paper (%)",
+    "impulsive_limit_mps": "impulsive ΔV, ours (m/s)",
+    "delta_v_loss_mps": "ΔV above ours (m/s)", "delta_v_loss_percent": "ΔV above ours (%)",
     "objective_loss_mps": "loss vs ours (m/s)", "objective_loss_percent": "loss vs ours (%)",
-    "total_loss_mps": "loss vs paper (m/s)", "total_loss_percent": "loss vs paper (%)",
-    "total_model_loss_mps": "ΔV above ours (m/s)",
-    "total_model_loss_percent": "ΔV above ours (%)",
+    "total_loss_vs_paper_impulse_mps": "loss vs paper (m/s)",
+    "total_loss_vs_paper_impulse_percent": "loss vs paper (%)",
+    "total_delta_v_loss_mps": "ΔV above ours (m/s)",
+    "total_delta_v_loss_percent": "ΔV above ours (%)",
     "total_objective_loss_mps": "loss vs ours (m/s)",
     "total_objective_loss_percent": "loss vs ours (%)",
     "loi1_burn_duration_min": "LOI 1 burn (min)",
@@ -92,8 +94,8 @@ def burns_frame(seqs: dict, rows, model_loss: bool) -> pd.DataFrame:
     burns = burns.assign(verified=burns.verified.map(verdict))
     cols = ["engine", "origin", "thrust_N", "isp_s", "loi", "start_min", "burn_duration_min",
             "delta_v_mps", "fuel_kg", "m_end_kg", "verified", "paper_impulsive_delta_v_mps",
-            "loss_mps", "loss_percent"]
-    cols += ["model_impulsive_delta_v_mps", "model_loss_mps", "model_loss_percent",
+            "loss_vs_paper_impulse_mps", "loss_vs_paper_impulse_percent"]
+    cols += ["impulsive_limit_mps", "delta_v_loss_mps", "delta_v_loss_percent",
              "objective_loss_mps", "objective_loss_percent"] if model_loss else []
     return burns[cols]
 
@@ -106,11 +108,11 @@ def totals_frame(seqs: dict, rows, model_loss: bool) -> pd.DataFrame:
         row = {"engine": lab, "origin": o, "thrust_N": t, "isp_s": i,
                "total_delta_v_mps": x["total_delta_v_mps"],
                "total_impulsive_delta_v_mps": x["total_impulsive_delta_v_mps"],
-               "total_loss_mps": x["total_loss_mps"],
-               "total_loss_percent": x["total_loss_percent"]}
+               "total_loss_vs_paper_impulse_mps": x["total_loss_vs_paper_impulse_mps"],
+               "total_loss_vs_paper_impulse_percent": x["total_loss_vs_paper_impulse_percent"]}
         if model_loss:
-            row.update({k: x[k] for k in ("total_model_impulsive_delta_v_mps",
-                                          "total_model_loss_mps", "total_model_loss_percent",
+            row.update({k: x[k] for k in ("total_impulsive_limit_mps",
+                                          "total_delta_v_loss_mps", "total_delta_v_loss_percent",
                                           "total_objective_loss_mps",
                                           "total_objective_loss_percent")})
         row.update({"total_fuel_kg": x["total_fuel_kg"],
@@ -126,7 +128,8 @@ def loss_columns(model_loss: bool) -> tuple[str, str, str]:
     if model_loss:
         return ("total_objective_loss_mps", "total_objective_loss_percent",
                 "our impulsive limits")
-    return "total_loss_mps", "total_loss_percent", "the paper's impulsive ΔVs"
+    return ("total_loss_vs_paper_impulse_mps", "total_loss_vs_paper_impulse_percent",
+            "the paper's impulsive ΔVs")
 
 
 def _by_thrust(totals: pd.DataFrame, seqs: dict, rows) -> tuple[dict, dict]:
@@ -149,8 +152,10 @@ def prose_values(totals: pd.DataFrame, seqs: dict, rows, model_loss: bool) -> di
         r, s = by_thrust.get(thrust), seq_by_thrust.get(thrust)
         out[f"plotted_loss_mps_{tag}"] = float(getattr(r, loss_col)) if r else nan
         out[f"plotted_loss_percent_{tag}"] = float(getattr(r, pct_col)) if r else nan
-        out[f"total_paper_loss_mps_{tag}"] = float(r.total_loss_mps) if r else nan
-        out[f"total_paper_loss_percent_{tag}"] = float(r.total_loss_percent) if r else nan
+        out[f"total_paper_loss_mps_{tag}"] = \
+            float(r.total_loss_vs_paper_impulse_mps) if r else nan
+        out[f"total_paper_loss_percent_{tag}"] = \
+            float(r.total_loss_vs_paper_impulse_percent) if r else nan
         for key in ("total_delta_v_mps", "total_fuel_kg", "total_burn_duration_min",
                     "final_mass_kg"):
             out[f"{key}_{tag}"] = float(getattr(r, key)) if r else nan
@@ -160,7 +165,7 @@ def prose_values(totals: pd.DataFrame, seqs: dict, rows, model_loss: bool) -> di
             out[f"dv_loi{n}_{tag}_mps"] = (float(s.delta_v_mps.iloc[n - 1])
                                            if s is not None else nan)
     # same Isp, twice the thrust: the LRO-class engine against the paper's 150 N (both 200 s)
-    lc = "objective_loss_mps" if model_loss else "loss_mps"
+    lc = "objective_loss_mps" if model_loss else "loss_vs_paper_impulse_mps"
     a, b = seq_by_thrust.get(150.0), seq_by_thrust.get(320.0)
     both = a is not None and b is not None
     out["loss_ratio_150_320"] = float(a[lc].iloc[0] / b[lc].iloc[0]) if both else nan
@@ -182,11 +187,12 @@ def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str, model_loss: boo
                   "fuel_kg": ".3f", "m_end_kg": ".3f"},
         show_columns=["engine", "loi", "start_min", "burn_duration_min", "delta_v_mps",
                       "fuel_kg", "m_end_kg", "verified"])
-    loss_cols = ["engine", "loi", "paper_impulsive_delta_v_mps", "loss_mps", "loss_percent"]
-    loss_cols += ["model_impulsive_delta_v_mps", "objective_loss_mps"] if model_loss else []
+    loss_cols = ["engine", "loi", "paper_impulsive_delta_v_mps", "loss_vs_paper_impulse_mps",
+                 "loss_vs_paper_impulse_percent"]
+    loss_cols += ["impulsive_limit_mps", "objective_loss_mps"] if model_loss else []
     page.table(
-        "losses", burns[loss_cols + (["objective_loss_percent", "model_loss_mps",
-                                      "model_loss_percent"] if model_loss else [])],
+        "losses", burns[loss_cols + (["objective_loss_percent", "delta_v_loss_mps",
+                                      "delta_v_loss_percent"] if model_loss else [])],
         caption=("Loss of each burn of the same captures against "
                  + ("two impulsive references. " if model_loss else "an impulsive reference. ")
                  + f"Vs paper: ΔV above {REF_PAPER}, in m/s and in % of it, as the paper's "
@@ -196,9 +202,9 @@ def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str, model_loss: boo
                     "; the loss against our own impulsive limit is not computed in this build")
                  + "."),
         columns=LOSS_LABELS | {"engine": "engine"},
-        floatfmt={"paper_impulsive_delta_v_mps": ".3f", "loss_mps": ".3f",
-                  "loss_percent": ".3f", "model_impulsive_delta_v_mps": ".3f",
-                  "model_loss_mps": ".3f", "model_loss_percent": ".3f",
+        floatfmt={"paper_impulsive_delta_v_mps": ".3f", "loss_vs_paper_impulse_mps": ".3f",
+                  "loss_vs_paper_impulse_percent": ".3f", "impulsive_limit_mps": ".3f",
+                  "delta_v_loss_mps": ".3f", "delta_v_loss_percent": ".3f",
                   "objective_loss_mps": ".3f", "objective_loss_percent": ".3f"},
         show_columns=loss_cols)
 
@@ -206,7 +212,8 @@ def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str, model_loss: boo
 def _add_totals_tables(page: Page, totals: pd.DataFrame, ignition: str,
                        model_loss: bool) -> None:
     paper_total = float(sum(PAPER_IMPULSIVE_DV_MPS))
-    shown = ["engine", "total_delta_v_mps", "total_loss_mps", "total_loss_percent"]
+    shown = ["engine", "total_delta_v_mps", "total_loss_vs_paper_impulse_mps",
+             "total_loss_vs_paper_impulse_percent"]
     shown += ["total_objective_loss_mps", "total_objective_loss_percent"] if model_loss else []
     page.table(
         "totals", totals,
@@ -218,9 +225,9 @@ def _add_totals_tables(page: Page, totals: pd.DataFrame, ignition: str,
                     "plain ΔV above them)" if model_loss else "")
                  + ". Propellant, burn times and final mass: next table."),
         columns=LOSS_LABELS,
-        floatfmt={"total_delta_v_mps": ".3f", "total_loss_mps": ".3f",
-                  "total_loss_percent": ".3f", "total_model_loss_mps": ".3f",
-                  "total_model_loss_percent": ".3f", "total_objective_loss_mps": ".3f",
+        floatfmt={"total_delta_v_mps": ".3f", "total_loss_vs_paper_impulse_mps": ".3f",
+                  "total_loss_vs_paper_impulse_percent": ".3f", "total_delta_v_loss_mps": ".3f",
+                  "total_delta_v_loss_percent": ".3f", "total_objective_loss_mps": ".3f",
                   "total_objective_loss_percent": ".3f"},
         show_columns=shown)
     page.table(
@@ -254,15 +261,16 @@ def _add_checks(page: Page, totals: pd.DataFrame, seqs: dict, results: dict, row
     by_thrust, _ = _by_thrust(totals, seqs, rows)
     page.expect("every burn passes the verification gate",
                 all(s.verified.all() for s in seqs.values()))
-    page.expect("every loss vs paper is positive", bool((totals.total_loss_mps > 0).all()))
+    page.expect("every loss vs paper is positive",
+                bool((totals.total_loss_vs_paper_impulse_mps > 0).all()))
     if model_loss:
         page.expect("every impulsive limit passes the gate",
                     all(res.totals()["all_verified"] for res in results.values()))
         page.expect("every loss vs ours is positive, burn by burn",
                     all(bool((s.objective_loss_mps > 0).all()) for s in seqs.values()))
         # the plan's own result (runs.chain.plan_result) gives the same losses vs ours
-        diff = max(abs(res.totals()["total_loss_mps"]
-                       - float(totals[totals.engine == lab].total_model_loss_mps.iloc[0]))
+        diff = max(abs(res.totals()["total_delta_v_loss_mps"]
+                       - float(totals[totals.engine == lab].total_delta_v_loss_mps.iloc[0]))
                    for lab, res in results.items())
         page.expect("plan_result and sequence_table agree on the loss vs ours (1e-9 m/s)",
                     diff < 1e-9, f"{diff:.3g} m/s")
@@ -291,20 +299,22 @@ def _add_measured_checks(page: Page, totals: pd.DataFrame, seqs: dict, rows,
         s, r = seq_by_thrust[320.0], by_thrust[320.0]
         page.expect("LRO-class LOI 1 burns 8.5-9.3 min",
                     8.5 < s.burn_duration_min.iloc[0] < 9.3)
-        page.expect("LRO-class loss vs paper 3.5-5.0 m/s", 3.5 < r.total_loss_mps < 5.0,
-                    f"{r.total_loss_mps:.3f}")
+        page.expect("LRO-class loss vs paper 3.5-5.0 m/s",
+                    3.5 < r.total_loss_vs_paper_impulse_mps < 5.0,
+                    f"{r.total_loss_vs_paper_impulse_mps:.3f}")
         if model_loss:
             page.expect("LRO-class loss vs ours 4.0-5.4 m/s",
-                        4.0 < r.total_model_loss_mps < 5.4, f"{r.total_model_loss_mps:.3f}")
+                        4.0 < r.total_delta_v_loss_mps < 5.4, f"{r.total_delta_v_loss_mps:.3f}")
     if 500.0 in seq_by_thrust:  # measured: LOI 1 5.84 min, loss 1.76 (paper), 2.16 (ours)
         s, r = seq_by_thrust[500.0], by_thrust[500.0]
         page.expect("SELENE-class LOI 1 burns 5.5-6.2 min",
                     5.5 < s.burn_duration_min.iloc[0] < 6.2)
-        page.expect("SELENE-class loss vs paper 1.2-2.3 m/s", 1.2 < r.total_loss_mps < 2.3,
-                    f"{r.total_loss_mps:.3f}")
+        page.expect("SELENE-class loss vs paper 1.2-2.3 m/s",
+                    1.2 < r.total_loss_vs_paper_impulse_mps < 2.3,
+                    f"{r.total_loss_vs_paper_impulse_mps:.3f}")
         if model_loss:
             page.expect("SELENE-class loss vs ours 1.6-2.8 m/s",
-                        1.6 < r.total_model_loss_mps < 2.8, f"{r.total_model_loss_mps:.3f}")
+                        1.6 < r.total_delta_v_loss_mps < 2.8, f"{r.total_delta_v_loss_mps:.3f}")
 
 
 def build(engines=((320.0, 200.0), (500.0, 300.0)),
@@ -399,12 +409,13 @@ def loss_note(totals: pd.DataFrame, seqs: dict, rows, model_loss: bool, dynamics
         r = totals[totals.engine == lab].iloc[0]
         parts.append(
             f"the {o} engine loses {r.total_objective_loss_mps:.2f} m/s against its impulses "
-            f"(which total {r.total_model_impulsive_delta_v_mps:.3f} m/s; its ΔV exceeds "
-            f"theirs by {r.total_model_loss_mps:.2f} m/s) and "
-            f"{r.total_loss_mps:.2f} m/s ({r.total_loss_percent:.2f} %) against the paper's "
+            f"(which total {r.total_impulsive_limit_mps:.3f} m/s; its ΔV exceeds "
+            f"theirs by {r.total_delta_v_loss_mps:.2f} m/s) and "
+            f"{r.total_loss_vs_paper_impulse_mps:.2f} m/s "
+            f"({r.total_loss_vs_paper_impulse_percent:.2f} %) against the paper's "
             f"{paper_total:.3f} m/s")
-    lower = bool((totals.total_model_impulsive_delta_v_mps < paper_total).all())
-    higher = bool((totals.total_model_impulsive_delta_v_mps > paper_total).all())
+    lower = bool((totals.total_impulsive_limit_mps < paper_total).all())
+    higher = bool((totals.total_impulsive_limit_mps > paper_total).all())
     compare = ("Our impulses need less ΔV than the paper's, so a loss against ours is the "
                "larger" if lower else
                "Our impulses need more ΔV than the paper's, so a loss against ours is the "

@@ -26,6 +26,9 @@ from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
 from lunarcap.runs import sweeps
 
+#: The stem of the totals' loss against the paper's printed impulses (glossary name).
+VS_PAPER = "total_loss_vs_paper_impulse"
+
 NOTEBOOK = "notebooks/summary.ipynb"
 
 #: The paper's engines (thrust N, Isp s), in its order.
@@ -34,8 +37,9 @@ PAPER_ENGINES = paper_engine_pairs()
 #: Totals of a chain (quantity, unit, key of :func:`lunarcap.runs.sweeps.sequence_totals`,
 #: name of the number the paper prints in its prose, or None).
 QUANTITIES = (
-    ("ΔV loss, sum of the three LOIs", "m/s", "total_loss_mps", "loss_total_{}N_mps"),
-    ("loss as a share of the total impulsive ΔV", "%", "total_loss_percent", None),
+    ("ΔV loss, sum of the three LOIs", "m/s", "total_loss_vs_paper_impulse_mps",
+     "loss_total_{}N_mps"),
+    ("loss as a share of the total impulsive ΔV", "%", "total_loss_vs_paper_impulse_percent", None),
     ("loss, mean of the three per-burn % (the paper's way)", "%",
      "mean_of_burn_loss_percent", "loss_total_{}N_percent"),
     ("propellant, LOI 1-3", "kg", "total_fuel_kg", "fuel_finite_{}N_kg"),
@@ -62,7 +66,8 @@ def paper_totals(thrust_N: float) -> dict:
     pb = b1[b1.thrust_N == thrust_N]
     return sweeps.sequence_totals(pd.DataFrame({
         "delta_v_mps": pb.delta_v_mps, "paper_impulsive_delta_v_mps": pb.impulsive_delta_v_mps,
-        "loss_mps": pb.delta_v_mps - pb.impulsive_delta_v_mps, "loss_percent": pb.diff_percent,
+        "loss_vs_paper_impulse_mps": pb.delta_v_mps - pb.impulsive_delta_v_mps,
+        "loss_vs_paper_impulse_percent": pb.diff_percent,
         "burn_duration_min": pb.burn_duration_min, "m_end_kg": np.nan}))
 
 
@@ -110,20 +115,23 @@ def model_loss_table(engines, chains: dict, totals: dict) -> pd.DataFrame:
         for r in chains[name].itertuples():
             rows.append({"engine": name, "loi": str(r.loi),
                          "paper_impulsive_delta_v_mps": r.paper_impulsive_delta_v_mps,
-                         "model_impulsive_delta_v_mps": r.model_impulsive_delta_v_mps,
-                         "paper_loss_mps": r.paper_delta_v_mps - r.paper_impulsive_delta_v_mps,
-                         "loss_mps": r.loss_mps, "model_loss_mps": r.model_loss_mps,
-                         "model_loss_percent": r.model_loss_percent,
+                         "impulsive_limit_mps": r.impulsive_limit_mps,
+                         "paper_delta_v_loss_mps":
+                             r.paper_delta_v_mps - r.paper_impulsive_delta_v_mps,
+                         "loss_vs_paper_impulse_mps": r.loss_vs_paper_impulse_mps,
+                         "delta_v_loss_mps": r.delta_v_loss_mps,
+                         "delta_v_loss_percent": r.delta_v_loss_percent,
                          "objective_loss_mps": r.objective_loss_mps})
         t = totals[thrust]
         c = chains[name]
         rows.append({"engine": name, "loi": "total",
                      "paper_impulsive_delta_v_mps": t["total_impulsive_delta_v_mps"],
-                     "model_impulsive_delta_v_mps": t["total_model_impulsive_delta_v_mps"],
-                     "paper_loss_mps": float((c.paper_delta_v_mps
+                     "impulsive_limit_mps": t["total_impulsive_limit_mps"],
+                     "paper_delta_v_loss_mps": float((c.paper_delta_v_mps
                                               - c.paper_impulsive_delta_v_mps).sum()),
-                     "loss_mps": t["total_loss_mps"], "model_loss_mps": t["total_model_loss_mps"],
-                     "model_loss_percent": t["total_model_loss_percent"],
+                     "loss_vs_paper_impulse_mps": t["total_loss_vs_paper_impulse_mps"],
+                     "delta_v_loss_mps": t["total_delta_v_loss_mps"],
+                     "delta_v_loss_percent": t["total_delta_v_loss_percent"],
                      "objective_loss_mps": t["total_objective_loss_mps"]})
     return pd.DataFrame(rows)
 
@@ -148,7 +156,8 @@ def notes(engines, seqs: dict, totals: dict, values: dict) -> dict:
     tl = [t for t, _ in engines]
     v = values
     out = {}
-    ours = (f"Ours: {_each([(t, totals[t]['total_loss_percent']) for t in tl], '.2f', '%')} "
+    ours = (f"Ours: "
+            f"{_each([(t, totals[t][VS_PAPER + '_percent']) for t in tl], '.2f', '%')} "
             "of the total impulsive delta-V "
             f"({_each([(t, totals[t]['mean_of_burn_loss_percent']) for t in tl], '.2f', '%')} "
             "the paper's way).")
@@ -160,12 +169,12 @@ def notes(engines, seqs: dict, totals: dict, values: dict) -> dict:
             "Best delta-Vs\n"
             f": Every LOI of every engine is within {v['max_abs_b1_diff_percent']:.2f} % of "
             "Table B1. Our losses against the paper's impulsive values are "
-            f"{_each([(t, totals[t]['total_loss_mps']) for t in tl], '.2f', 'm/s')} (the "
+            f"{_each([(t, totals[t][VS_PAPER + '_mps']) for t in tl], '.2f', 'm/s')} (the "
             "paper's Table B1: "
-            f"{_each([(t, v[f'b1_total_loss_mps_{t:g}N']) for t in tl], '.2f', 'm/s')}). "
+            f"{_each([(t, v[f'b1_{VS_PAPER}_mps_{t:g}N']) for t in tl], '.2f', 'm/s')}). "
             "Against an impulse in our own dynamics they are "
-            f"{_each([(t, totals[t]['total_model_loss_mps']) for t in tl], '.2f', 'm/s')} "
-            f"({_each([(t, totals[t]['total_model_loss_percent']) for t in tl], '.2f', '%')}); "
+            f"{_each([(t, totals[t]['total_delta_v_loss_mps']) for t in tl], '.2f', 'm/s')} "
+            f"({_each([(t, totals[t]['total_delta_v_loss_percent']) for t in tl], '.2f', '%')}); "
             "measured by the objective of Eq. (9), ΔV plus the speed left at the next "
             "perilune, "
             f"{_each([(t, totals[t]['total_objective_loss_mps']) for t in tl], '.2f', 'm/s')}.")
@@ -232,12 +241,14 @@ def engine_values(seqs: dict, totals: dict) -> dict:
     values = {}
     for thrust, isp in PAPER_ENGINES:  # NaN for an engine not run (e.g. in a quick build)
         t, p, tag = totals.get(thrust, {}), paper_totals(thrust), f"{thrust:g}N"
-        for key in ("total_delta_v_mps", "total_loss_mps", "total_loss_percent",
+        for key in ("total_delta_v_mps", "total_loss_vs_paper_impulse_mps",
+                    "total_loss_vs_paper_impulse_percent",
                     "mean_of_burn_loss_percent", "total_fuel_kg", "total_burn_duration_min",
-                    "final_mass_kg", "total_model_loss_mps", "total_model_loss_percent",
-                    "total_model_impulsive_delta_v_mps"):
+                    "final_mass_kg", "total_delta_v_loss_mps", "total_delta_v_loss_percent",
+                    "total_impulsive_limit_mps"):
             values[f"{key}_{tag}"] = float(t.get(key, nan))
-        for key in ("total_delta_v_mps", "total_loss_mps", "total_loss_percent",
+        for key in ("total_delta_v_mps", "total_loss_vs_paper_impulse_mps",
+                    "total_loss_vs_paper_impulse_percent",
                     "mean_of_burn_loss_percent", "total_burn_duration_min"):
             values[f"b1_{key}_{tag}"] = float(p[key])
         for q in ("loss_total_{}N_mps", "loss_total_{}N_percent", "fuel_finite_{}N_kg",
@@ -297,8 +308,8 @@ def _add_b1_tables(page: Page, b1: pd.DataFrame, dynamics: str) -> None:
              "paper_start_min": "start, paper (min)"}
     page.table(
         "b1", b1[["engine", "loi", *start_cols, "paper_delta_v_mps", "delta_v_mps",
-                  "delta_v_diff_mps", "delta_v_diff_percent", "paper_loss_percent",
-                  "loss_percent", "verified"]],
+                  "delta_v_diff_mps", "delta_v_diff_percent", "paper_delta_v_loss_percent",
+                  "loss_vs_paper_impulse_percent", "verified"]],
         caption=("Delta-V of Table B1 of Song et al. (2011), the best case of each engine and "
                  f"LOI, beside ours ({dynamics} dynamics). {start_txt}. Delta-V in m/s; ours − "
                  "paper in m/s and in % of the paper's value. The loss (delta-V above the "
@@ -307,11 +318,12 @@ def _add_b1_tables(page: Page, b1: pd.DataFrame, dynamics: str) -> None:
                  f"{verified_txt} the re-propagation gate."),
         columns={**heads, "delta_v_mps": "ΔV, ours (m/s)", "delta_v_diff_mps": "ours − paper (m/s)",
                  "delta_v_diff_percent": "ours − paper (%)",
-                 "paper_loss_percent": "loss, paper (%)", "loss_percent": "loss, ours (%)"},
+                 "paper_delta_v_loss_percent": "loss, paper (%)",
+                 "loss_vs_paper_impulse_percent": "loss, ours (%)"},
         floatfmt={"paper_start_min": "g", "start_min": "g", "paper_delta_v_mps": ".3f",
                   "delta_v_mps": ".3f", "delta_v_diff_mps": "+.3f",
-                  "delta_v_diff_percent": "+.2f", "paper_loss_percent": ".2f",
-                  "loss_percent": ".2f"},
+                  "delta_v_diff_percent": "+.2f", "paper_delta_v_loss_percent": ".2f",
+                  "loss_vs_paper_impulse_percent": ".2f"},
         show_columns=["engine", "loi", *start_cols, "paper_delta_v_mps", "delta_v_mps",
                       "delta_v_diff_mps", "delta_v_diff_percent"],
         paper="Table B1, delta-V")
@@ -366,17 +378,18 @@ def _add_model_loss(page: Page, engines, chains: dict, totals: dict) -> None:
                  "{doc}`trade_study` page)."),
         columns={"engine": "engine (thrust / Isp)", "loi": "LOI",
                  "paper_impulsive_delta_v_mps": "paper's imp. ΔV (m/s)",
-                 "model_impulsive_delta_v_mps": "our imp. ΔV (m/s)",
-                 "paper_loss_mps": "loss, paper (m/s)",
-                 "loss_mps": "our loss vs paper's imp. (m/s)",
-                 "model_loss_mps": "our loss vs our imp. (m/s)",
-                 "model_loss_percent": "our loss vs our imp. (%)"},
-        floatfmt={"paper_impulsive_delta_v_mps": ".3f", "model_impulsive_delta_v_mps": ".3f",
-                  "paper_loss_mps": ".2f", "loss_mps": ".2f", "model_loss_mps": ".2f",
-                  "model_loss_percent": ".2f"},
+                 "impulsive_limit_mps": "our imp. ΔV (m/s)",
+                 "paper_delta_v_loss_mps": "loss, paper (m/s)",
+                 "loss_vs_paper_impulse_mps": "our loss vs paper's imp. (m/s)",
+                 "delta_v_loss_mps": "our loss vs our imp. (m/s)",
+                 "delta_v_loss_percent": "our loss vs our imp. (%)"},
+        floatfmt={"paper_impulsive_delta_v_mps": ".3f", "impulsive_limit_mps": ".3f",
+                  "paper_delta_v_loss_mps": ".2f", "loss_vs_paper_impulse_mps": ".2f",
+                  "delta_v_loss_mps": ".2f",
+                  "delta_v_loss_percent": ".2f"},
         show_columns=["engine", "loi", "paper_impulsive_delta_v_mps",
-                      "model_impulsive_delta_v_mps", "paper_loss_mps", "loss_mps",
-                      "model_loss_mps"])
+                      "impulsive_limit_mps", "paper_delta_v_loss_mps", "loss_vs_paper_impulse_mps",
+                      "delta_v_loss_mps"])
     page.figure(
         "loss", figures.plot_summary_loss(chains),
         caption=("Delta-V loss (m/s) of each LOI of the best chains: the paper's (Table B1 "
@@ -454,7 +467,7 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
                 bool((b1.verified == PASSED).all()),
                 str(b1[b1.verified != PASSED][["engine", "loi"]].values.tolist()))
     page.expect("the model-to-model loss of every chain is positive",
-                all(t["total_model_loss_mps"] > 0 for t in totals.values()))
+                all(t["total_delta_v_loss_mps"] > 0 for t in totals.values()))
     if dynamics == "full" and starts is None:
         _add_paper_checks(page, engines, seqs, totals, values)
     page.data.update(chains=chains, totals=totals, b1=b1)

@@ -39,7 +39,8 @@ def dv_table(sweep: pd.DataFrame, impulsive: dict) -> pd.DataFrame:
     """Delta-V rows: the impulsive burn (paper's and ours), then each finite burn.
 
     Columns: burn, start_min, paper_delta_v_mps, delta_v_mps, delta_v_diff_mps,
-    delta_v_diff_percent, paper_loss_percent, loss_percent, best (paper / ours / both),
+    delta_v_diff_percent, paper_delta_v_loss_percent, loss_vs_paper_impulse_percent, best (paper /
+    ours / both),
     verified (passed / failed).
     """
     imp = sweep.attrs["impulsive_delta_v_mps"]
@@ -50,19 +51,21 @@ def dv_table(sweep: pd.DataFrame, impulsive: dict) -> pd.DataFrame:
         pd.DataFrame([{"burn": "impulsive", "paper_delta_v_mps": imp, "delta_v_mps": ours,
                        "delta_v_diff_mps": ours - imp,
                        "delta_v_diff_percent": 100 * (ours - imp) / imp,
-                       "paper_loss_percent": 0.0, "best": "",
+                       "paper_delta_v_loss_percent": 0.0, "best": "",
                        "verified": "passed" if impulsive["verification_passed"] else "failed"}]),
         pd.DataFrame({"burn": "finite", "start_min": sweep.start_min,
                       "paper_delta_v_mps": sweep.paper_delta_v_mps,
                       "delta_v_mps": sweep.delta_v_mps,
                       "delta_v_diff_mps": sweep.delta_v_diff_mps,
                       "delta_v_diff_percent": sweep.delta_v_diff_percent,
-                      "paper_loss_percent": sweep.paper_loss_percent,
-                      "loss_percent": sweep.loss_percent, "best": best,
+                      "paper_delta_v_loss_percent": sweep.paper_delta_v_loss_percent,
+                      "loss_vs_paper_impulse_percent": sweep.loss_vs_paper_impulse_percent,
+                      "best": best,
                       "verified": np.where(sweep.verified, "passed", "failed")}),
     ], ignore_index=True)
     return rows[["burn", "start_min", "paper_delta_v_mps", "delta_v_mps", "delta_v_diff_mps",
-                 "delta_v_diff_percent", "paper_loss_percent", "loss_percent", "best",
+                 "delta_v_diff_percent", "paper_delta_v_loss_percent",
+                 "loss_vs_paper_impulse_percent", "best",
                  "verified"]]
 
 
@@ -209,7 +212,7 @@ def prose_values(sweep: pd.DataFrame, impulsive: dict, best_p) -> dict:
     has = diff_pct.notna().any()
     values = {
         "best_start_min": b.start_min, "best_delta_v_mps": b.delta_v_mps,
-        "best_burn_min": b.burn_duration_min, "best_loss_percent": b.loss_percent,
+        "best_burn_min": b.burn_duration_min, "best_loss_percent": b.loss_vs_paper_impulse_percent,
         "best_loss_mps": b.delta_v_mps - imp,
         "paper_best_start_min": best_p["start_min"] if best_p else nan,
         "paper_best_delta_v_mps": best_p["delta_v_mps"] if best_p else nan,
@@ -244,11 +247,11 @@ def _add_items(page: Page, sweep: pd.DataFrame, impulsive: dict, printed, case: 
                  "offsets tested (the paper's footnote a, ours or both). Gate: passed the "
                  "re-propagation gate (the verification page)."),
         columns={"delta_v_mps": "ΔV, ours (m/s)", "delta_v_diff_mps": "Δ (m/s)",
-                 "delta_v_diff_percent": "Δ (%)", "paper_loss_percent": "loss, paper (%)",
-                 "loss_percent": "loss, ours (%)", "verified": "gate"},
+                 "delta_v_diff_percent": "Δ (%)", "paper_delta_v_loss_percent": "loss, paper (%)",
+                 "loss_vs_paper_impulse_percent": "loss, ours (%)", "verified": "gate"},
         floatfmt={"start_min": "g", "paper_delta_v_mps": ".3f", "delta_v_mps": ".3f",
                   "delta_v_diff_mps": "+.3f", "delta_v_diff_percent": "+.2f",
-                  "paper_loss_percent": ".2f", "loss_percent": ".2f"},
+                  "paper_delta_v_loss_percent": ".2f", "loss_vs_paper_impulse_percent": ".2f"},
         paper=source and f"{source}, delta-V")
     eq19_min = float(sweep.eq19_duration_min.iloc[0])
     page.table(

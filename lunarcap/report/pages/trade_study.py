@@ -36,9 +36,11 @@ LOSS_AXIS_PERCENT = (0.003, 40.0)
 DENSE_POINTS = 200
 
 #: Columns of the grid table's CSV, and those shown in the book (the CSV keeps all).
-GRID_COLUMNS = ["thrust_N", "isp_s", "thrust_to_weight", "loss_percent_loi1",
-                "loss_percent_loi2", "loss_percent_loi3", "loss_percent_sequence",
-                "loss_mps_sequence", "analytic_loss_percent_sequence", "burn_duration_min_loi1",
+GRID_COLUMNS = ["thrust_N", "isp_s", "thrust_to_weight", "objective_loss_percent_loi1",
+                "objective_loss_percent_loi2", "objective_loss_percent_loi3",
+                "objective_loss_percent_sequence",
+                "objective_loss_mps_sequence", "analytic_loss_percent_sequence",
+                "burn_duration_min_loi1",
                 "eq19_duration_min_loi1", "status"]
 GRID_SHOWN = GRID_COLUMNS[:7] + ["analytic_loss_percent_sequence"]
 
@@ -70,7 +72,7 @@ def _interp_log(x, xs, ys) -> float:
 def paper_engines_table(ok: pd.DataFrame, paper: pd.DataFrame) -> pd.DataFrame:
     """Loss at the paper's three engines: Table B1, ours interpolated, Robbins' estimate.
 
-    Columns: thrust_N, isp_s, part, paper_loss_percent (Table B1 as printed; the sequence:
+    Columns: thrust_N, isp_s, part, paper_delta_v_loss_percent (Table B1 as printed; the sequence:
     summed losses over summed impulsive delta-Vs), optimal_loss_percent (our verified
     optima of the same Isp, interpolated in log T/W; NaN when that Isp or thrust is not
     in the grid), robbins_loss_percent.
@@ -80,10 +82,11 @@ def paper_engines_table(ok: pd.DataFrame, paper: pd.DataFrame) -> pd.DataFrame:
         d = ok[(ok.part == r.part) & (ok.isp_s == r.isp_s)]
         robbins = study.analytic_curves([r.thrust_N], [r.isp_s]).set_index("part")
         rows.append({"thrust_N": r.thrust_N, "isp_s": r.isp_s, "part": r.part,
-                     "paper_loss_percent": r.loss_percent,
+                     "paper_delta_v_loss_percent": r.paper_delta_v_loss_percent,
                      "optimal_loss_percent": _interp_log(r.thrust_to_weight,
-                                                         d.thrust_to_weight, d.loss_percent),
-                     "robbins_loss_percent": float(robbins.loc[r.part, "loss_percent"])})
+                                                         d.thrust_to_weight,
+                                                         d.objective_loss_percent),
+                     "robbins_loss_percent": float(robbins.loc[r.part, "analytic_loss_percent"])})
     return pd.DataFrame(rows)
 
 
@@ -146,7 +149,7 @@ def burn_ratios(loi_ok: pd.DataFrame) -> tuple[pd.Series, pd.Series, pd.Series]:
     """
     w = float(study.schuler_rate_rad_s(study.PERILUNE_RADIUS_KM))
     in_valid = loi_ok[w * 60.0 * loi_ok.eq19_duration_min <= ROBBINS_VALID_OMEGA_T]
-    ratio = in_valid.loss_mps / in_valid.analytic_loss_mps
+    ratio = in_valid.objective_loss_mps / in_valid.analytic_loss_mps
     dur_ratio = loi_ok.burn_duration_min / loi_ok.eq19_duration_min
     start_ratio = loi_ok.start_min / loi_ok.eq19_duration_min
     return ratio, dur_ratio, start_ratio
@@ -168,13 +171,14 @@ def prose_values(spec, wide: pd.DataFrame, run: dict, ok: pd.DataFrame,
         "tw_max": study.thrust_to_weight(spec.thrust_max_N),
         "n_failed": int((wide.status != "ok").sum()) if len(wide) else 0,
         "wall_s": float(run["wall_s"]), "n_computed": int(run["computed"]),
-        "seq_loss_high_max_mps": float(hi.loss_mps.max()) if len(hi) else nan,
-        "seq_loss_high_max_percent": float(hi.loss_percent.max()) if len(hi) else nan,
-        "loss_min_mps": float(ok.loss_mps.min()) if len(ok) else nan,
+        "seq_loss_high_max_mps": float(hi.objective_loss_mps.max()) if len(hi) else nan,
+        "seq_loss_high_max_percent": float(hi.objective_loss_percent.max()) if len(hi) else nan,
+        "loss_min_mps": float(ok.objective_loss_mps.min()) if len(ok) else nan,
         "robbins_valid_omega_t": ROBBINS_VALID_OMEGA_T,
         "n_robbins_valid": len(ratio),
         "paper_diff_max": float((diffs.optimal_loss_percent
-                                 - diffs.paper_loss_percent).abs().max()) if len(diffs) else nan,
+                                 - diffs.paper_delta_v_loss_percent).abs().max())
+        if len(diffs) else nan,
         "robbins_diff_max": float((diffs.robbins_loss_percent
                                    - diffs.optimal_loss_percent).abs().max())
         if len(diffs) else nan,
@@ -208,9 +212,9 @@ def _add_loss(page: Page, ok, valid, paper, spec, newton_per_ratio: float) -> pd
                  "interpolated (in log T/W) along the curve of the same Isp (— when that Isp "
                  "or thrust is not in this grid), and Robbins' estimate. Thrust in N, Isp in "
                  "s. " + loss_def),
-        columns={"part": "burn", "paper_loss_percent": "paper, Table B1 (%)",
+        columns={"part": "burn", "paper_delta_v_loss_percent": "paper, Table B1 (%)",
                  "optimal_loss_percent": "optimal (%)", "robbins_loss_percent": "Robbins (%)"},
-        floatfmt={"thrust_N": ".0f", "isp_s": ".0f", "paper_loss_percent": ".2f",
+        floatfmt={"thrust_N": ".0f", "isp_s": ".0f", "paper_delta_v_loss_percent": ".2f",
                   "optimal_loss_percent": ".2f", "robbins_loss_percent": ".2f"})
     return at_paper
 
@@ -239,16 +243,18 @@ def _add_duration_grid_runs(page: Page, loi_ok, wide, spec, newton_per_ratio: fl
                  "optimal and Eq. (19) burn durations (min) and the status; the study's table "
                  "in the cache directory holds every column (ignition offsets, masses, IPOPT "
                  "status, verification)."),
-        columns={"loss_percent_loi1": "LOI 1 (%)", "loss_percent_loi2": "LOI 2 (%)",
-                 "loss_percent_loi3": "LOI 3 (%)", "loss_percent_sequence": "sequence (%)",
-                 "loss_mps_sequence": "sequence (m/s)",
+        columns={"objective_loss_percent_loi1": "LOI 1 (%)",
+                 "objective_loss_percent_loi2": "LOI 2 (%)",
+                 "objective_loss_percent_loi3": "LOI 3 (%)",
+                 "objective_loss_percent_sequence": "sequence (%)",
+                 "objective_loss_mps_sequence": "sequence (m/s)",
                  "analytic_loss_percent_sequence": "Robbins, sequence (%)",
                  "burn_duration_min_loi1": "LOI 1 burn (min)",
                  "eq19_duration_min_loi1": "LOI 1 Eq. (19) (min)", "status": "status"},
         floatfmt={"thrust_N": ".4g", "isp_s": ".0f", "thrust_to_weight": ".4f",
-                  "loss_percent_loi1": ".3f", "loss_percent_loi2": ".3f",
-                  "loss_percent_loi3": ".3f", "loss_percent_sequence": ".3f",
-                  "loss_mps_sequence": ".2f", "analytic_loss_percent_sequence": ".3f",
+                  "objective_loss_percent_loi1": ".3f", "objective_loss_percent_loi2": ".3f",
+                  "objective_loss_percent_loi3": ".3f", "objective_loss_percent_sequence": ".3f",
+                  "objective_loss_mps_sequence": ".2f", "analytic_loss_percent_sequence": ".3f",
                   "burn_duration_min_loi1": ".2f", "eq19_duration_min_loi1": ".2f"},
         show_columns=GRID_SHOWN)
     page.table(
@@ -281,11 +287,12 @@ def _add_checks(page: Page, spec, table, wide, ok, theory, values: dict) -> None
         if len(s) >= 2:
             page.expect(f"Isp {isp:g} s: the weakest engine loses more than the strongest, "
                         "and over 0.5 %",
-                        s.loss_percent.iloc[0] > s.loss_percent.iloc[-1]
-                        and s.loss_percent.iloc[0] > 0.5,
-                        f"{s.loss_percent.iloc[0]:.3f} % vs {s.loss_percent.iloc[-1]:.3f} %")
+                        s.objective_loss_percent.iloc[0] > s.objective_loss_percent.iloc[-1]
+                        and s.objective_loss_percent.iloc[0] > 0.5,
+                        f"{s.objective_loss_percent.iloc[0]:.3f} % vs "
+                        f"{s.objective_loss_percent.iloc[-1]:.3f} %")
     if len(spec.isp_s) > 1:  # the prose: at one thrust-to-weight a higher Isp loses more
-        by_t = seq.pivot_table(index="thrust_N", columns="isp_s", values="loss_percent")
+        by_t = seq.pivot_table(index="thrust_N", columns="isp_s", values="objective_loss_percent")
         lossy = by_t[by_t.min(axis=1) > 1.0]  # where the loss is resolved
         page.expect("at one thrust, a higher Isp loses more (where the loss exceeds 1 %)",
                     bool((lossy.diff(axis=1).iloc[:, 1:] > 0).all().all()))
@@ -295,7 +302,7 @@ def _add_checks(page: Page, spec, table, wide, ok, theory, values: dict) -> None
                 not len(ratio) or float(ratio.max()) <= 1.0 + 1e-3,
                 f"largest ratio {float(ratio.max()):.3f}" if len(ratio) else "")
     page.expect("Robbins' estimate falls as the thrust grows",
-                bool(theory.groupby(["isp_s", "part"]).loss_percent
+                bool(theory.groupby(["isp_s", "part"]).analytic_loss_percent
                      .apply(lambda v: v.is_monotonic_decreasing).all()))
     page.expect("the optimal duration is 0.97 to 2 times Eq. (19)",
                 bool(dur_ratio.between(0.97, 2.0).all()),
@@ -345,7 +352,7 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
     for k, v in values.items():
         page.value(k, v)
     lo = seq[seq.thrust_N == seq.thrust_N.min()]
-    page.value("seq_loss_low_range", _range_text(lo.loss_percent))
+    page.value("seq_loss_low_range", _range_text(lo.objective_loss_percent))
     page.value("robbins_ratio_range", _range_text(burn_ratios(loi_ok)[0], ".2f", ""))
     _add_checks(page, spec, table, wide, ok, theory, values)
     page.data.update(result=result, wide=wide, ok=ok, theory=theory, paper=paper)

@@ -8,15 +8,16 @@ from lunarcap.report.pages import capture_plan
 
 def _burns(losses):
     n = len(losses)
-    return pd.DataFrame({"burn": list(range(1, n + 1)), "loss_mps": losses,
+    return pd.DataFrame({"burn": list(range(1, n + 1)), "delta_v_loss_mps": losses,
                          "objective_loss_mps": [x + 0.2 for x in losses],
                          "verification_passed": [True] * (n - 1) + [False],
                          "verification_rp_error_m": [0.001, -0.004, 0.002][:n]})
 
 
 def _tot(losses):
-    return {"total_delta_v_mps": 900.0, "total_impulsive_delta_v_mps": 880.0,
-            "total_loss_mps": sum(losses), "total_loss_percent": 100 * sum(losses) / 880.0,
+    return {"total_delta_v_mps": 900.0, "total_impulsive_limit_mps": 880.0,
+            "total_delta_v_loss_mps": sum(losses),
+            "total_delta_v_loss_percent": 100 * sum(losses) / 880.0,
             "total_fuel_kg": 200.0, "final_mass_kg": 324.9, "total_burn_duration_min": 40.0,
             "time_to_final_orbit_h": 30.0, "final_rp_altitude_km": 100.0,
             "final_ra_altitude_km": 100.0}

@@ -30,23 +30,25 @@ def test_burns_obey_the_rocket_equation_and_carry_the_mass(page):
 
 def test_each_loss_is_measured_against_its_named_reference(page):
     b = page.items["burns"].df
-    np.testing.assert_allclose(b.loss_mps, b.delta_v_mps - np.array(PAPER_IMPULSIVE_DV_MPS))
-    np.testing.assert_allclose(b.model_loss_mps, b.delta_v_mps - b.model_impulsive_delta_v_mps)
+    np.testing.assert_allclose(b.loss_vs_paper_impulse_mps,
+                               b.delta_v_mps - np.array(PAPER_IMPULSIVE_DV_MPS))
+    np.testing.assert_allclose(b.delta_v_loss_mps, b.delta_v_mps - b.impulsive_limit_mps)
     # the plan's own result (runs.chain.plan_result) has the same impulses and losses
     rows = page.data["plan_results"]["LRO-class, 320 N / 200 s"].table()
-    np.testing.assert_allclose(b.model_loss_mps, rows.loss_mps, atol=1e-9)
+    np.testing.assert_allclose(b.delta_v_loss_mps, rows.delta_v_loss_mps, atol=1e-9)
     np.testing.assert_allclose(b.objective_loss_mps, rows.objective_loss_mps, atol=1e-9)
     # "vs ours" is the objective loss: positive; for LOI 3 (a circle) it is the delta-V one
     assert (b.objective_loss_mps > 0).all()
-    assert b.objective_loss_mps.iloc[2] == pytest.approx(b.model_loss_mps.iloc[2], abs=1e-6)
+    assert b.objective_loss_mps.iloc[2] == pytest.approx(b.delta_v_loss_mps.iloc[2], abs=1e-6)
     t = page.items["totals"].df.iloc[0]
     # the two losses differ by exactly the difference of the two impulsive totals
-    assert t.total_model_loss_mps - t.total_loss_mps == pytest.approx(
-        sum(PAPER_IMPULSIVE_DV_MPS) - t.total_model_impulsive_delta_v_mps)
+    assert t.total_delta_v_loss_mps - t.total_loss_vs_paper_impulse_mps == pytest.approx(
+        sum(PAPER_IMPULSIVE_DV_MPS) - t.total_impulsive_limit_mps)
     for key in ("losses", "totals"):
         heads = page.items[key].columns
-        assert heads["loss_mps" if key == "losses" else "total_loss_mps"].startswith(
-            "loss vs paper")
+        name = "loss_vs_paper_impulse_mps" if key == "losses" \
+            else "total_loss_vs_paper_impulse_mps"
+        assert heads[name].startswith("loss vs paper")
         assert heads["objective_loss_mps" if key == "losses" else "total_objective_loss_mps"] \
             .startswith("loss vs ours")
 
@@ -66,7 +68,8 @@ def test_prose_and_figure_quote_the_same_loss(page):
     assert f"{t.total_objective_loss_mps:.2f} m/s over the capture against our impulsive" \
         in page.notes["placement"]
     # the note gives the loss against the paper's reference too, named as such
-    assert f"{t.total_loss_mps:.2f} m/s ({t.total_loss_percent:.2f} %) against the paper's" \
+    assert (f"{t.total_loss_vs_paper_impulse_mps:.2f} m/s "
+            f"({t.total_loss_vs_paper_impulse_percent:.2f} %) against the paper's") \
         in page.notes["loss_note"]
     # plain floats: myst-nb's {glue:text} cannot format numpy scalars (np.float64(...))
     assert all(type(v) is float for v in page.values.values())
@@ -77,8 +80,8 @@ def test_without_model_loss_the_paper_reference_is_plotted_and_named():
     p = other_engines.build(**LRO, model_loss=False, output_name="t_other_paper")
     t = p.items["totals"].df.iloc[0]
     y, ylabel = _figure_loss(p)
-    assert y == p.values["plotted_loss_mps_320N"] == t.total_loss_mps
+    assert y == p.values["plotted_loss_mps_320N"] == t.total_loss_vs_paper_impulse_mps
     assert "paper's impulsive" in ylabel
     assert "not computed in this build" in p.notes["loss_note"]
-    assert "model_loss_mps" not in p.items["burns"].df
+    assert "delta_v_loss_mps" not in p.items["burns"].df
     p.check()

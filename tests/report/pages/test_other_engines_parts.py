@@ -20,11 +20,14 @@ def _seq(scale: float, model: bool = True) -> pd.DataFrame:
         "m_end_kg": [M0 - 80.0, M0 - 130.0, M0 - 170.0],
         "verified": [True, True, True],
         "paper_impulsive_delta_v_mps": [353.0, 254.0, 245.0],
-        "loss_mps": [7.0 * scale, 2.0 * scale, 1.0 * scale], "loss_percent": [2.0, 0.8, 0.4]})
+        "loss_vs_paper_impulse_mps": [7.0 * scale, 2.0 * scale, 1.0 * scale],
+        "loss_vs_paper_impulse_percent": [2.0, 0.8, 0.4]})
     if model:
-        df = df.assign(model_impulsive_delta_v_mps=[353.1, 254.0, 245.2],
-                       model_loss_mps=df.loss_mps + 0.1, model_loss_percent=1.0,
-                       objective_loss_mps=df.loss_mps * 2, objective_loss_percent=1.5)
+        df = df.assign(impulsive_limit_mps=[353.1, 254.0, 245.2],
+                       delta_v_loss_mps=df.loss_vs_paper_impulse_mps + 0.1,
+                       delta_v_loss_percent=1.0,
+                       objective_loss_mps=df.loss_vs_paper_impulse_mps * 2,
+                       objective_loss_percent=1.5)
     return df
 
 
@@ -54,7 +57,7 @@ def test_totals_frame_sorted_by_thrust_with_sums():
     rows, seqs = _case()
     tot = oe.totals_frame(seqs, rows, model_loss=True)
     assert tot.thrust_N.tolist() == [150.0, 320.0]
-    assert tot.total_loss_mps.tolist() == pytest.approx([20.0, 10.0])
+    assert tot.total_loss_vs_paper_impulse_mps.tolist() == pytest.approx([20.0, 10.0])
     assert tot.loi1_burn_duration_min.tolist() == pytest.approx([20.0, 10.0])
     assert tot.total_objective_loss_mps.tolist() == pytest.approx([40.0, 20.0])
     assert tot.total_fuel_kg.tolist() == pytest.approx([170.0, 170.0])

@@ -103,8 +103,8 @@ def test_paper_chain_rows_measure_losses_as_the_paper():
         {"burn": 2, "delta_v_mps": 258.0, "m_start_kg": 435.0, "thrust_N": 150.0,
          "isp_s": 200.0, "eq19_duration_min": 0.0}])
     r = rows[0]
-    assert r["loss_mps"] == pytest.approx(258.0 - 254.034)
-    assert r["loss_percent"] == pytest.approx(100 * (258.0 - 254.034) / 254.034)
+    assert r["loss_vs_paper_impulse_mps"] == pytest.approx(258.0 - 254.034)
+    assert r["loss_vs_paper_impulse_percent"] == pytest.approx(100 * (258.0 - 254.034) / 254.034)
     ve = C.G0_MPS2 * 200.0
     assert r["eq19_duration_min"] == pytest.approx(
         435.0 * (1 - np.exp(-254.034 / ve)) * ve / 150.0 / 60.0)

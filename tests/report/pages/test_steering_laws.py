@@ -23,7 +23,7 @@ def test_penalties_are_differences_from_the_optimal_steering(page):
         opt = rows[rows.steering == "optimal"].iloc[0]
         np.testing.assert_allclose(rows.delta_v_penalty_mps, rows.delta_v_mps - opt.delta_v_mps)
         np.testing.assert_allclose(rows.objective_penalty_mps,
-                                   rows.objective_mps - opt.objective_mps)
+                                   rows.objective_j_mps - opt.objective_j_mps)
     # the optimal steering is optimal: no simple law beats its J (1 mm/s solver tolerance)
     inert = steer[steer.steering == "inertial"]
     anti = steer[steer.steering == "antivelocity"]

@@ -16,12 +16,14 @@ def test_burn_rows_decode_every_burn_and_reading_names_infeasible_counts():
              {"burn": 2, "target": "circle", "delta_v_mps": 462.0}]
     t = pd.DataFrame([
         {"plan": "p", "plan_id": "x", "label": "P", "n_burns": 1, "status": "infeasible",
-         "reason": "burn 1 too long", "total_loss_mps": None, "time_to_final_orbit_h": None,
+         "reason": "burn 1 too long", "total_delta_v_loss_mps": None, "time_to_final_orbit_h": None,
          "burns_json": "[]"},
         {"plan": "p", "plan_id": "x", "label": "P", "n_burns": 2, "status": "ok", "reason": "",
-         "total_loss_mps": 40.0, "time_to_final_orbit_h": 8.5, "burns_json": json.dumps(burns)},
+         "total_delta_v_loss_mps": 40.0, "time_to_final_orbit_h": 8.5,
+         "burns_json": json.dumps(burns)},
         {"plan": "p", "plan_id": "x", "label": "P", "n_burns": 3, "status": "ok", "reason": "",
-         "total_loss_mps": 20.0, "time_to_final_orbit_h": 16.0, "burns_json": json.dumps(burns)},
+         "total_delta_v_loss_mps": 20.0, "time_to_final_orbit_h": 16.0,
+         "burns_json": json.dumps(burns)},
     ])
     rows = burn_count.burn_rows(t)
     assert list(rows.n_burns) == [2, 2, 3, 3] and list(rows.burn) == [1, 2, 1, 2]
@@ -31,11 +33,11 @@ def test_burn_rows_decode_every_burn_and_reading_names_infeasible_counts():
 
 
 def test_negative_per_burn_losses_are_explained_or_flagged():
-    rows = pd.DataFrame({"loss_mps": [0.3, -0.057, 2.0]})
+    rows = pd.DataFrame({"delta_v_loss_mps": [0.3, -0.057, 2.0]})
     text = burn_count.negative_losses(rows)
     assert "1 burn(s)" in text and "-0.057" in text and "not a gain" in text
-    assert "suspect" in burn_count.negative_losses(pd.DataFrame({"loss_mps": [-0.5]}))
-    assert burn_count.negative_losses(pd.DataFrame({"loss_mps": [0.1, 2.0]})) == ""
+    assert "suspect" in burn_count.negative_losses(pd.DataFrame({"delta_v_loss_mps": [-0.5]}))
+    assert burn_count.negative_losses(pd.DataFrame({"delta_v_loss_mps": [0.1, 2.0]})) == ""
 
 
 def test_missed_reading_counts_recoveries_per_delay_and_signs_penalties():

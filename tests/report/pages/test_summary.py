@@ -24,7 +24,7 @@ def test_b1_table_sets_ours_beside_table_b1(page):
     np.testing.assert_allclose(df.start_min, b1.start_min)  # the paper's best offsets
     np.testing.assert_allclose(df.delta_v_diff_mps, df.delta_v_mps - df.paper_delta_v_mps)
     imp = np.array(paper.PAPER_IMPULSIVE_DV_MPS)
-    np.testing.assert_allclose(df.loss_percent, 100 * (df.delta_v_mps - imp) / imp)
+    np.testing.assert_allclose(df.loss_vs_paper_impulse_percent, 100 * (df.delta_v_mps - imp) / imp)
     assert (df.verified == "passed").all()
     # a finite burn needs more than the paper's impulse, even in two-body dynamics
     assert (df.delta_v_mps > imp).all()
@@ -61,22 +61,22 @@ def test_totals_apply_the_papers_arithmetic_to_table_b1(page):
 def test_model_loss_total_row_sums_the_burns(page):
     m = page.items["model_loss"].df
     burns, total = m[m.loi != "total"], m[m.loi == "total"].iloc[0]
-    for col in ("paper_impulsive_delta_v_mps", "model_impulsive_delta_v_mps", "paper_loss_mps",
-                "loss_mps", "model_loss_mps"):
+    for col in ("paper_impulsive_delta_v_mps", "impulsive_limit_mps", "paper_delta_v_loss_mps",
+                "loss_vs_paper_impulse_mps", "delta_v_loss_mps"):
         assert total[col] == pytest.approx(burns[col].sum())
     seq = page.data["chains"]["450 N / 300 s"]
     # against an impulse in the same dynamics the finite burn loses objective (Eq. 9)
     assert (seq.objective_loss_mps > 0).all()
-    np.testing.assert_allclose(burns.model_loss_mps,
-                               seq.delta_v_mps - seq.model_impulsive_delta_v_mps)
+    np.testing.assert_allclose(burns.delta_v_loss_mps,
+                               seq.delta_v_mps - seq.impulsive_limit_mps)
 
 
 def test_values_notes_and_checks(page):
     v = page.values
-    assert np.isnan(v["total_loss_mps_150N"])           # engines not run: NaN
-    assert v["b1_total_loss_mps_150N"] == pytest.approx(20.273)
+    assert np.isnan(v["total_loss_vs_paper_impulse_mps_150N"])           # engines not run: NaN
+    assert v["b1_total_loss_vs_paper_impulse_mps_150N"] == pytest.approx(20.273)
     assert v["paper_loss_total_150N_mps"] == 20.20
-    assert v["total_loss_mps_450N"] == pytest.approx(
+    assert v["total_loss_vs_paper_impulse_mps_450N"] == pytest.approx(
         page.items["totals"].df.ours.iloc[0])
     assert "(450 N)" in page.notes["ours_percentages"]   # a subset names its engines
     assert "Burn time" not in page.notes["differs"]       # the 300 N note needs 300 N
@@ -89,10 +89,10 @@ def test_glued_totals_are_the_sums_of_the_chain(page):
     v = page.values
     assert v["total_delta_v_mps_450N"] == pytest.approx(df.delta_v_mps.sum())
     assert v["b1_total_delta_v_mps_450N"] == pytest.approx(355.549 + 254.387 + 245.906)
-    assert v["total_loss_mps_450N"] == pytest.approx(
+    assert v["total_loss_vs_paper_impulse_mps_450N"] == pytest.approx(
         v["total_delta_v_mps_450N"] - sum(paper.PAPER_IMPULSIVE_DV_MPS))
-    assert v["total_model_loss_mps_450N"] == pytest.approx(
-        v["total_delta_v_mps_450N"] - v["total_model_impulsive_delta_v_mps_450N"])
+    assert v["total_delta_v_loss_mps_450N"] == pytest.approx(
+        v["total_delta_v_mps_450N"] - v["total_impulsive_limit_mps_450N"])
     assert np.isnan(v["total_delta_v_mps_150N"])  # not run
 
 

@@ -12,7 +12,7 @@ def _sweep(printed=True):
     nan = float("nan")
     df = pd.DataFrame({
         "start_min": [-6.0, -8.0, -10.0], "delta_v_mps": [361.0, 360.0, 360.5],
-        "burn_duration_min": [19.6, 19.5, 19.55], "loss_percent": [2.2, 1.9, 2.0],
+        "burn_duration_min": [19.6, 19.5, 19.55], "loss_vs_paper_impulse_percent": [2.2, 1.9, 2.0],
         "best": [False, True, False], "paper_best": [False, False, True],
         "delta_v_diff_mps": [0.2, -0.1, 0.4] if printed else [nan] * 3,
         "delta_v_diff_percent": [0.05, -0.03, 0.11] if printed else [nan] * 3,

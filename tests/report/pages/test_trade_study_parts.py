@@ -17,9 +17,9 @@ def _ok():
         "eq19_duration_min": [40.0, 4.0, float("nan"), float("nan")],
         "burn_duration_min": [44.0, 4.1, float("nan"), float("nan")],
         "start_min": [-30.0, -2.0, float("nan"), float("nan")],
-        "loss_mps": [20.0, 0.3, 25.0, 0.4],
+        "objective_loss_mps": [20.0, 0.3, 25.0, 0.4],
         "analytic_loss_mps": [30.0, 0.4, float("nan"), float("nan")],
-        "loss_percent": [5.0, 0.08, 3.0, 0.05]})
+        "objective_loss_percent": [5.0, 0.08, 3.0, 0.05]})
 
 
 def test_burn_ratios_robbins_only_where_it_holds():
@@ -33,7 +33,7 @@ def test_prose_values_from_the_table():
     spec = study.StudySpec(100.0, 1000.0, 2, (250.0,), "two-body")
     wide = pd.DataFrame({"status": ["ok", "failed"]})
     at_paper = pd.DataFrame({"optimal_loss_percent": [2.0, float("nan")],
-                             "paper_loss_percent": [2.5, 1.0],
+                             "paper_delta_v_loss_percent": [2.5, 1.0],
                              "robbins_loss_percent": [1.8, 1.0]})
     v = ts.prose_values(spec, wide, {"wall_s": 12.5, "computed": 3}, _ok(), at_paper)
     assert v["n_failed"] == 1 and v["n_engines"] == 2 and v["n_computed"] == 3
