@@ -12,8 +12,8 @@ def _chain(thrust_N, losses, m_end_kg):
     rows = []
     for n, (loss, m) in enumerate(zip(losses, m_end_kg), start=1):
         imp = P.PAPER_IMPULSIVE_DV_MPS[n - 1]
-        rows.append({"burn": n, "thrust_N": thrust_N, "loss_mps": loss,
-                     "loss_percent": 100 * loss / imp,
+        rows.append({"burn": n, "thrust_N": thrust_N, "loss_vs_paper_impulse_mps": loss,
+                     "loss_vs_paper_impulse_percent": 100 * loss / imp,
                      "burn_duration_min": 20.0 / n * 150.0 / thrust_N,
                      "m_end_kg": m, "fuel_kg": 50.0, "eq19_duration_min": 18.0 / n,
                      "rp_end_km": C.R_MOON + 100.001, "inc_end_deg": 90.0})
