@@ -240,17 +240,39 @@ def perilune_from_state(state: StateArrival, mass_kg: float, dynamics: str,
         One line naming the cause: the epoch outside the ephemeris, a state inside the
         Moon, moving away from it, bound to it, a perilune below the surface or too late.
     """
-    from scipy.optimize import brentq
-
     from lunarcap.physics.dynamics import Model
     from lunarcap.physics.ephemeris import ChebyshevFit
+
+    t0 = state.epoch_s
+    r, v, t_peri = _approach(state, eph, lunar_pole)
+    horizon = 1.3 * t_peri + 1800.0
+    if horizon > MAX_TO_PERILUNE_S:
+        raise InputError(f"the perilune is {t_peri / 86400:.1f} days after the state's "
+                         f"epoch (two-body): give a state within "
+                         f"{MAX_TO_PERILUNE_S / 86400 - 0.5:g} days of it")
+    b0 = eph.span_s[1]
+    if t0 + horizon > b0 - 3600.0:
+        raise InputError(f"the approach from {state.epoch} to its perilune leaves the "
+                         f"ephemeris {eph.name} (ends {calendar_from_seconds(b0, 0)})")
+    fit = ChebyshevFit.fit(eph, t0 - 3600.0, t0 + horizon + 3600.0) \
+        if dynamics == "full" else None
+    model = Model(dynamics, 0.0, 300.0, fit)
+    x0 = np.concatenate([mee_from_rv(r, v, C.MU_MOON), [mass_kg]])
+    tp, xp = _flown_perilune(model, t0, x0, horizon, dynamics)
+    return _arrival_at_perilune(tp, xp, t0, dynamics)
+
+
+def _approach(state: StateArrival, eph: Ephemeris, lunar_pole: str) -> tuple:
+    """(r km, v km/s in M-MME2000, two-body time to perilune s) of an arrival state, checked.
+
+    InputError for an epoch outside the ephemeris, a state inside the Moon, moving away
+    from it, bound to it, or on a two-body collision course.
+    """
     from lunarcap.physics.frames import mme_from_icrf
-    from lunarcap.physics.propagate import propagate
 
     mu = C.MU_MOON
-    t0 = state.epoch_s
     a0, b0 = eph.span_s
-    if not a0 + 3600.0 <= t0 <= b0 - 3600.0:
+    if not a0 + 3600.0 <= state.epoch_s <= b0 - 3600.0:
         raise InputError(f"the state's epoch {state.epoch} is outside the ephemeris "
                          f"{eph.name} ({calendar_from_seconds(a0, 0)} to "
                          f"{calendar_from_seconds(b0, 0)})")
@@ -278,19 +300,15 @@ def perilune_from_state(state: StateArrival, mass_kg: float, dynamics: str,
         raise InputError(f"the perilune lies below the lunar surface (two-body altitude "
                          f"{rp2 - C.R_MOON:.1f} km): the state is on a collision course")
     F = np.arccosh((1 + rn / abs(a)) / e)
-    t_peri = (e * np.sinh(F) - F) / np.sqrt(mu / abs(a) ** 3)
-    horizon = 1.3 * t_peri + 1800.0
-    if horizon > MAX_TO_PERILUNE_S:
-        raise InputError(f"the perilune is {t_peri / 86400:.1f} days after the state's "
-                         f"epoch (two-body): give a state within "
-                         f"{MAX_TO_PERILUNE_S / 86400 - 0.5:g} days of it")
-    if t0 + horizon > b0 - 3600.0:
-        raise InputError(f"the approach from {state.epoch} to its perilune leaves the "
-                         f"ephemeris {eph.name} (ends {calendar_from_seconds(b0, 0)})")
-    fit = ChebyshevFit.fit(eph, t0 - 3600.0, t0 + horizon + 3600.0) \
-        if dynamics == "full" else None
-    model = Model(dynamics, 0.0, 300.0, fit)
-    x0 = np.concatenate([mee_from_rv(r, v, mu), [mass_kg]])
+    return r, v, float((e * np.sinh(F) - F) / np.sqrt(mu / abs(a) ** 3))
+
+
+def _flown_perilune(model, t0: float, x0, horizon: float, dynamics: str) -> tuple:
+    """(epoch s, state) of the first perilune within ``horizon`` s of (t0, x0), flown."""
+    from scipy.optimize import brentq
+
+    from lunarcap.physics.propagate import propagate
+
     traj = propagate(model, t0, x0, t0 + horizon, dense=True, dense_points=400)
     s = _radial_sign(traj.x)
     up = np.flatnonzero((s[:-1] < 0) & (s[1:] >= 0))
@@ -301,7 +319,12 @@ def perilune_from_state(state: StateArrival, mass_kg: float, dynamics: str,
     tp = brentq(lambda t: float(_radial_sign(traj(t))), traj.t[j], traj.t[j + 1],
                 xtol=1e-7, rtol=1e-15)
     tp = round(tp, 6)
-    xp = propagate(model, t0, x0, tp).final if tp != t0 else x0
+    return tp, (propagate(model, t0, x0, tp).final if tp != t0 else x0)
+
+
+def _arrival_at_perilune(tp: float, xp, t0: float, dynamics: str) -> dict:
+    """:func:`perilune_from_state`'s answer from the flown perilune (tp, xp), checked."""
+    mu = C.MU_MOON
     rp_vec, vp_vec = (np.array(q, float) for q in rv_from_mee(*xp[:6], mu))
     rp = np.linalg.norm(rp_vec)
     if rp <= C.R_MOON:

@@ -149,6 +149,29 @@ def warm_start(sol: Solution) -> tuple:
     return sol.problem, guess, sol.raw.mesh_coast
 
 
+def _legs_start(lay, warm: list, mesh: Mesh, fit, S, vectors: tuple, params: dict) -> list:
+    """Write each leg's guess, bounds and parameters; return its (burn, coast) meshes.
+
+    ``vectors``: (w0, lbx, ubx, lbg, ubg), filled in place; ``params`` updated in place.
+    """
+    w0, lbx, ubx, lbg, ubg = vectors
+    meshes = []
+    for k, (prob, guess, mc) in enumerate(warm):
+        if fit is not None and prob.model.fit is not None:
+            from dataclasses import replace
+
+            prob = replace(prob, model=replace(prob.model, fit=fit))
+        pre = f"leg{k}."
+        mb = np.linspace(0, 1, mesh.n_burn + 1)
+        mc = mc if len(mc) == mesh.n_coast + 1 else np.linspace(0, 1, mesh.n_coast + 1)
+        meshes.append((mb, mc))
+        initial_point(lay, pre, prob, mesh, guess, w0, mb, mc, S)
+        leg_bounds(lay, pre, prob, lbx, ubx, lbg, ubg)
+        params.update({pre + "dynamics": prob.model.params(), pre + "mesh_burn": mb,
+                       pre + "mesh_coast": mc, pre + "target": prob.target.values(LU)})
+    return meshes
+
+
 def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 16, 5),
                 free_coasts: tuple = (), coast_bounds_s: tuple | None = None,
                 max_time_s: float | None = None, fit=None, max_period_s: float | None = None,
@@ -203,20 +226,7 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     if any(free):
         _free_coast_bounds(plan, lay, warm, asked, orbit, (w0, lbx, ubx, ubg),
                            coast_bounds_s, max_time_s, max_period_s if period_rows else None)
-    meshes = []
-    for k, (prob, guess, mc) in enumerate(warm):
-        if fit is not None and prob.model.fit is not None:
-            from dataclasses import replace
-
-            prob = replace(prob, model=replace(prob.model, fit=fit))
-        pre = f"leg{k}."
-        mb = np.linspace(0, 1, mesh.n_burn + 1)
-        mc = mc if len(mc) == mesh.n_coast + 1 else np.linspace(0, 1, mesh.n_coast + 1)
-        meshes.append((mb, mc))
-        initial_point(lay, pre, prob, mesh, guess, w0, mb, mc, S)
-        leg_bounds(lay, pre, prob, lbx, ubx, lbg, ubg)
-        params.update({pre + "dynamics": prob.model.params(), pre + "mesh_burn": mb,
-                       pre + "mesh_coast": mc, pre + "target": prob.target.values(LU)})
+    meshes = _legs_start(lay, warm, mesh, fit, S, (w0, lbx, ubx, lbg, ubg), params)
     t0 = time.perf_counter()
     res = nlp.compiled.solver(x0=w0, p=lay.params(**params), lbx=lbx, ubx=ubx, lbg=lbg,
                               ubg=ubg)

@@ -249,26 +249,36 @@ def add_leg(nlp: NLPBuilder, prefix: str, mesh: Mesh, target_kind: str, x_start,
                   n("defect_burn"))
     nlp.constrain(defects(ca.horzcat(V_Xb[:, -1], V_Xc), ca.DM.zeros(3, nc * d), mesh_c,
                           t_burn_end, dur_c, prm_coast, nc), n("defect_coast"))
-    if steering == "optimal":
-        nlp.constrain(ca.sum1(V_Ub ** 2).T - 1, n("unit_u"))           # Eq. (13)
-    else:  # the controls follow the law at every collocation point
-        nlp.constrain(V_Ub - steering_law_expr(steering, V_Xb[:, 1:], V_uin), n("law"))
-        if steering == "inertial":
-            nlp.constrain(ca.sumsqr(V_uin) - 1, n("unit_u_in"))
-    # the target at the end of the coast (Eqs. 17-18), written once in mission.targets
+    _steering_rows(nlp, prefix, steering, V_Ub, V_Xb, V_uin)
     xf = V_Xc[:, -1]
-    eqs, ineqs = conditions(target_kind, [xf[i] for i in range(6)], target_values)
-    _, eq_names, ineq_names = CONDITIONS[target_kind]
-    for expr, name in zip(eqs, eq_names):
-        nlp.constrain(expr, n(name))
-    for expr, name in zip(ineqs, ineq_names):
-        nlp.constrain(expr, n(name), 0.0, np.inf)
+    _target_rows(nlp, prefix, target_kind, xf, target_values)
     nlp.constrain(dur_c / TU, n("coast_duration"), 1e-3, np.inf)
     # delta-V of a constant-thrust burn (Eq. 11 integrated), VU
     vex = prm[P_VEX] * 1e-3 / VU
     dv = vex * ca.log(V_Xb[6, 0] / V_Xb[6, -1])
     v_end = speed_from_mee(xf[0], xf[1], xf[2], xf[5], 1.0)
     return Leg(prefix, mesh, free_start, steering, target_kind, dv, xf, v_end, t_ign, t1_s)
+
+
+def _steering_rows(nlp: NLPBuilder, prefix: str, steering: str, V_Ub, V_Xb, V_uin) -> None:
+    """The steering's constraints of a leg: unit controls (optimal) or the law's."""
+    if steering == "optimal":
+        nlp.constrain(ca.sum1(V_Ub ** 2).T - 1, prefix + "unit_u")           # Eq. (13)
+        return
+    # the controls follow the law at every collocation point
+    nlp.constrain(V_Ub - steering_law_expr(steering, V_Xb[:, 1:], V_uin), prefix + "law")
+    if steering == "inertial":
+        nlp.constrain(ca.sumsqr(V_uin) - 1, prefix + "unit_u_in")
+
+
+def _target_rows(nlp: NLPBuilder, prefix: str, target_kind: str, xf, target_values) -> None:
+    """The target at the end of the coast (Eqs. 17-18), written once in mission.targets."""
+    eqs, ineqs = conditions(target_kind, [xf[i] for i in range(6)], target_values)
+    _, eq_names, ineq_names = CONDITIONS[target_kind]
+    for expr, name in zip(eqs, eq_names):
+        nlp.constrain(expr, prefix + name)
+    for expr, name in zip(ineqs, ineq_names):
+        nlp.constrain(expr, prefix + name, 0.0, np.inf)
 
 
 def dynamics_params(nlp: NLPBuilder, name: str) -> ca.MX:

@@ -184,6 +184,21 @@ def _shape(steering: Steering) -> Steering:
     return Steering(steering.kind, (0.0,) * len(steering.params), steering.nodes)
 
 
+def _output_grid(t0_s: float, span: float, t_eval, dense: bool, dense_points: int) -> tuple:
+    """(output fractions of the arc after its start, whether the start is an output)."""
+    if t_eval is not None:
+        taus = (np.asarray(t_eval, float) - t0_s) / span
+        if np.any(taus < -1e-12) or np.any(taus > 1 + 1e-12) or np.any(np.diff(taus) <= 0):
+            raise InputError("t_eval must be epochs within the arc, in the direction of "
+                             "integration")
+        taus = np.clip(taus, 0.0, 1.0)
+        return tuple(float(v) for v in taus if v > 0.0) or (1.0,), bool(taus[0] == 0.0)
+    if dense:  # knots clustered at both ends, where arcs pass their perilunes
+        k = np.arange(1, dense_points + 1)
+        return tuple(float(v) for v in 0.5 * (1.0 - np.cos(np.pi * k / dense_points))), True
+    return (1.0,), True
+
+
 def propagate(model: Model, t0_s: float, x0, t1_s: float | None,
               u: Steering | np.ndarray | None = None, thrust_N: float | None = None,
               rtol: float = RTOL, atol: float = ATOL, t_eval=None, dense: bool = False,
@@ -238,20 +253,7 @@ def propagate(model: Model, t0_s: float, x0, t1_s: float | None,
     if span == 0.0:
         return Trajectory(np.array([t0_s]), (np.append(x0, dv0_kmps) if delta_v
                                              else x0)[:, None].copy(), 0)
-    with_start = True
-    if t_eval is not None:
-        taus = (np.asarray(t_eval, float) - t0_s) / span
-        if np.any(taus < -1e-12) or np.any(taus > 1 + 1e-12) or np.any(np.diff(taus) <= 0):
-            raise InputError("t_eval must be epochs within the arc, in the direction of "
-                             "integration")
-        taus = np.clip(taus, 0.0, 1.0)
-        with_start = bool(taus[0] == 0.0)
-        grid = tuple(float(v) for v in taus if v > 0.0) or (1.0,)
-    elif dense:  # knots clustered at both ends, where arcs pass their perilunes
-        k = np.arange(1, dense_points + 1)
-        grid = tuple(float(v) for v in 0.5 * (1.0 - np.cos(np.pi * k / dense_points)))
-    else:
-        grid = (1.0,)
+    grid, with_start = _output_grid(t0_s, span, t_eval, dense, dense_points)
     integ, rhs_map = _integrator(model.mode, _shape(steering), bool(delta_v), grid,
                                  float(rtol), float(atol))
     pvec = np.concatenate([model.params(thrust), [t0_s, span, x0[0], x0[6]],

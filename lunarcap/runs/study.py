@@ -331,6 +331,12 @@ def engine_rows(thrust_N: float, isp_s: float, dynamics: str, summaries: list,
             row.update(status="not run", verified=False,
                        error=f"LOI {failure['loi']} failed" if failure else "no solution")
         rows.append(row)
+    rows.append(_sequence_row(base, theory, rows))
+    return rows
+
+
+def _sequence_row(base: dict, theory: list, rows: list) -> dict:
+    """The sequence row of :func:`engine_rows`: sums of the three LOI rows, or why not."""
     seq = dict.fromkeys(COLUMNS, np.nan)
     seq.update(base, part="sequence", ipopt_status="", mesh="", error="")
     seq.update(analytic_eq19_duration_min=sum(t["eq19_duration_min"] for t in theory),
@@ -356,8 +362,7 @@ def engine_rows(thrust_N: float, isp_s: float, dynamics: str, summaries: list,
         seq.update(status="incomplete", verified=False,
                    error=f"{bad['part']}: {bad['status']}"
                          + (f" ({bad['ipopt_status']})" if bad["ipopt_status"] else ""))
-    rows.append(seq)
-    return rows
+    return seq
 
 
 def _one_line(text: str, limit: int = 500) -> str:
