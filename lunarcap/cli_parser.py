@@ -258,7 +258,8 @@ def _add_dispersions(sub, func) -> None:
                         "(S, k), the same whatever the sigmas (default 0)")
     for opt, unit, what in _SIGMAS:
         p.add_argument(opt, default="0", metavar=unit.upper().replace("/", "").replace(
-            "%", "PCT"), help=f"1-sigma error of the {what}, {unit} (default 0)")
+            "%", "PCT"), help=f"1-sigma error of the {what}, {unit.replace('%', '%%')} "
+                                   "(default 0)")
     p.add_argument("--arrival-cov", default=None, metavar="FILE",
                    help="instead of --arrival-sigma-*: a 6x6 covariance of the arrival state "
                         "in its RTN frame, km and km/s (36 numbers, whitespace or commas)")

@@ -224,6 +224,16 @@ def test_help_states_every_real_default():
         assert f"default {a.default}" in a.help or f"default: {a.default}" in a.help, where
 
 
+@pytest.mark.parametrize("command", ["plan", "solve", "impulsive", "plans", "bench", "study",
+                                     "burns", "missed", "dispersions"])
+def test_every_command_prints_its_help(command, capsys):
+    """argparse formats each help with %: a bare '%' in a help text crashed --help."""
+    with pytest.raises(SystemExit) as exc:
+        cli.main([command, "--help"])
+    assert exc.value.code == 0
+    assert "usage: lunarcap " + command in capsys.readouterr().out
+
+
 def test_plan_overrides_say_the_plans_and_the_papers_default():
     """--thrust, --isp, --mass...: "default: the plan's"; without --plan, the paper's values."""
     plan = paper_plan()
