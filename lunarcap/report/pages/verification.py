@@ -353,8 +353,10 @@ def _add_mesh(page: Page, mesh: pd.DataFrame, mesh_list, default_points: int) ->
         caption=("Change of the delta-V (m/s, log scale) from its value on the finest mesh, "
                  "against the number of collocation points (log scale), for each case of the "
                  "table above: circles passed the re-propagation gate, crosses are IPOPT "
-                 f"solutions the gate rejected. Dotted: the {verify.TOL_DV_MPS:g} m/s delta-V "
-                 "gate; dashed: the default mesh."),
+                 "solutions the gate rejected; triangles at the foot mark each case's finest "
+                 "mesh, the reference (its change is 0, off the log scale). Dotted: "
+                 f"{verify.TOL_DV_MPS:g} m/s, the gate's tolerance on the objective, for scale "
+                 "(the delta-V itself is reported, not gated); dashed: the default mesh."),
         alt="Delta-V change against collocation points for each mesh-convergence case",
         name="mesh")
 
