@@ -17,7 +17,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from lunarcap.errors import InputError
-from lunarcap.mission.scenario import paper_scenario
+from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import (
     period_from_semi_major_axis,
@@ -138,7 +138,8 @@ def impulsive_chain(rp_km: float, v_inf_kmps: float, periods_after_s, thrust_N: 
     return burns
 
 
-def impulsive_sequence(thrust_N: float = 150.0, isp_s: float = 200.0,
+def impulsive_sequence(thrust_N: float = paper_engine_pairs()[0][0],
+                       isp_s: float = paper_engine_pairs()[0][1],
                        mass_kg: float = _PAPER.mass_kg,
                        altitude_km: float = _PAPER.perilune_altitude_km,
                        v_inf_kmps: float | None = None, periods_s=_PAPER.capture_periods_s[:2],

@@ -102,7 +102,7 @@ from lunarcap.mission.plan_checks import (  # noqa: F401  (the plan's names, re-
     validate,
 )
 from lunarcap.mission.plan_io import plan_dict, plan_fields
-from lunarcap.mission.scenario import PAPER_PLANS, PLAN_DIR, paper_plan_name
+from lunarcap.mission.scenario import PAPER_PLANS, PLAN_DIR, paper_engine_pairs, paper_plan_name
 from lunarcap.mission.targets import CIRCULAR, ELLIPSE, PERILUNE, Target
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import semi_major_axis_from_period
@@ -531,7 +531,8 @@ def load_plan(source: str | os.PathLike) -> CapturePlan:
         raise PlanError(f"plan {path.name}: {exc}") from None
 
 
-def paper_plan(thrust_N: float = 150.0, isp_s: float = 200.0, starts=None,
+def paper_plan(thrust_N: float = paper_engine_pairs()[0][0],
+               isp_s: float = paper_engine_pairs()[0][1], starts=None,
                dynamics: str = "full") -> CapturePlan:
     """Song 2011's capture with any engine.
 

@@ -15,6 +15,7 @@ import numpy as np
 from lunarcap.optim.problem import BurnProblem, anti_velocity_u
 from lunarcap.physics import constants as C
 from lunarcap.physics.propagate import Trajectory, propagate
+from lunarcap.physics.rocket import burn_duration_estimate_s
 from lunarcap.physics.steering import law
 
 #: Tolerance of the guess propagations (the guess need not be exact: IPOPT corrects it).
@@ -105,9 +106,8 @@ def speed_stop_s(prob: BurnProblem, share: float = 0.9) -> float:
 
     x = prob.x0
     v_mps = float(speed_from_mee(x[0], x[1], x[2], x[5], prob.model.mu)) * 1e3
-    ve = prob.model.exhaust_speed_kmps * 1e3
-    mdot = prob.model.thrust_N / ve
-    return float(x[6] * (1.0 - np.exp(-share * v_mps / ve)) / mdot)
+    return float(burn_duration_estimate_s(x[6], share * v_mps, prob.model.thrust_N,
+                                          prob.model.isp_s))
 
 
 def guess_arcs(prob: BurnProblem, t1: float, coast: bool = True) -> Guess:

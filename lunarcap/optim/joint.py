@@ -49,6 +49,7 @@ from lunarcap.optim.solution import Solution
 from lunarcap.optim.transcription import NLPBuilder, add_leg, dynamics_params
 from lunarcap.optim.verify import verify
 from lunarcap.physics.elements import speed_from_mee
+from lunarcap.physics.rocket import rocket_delta_v_mps
 
 
 @dataclass
@@ -301,8 +302,8 @@ def _verified_legs(plan: CapturePlan, lay, w, warm: list, meshes: list, mesh: Me
         mb, mc = meshes[k]
         fixed = leg_solution(lay, pre, w, prob, mesh, mb, mc, S)
         xf = fixed["x_coast"][:, -1]
-        dv = prob.model.exhaust_speed_kmps * np.log(fixed["x_burn"][6, 0] /
-                                                    fixed["x_burn"][6, -1])
+        dv = 1e-3 * rocket_delta_v_mps(fixed["x_burn"][6, 0], fixed["x_burn"][6, -1],
+                                       prob.model.isp_s)   # km/s
         J_leg = dv + float(speed_from_mee(xf[0], xf[1], xf[2], xf[5], prob.model.mu))
         raw = RawSolution(mesh=mesh, mesh_burn=mb, mesh_coast=mc, objective_kmps=J_leg,
                           status=stats["return_status"], success=True,

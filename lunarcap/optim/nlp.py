@@ -39,6 +39,7 @@ from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import N_PARAM
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.physics.propagate import propagate
+from lunarcap.physics.rocket import rocket_delta_v_mps
 from lunarcap.physics.steering import Steering, law, polynomial
 
 
@@ -128,8 +129,7 @@ class RawSolution:
     @property
     def delta_v_mps(self) -> float:
         """Delta-V of the burn, Eq. (11): g0 Isp ln(m0/m1), m/s."""
-        return self.prob.model.exhaust_speed_kmps * 1e3 * np.log(self.x_burn[6, 0] /
-                                                                  self.x_burn[6, -1])
+        return rocket_delta_v_mps(self.x_burn[6, 0], self.x_burn[6, -1], self.prob.model.isp_s)
 
 
 def initial_point(layout, prefix: str, prob: BurnProblem, mesh: Mesh, guess: Guess,

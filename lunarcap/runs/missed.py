@@ -65,6 +65,7 @@ from lunarcap.physics.dynamics import Model
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.propagate import propagate
+from lunarcap.physics.rocket import burn_duration_estimate_s
 from lunarcap.repro.cache import cached, caching, code_version, position
 from lunarcap.runs.burns import MAX_FIT_SPAN_S
 from lunarcap.runs.chain import solve_plan, time_to_final_orbit_h
@@ -242,9 +243,8 @@ def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
     lo_min = rec_plan.burns[0].start_bounds_min[0]
     prob = burn_problem(rec_plan, 0, x_r, eph, fit=fit, guess_start_min=lo_min)
     est = make_up_estimate(prob.x0, rec_plan.perilune_radius_km, max_period_s)
-    ve = prob.model.exhaust_speed_kmps * 1e3
-    mdot = prob.model.thrust_N / ve
-    t1 = max(prob.x0[6] * (1 - math.exp(-est["delta_v_mps"] / ve)) / mdot, 1.0)
+    t1 = max(burn_duration_estimate_s(prob.x0[6], est["delta_v_mps"], prob.model.thrust_N,
+                                      prob.model.isp_s), 1.0)
     span = prob.t_end_s - prob.t_ign_s
     prob = replace(prob, t1_min_s=MIN_MAKE_UP_S,
                    t1_max_s=min(max(3 * t1, prob.burn_bounds_s[1]), 0.9 * span))

@@ -24,6 +24,7 @@ import pandas as pd
 from lunarcap.mission.plan import PLAN_DIR, CapturePlan, load_plan, paper_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import period_from_semi_major_axis, semi_major_axis_from_period
+from lunarcap.physics.rocket import exhaust_speed_mps, rocket_delta_v_mps
 from lunarcap.report import figdata, figures
 from lunarcap.report.display import verdict
 from lunarcap.report.labels import period_text
@@ -151,10 +152,11 @@ def totals_table(tot: dict) -> pd.DataFrame:
 
 
 # ---------------------------------------------------------------------- comparisons
-def rocket_delta_v_mps(m0_kg: float, thrust_N: float, isp_s: float, duration_s: float) -> float:
-    """Delta-V of a constant-thrust burn of this duration (rocket equation), m/s."""
-    ve = C.G0_MPS2 * isp_s
-    return ve * math.log(m0_kg / (m0_kg - thrust_N / ve * duration_s))
+def constant_thrust_delta_v_mps(m0_kg: float, thrust_N: float, isp_s: float,
+                                duration_s: float) -> float:
+    """Delta-V of a constant-thrust burn of this duration (the rocket equation), m/s."""
+    m1_kg = m0_kg - thrust_N / exhaust_speed_mps(isp_s) * duration_s
+    return rocket_delta_v_mps(m0_kg, m1_kg, isp_s)
 
 
 def lro_comparison(plan: CapturePlan, burns: pd.DataFrame, tot: dict) -> tuple:
@@ -176,7 +178,7 @@ def lro_comparison(plan: CapturePlan, burns: pd.DataFrame, tot: dict) -> tuple:
          "published": LRO["dry_mass_kg"], "ours": final_mass, "unit": "kg", "source": "S8"},
     ])
     m0, T, isp = plan.arrival.mass_kg, plan.engine.thrust_N, plan.engine.isp_s
-    dv40 = rocket_delta_v_mps(m0, T, isp, 60.0 * LRO["loi_burn_min"])
+    dv40 = constant_thrust_delta_v_mps(m0, T, isp, 60.0 * LRO["loi_burn_min"])
     # the v_inf at which one tangential perilune impulse of dv40 reaches LRO's first orbit
     rp = plan.perilune_radius_km
     a1 = 0.5 * (rp + C.R_MOON + LRO["first_orbit_km"][1])

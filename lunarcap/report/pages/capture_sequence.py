@@ -355,8 +355,8 @@ def _add_checks(page: Page, table: pd.DataFrame, geo, d4, d5, ctx: dict) -> None
                     f"{d4.burn_duration_min:.3f}")
 
 
-def build(thrust_N: float = 150.0, isp_s: float = 200.0, starts=PAPER_STARTS_MIN,
-          dynamics: str = "full", output_name: str = "capture_sequence",
+def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
+          starts=PAPER_STARTS_MIN, dynamics: str = "full", output_name: str = "capture_sequence",
           quick: bool = False) -> Page:
     """The page of one capture sequence (see the module docstring)."""
     params = dict(thrust_N=thrust_N, isp_s=isp_s, starts=list(starts), dynamics=dynamics)

@@ -21,13 +21,17 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.mission.impulsive import impulsive_sequence, v_inf_from_loi1
-from lunarcap.mission.scenario import paper_scenario
+from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.physics.rocket import burn_duration_estimate_s
 from lunarcap.report.labels import period_text
 from lunarcap.report.page import Page
+
+#: The paper's engine whose Eq. (19) estimates and masses it prints (N, s; its first
+#: packaged plan's).
+PAPER_ENGINE = paper_engine_pairs()[0]
 
 NOTEBOOK = "notebooks/impulsive_baseline.ipynb"
 
@@ -44,7 +48,7 @@ def paper_eq19(thrust_N: float, isp_s: float):
 
     The paper prints both for its 150 N / 200 s engine only (Sec. 3.2.1).
     """
-    if (float(thrust_N), float(isp_s)) != (150.0, 200.0):
+    if (float(thrust_N), float(isp_s)) != PAPER_ENGINE:
         return [np.nan] * 3, None
     return ([paper.quote(f"eq19_loi{n}_150N_min").value for n in (1, 2, 3)],
             [paper.quote(q).value for q in PAPER_MASS_QUOTES])
@@ -151,7 +155,8 @@ def _add_checks(page: Page, burns, printed_min, altitude_km: float, eq19_paper: 
                         f"{t19[n - 1]:.3f} vs {printed_min[n - 1]:.2f} min")
 
 
-def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = paper_scenario().mass_kg,
+def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
+          mass_kg: float = paper_scenario().mass_kg,
           altitude_km: float = paper_scenario().perilune_altitude_km, eq19_masses: str = "paper",
           output_name: str = "impulsive_baseline", quick: bool = False) -> Page:
     """The page of the impulsive baseline (see the module docstring).
@@ -214,7 +219,7 @@ def build(thrust_N: float = 150.0, isp_s: float = 200.0, mass_kg: float = paper_
     for name, v in prose_values(burns, v_inf, rp_km, printed_min).items():
         page.value(name, v)
     paper = paper_scenario()
-    paper_case = ((float(thrust_N), float(isp_s)) == (150.0, 200.0)
+    paper_case = ((float(thrust_N), float(isp_s)) == PAPER_ENGINE
                   and mass_kg == paper.mass_kg and altitude_km == paper.perilune_altitude_km)
     page.note("eq19_masses_note",
               _masses_note(burns, chain, thrust_N, isp_s, printed_min) if paper_case else

@@ -19,7 +19,7 @@ import pandas as pd
 from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
-from lunarcap.physics.constants import G0_MPS2
+from lunarcap.physics.rocket import rocket_mass_after
 from lunarcap.report import figures
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
@@ -418,9 +418,9 @@ def _add_paper_checks(page: Page, engines, seqs: dict, totals: dict, values: dic
         # the masses note: the final-mass difference is the arrival-mass gap carried
         # through plus the rocket equation on the delta-V difference
         s = seqs[thrust]
-        ve = G0_MPS2 * isp
-        dv_part = values["implied_arrival_mass_kg"] * (
-            np.exp(-s.delta_v_mps.sum() / ve) - np.exp(-s.paper_delta_v_mps.sum() / ve))
+        m_implied = values["implied_arrival_mass_kg"]
+        dv_part = (rocket_mass_after(m_implied, s.delta_v_mps.sum(), isp)
+                   - rocket_mass_after(m_implied, s.paper_delta_v_mps.sum(), isp))
         rest = (values[f"final_mass_diff_kg_{thrust:g}N"]
                 - values[f"mass_gap_at_end_kg_{thrust:g}N"])
         page.expect(f"{thrust:g} N: the final-mass difference is the arrival gap plus "

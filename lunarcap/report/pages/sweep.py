@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.report import figures
@@ -291,7 +292,8 @@ def _add_checks(page: Page, sweep: pd.DataFrame, impulsive: dict, best_p, values
                     abs(values["best_diff_percent"]) < 0.5, f"{values['best_diff_percent']:.3f} %")
 
 
-def build(thrust_N: float = 150.0, isp_s: float = 200.0, loi: int = 1,
+def build(thrust_N: float = paper_engine_pairs()[0][0], isp_s: float = paper_engine_pairs()[0][1],
+          loi: int = 1,
           starts=(-10.0,), previous_starts=None, dynamics: str = "full",
           output_name: str = "loi_sweep", quick: bool = False,
           reproduction_report_linked: bool = True) -> Page:
