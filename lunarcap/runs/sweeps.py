@@ -160,7 +160,7 @@ def sequence_totals(df: pd.DataFrame, mass0_kg: float = paper_scenario().mass_kg
     mean of the per-burn percentages).
     """
     imp = df.paper_impulsive_delta_v_mps.sum()
-    out = {"total_delta_v_mps": df.delta_v_mps.sum(), "total_impulsive_delta_v_mps": imp,
+    out = {"total_delta_v_mps": df.delta_v_mps.sum(), "total_paper_impulsive_delta_v_mps": imp,
            "total_loss_vs_paper_impulse_mps": df.loss_vs_paper_impulse_mps.sum(),
            "total_loss_vs_paper_impulse_percent": 100 * df.loss_vs_paper_impulse_mps.sum() / imp,
            "mean_of_burn_loss_percent": df.loss_vs_paper_impulse_percent.mean(),
@@ -219,9 +219,9 @@ def free_vs_grid_table(thrust_N: float, isp_s: float, dynamics: str = "full",
         row = {"loi": loi, "free_start_min": fs["start_min"],
                "free_burn_duration_min": fs["burn_duration_min"],
                "free_delta_v_mps": fs["delta_v_mps"], "free_objective_mps": fs["objective_j_mps"],
-               "free_impulsive_delta_v_mps": loss["impulsive_limit_mps"],
-               "free_loss_mps": loss["objective_loss_mps"],
-               "free_loss_percent": loss["objective_loss_percent"],
+               "free_impulsive_limit_mps": loss["impulsive_limit_mps"],
+               "free_objective_loss_mps": loss["objective_loss_mps"],
+               "free_objective_loss_percent": loss["objective_loss_percent"],
                "eq19_half_duration_min":
                0.5 * fs["eq19_duration_min"], "free_verified": fs["verification"]["passed"]}
         if grid_starts is not None:

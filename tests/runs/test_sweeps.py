@@ -70,7 +70,7 @@ def test_sequence_totals_arithmetic_on_a_synthetic_chain():
     t = tables.sequence_totals(df, mass0_kg=500.0)
     imp = sum(PAPER_IMPULSIVE_DV_MPS)
     assert t["total_delta_v_mps"] == pytest.approx(870.0)
-    assert t["total_impulsive_delta_v_mps"] == pytest.approx(imp)
+    assert t["total_paper_impulsive_delta_v_mps"] == pytest.approx(imp)
     # the sum of the per-LOI losses
     assert t["total_loss_vs_paper_impulse_mps"] == pytest.approx(870.0 - imp)
     assert t["total_loss_vs_paper_impulse_mps"] == pytest.approx(df.loss_vs_paper_impulse_mps.sum())

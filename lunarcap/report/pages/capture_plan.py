@@ -71,7 +71,7 @@ def plan_table(plan: CapturePlan) -> pd.DataFrame:
 
     Columns: burn, target, period_h, period (text: h, or min below 3 h) and
     apolune_altitude_km (of the orbit reached, two-body), ignition ("free" or the offset
-    in min), two_body_delta_v_mps and eq19_duration_min (the plan's two-body impulsive
+    in min), impulsive_delta_v_two_body_mps and eq19_duration_min (the plan's two-body impulsive
     chain).
     """
     imp = plan.impulsive()
@@ -84,7 +84,7 @@ def plan_table(plan: CapturePlan) -> pd.DataFrame:
             "period": period_text(period / 3600.0, 4),
             "apolune_altitude_km": _apolune_altitude_km(period, rp),
             "ignition": "free" if b.free_start else f"{b.start_min:g} min",
-            "two_body_delta_v_mps": imp[i].delta_v_mps,
+            "impulsive_delta_v_two_body_mps": imp[i].delta_v_mps,
             "eq19_duration_min": imp[i].eq19_duration_min})
     return pd.DataFrame(rows)
 
@@ -353,12 +353,12 @@ def _add_plan(page: Page, p: CapturePlan, own: str, yaml_text, case: str) -> Non
                  "(m/s): the plan's two-body chain of tangential perilune impulses; Eq. (19) "
                  "duration (min): the burn duration it implies (Song 2011 Eq. 19)."),
         columns={"ignition": "ignition",
-                 "two_body_delta_v_mps": "impulsive ΔV, two-body (m/s)",
+                 "impulsive_delta_v_two_body_mps": "impulsive ΔV, two-body (m/s)",
                  "eq19_duration_min": "Eq. (19) duration (min)"},
         floatfmt={"apolune_altitude_km": ",.1f",
-                  "two_body_delta_v_mps": ".3f", "eq19_duration_min": ".2f"},
+                  "impulsive_delta_v_two_body_mps": ".3f", "eq19_duration_min": ".2f"},
         show_columns=["burn", "target", "period", "apolune_altitude_km", "ignition",
-                      "two_body_delta_v_mps", "eq19_duration_min"])
+                      "impulsive_delta_v_two_body_mps", "eq19_duration_min"])
 
 
 

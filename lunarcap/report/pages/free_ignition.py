@@ -41,8 +41,9 @@ def gain_table(engines, dynamics: str) -> pd.DataFrame:
     Columns: engine, thrust_N, isp_s, burn, grid_start_min, free_start_min,
     free_burn_duration_min, grid_delta_v_mps, free_delta_v_mps, delta_v_gain_mps and
     objective_gain_mps (grid - free; NaN for an engine the paper did not solve),
-    free_objective_mps, free_impulsive_delta_v_mps and free_loss_mps / free_loss_percent
-    (against the impulsive limit from the same orbit in the same dynamics, by J),
+    free_objective_mps, free_impulsive_limit_mps and free_objective_loss_mps /
+    free_objective_loss_percent (against the impulsive limit from the same orbit in the
+    same dynamics, by J),
     eq19_duration_min, verified ("passed" / "failed").
     """
     frames = []
@@ -59,8 +60,8 @@ def gain_table(engines, dynamics: str) -> pd.DataFrame:
     return rows.rename(columns={"loi": "burn"})[[
         "engine", "thrust_N", "isp_s", "burn", "grid_start_min", "free_start_min",
         "free_burn_duration_min", "grid_delta_v_mps", "free_delta_v_mps", "delta_v_gain_mps",
-        "objective_gain_mps", "free_objective_mps", "free_impulsive_delta_v_mps",
-        "free_loss_mps", "free_loss_percent", "eq19_duration_min",
+        "objective_gain_mps", "free_objective_mps", "free_impulsive_limit_mps",
+        "free_objective_loss_mps", "free_objective_loss_percent", "eq19_duration_min",
         "verified"]]
 
 

@@ -58,9 +58,9 @@ def effect_table(engines: dict, dynamics: str) -> pd.DataFrame:
             rows.append({"engine": engine_label(thrust, isp), "loi": n + 1,
                          "start_min": starts[n], "dv_new_mps": dv_new, "dv_old_mps": dv_old,
                          "dv_effect_mps": dv_new - dv_old,
-                         "impulsive_effect_mps": imp_new - imp_old,
-                         "loss_new_mps": dv_new - imp_new,
-                         "loss_effect_mps": (dv_new - imp_new) - (dv_old - imp_old),
+                         "impulsive_limit_effect_mps": imp_new - imp_old,
+                         "delta_v_loss_new_mps": dv_new - imp_new,
+                         "delta_v_loss_effect_mps": (dv_new - imp_new) - (dv_old - imp_old),
                          "verified": verdict(ok_new and ok_old)})
     return pd.DataFrame(rows)
 
@@ -106,20 +106,20 @@ def build(dynamics: str = "full", thrusts_N: list | None = None,
                columns={"start_min": "start (min)", "dv_new_mps": "ΔV, J2000 pole (m/s)",
                         "dv_old_mps": "ΔV, constant pole (m/s)",
                         "dv_effect_mps": "ΔV effect (m/s)",
-                        "impulsive_effect_mps": "impulsive effect (m/s)",
-                        "loss_effect_mps": "loss effect (m/s)"},
+                        "impulsive_limit_effect_mps": "impulsive effect (m/s)",
+                        "delta_v_loss_effect_mps": "loss effect (m/s)"},
                floatfmt={"start_min": ".0f", "dv_new_mps": ".3f", "dv_old_mps": ".3f",
-                         "dv_effect_mps": "+.3f", "impulsive_effect_mps": "+.3f",
-                         "loss_new_mps": ".3f", "loss_effect_mps": "+.3f"},
+                         "dv_effect_mps": "+.3f", "impulsive_limit_effect_mps": "+.3f",
+                         "delta_v_loss_new_mps": ".3f", "delta_v_loss_effect_mps": "+.3f"},
                show_columns=["engine", "loi", "dv_new_mps", "dv_old_mps", "dv_effect_mps",
-                             "impulsive_effect_mps", "loss_effect_mps"])
+                             "impulsive_limit_effect_mps", "delta_v_loss_effect_mps"])
     new, old = poles.iloc[0], poles.iloc[1]
     page.value("pole_ra_deg", float(new.ra_deg))
     page.value("pole_dec_deg", float(new.dec_deg))
     page.value("pole_angle_deg", frames.pole_angle_deg(NEW, OLD))
     page.value("new_from_ecliptic_deg", float(new.from_ecliptic_pole_deg))
     page.value("old_from_ecliptic_deg", float(old.from_ecliptic_pole_deg))
-    for col in ("dv_effect_mps", "impulsive_effect_mps", "loss_effect_mps"):
+    for col in ("dv_effect_mps", "impulsive_limit_effect_mps", "delta_v_loss_effect_mps"):
         page.value(f"max_abs_{col}", float(eff[col].abs().max()))
         page.value(f"min_{col}", float(eff[col].min()))
         page.value(f"max_{col}", float(eff[col].max()))

@@ -107,7 +107,7 @@ def totals_frame(seqs: dict, rows, model_loss: bool) -> pd.DataFrame:
         x = sweeps.sequence_totals(seqs[lab])
         row = {"engine": lab, "origin": o, "thrust_N": t, "isp_s": i,
                "total_delta_v_mps": x["total_delta_v_mps"],
-               "total_impulsive_delta_v_mps": x["total_impulsive_delta_v_mps"],
+               "total_paper_impulsive_delta_v_mps": x["total_paper_impulsive_delta_v_mps"],
                "total_loss_vs_paper_impulse_mps": x["total_loss_vs_paper_impulse_mps"],
                "total_loss_vs_paper_impulse_percent": x["total_loss_vs_paper_impulse_percent"]}
         if model_loss:

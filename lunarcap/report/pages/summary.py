@@ -125,7 +125,7 @@ def model_loss_table(engines, chains: dict, totals: dict) -> pd.DataFrame:
         t = totals[thrust]
         c = chains[name]
         rows.append({"engine": name, "loi": "total",
-                     "paper_impulsive_delta_v_mps": t["total_impulsive_delta_v_mps"],
+                     "paper_impulsive_delta_v_mps": t["total_paper_impulsive_delta_v_mps"],
                      "impulsive_limit_mps": t["total_impulsive_limit_mps"],
                      "paper_delta_v_loss_mps": float((c.paper_delta_v_mps
                                               - c.paper_impulsive_delta_v_mps).sum()),

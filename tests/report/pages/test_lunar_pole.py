@@ -27,7 +27,7 @@ def test_two_body_chain_does_not_depend_on_the_pole():
     eff = page.items["effect"].df
     assert len(eff) == 3 and (eff.verified == "passed").all()
     assert np.abs(eff.dv_effect_mps).max() < 1e-3
-    assert np.abs(eff.impulsive_effect_mps).max() < 1e-3
+    assert np.abs(eff.impulsive_limit_effect_mps).max() < 1e-3
     page.check()
 
 
