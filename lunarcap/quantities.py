@@ -462,6 +462,118 @@ for _q in (1, 5, 10, 50, 90, 95, 99):
     _add(f"propellant_p{_q}_kg", f"propellant, {_q}th percentile", f"{_q}th percentile of "
          "the propellant over every sample.")
 
+# ------------------------------------------------------------------ the book pages' tables
+for _k, _l, _d in (
+        ("burn_duration_diff_min", "duration, ours - paper", "burn_duration_min minus "
+         "paper_burn_duration_min."),
+        ("delta_v_diff_percent", "ΔV, ours - paper", "delta_v_mps over paper_delta_v_mps "
+         "minus one, in %."),
+        ("delta_v_difference_mps", "ΔV, ours - published", "Our delta-V minus the one "
+         "published for the same burn (by Song et al. or by a mission)."),
+        ("loss_vs_paper_impulse_diff_percent", "loss vs paper's impulse, ours - paper",
+         "loss_vs_paper_impulse_percent minus the paper's, in percentage points."),
+        ("impulsive_limit_effect_mps", "impulsive limit effect", "Impulsive limit with the "
+         "IAU lunar pole at J2000 minus with the constant pole."),
+        ("delta_v_loss_new_mps", "ΔV loss, J2000 pole", "delta_v_loss_mps with the IAU lunar "
+         "pole at J2000."),
+        ("delta_v_loss_effect_mps", "ΔV loss effect", "delta_v_loss_new_mps minus the delta-V "
+         "loss with the constant pole."),
+        ("difference_mps", "ΔV, ours - other", "Delta-V minus the one it is compared with "
+         "on the row (the paper's, or the sequential chain's)."),
+        ("difference_min", "duration, ours - paper", "Eq. (19) duration minus the one the "
+         "paper prints."),
+        ("difference_s", "epoch, ours - paper", "Our epoch minus the one the paper prints."),
+        ("total_difference_mps", "total ΔV, sequential - joint", "Summed difference_mps of "
+         "a chain."),
+        ("largest_leg_shift_mps", "largest burn ΔV shift", "Largest |difference_mps| of a "
+         "chain's burns."),
+        ("largest_start_shift_s", "largest start shift", "Largest |joint start - sequential "
+         "start| of a chain's burns."),
+        ("joint_solve_s", "joint solve", "Wall time of the joint optimisation of a chain."),
+        ("delta_v_gain_mps", "ΔV gain", "grid_delta_v_mps minus free_delta_v_mps."),
+        ("objective_gain_mps", "J gain", "Objective J with the grid's best start minus J "
+         "with the free ignition epoch."),
+        ("fuel_saved_kg", "propellant saved", "free_final_mass_kg minus grid_final_mass_kg."),
+        ("burn_midpoint_min", "burn midpoint", "free_start_min plus half the free burn's "
+         "duration."),
+        ("start_minus_rule_min", "start - rule", "free_start_min minus rule_start_min."),
+        ("rule_delta_v_cost_mps", "ΔV cost of the rule", "Delta-V with the rule's start "
+         "minus free_delta_v_mps."),
+        ("rule_objective_cost_mps", "J cost of the rule", "Objective J with the rule's start "
+         "minus J with the free ignition epoch."),
+        ("delta_v_penalty_mps", "ΔV penalty", "Delta-V of a fixed steering law minus the "
+         "optimal steering's."),
+        ("objective_penalty_mps", "J penalty", "Objective J of a fixed steering law minus "
+         "the optimal steering's."),
+        ("rp_miss_km", "r_p miss", "Perilune radius reached minus the target's, under a "
+         "steering law that releases it."),
+        ("inc_miss_deg", "i miss", "Inclination reached minus the target's, under a "
+         "steering law that releases it."),
+        ("rp_error_mm", "r_p error", "verification_rp_error_m in mm."),
+        ("ra_error_mm", "r_a error", "verification_ra_error_m in mm."),
+        ("verified_delta_v_diff_mps", "|ΔV, flown - collocated|", "|delta_v_diff_mps| of a "
+         "verified solution."),
+        ("delta_v_change_vs_finest_mps", "ΔV - finest mesh's", "Delta-V on the mesh minus "
+         "the delta-V on the finest mesh of the same case."),
+        ("burn_long_s", "long burn", "Duration of the longer of the two short burns "
+         "defining the impulsive limit."),
+        ("burn_short_s", "short burn", "Duration of the shorter of the two short burns "
+         "defining the impulsive limit."),
+        ("delta_v_long_mps", "ΔV, long burn", "Delta-V of the longer short burn."),
+        ("delta_v_short_mps", "ΔV, short burn", "Delta-V of the shorter short burn."),
+        ("extrapolation_mps", "limit - short", "impulsive_limit_mps minus delta_v_short_mps."),
+        ("ci_lo_mps", "CI low", "Lower bound of a 95 % confidence interval of a delta-V."),
+        ("ci_hi_mps", "CI high", "Upper bound of a 95 % confidence interval of a delta-V."),
+        ("median_sample_s", "median sample wall", "Median wall time of a Monte Carlo "
+         "sample."),
+        ("median_sample_cpu_s", "median sample CPU", "Median CPU time of a Monte Carlo "
+         "sample."),
+        ("optimal_loss_percent", "J loss, ours", "Our verified optimal objective_loss_percent"
+         " at the engine, interpolated in log thrust-to-weight."),
+        ("perilune_from_ignition_min", "perilune after ignition", "Time from ignition to "
+         "the nominal perilune."),
+        ("ignition_from_perilune_deg", "ignition from perilune", "True anomaly of the "
+         "ignition point from the perilune (negative: before it)."),
+        ("cutoff_from_perilune_deg", "cut-off from perilune", "True anomaly of the cut-off "
+         "point from the perilune."),
+        ("m_kg", "mass", "Spacecraft mass along the burn."),
+        ("m0_kg", "mass at ignition", "Mass at ignition from which Eq. (19) is evaluated."),
+        ("period_h", "period", "Period of the orbit a burn leaves (plan pages)."),
+        ("alpha_deg", "α", "In-plane thrust angle of Eq. (14) (the paper's Figs. 1 and 4)."),
+        ("beta_deg", "β", "Out-of-plane thrust angle of Eq. (14) (the paper's Figs. 1 and "
+         "4)."),
+        ("x_km", "x", "Position along the first axis of a figure's plane."),
+        ("y_km", "y", "Position along the second axis of a figure's plane."),
+        ("vx_kmps", "v_x", "Velocity along the first axis of a figure's plane."),
+        ("vy_kmps", "v_y", "Velocity along the second axis of a figure's plane."),
+        ("ax_thrust_mps2", "a_x, thrust", "Thrust acceleration along the first axis of a "
+         "figure's plane."),
+        ("ay_thrust_mps2", "a_y, thrust", "Thrust acceleration along the second axis of a "
+         "figure's plane."),
+        ("angle_thrust_velocity_deg", "thrust to velocity", "Angle between the thrust and "
+         "the velocity."),
+        ("ra_deg", "α₀", "Right ascension of a lunar pole, ICRF."),
+        ("dec_deg", "δ₀", "Declination of a lunar pole, ICRF."),
+        ("from_ecliptic_pole_deg", "from ecliptic pole", "Angle between a lunar pole and "
+         "the ecliptic pole."),
+        ("dv_new_mps", "ΔV, J2000 pole", "Delta-V with the IAU lunar pole at J2000."),
+        ("dv_old_mps", "ΔV, constant pole", "Delta-V with the constant pole used before."),
+        ("dv_effect_mps", "ΔV effect", "dv_new_mps minus dv_old_mps."),
+        ("interpolation_error_m", "interpolation error", "Largest position error of an "
+         "exchanged ephemeris segment against the trajectory it interpolates."),
+        ("kplo_delta_v_mps", "impulsive ΔV, KPLO", "Impulsive delta-V KPLO's published "
+         "plan gives for the burn."),
+        ("kplo_speed_kmps", "speed, KPLO", "Speed KPLO's published plan gives at the point."),
+        ("our_speed_kmps", "speed, ours", "Our speed at the same point."),
+        ("speed_difference_mps", "speed, ours - KPLO", "our_speed_kmps minus "
+         "kplo_speed_kmps, in m/s."),
+        ("published_min", "published", "Burn duration a mission published."),
+        ("ours_paper_spacecraft_min", "ours, paper's spacecraft", "Our burn duration with "
+         "the paper's spacecraft mass."),
+        ("ours_at_mission_mass_min", "ours, mission's mass", "Our burn duration scaled to "
+         "the mission's mass and engine (rocket equation).")):
+    _add(_k, _l, _d)
+
 #: Every quantity by name.
 GLOSSARY: dict = {q.name: q for q in _Q}
 
@@ -471,6 +583,12 @@ PREFIXES = {
     "total_": ("total ", "", "Summed over the burns: {}"),
     "verification_": ("", "", "Verification of the burn: {}"),
     "nominal_": ("nominal ", "", "Of the nominal (error-free) plan: {}"),
+    "free_": ("", ", free", "With the ignition epoch optimised: {}"),
+    "grid_": ("", ", grid", "With the best ignition epoch of the study's grid of starts: {}"),
+    "rule_": ("", ", rule", "With the ignition half the Eq. (19) duration before the "
+              "perilune: {}"),
+    "joint_": ("", ", joint", "With every burn of the chain optimised together: {}"),
+    "sequential_": ("", ", sequential", "With the burns optimised one after another: {}"),
 }
 
 #: Composition suffixes (after the unit): ``suffix`` -> (label suffix, definition).

@@ -283,34 +283,7 @@ def test_page_table_columns_with_a_unit_are_glossary_names(quick_build):
 
 
 #: Unit columns of the pages' tables not yet in the glossary (to be emptied).
-PAGE_COLUMNS_PENDING: set = {
-    "alpha_deg", "angle_thrust_velocity_deg", "ax_thrust_mps2", "ay_thrust_mps2",
-    "beta_deg", "burn_duration_diff_min", "burn_long_s", "burn_midpoint_min",
-    "burn_short_s", "ci_hi_mps", "ci_lo_mps", "cutoff_from_perilune_deg",
-    "dec_deg", "delta_v_change_vs_finest_mps", "delta_v_diff_percent", "delta_v_difference_mps",
-    "delta_v_gain_mps", "delta_v_long_mps", "delta_v_loss_effect_mps", "delta_v_loss_new_mps",
-    "delta_v_ours_mps", "delta_v_paper_mps", "delta_v_penalty_mps", "delta_v_short_mps",
-    "difference_min", "difference_mps", "difference_s", "duration_difference_min",
-    "duration_ours_min", "duration_paper_min", "dv_effect_mps", "dv_new_mps",
-    "dv_old_mps", "end_position_m", "excess_difference_percent", "excess_ours_percent",
-    "excess_paper_percent", "extrapolation_mps", "free_burn_duration_min", "free_delta_v_mps",
-    "free_final_mass_kg", "free_impulsive_limit_mps", "free_objective_loss_mps", "free_objective_loss_percent",
-    "free_objective_mps", "free_start_min", "free_total_delta_v_mps", "from_ecliptic_pole_deg",
-    "fuel_saved_kg", "grid_delta_v_mps", "grid_final_mass_kg", "grid_start_min",
-    "grid_total_delta_v_mps", "ignition_from_perilune_deg", "impulsive_limit_effect_mps", "inc_miss_deg",
-    "interpolation_error_m", "joint_burn_duration_min", "joint_delta_v_mps", "joint_solve_s",
-    "joint_start_min", "joint_total_delta_v_mps", "kplo_delta_v_mps", "kplo_speed_kmps",
-    "largest_leg_shift_mps", "largest_start_shift_s", "loi1_burn_duration_min", "m0_kg",
-    "m_kg", "mass_after_kg", "median_sample_cpu_s", "median_sample_s",
-    "objective_gain_mps", "objective_penalty_mps", "optimal_loss_percent", "our_speed_kmps",
-    "ours_at_mission_mass_min", "ours_paper_spacecraft_min", "perilune_from_ignition_min", "period_h",
-    "published_min", "ra_deg", "ra_error_mm", "robbins_loss_percent",
-    "rp_error_mm", "rp_miss_km", "rule_delta_v_cost_mps", "rule_objective_cost_mps",
-    "rule_start_min", "sequential_burn_duration_min", "sequential_delta_v_mps", "sequential_start_min",
-    "sequential_total_delta_v_mps", "speed_difference_mps", "start_minus_rule_min", "total_difference_mps",
-    "verified_delta_v_diff_mps", "vx_kmps", "vy_kmps", "x_km",
-    "y_km",
-}
+PAGE_COLUMNS_PENDING: set = set()
 
 
 @pytest.mark.notebooks

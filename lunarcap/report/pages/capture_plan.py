@@ -114,7 +114,7 @@ def plan_verification_table(burns: pd.DataFrame) -> pd.DataFrame:
     """
     return pd.DataFrame({
         "burn": burns.burn, "verified": burns.verified,
-        "end_position_m": burns.verification_final_position_diff_m,
+        "verification_final_position_diff_m": burns.verification_final_position_diff_m,
         "rp_error_mm": 1e3 * burns.verification_rp_error_m,
         "ra_error_mm": 1e3 * burns.verification_ra_error_m,
         "inc_error_deg": burns.verification_inc_error_deg,
@@ -392,9 +392,9 @@ def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str) -> None:
                  "γ error (deg): flight-path angle at that epoch (ellipse targets only). "
                  "Gate: 50 m, 10 m, 1e-4 deg (and the end speed and objective, in the CSV); "
                  "0.000000 deg: below 5e-7 deg. '—': not a condition of that target."),
-        columns={"end_position_m": "end position (m)", "verified": "gate"},
-        floatfmt={"end_position_m": ".3f", "rp_error_mm": "+.3f", "ra_error_mm": "+.3f",
-                  "inc_error_deg": "+.6f", "gamma_error_deg": "+.6f"})
+        columns={"verification_final_position_diff_m": "end position (m)", "verified": "gate"},
+        floatfmt={"verification_final_position_diff_m": ".3f", "rp_error_mm": "+.3f",
+                  "ra_error_mm": "+.3f", "inc_error_deg": "+.6f", "gamma_error_deg": "+.6f"})
 
 
 

@@ -41,7 +41,7 @@ def gain_table(engines, dynamics: str) -> pd.DataFrame:
     Columns: engine, thrust_N, isp_s, burn, grid_start_min, free_start_min,
     free_burn_duration_min, grid_delta_v_mps, free_delta_v_mps, delta_v_gain_mps and
     objective_gain_mps (grid - free; NaN for an engine the paper did not solve),
-    free_objective_mps, free_impulsive_limit_mps and free_objective_loss_mps /
+    free_objective_j_mps, free_impulsive_limit_mps and free_objective_loss_mps /
     free_objective_loss_percent (against the impulsive limit from the same orbit in the
     same dynamics, by J),
     eq19_duration_min, verified ("passed" / "failed").
@@ -57,10 +57,10 @@ def gain_table(engines, dynamics: str) -> pd.DataFrame:
     rows = pd.concat(frames, ignore_index=True)
     rows["eq19_duration_min"] = 2 * rows.eq19_half_duration_min
     rows["verified"] = np.where(rows.free_verified, "passed", "failed")
-    return rows.rename(columns={"loi": "burn"})[[
+    return rows.rename(columns={"loi": "burn", "free_objective_mps": "free_objective_j_mps"})[[
         "engine", "thrust_N", "isp_s", "burn", "grid_start_min", "free_start_min",
         "free_burn_duration_min", "grid_delta_v_mps", "free_delta_v_mps", "delta_v_gain_mps",
-        "objective_gain_mps", "free_objective_mps", "free_impulsive_limit_mps",
+        "objective_gain_mps", "free_objective_j_mps", "free_impulsive_limit_mps",
         "free_objective_loss_mps", "free_objective_loss_percent", "eq19_duration_min",
         "verified"]]
 
@@ -122,7 +122,7 @@ def rule_table(gain: pd.DataFrame, dynamics: str) -> pd.DataFrame:
             "burn_midpoint_min": r.free_start_min + r.free_burn_duration_min / 2,
             "grid_start_min": r.grid_start_min,
             "rule_delta_v_cost_mps": s["delta_v_mps"] - r.free_delta_v_mps,
-            "rule_objective_cost_mps": s["objective_j_mps"] - r.free_objective_mps,
+            "rule_objective_cost_mps": s["objective_j_mps"] - r.free_objective_j_mps,
             "verified": "passed" if s["verification"]["passed"] else "failed"})
     return pd.DataFrame(rows)
 

@@ -103,7 +103,7 @@ def delta_v_table(burns, rp_km: float) -> pd.DataFrame:
         "to_orbit": [("circle, " if np.isclose(b.v_after_kmps, circle_kmps) else "")
                      + period_text(b.period_after_h) for b in burns],
         "delta_v_mps": dv, "paper_delta_v_mps": paper_dv, "difference_mps": dv - paper_dv,
-        "mass_after_kg": [b.m_after_kg for b in burns]})
+        "m_after_kg": [b.m_after_kg for b in burns]})
 
 
 def eq19_table(burns, masses, printed_min) -> pd.DataFrame:
@@ -201,7 +201,7 @@ def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
                  "equation) in kg."),
         columns={"delta_v_mps": "ΔV, ours (m/s)", "difference_mps": "ours − paper (m/s)"},
         floatfmt={"delta_v_mps": ".3f", "paper_delta_v_mps": ".3f", "difference_mps": "+.3f",
-                  "mass_after_kg": ".3f"})
+                  "m_after_kg": ".3f"})
     page.table(
         "eq19", eq19_table(burns, masses, printed_min),
         caption=(f"Burn-duration estimates of Eq. (19) for a {thrust_N:g} N / {isp_s:g} s "

@@ -57,7 +57,7 @@ LOSS_LABELS = {
     "total_delta_v_loss_percent": "ΔV above ours (%)",
     "total_objective_loss_mps": "loss vs ours (m/s)",
     "total_objective_loss_percent": "loss vs ours (%)",
-    "loi1_burn_duration_min": "LOI 1 burn (min)",
+    "burn_duration_min_loi1": "LOI 1 burn (min)",
 }
 
 REF_PAPER = ("the paper's printed impulsive ΔV of each LOI (Table B1: "
@@ -117,7 +117,7 @@ def totals_frame(seqs: dict, rows, model_loss: bool) -> pd.DataFrame:
                                           "total_objective_loss_percent")})
         row.update({"total_fuel_kg": x["total_fuel_kg"],
                     "total_burn_duration_min": x["total_burn_duration_min"],
-                    "loi1_burn_duration_min": float(seqs[lab].burn_duration_min.iloc[0]),
+                    "burn_duration_min_loi1": float(seqs[lab].burn_duration_min.iloc[0]),
                     "final_mass_kg": x["final_mass_kg"]})
         trows.append(row)
     return pd.DataFrame(trows)
@@ -232,14 +232,14 @@ def _add_totals_tables(page: Page, totals: pd.DataFrame, ignition: str,
         show_columns=shown)
     page.table(
         "budget", totals[["engine", "total_fuel_kg", "total_burn_duration_min",
-                          "loi1_burn_duration_min", "final_mass_kg"]],
+                          "burn_duration_min_loi1", "final_mass_kg"]],
         caption=(f"Propellant of LOI 1–3 (kg), burn time of the three LOIs and of LOI 1 (min) "
                  f"and mass after LOI 3 (kg, from {paper_scenario().mass_kg:g} kg) per engine "
                  f"(thrust / Isp), ignition {ignition}."),
         columns=LOSS_LABELS | {"total_fuel_kg": "propellant (kg)",
                                "total_burn_duration_min": "burn time (min)"},
         floatfmt={"total_fuel_kg": ".3f", "total_burn_duration_min": ".2f",
-                  "loi1_burn_duration_min": ".2f", "final_mass_kg": ".3f"})
+                  "burn_duration_min_loi1": ".2f", "final_mass_kg": ".3f"})
 
 
 def _add_figure(page: Page, totals: pd.DataFrame, ignition: str, model_loss: bool) -> None:

@@ -74,14 +74,22 @@ def _tables_range(sources) -> str:
 WIDE_QUANTITIES = {"burn duration": ("duration", "min"), "delta-V": ("delta_v", "mps"),
                    "impulsive delta-V": ("delta_v", "mps"),
                    "difference from impulsive": ("excess", "percent")}
+#: Glossary names of the wide form's columns: (column stem, paper / ours / difference).
+WIDE_NAMES = {
+    ("duration", "paper"): "paper_burn_duration_min", ("duration", "ours"): "burn_duration_min",
+    ("duration", "difference"): "burn_duration_diff_min",
+    ("delta_v", "paper"): "paper_delta_v_mps", ("delta_v", "ours"): "delta_v_mps",
+    ("delta_v", "difference"): "delta_v_difference_mps",
+    ("excess", "paper"): "paper_loss_vs_paper_impulse_percent",
+    ("excess", "ours"): "loss_vs_paper_impulse_percent",
+    ("excess", "difference"): "loss_vs_paper_impulse_diff_percent"}
 #: Headers of the wide form (the CSV keeps the column names); ``row`` is the start with the
 #: best mark, shown instead of ``start`` and ``best`` (one column less: it fits at 1024 px).
 WIDE_LABELS = {"source": "source", "start": "start (min)", "best": "best",
                "row": "start (min), best",
-               **{f"{stem}_{who}_{unit}": f"{head}, {who_head}"
-                  for stem, unit, head in (("duration", "min", "duration (min)"),
-                                           ("delta_v", "mps", "ΔV (m/s)"),
-                                           ("excess", "percent", "ΔV above impulsive (%)"))
+               **{WIDE_NAMES[stem, who]: f"{head}, {who_head}"
+                  for stem, head in (("duration", "duration (min)"), ("delta_v", "ΔV (m/s)"),
+                                     ("excess", "ΔV above impulsive (%)"))
                   for who, who_head in (("paper", "paper"), ("ours", "ours"),
                                         ("difference", "ours − paper"))}}
 
@@ -102,9 +110,9 @@ def tables_wide(long: pd.DataFrame) -> pd.DataFrame:
         source = r.source.replace(" (impulsive)", "")
         row = rows.setdefault((source, r.loi, start),
                               {"source": source, "start": start, "best": ""})
-        stem, unit = WIDE_QUANTITIES[r.quantity]
+        stem, _ = WIDE_QUANTITIES[r.quantity]
         for who, v in (("paper", r.paper), ("ours", r.ours), ("difference", r.difference)):
-            row[f"{stem}_{who}_{unit}"] = v
+            row[WIDE_NAMES[stem, who]] = v
         best = ("both" if r.paper_best and r.ours_best else "paper" if r.paper_best
                 else "ours" if r.ours_best else "")
         row["best"] = row["best"] or best

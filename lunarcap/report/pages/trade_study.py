@@ -75,7 +75,7 @@ def paper_engines_table(ok: pd.DataFrame, paper: pd.DataFrame) -> pd.DataFrame:
     Columns: thrust_N, isp_s, part, paper_delta_v_loss_percent (Table B1 as printed; the sequence:
     summed losses over summed impulsive delta-Vs), optimal_loss_percent (our verified
     optima of the same Isp, interpolated in log T/W; NaN when that Isp or thrust is not
-    in the grid), robbins_loss_percent.
+    in the grid), analytic_loss_percent.
     """
     rows = []
     for r in paper.itertuples(index=False):
@@ -86,7 +86,7 @@ def paper_engines_table(ok: pd.DataFrame, paper: pd.DataFrame) -> pd.DataFrame:
                      "optimal_loss_percent": _interp_log(r.thrust_to_weight,
                                                          d.thrust_to_weight,
                                                          d.objective_loss_percent),
-                     "robbins_loss_percent": float(robbins.loc[r.part, "analytic_loss_percent"])})
+                     "analytic_loss_percent": float(robbins.loc[r.part, "analytic_loss_percent"])})
     return pd.DataFrame(rows)
 
 
@@ -179,7 +179,7 @@ def prose_values(spec, wide: pd.DataFrame, run: dict, ok: pd.DataFrame,
         "paper_diff_max": float((diffs.optimal_loss_percent
                                  - diffs.paper_delta_v_loss_percent).abs().max())
         if len(diffs) else nan,
-        "robbins_diff_max": float((diffs.robbins_loss_percent
+        "robbins_diff_max": float((diffs.analytic_loss_percent
                                    - diffs.optimal_loss_percent).abs().max())
         if len(diffs) else nan,
         "dur_ratio_max": float(dur_ratio.max()) if len(loi_ok) else nan,
@@ -213,9 +213,9 @@ def _add_loss(page: Page, ok, valid, paper, spec, newton_per_ratio: float) -> pd
                  "or thrust is not in this grid), and Robbins' estimate. Thrust in N, Isp in "
                  "s. " + loss_def),
         columns={"part": "burn", "paper_delta_v_loss_percent": "paper, Table B1 (%)",
-                 "optimal_loss_percent": "optimal (%)", "robbins_loss_percent": "Robbins (%)"},
+                 "optimal_loss_percent": "optimal (%)", "analytic_loss_percent": "Robbins (%)"},
         floatfmt={"thrust_N": ".0f", "isp_s": ".0f", "paper_delta_v_loss_percent": ".2f",
-                  "optimal_loss_percent": ".2f", "robbins_loss_percent": ".2f"})
+                  "optimal_loss_percent": ".2f", "analytic_loss_percent": ".2f"})
     return at_paper
 
 

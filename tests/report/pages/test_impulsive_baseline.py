@@ -30,7 +30,7 @@ def test_delta_v_table_against_the_paper_and_the_plan(page):
     assert (df.difference_mps[1:].abs() < 0.25).all()             # genuine checks
     # the masses follow the rocket equation from the arrival mass
     m = 524.895 * np.exp(-np.cumsum(df.delta_v_mps) / (C.G0_MPS2 * 200.0))
-    np.testing.assert_allclose(df.mass_after_kg, m)
+    np.testing.assert_allclose(df.m_after_kg, m)
     # the same chain as the paper's capture plan
     plan = paper_plan(150.0, 200.0).impulsive()
     np.testing.assert_allclose(df.delta_v_mps, [b.delta_v_mps for b in plan])

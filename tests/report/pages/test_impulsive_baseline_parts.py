@@ -19,7 +19,7 @@ def test_delta_v_table_beside_the_paper(burns):
     assert t.difference_mps.tolist() == pytest.approx(
         [b.delta_v_mps - p for b, p in zip(burns, paper.PAPER_IMPULSIVE_DV_MPS)])
     assert [s.startswith("circle, ") for s in t.to_orbit] == [False, False, True]
-    assert t.mass_after_kg.iloc[-1] == pytest.approx(burns[-1].m_after_kg)
+    assert t.m_after_kg.iloc[-1] == pytest.approx(burns[-1].m_after_kg)
 
 
 def test_eq19_table_uses_the_given_masses(burns):

@@ -58,7 +58,7 @@ def test_totals_frame_sorted_by_thrust_with_sums():
     tot = oe.totals_frame(seqs, rows, model_loss=True)
     assert tot.thrust_N.tolist() == [150.0, 320.0]
     assert tot.total_loss_vs_paper_impulse_mps.tolist() == pytest.approx([20.0, 10.0])
-    assert tot.loi1_burn_duration_min.tolist() == pytest.approx([20.0, 10.0])
+    assert tot.burn_duration_min_loi1.tolist() == pytest.approx([20.0, 10.0])
     assert tot.total_objective_loss_mps.tolist() == pytest.approx([40.0, 20.0])
     assert tot.total_fuel_kg.tolist() == pytest.approx([170.0, 170.0])
 

@@ -34,7 +34,7 @@ def test_prose_values_from_the_table():
     wide = pd.DataFrame({"status": ["ok", "failed"]})
     at_paper = pd.DataFrame({"optimal_loss_percent": [2.0, float("nan")],
                              "paper_delta_v_loss_percent": [2.5, 1.0],
-                             "robbins_loss_percent": [1.8, 1.0]})
+                             "analytic_loss_percent": [1.8, 1.0]})
     v = ts.prose_values(spec, wide, {"wall_s": 12.5, "computed": 3}, _ok(), at_paper)
     assert v["n_failed"] == 1 and v["n_engines"] == 2 and v["n_computed"] == 3
     assert v["seq_loss_high_max_mps"] == pytest.approx(0.4)   # the strongest engine's
