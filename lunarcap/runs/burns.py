@@ -39,7 +39,7 @@ import time
 
 import numpy as np
 
-from lunarcap.errors import InputError, SolveError
+from lunarcap.errors import InputError, SolveError, integer, number_list
 from lunarcap.mission.impulsive import capture_total_mps, equal_split_periods_s
 from lunarcap.mission.plan import CapturePlan, PlanError, plan_ephemeris
 from lunarcap.mission.targets import CIRCULAR
@@ -340,9 +340,8 @@ def plan_id(plan: CapturePlan) -> str:
 
 def parse_counts(text) -> tuple:
     """Counts of burns from ``"1,2,3"`` (or a sequence): distinct integers >= 1, sorted."""
-    from lunarcap.runs.campaign import parse_numbers
-
-    return tuple(sorted(parse_numbers("--counts", text, 1, True, integer=True)))
+    counts = number_list("--counts", text, "", distinct=True)
+    return tuple(sorted(integer("--counts", n, 1) for n in counts))
 
 
 def default_table_path():

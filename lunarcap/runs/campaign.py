@@ -28,7 +28,6 @@ import contextlib
 import datetime as _dt
 import json
 import logging
-import math
 import os
 import socket
 import sys
@@ -171,38 +170,6 @@ def guarded(compute, use_cache: bool | None = None) -> tuple[dict | None, dict |
             return compute(), None
     except Exception as exc:
         return None, {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
-
-
-def parse_numbers(option: str, text, minimum: float, include_min: bool, maximum=None,
-                  integer: bool = False) -> tuple:
-    """Distinct numbers from ``"0.25,0.5"`` (or a sequence), each in range, in the given order.
-
-    ``integer`` True also refuses non-integers (and returns ints). InputError naming the
-    option on anything else: a non-number, a value out of range, an empty list, duplicates.
-    """
-    kind = "integers" if integer else "numbers"
-    items = text.split(",") if isinstance(text, str) else list(text)
-    out = []
-    for item in items:
-        s = item.strip() if isinstance(item, str) else item
-        try:
-            v = float(s)
-        except (TypeError, ValueError):
-            raise InputError(f"{option} must be {kind} separated by commas, got {text!r}") \
-                from None
-        low_ok = v >= minimum if include_min else v > minimum
-        if not math.isfinite(v) or not low_ok or (maximum is not None and v > maximum):
-            rng = (f"{'[' if include_min else '('}{minimum:g}, "
-                   f"{'inf)' if maximum is None else f'{maximum:g}]'}")
-            raise InputError(f"{option}: {item!r} is outside {rng}")
-        if integer and v != int(v):
-            raise InputError(f"{option} must be integers, got {item!r} in {text!r}")
-        out.append(int(v) if integer else v)
-    if not out:
-        raise InputError(f"{option} is empty")
-    if len(set(out)) != len(out):
-        raise InputError(f"{option} has duplicates: {text!r}")
-    return tuple(out)
 
 
 # ====================================================================== Dask

@@ -59,7 +59,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from lunarcap.errors import InputError, SolveError
+from lunarcap.errors import InputError, SolveError, integer
 from lunarcap.mission.plan import CapturePlan, PlanError
 from lunarcap.optim.guess import Guess, mean_motion_and_anomaly
 from lunarcap.optim.nlp import interval_steering
@@ -523,16 +523,7 @@ def sample_row(plan: CapturePlan, seed: int, index: int, model: ErrorModel,
 
 def check_samples(samples, seed) -> tuple:
     """(samples, seed) as integers (samples >= 1, seed >= 0), else InputError."""
-    out = []
-    for opt, v, lo in (("--samples", samples, 1), ("--seed", seed, 0)):
-        try:
-            f = float(v)
-        except (TypeError, ValueError):
-            raise InputError(f"{opt} must be an integer, got {v!r}") from None
-        if isinstance(v, bool) or not math.isfinite(f) or f != int(f) or f < lo:
-            raise InputError(f"{opt} must be an integer >= {lo}, got {v!r}")
-        out.append(int(f))
-    return tuple(out)
+    return integer("--samples", samples, 1), integer("--seed", seed, 0)
 
 
 def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorModel,

@@ -53,7 +53,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from lunarcap.errors import InputError, SolveError
+from lunarcap.errors import InputError, SolveError, number_list
 from lunarcap.mission.plan import CapturePlan, PlanError, plan_ephemeris
 from lunarcap.mission.targets import PERILUNE
 from lunarcap.optim.collocation import DEFAULT_MESHES, sundman_fractions
@@ -597,14 +597,14 @@ def run_missed(plan: CapturePlan, burn: int, fractions, delays_min,
     per case). InputError (a burn the plan lacks, fractions outside (0, 1], negative
     delays, an unusable ``out``, an unreachable scheduler) before any solve.
     """
-    from lunarcap.runs.campaign import parse_numbers, run_campaign
+    from lunarcap.runs.campaign import run_campaign
     from lunarcap.runs.study import check_workers
 
-    fractions = parse_numbers("--fractions", fractions, 0.0, False, 1.0) \
-        if fractions not in (None, "", []) else []
-    delays = parse_numbers("--delays-min", delays_min, 0.0, True)
-    late = parse_numbers("--late-min", late_min, 0.0, True) \
-        if late_min not in (None, "", []) else []
+    fractions = number_list("--fractions", fractions, "", positive=True, maximum=1.0,
+                            distinct=True) if fractions not in (None, "", []) else ()
+    delays = number_list("--delays-min", delays_min, "min", minimum=0.0, distinct=True)
+    late = number_list("--late-min", late_min, "min", minimum=0.0, distinct=True) \
+        if late_min not in (None, "", []) else ()
     if not fractions and not late:
         raise InputError("no case: give --fractions or --late-min")
     check_case(plan, burn, fractions[0] if fractions else 1.0, delays[0])

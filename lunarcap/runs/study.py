@@ -64,7 +64,6 @@ Examples
 from __future__ import annotations
 
 import datetime as _dt
-import math
 import os
 import socket
 import time
@@ -74,7 +73,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from lunarcap.errors import InputError
+from lunarcap.errors import InputError, integer, number_list, positive_number
 from lunarcap.physics.losses import schuler_rate_rad_s
 from lunarcap.repro import paths
 from lunarcap.runs import campaign as _campaign
@@ -133,69 +132,20 @@ TABLE = _campaign.TableFormat(
 
 # ====================================================================== definitions
 # ====================================================================== parameters
-def _number(name: str, value, unit: str) -> float:
-    """A positive finite float from a number or numeric text, else InputError."""
-    if isinstance(value, bool):
-        raise InputError(f"{name} must be a positive number of {unit}, got {value!r}")
-    try:
-        val = float(value.strip() if isinstance(value, str) else value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a positive number of {unit}, got {value!r}") from None
-    if not math.isfinite(val) or val <= 0:
-        raise InputError(f"{name} must be a positive number of {unit}, got {value!r}")
-    return val
-
-
-def _count(name: str, value, minimum: int) -> int:
-    """An integer >= minimum (int, integral float or digits), else InputError."""
-    if isinstance(value, bool):
-        raise InputError(f"{name} must be an integer, got {value!r}")
-    try:
-        f = float(value.strip() if isinstance(value, str) else value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be an integer, got {value!r}") from None
-    if not math.isfinite(f) or f != int(f):
-        raise InputError(f"{name} must be an integer, got {value!r}")
-    if f < minimum:
-        raise InputError(f"{name} must be at least {minimum}, got {value!r}")
-    return int(f)
-
-
 def parse_isp_list(value) -> tuple:
     """Specific impulses from ``"200,250,300"`` or a sequence of numbers, s.
 
-    Raises
-    ------
-    InputError
-        Empty list, empty item, non-numeric or non-positive value, or a duplicate.
+    :func:`lunarcap.errors.number_list`: InputError naming ``--isp`` on an empty list or
+    item, a non-numeric or non-positive value, or a duplicate.
     """
-    if isinstance(value, str):
-        items = [s.strip() for s in value.split(",")]
-        if not value.strip():
-            raise InputError("the Isp list is empty: give e.g. --isp 200,250,300")
-        if any(s == "" for s in items):
-            raise InputError(f"malformed Isp list {value!r}: give numbers of seconds separated "
-                             f"by commas, e.g. 200,250,300")
-    elif isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool):
-        items = [value]
-    else:
-        try:
-            items = list(value)
-        except TypeError:
-            raise InputError(f"Isp must be a list of numbers of seconds, got {value!r}") from None
-    if not items:
-        raise InputError("the Isp list is empty: give at least one specific impulse (s)")
-    isps = tuple(_number("specific impulse", v, "s") for v in items)
-    if len(set(isps)) != len(isps):
-        raise InputError(f"the Isp list has duplicates: {value!r}")
-    return isps
+    return number_list("--isp", value, "s", positive=True, distinct=True)
 
 
 def thrust_grid(thrust_min_N: float, thrust_max_N: float, points: int) -> tuple:
     """Log-spaced thrusts from min to max inclusive, rounded to 4 significant digits, N."""
-    tmin = _number("minimum thrust", thrust_min_N, "N")
-    tmax = _number("maximum thrust", thrust_max_N, "N")
-    n = _count("the number of thrust points", points, 2)
+    tmin = positive_number("--thrust-min", thrust_min_N, "N")
+    tmax = positive_number("--thrust-max", thrust_max_N, "N")
+    n = integer("--points", points, 2)
     if tmin > tmax:
         raise InputError(f"minimum thrust {tmin:g} N is above the maximum {tmax:g} N")
     if tmin == tmax:
@@ -261,7 +211,7 @@ class StudySpec:
 
 def check_workers(workers) -> int:
     """Number of local Dask workers (an integer >= 1), else InputError."""
-    return _count("the number of workers", workers, 1)
+    return integer("--workers", workers, 1)
 
 
 def default_table_path() -> Path:

@@ -101,23 +101,23 @@ def test_default_grid_is_30_log_spaced_thrusts_with_exact_endpoints():
 
 # ------------------------------------------------------------------ validation
 @pytest.mark.parametrize("kw, match", [
-    ({"points": 1}, "at least 2"),
-    ({"points": 0}, "at least 2"),
+    ({"points": 1}, "--points: must be an integer >= 2"),
+    ({"points": 0}, "--points: must be an integer >= 2"),
     ({"points": 2.5}, "integer"),
     ({"points": "many"}, "integer"),
     ({"points": True}, "integer"),
     ({"thrust_min_N": 0}, "positive"),
     ({"thrust_min_N": -50}, "positive"),
-    ({"thrust_min_N": float("nan")}, "positive"),
-    ({"thrust_max_N": float("inf")}, "positive"),
-    ({"thrust_max_N": "lots"}, "positive"),
+    ({"thrust_min_N": float("nan")}, "--thrust-min: must be a finite number"),
+    ({"thrust_max_N": float("inf")}, "--thrust-max: must be a finite number"),
+    ({"thrust_max_N": "lots"}, "--thrust-max: must be a number of N"),
     ({"thrust_min_N": 500, "thrust_max_N": 100}, "above the maximum"),
     ({"thrust_min_N": 100, "thrust_max_N": 100}, "empty"),
     ({"thrust_min_N": 100, "thrust_max_N": 100.01, "points": 50}, "not distinct"),
     ({"isp_s": ()}, "empty"),
-    ({"isp_s": ""}, "empty"),
-    ({"isp_s": "200,,300"}, "malformed"),
-    ({"isp_s": "200;300"}, "positive number"),
+    ({"isp_s": ""}, "--isp: must be numbers of s separated by commas"),
+    ({"isp_s": "200,,300"}, "--isp: must be numbers of s separated by commas"),
+    ({"isp_s": "200;300"}, "--isp: must be a number of s"),
     ({"isp_s": [250, 250]}, "duplicates"),
     ({"isp_s": [0]}, "positive"),
     ({"isp_s": None}, "list of numbers"),
@@ -135,7 +135,7 @@ def test_isp_list_forms():
 
 
 @pytest.mark.parametrize("kw, match", [
-    ({"workers": 0}, "at least 1"),
+    ({"workers": 0}, "--workers: must be an integer >= 1"),
     ({"workers": "two"}, "integer"),
     ({"scheduler": "  "}, "scheduler"),
 ])
