@@ -261,85 +261,97 @@ def execute_entry(entry: Entry, parameters: dict, stamp: dict, timeout: float | 
                   env: dict | None = None) -> dict:
     """Run one entry with papermill (in a worker process). Returns a result dict, never raises.
 
-    ``env``: environment variables the kernel gets for this run only (the shared study
-    cluster's address, see :class:`StudyCluster`).
+    The entry runs in this worker's kernel (:mod:`lunarcap.report.kernels`), after a
+    prelude that empties its namespace and sets ``env``: environment variables for this
+    run only (the shared study cluster's address, see :class:`StudyCluster`).
     """
-    env = env or {}
-    before = {k: os.environ.get(k) for k in env}  # a worker runs one entry after another
-    os.environ.update(env)
+    from lunarcap.report import kernels
+
     paths.ensure_dirs()
     tmp = paths.GENERATED / f".{entry.name}.tmp.ipynb"
     t0 = time.perf_counter()
-    # The kernel inherits this process's stderr: send it (ipykernel's start-up chatter,
-    # or a crash message) to a log, quoted in the error report if the run fails.
-    errlog = paths.GENERATED / f".{entry.name}.stderr.log"
-    _RUNNING_FILES[:] = [tmp, errlog]
+    # The kernel inherits this process's stderr when it starts: send it (ipykernel's
+    # start-up chatter, or a crash message) to this worker's log, whose lines written
+    # during a failed run are quoted in its error report.
+    errlog = paths.GENERATED / f".kernel-{os.getpid()}.stderr.log"
+    _RUNNING_FILES[:] = [tmp]
     saved = os.dup(2)
-    with open(errlog, "w") as fh:
+    with open(errlog, "a") as fh:
         os.dup2(fh.fileno(), 2)
+    offset = errlog.stat().st_size
     try:
-        return _execute(entry, parameters, stamp, timeout, tmp, t0, errlog)
+        kernels.ready(KERNEL, errlog)
+        return _execute(entry, parameters, stamp, timeout, tmp, t0, (errlog, offset),
+                        env or {})
     finally:
         os.dup2(saved, 2)
         os.close(saved)
         _RUNNING_FILES.clear()
-        for k, v in before.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
 
 
-def _stderr_tail(errlog: Path, n: int = 10) -> str:
+def _stderr_tail(errlog: tuple[Path, int], n: int = 10) -> str:
+    """The last ``n`` lines the kernel wrote to ``errlog[0]`` after byte ``errlog[1]``."""
+    path, offset = errlog
     try:
-        lines = [ln for ln in errlog.read_text(errors="replace").splitlines()
-                 if ln.strip() and "running over TCP without encryption" not in ln]
+        with open(path, "rb") as fh:
+            fh.seek(offset)
+            text = fh.read().decode(errors="replace")
     except OSError:
         return ""
+    lines = [ln for ln in text.splitlines()
+             if ln.strip() and "running over TCP without encryption" not in ln]
     return ("\n--- kernel stderr (last lines) ---\n" + "\n".join(lines[-n:])) if lines else ""
 
 
-def _children_cpu_s() -> float:
-    """CPU seconds (user + system) of this process's finished children and their own.
+def _cpu_s() -> float:
+    """CPU seconds (user + system) of this worker's kernels and whatever they started.
 
-    The kernel is a child of the worker and waited for; the Dask workers a study starts
-    are the kernel's children, waited for by it: their time is in here once the kernel
-    has exited. Stamped as ``cpu_s`` beside the wall ``seconds`` (on a machine shared with
-    other work the CPU time is the steadier figure).
+    The finished children of this process (kernels stopped earlier) and the live kernel
+    with its finished children (:func:`lunarcap.report.kernels.kernel_cpu_s`); the Dask
+    workers of the shared study cluster are not below a kernel and not counted. Stamped as
+    ``cpu_s`` beside the wall ``seconds`` (on a machine shared with other work the CPU
+    time is the steadier figure).
     """
+    from lunarcap.report import kernels
+
     ru = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return ru.ru_utime + ru.ru_stime
+    return ru.ru_utime + ru.ru_stime + kernels.kernel_cpu_s()
 
 
-def _execute(entry, parameters, stamp, timeout, tmp, t0, errlog) -> dict:
+def _execute(entry, parameters, stamp, timeout, tmp, t0, errlog, env) -> dict:
     import nbformat
     import papermill as pm
     from papermill.exceptions import PapermillExecutionError
 
+    from lunarcap.report import kernels
+
     started = time.time() - 1.0  # declared outputs must be written by this run
-    cpu0 = _children_cpu_s()
+    cpu0 = _cpu_s()
     try:
-        pm.execute_notebook(str(entry.notebook), str(tmp), parameters=parameters,
+        source = kernels.with_prelude(nbformat.read(str(entry.notebook), as_version=4), env)
+        pm.execute_notebook(source, str(tmp), parameters=parameters,
+                            engine_name=kernels.engine_name(),
                             kernel_name=KERNEL, cwd=str(entry.notebook.parent),
                             progress_bar=False, log_output=False,
                             request_save_on_cell_execute=False, execution_timeout=timeout)
         nb = nbformat.read(str(tmp), as_version=4)
+        kernels.drop_prelude(nb)
         prepare_for_book(nb, entry.title)
         nbformat.write(nb, str(tmp))
         missing = [o for o in entry.outputs if not (paths.GENERATED / o).is_file()
                    or (paths.GENERATED / o).stat().st_size == 0
                    or (paths.GENERATED / o).stat().st_mtime < started]
         if missing:
+            kernels.shutdown()
             os.replace(tmp, entry.failed_path)
             return {"ok": False, "seconds": time.perf_counter() - t0,
                     "error": f"the notebook ran but did not write its declared outputs {missing} "
                              "(paths below book/generated; fix the manifest's 'outputs' or the "
                              "notebook)"}
         os.replace(tmp, entry.output)
-        errlog.unlink(missing_ok=True)
         stamp = dict(stamp, executed_utc=time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
                      seconds=round(time.perf_counter() - t0, 2),
-                     cpu_s=round(_children_cpu_s() - cpu0, 2))
+                     cpu_s=round(_cpu_s() - cpu0, 2))
         paths.write_text_atomic(entry.stamp_path, json.dumps(stamp, indent=2, default=str))
         if entry.failed_path.exists():
             entry.failed_path.unlink()
@@ -351,6 +363,7 @@ def _execute(entry, parameters, stamp, timeout, tmp, t0, errlog) -> dict:
                + "\n".join(tb.splitlines()[-12:]))
     except Exception as exc:  # kernel died, timeout, bad notebook, ...
         msg = f"{type(exc).__name__}: {_ANSI.sub('', str(exc))}" + _stderr_tail(errlog)
+    kernels.shutdown()  # a failed entry may leave the kernel in any state
     if tmp.exists():
         os.replace(tmp, entry.failed_path)
     return {"ok": False, "seconds": time.perf_counter() - t0, "error": msg}
@@ -546,8 +559,9 @@ def run_entries(entries: list[Entry], quick: bool = False, jobs: int = 2, force:
         run.cluster.close(interrupted=True)
         remove_temporaries(started)
         raise
-    pool.shutdown(wait=True)
+    pool.shutdown(wait=True)  # each worker stops its kernel as it exits
     run.cluster.close()
+    remove_temporaries(started)  # the kernels' stderr logs (quoted where an entry failed)
     run.report_failures()
     return not run.failed
 

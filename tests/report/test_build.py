@@ -484,3 +484,56 @@ def test_studies_share_one_cluster_named_to_their_kernels_alone(tmp_path):
     got = {n: (tables / f"{n}.csv").read_text().splitlines()[1].split(",") for n in names}
     assert got["s1"][0].startswith("tcp://") and got["s1"] == got["s2"], got
     assert got["s1"][1] == "2" and got["plain"] == ["none", "0"], got
+
+
+@pytest.mark.notebooks
+def test_entries_share_a_kernel_but_not_its_namespace(tmp_path):
+    """One worker runs its entries in one kernel (the modules stay imported), yet each
+    page starts as in a fresh kernel: no variable, figure or study address of the page
+    before it, and its code cells numbered from 1.
+    """
+    root = tmp_path / "tree"
+    nbdir = _book_tree(root)
+    body = textwrap.dedent("""
+        import os
+        import sys
+        import pandas as pd
+        import matplotlib.pyplot as plt
+        from lunarcap.repro import paths
+        row = {"pid": os.getpid(), "leaked": "leak" in globals(),
+               "figures": len(plt.get_fignums()),
+               "address": os.environ.get("LUNARCAP_DASK_SCHEDULER", "none"),
+               "imported_before": "lunarcap.report.kernels_probe" in sys.modules}
+        sys.modules.setdefault("lunarcap.report.kernels_probe", sys)
+        paths.write_csv(pd.DataFrame([row]), output_name)
+        leak = 1
+        plt.figure()
+        os.environ["LUNARCAP_DASK_SCHEDULER"] = "tcp://left.behind:1"
+        """)
+    _notebook(nbdir / "page.ipynb", body=body)
+    names = ("first", "second", "third")
+    (nbdir / "manifest.yml").write_text(yaml.safe_dump({"entries": [
+        _entry(n, "page.ipynb", outputs=[f"tables/{n}.csv"],
+               depends_on=[names[i - 1]] if i else [])
+        for i, n in enumerate(names)]}))
+    (root / "book" / "_toc.yml").write_text(yaml.safe_dump({
+        "format": "jb-book", "root": "intro",
+        "chapters": [{"file": f"generated/{n}"} for n in names]}))
+    env = dict(os.environ, LUNARCAP_ROOT=str(root), LUNARCAP_NO_CACHE="1")
+    env.pop("LUNARCAP_DASK_SCHEDULER", None)
+    cmd = [sys.executable, "-m", "lunarcap.report.build", "build", "--no-build", "--jobs", "1"]
+    run = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    gen = root / "book" / "generated"
+    rows = {n: (gen / "tables" / f"{n}.csv").read_text().splitlines()[1].split(",")
+            for n in names}
+    assert len({r[0] for r in rows.values()}) == 1, rows  # one kernel
+    assert [r[4] for r in rows.values()] == ["False", "True", "True"], rows
+    for n in names:
+        assert rows[n][1:4] == ["False", "0", "none"], (n, rows[n])
+        nb = nbformat.read(str(gen / f"{n}.ipynb"), as_version=4)
+        counts = [c.execution_count for c in nb.cells if c.cell_type == "code"
+                  and c.execution_count is not None]
+        assert sorted(counts) == list(range(1, len(counts) + 1)), (n, counts)
+        assert not any("%reset" in c.source for c in nb.cells)
+    assert not [f.name for f in gen.rglob(".*") if f.is_file()]
