@@ -280,7 +280,7 @@ def execute_entry(entry: Entry, parameters: dict, stamp: dict, timeout: float | 
         os.dup2(fh.fileno(), 2)
     offset = errlog.stat().st_size
     try:
-        kernels.ready(KERNEL, errlog)
+        kernels.ready(KERNEL)
         return _execute(entry, parameters, stamp, timeout, tmp, t0, (errlog, offset),
                         env or {})
     finally:

@@ -34,7 +34,7 @@ RSS_LIMIT_BYTES = 3 * 2**30
 #: Name under which :class:`SharedKernelEngine` is registered with papermill.
 ENGINE_NAME = "lunarcap-shared-kernel"
 
-_STATE: dict = {"km": None, "stderr": None}
+_STATE: dict = {"km": None}
 
 
 def prelude_cell(env: dict):
@@ -123,12 +123,11 @@ def shutdown() -> None:
         run_sync(km.cleanup_resources)()
 
 
-def ready(kernel_name: str, stderr_path: Path):
-    """This worker's kernel manager, fit for the next entry (started by nbclient on first use).
+def ready(kernel_name: str):
+    """The kernel manager of this worker, fit for the next entry (nbclient starts it).
 
-    A dead kernel or one over :data:`RSS_LIMIT_BYTES` is replaced. The kernel inherits this
-    process's stderr when it starts: the start is the only moment it is redirected, to
-    ``stderr_path`` (kept by the caller; quoted if an entry fails).
+    A dead kernel or one over :data:`RSS_LIMIT_BYTES` is replaced. The kernel inherits
+    this process's stderr when it starts (the caller points it at a log first).
     """
     from jupyter_client.manager import AsyncKernelManager
     from jupyter_core.utils import run_sync
@@ -143,14 +142,9 @@ def ready(kernel_name: str, stderr_path: Path):
             km = None
     if km is None or not km.has_kernel:
         km = AsyncKernelManager(kernel_name=kernel_name)
-        _STATE["km"], _STATE["stderr"] = km, Path(stderr_path)
+        _STATE["km"] = km
         multiprocessing.util.Finalize(None, shutdown, exitpriority=10)
     return km
-
-
-def stderr_path() -> Path | None:
-    """Where the live kernel's stderr goes (None before the first start)."""
-    return _STATE["stderr"]
 
 
 def _register() -> None:
