@@ -93,3 +93,27 @@ def test_ctrl_c_in_a_study_exits_130_with_one_line(argv, module, func, unit, mon
     err = capsys.readouterr().err.strip().splitlines()
     assert err == [f"lunarcap: interrupted; finished {unit} are in the table, run the same "
                    "command again to resume"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("argv, expect", [
+    (["burns", "song2011-150N", "--counts", "1,2"],
+     ["N = 2: total dV", "burn 1: ellipse", "burn 2: circle", "table: "]),
+    (["missed", "song2011-150N", "--fractions", "0.5", "--delays-min", "0", "--late-min", "5"],
+     ["cut-off", "late ignition", "recovered", "nominal: burns 1..3 need"]),
+    (["dispersions", "song2011-150N", "--samples", "2", "--thrust-sigma-pct", "1"],
+     ["99 % budget above nominal", "correction failed: 0", "table: "]),
+])
+def test_study_text_output_names_each_burn(argv, expect, tmp_path, capsys, monkeypatch):
+    """The studies' plain-text report (not --json), two-body: exit 0, every line written.
+
+    ``burns`` raised KeyError on each burn's line once its JSON key became
+    ``target_orbit``; the JSON tests did not see it.
+    """
+    monkeypatch.setenv("LUNARCAP_NO_CACHE", "1")
+    code = main(argv + ["--dynamics", "two-body", "--workers", "1", "--no-progress",
+                        "--out", str(tmp_path / "t.csv")])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    for text in expect:
+        assert text in out, (text, out)

@@ -469,7 +469,8 @@ def format_rows(plan: CapturePlan, rows: list, result) -> str:
             + (", ".join(f"{float(p):.3f}" for p in periods.split(";")) + " h" if periods
                else "none"))
         for b in burns_of(r):
-            lines.append(f"    burn {b['burn']}: {b['target']:<20} ignition {b['ignition_epoch']}"
+            lines.append(f"    burn {b['burn']}: {b['target_orbit']:<20} ignition "
+                         f"{b['ignition_epoch']}"
                          f" ({b['start_min']:+.2f} min), {b['burn_duration_min']:6.2f} min, "
                          f"dV {b['delta_v_mps']:8.3f} m/s, impulsive "
                          f"{_num(b['impulsive_limit_mps'])}, loss {_num(b['delta_v_loss_mps'])} m/s"
