@@ -62,7 +62,8 @@ class JointNLP:
 
 @lru_cache(maxsize=None)
 def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
-                    free_coasts: tuple = (), period_rows: bool = False) -> JointNLP:
+                    free_coasts: tuple = (), period_rows: bool = False,
+                    expand: bool = False) -> JointNLP:
     """The NLP of N legs (one per target kind), each with a free ignition, linked end to start.
 
     Parameters (by name): ``x_start`` (the state at the first nominal perilune, physical),
@@ -80,6 +81,14 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
     specific orbital energy at the end of its coast, -(1 - f^2 - g^2) / (2 p) (VU^2, the
     osculating orbit at the perilune where its target holds); the solver bounds it above
     to bound that orbit's period.
+
+    ``expand`` (:meth:`NLPBuilder.compile`): expanding an all-burns NLP costs 3-14 s of
+    CPU against 0.1-1.6 s unexpanded, and its solves then run about 2x faster. Worth it
+    only for a shape solved many times in one process: the missed-thrust recoveries
+    (study of the book: 32.9 s of cases expanded, 41.3 s not), not a nominal solved
+    once (37.6 -> 19.0 s of CPU unexpanded) nor the burns study (34.1 -> 22.8 s for
+    ``lunarcap burns song2011-150N --counts 1,2,3,4,5``). Either way the same optimum to
+    the solver's tolerance (every total and penalty of those runs equal to 1 mm/s).
     """
     nb, nc = mesh.n_burn, mesh.n_coast
     n = len(target_kinds)
@@ -123,7 +132,7 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
     tag = "" if not any(free) else "_free" + "".join("1" if f else "0" for f in free)
     tag += "_period" if period_rows and any(free) else ""
     name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{mode}{tag}".replace("-", "_")
-    return JointNLP(nlp.compile(J, name), legs)
+    return JointNLP(nlp.compile(J, name, expand=expand), legs)
 
 
 @dataclass
@@ -176,7 +185,7 @@ def _legs_start(lay, warm: list, mesh: Mesh, fit, S, vectors: tuple, params: dic
 def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 16, 5),
                 free_coasts: tuple = (), coast_bounds_s: tuple | None = None,
                 max_time_s: float | None = None, fit=None, max_period_s: float | None = None,
-                warm: list | None = None) -> JointResult:
+                warm: list | None = None, expand: bool = False) -> JointResult:
     """Solve all burns of ``plan`` as one NLP, warm-started from a one-at-a-time chain.
 
     Parameters
@@ -206,6 +215,8 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         Per leg, instead of ``sequential`` (then None): the problem (its bounds, ignition
         window, dynamics) and the guess the NLP starts from (:func:`warm_start` of a solved
         burn is one).
+    expand : bool, optional
+        Expand the NLP to SX (see :func:`build_joint_nlp`): for a shape solved many times.
 
     Raises
     ------
@@ -218,7 +229,8 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     free = tuple(a or o for a, o in zip(asked, orbit))
     warm = warm if warm is not None else [warm_start(s) for s in sequential]
     period_rows = any(asked) and max_period_s is not None
-    nlp = build_joint_nlp(mesh, kinds, plan.dynamics, free if any(free) else (), period_rows)
+    nlp = build_joint_nlp(mesh, kinds, plan.dynamics, free if any(free) else (), period_rows,
+                          expand)
     lay = nlp.compiled.layout
     S = state_scale(warm[0][0].x_ref[6])
     w0 = np.zeros(lay.nv)

@@ -144,12 +144,16 @@ class NLPBuilder:
         self.layout.g_lb += [lb] * n
         self.layout.g_ub += [ub] * n
 
-    def compile(self, objective, name: str) -> "CompiledNLP":
-        """The IPOPT solver of everything added (CasADi expands it to SX: faster)."""
+    def compile(self, objective, name: str, expand: bool = True) -> "CompiledNLP":
+        """The IPOPT solver of everything added.
+
+        ``expand``: CasADi rewrites the graph in SX before differentiating it; its
+        evaluations are about 2x faster, its construction several times slower.
+        """
         t0 = time.perf_counter()
         w, p, g = ca.vertcat(*self._w), ca.vertcat(*self._p), ca.vertcat(*self._g)
         solver = ca.nlpsol(name, "ipopt", {"x": w, "p": p, "f": objective, "g": g},
-                           {"expand": True, "print_time": False, "ipopt": IPOPT_OPTIONS})
+                           {"expand": expand, "print_time": False, "ipopt": IPOPT_OPTIONS})
         g_fun = ca.Function(f"{name}_g", [w, p], [g])
         return CompiledNLP(solver, self.layout, g_fun, time.perf_counter() - t0)
 

@@ -297,12 +297,12 @@ def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
         warm, e = recovery_warm_start(rec_plan, eph, fit, max_period_s, mesh.n_coast)
         est.update(e)
         if nplan.targets[i].kind != PERILUNE:   # a circle: its coast stays the plan's
-            return solve_joint(rec_plan, None, eph, mesh, fit=fit, warm=warm)
+            return solve_joint(rec_plan, None, eph, mesh, fit=fit, warm=warm, expand=True)
         free = (True,) + (False,) * (rec_plan.n_burns - 1)
         hi = 60.0 * window_min[1] + max_period_s + 7200.0
         return solve_joint(rec_plan, None, eph, mesh, free_coasts=free,
                            coast_bounds_s=(MIN_FIRST_COAST_S, hi), fit=fit,
-                           max_period_s=max_period_s, warm=warm)
+                           max_period_s=max_period_s, warm=warm, expand=True)
     res = on_meshes(solve)
     est["first_coast_guess_s"] = first_coast
     return res, est
