@@ -18,7 +18,9 @@ The manifest ``notebooks/manifest.yml`` has one entry per execution::
         outputs: [tables/impulsive_baseline.csv]  # files below book/generated it writes
 
 Every entry also receives ``quick`` (bool) and ``output_name`` (its name). Entries run
-in dependency order, independent ones in parallel on up to ``--jobs`` processes.
+in dependency order, independent ones in parallel on up to ``--jobs`` processes, each
+process running its entries one after another in one kernel whose namespace is emptied
+before each (:mod:`lunarcap.report.kernels`).
 Each executed notebook is written to a temporary file and moved into place only on
 success; a failure stops the run (entries already running finish), names the entry
 and cell, keeps the failed notebook as ``book/generated/<name>.failed.ipynb`` and

@@ -1,8 +1,9 @@
 """Executing the manifest's notebooks: papermill in worker processes, interruption, pages.
 
 :func:`run_entries` runs the entries in dependency order, up to ``jobs`` at a time, each
-in a worker process (:func:`execute_entry`: papermill, then :func:`prepare_for_book`
-arranges the executed notebook as a page). SIGINT and SIGTERM stop the run within
+in a worker process (:func:`execute_entry`: papermill on the worker's kernel, see
+:mod:`lunarcap.report.kernels`, then :func:`prepare_for_book` arranges the executed
+notebook as a page). SIGINT and SIGTERM stop the run within
 seconds (:func:`interruptible`, :func:`stop_workers`): the workers, their kernels and the
 temporary files of the interrupted executions are removed.
 """
