@@ -359,15 +359,31 @@ def _execute(entry, parameters, stamp, timeout, tmp, t0, errlog, env) -> dict:
         return {"ok": True, "seconds": time.perf_counter() - t0, "cpu_s": stamp["cpu_s"]}
     except PapermillExecutionError as exc:
         tb = _ANSI.sub("", "\n".join(exc.traceback or []))
-        msg = (f"cell [{exc.exec_count}] raised {exc.ename}: {exc.evalue}\n"
+        msg = (f"{_which_cell(entry, exc.source)} raised {exc.ename}: {exc.evalue}\n"
                f"--- cell source ---\n{exc.source}\n--- traceback (last lines) ---\n"
                + "\n".join(tb.splitlines()[-12:]))
     except Exception as exc:  # kernel died, timeout, bad notebook, ...
         msg = f"{type(exc).__name__}: {_ANSI.sub('', str(exc))}" + _stderr_tail(errlog)
     kernels.shutdown()  # a failed entry may leave the kernel in any state
     if tmp.exists():
+        with contextlib.suppress(Exception):  # the failed notebook as a fresh kernel ran it
+            nb = nbformat.read(str(tmp), as_version=4)
+            kernels.drop_prelude(nb)
+            nbformat.write(nb, str(tmp))
         os.replace(tmp, entry.failed_path)
     return {"ok": False, "seconds": time.perf_counter() - t0, "error": msg}
+
+
+def _which_cell(entry: Entry, source: str) -> str:
+    """``"code cell k of <notebook>"`` for the source of a failed cell (k from 1)."""
+    import nbformat
+
+    with contextlib.suppress(Exception):
+        nb = nbformat.read(str(entry.notebook), as_version=4)
+        code = [c.source for c in nb.cells if c.cell_type == "code"]
+        if source in code:
+            return f"code cell {code.index(source) + 1} of {entry.notebook.name}"
+    return "a cell"
 
 
 class StudyCluster:

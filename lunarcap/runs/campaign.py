@@ -365,6 +365,36 @@ def read_table(path: str | os.PathLike, fmt: TableFormat) -> pd.DataFrame:
     return df.reindex(columns=list(fmt.columns))
 
 
+def set_aside_if_stale(path: Path, fmt: TableFormat) -> Path | None:
+    """Rename a table of lunarcap's cache that lacks this study's key columns; its new name.
+
+    A table below :data:`lunarcap.repro.paths.CACHE` (the book's studies, the default
+    ``--out``) is lunarcap's own: one written by a version whose cases had other keys
+    cannot be resumed, so it is renamed ``<name>.stale-<UTC time>.csv`` beside it (kept,
+    not deleted) and the study starts a new table, saying so on stderr. A table anywhere
+    else is the user's: :func:`read_table` refuses it. None when nothing was renamed.
+    """
+    path = Path(path)
+    if not path.is_file() or not path.resolve().is_relative_to(paths.CACHE.resolve()):
+        return None
+    try:
+        header = pd.read_csv(path, nrows=0).columns
+    except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError,
+            ValueError):
+        return None
+    missing = [c for c in (*fmt.key, *fmt.row_key, "status", "code_version")
+               if c not in header]
+    if not missing:
+        return None
+    stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    aside = path.with_name(f"{path.stem}.stale-{stamp}{path.suffix}")
+    path.rename(aside)
+    print(f"lunarcap: {path} was written by an older lunarcap (no column "
+          f"{', '.join(missing)}); kept as {aside.name}, starting a new table",
+          file=sys.stderr)
+    return aside
+
+
 def append_rows(path: str | os.PathLike, rows: list[dict], columns) -> None:
     """Append rows to the table atomically (rewrite to a temporary file, then rename).
 
@@ -502,6 +532,7 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
     state = {"cluster_s": 0.0, "workers": 0, "interrupted": False}
     keys = [fmt.case_key(k) for k, _ in cases]
     with table_lock(path, lock_wait_s, what=fmt.name):
+        set_aside_if_stale(path, fmt)
         have = latest(read_table(path, fmt), fmt, version)
         todo = _todo(cases, keys, have, recompute, retry_failed, ok_statuses, longest)
 

@@ -341,6 +341,7 @@ def test_failed_entry_stops_the_run_and_keeps_other_outputs(tmp_path):
     out = run.stdout + run.stderr
     assert run.returncode == 1, out
     assert "error: entry 'bad'" in out and "ZeroDivisionError" in out and "1 / 0" in out
+    assert "code cell 2 of bad.ipynb raised ZeroDivisionError" in out, out
     gen = root / "book" / "generated"
     assert (gen / "good.ipynb").is_file() and (gen / "tables" / "good.csv").read_text() == "x\n7\n"
     assert (gen / "bad.failed.ipynb").is_file() and not (gen / "bad.ipynb").exists()

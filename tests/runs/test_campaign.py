@@ -196,3 +196,36 @@ def test_cases_of_one_nlp_shape_go_to_one_worker_balanced_by_their_cost():
     assert campaign.assign_workers(Client("tcp://w1", "tcp://w2"), todo) == [None] * 10
     assert campaign.assign_workers(Client("tcp://w1"), todo, burns._nlp_shapes) == \
         [None] * 10
+
+
+def _one_row(plan, n, *rest):
+    """A burns-study task that solves nothing: one infeasible row (fast)."""
+    return {"status": "infeasible", "reason": "test", "n_burns": n}
+
+
+def test_a_stale_table_in_the_cache_is_set_aside_one_elsewhere_refused(tmp_path, monkeypatch,
+                                                                        capsys):
+    """A study table written by an older lunarcap (its cases had other key columns).
+
+    In lunarcap's cache (the book's tables) it is renamed beside itself and the study
+    runs; given by the user as --out elsewhere it is refused, untouched.
+    """
+    plan = load_plan("song2011-150N").with_dynamics("two-body")
+    stale = "plan,status,code_version\nsong2011-150N,ok,old\n"
+    cache_dir = tmp_path / "cache"
+    monkeypatch.setattr(campaign.paths, "CACHE", cache_dir)
+    mine = cache_dir / "study" / "burn_count.csv"
+    mine.parent.mkdir(parents=True)
+    mine.write_text(stale)
+    res = burns.run_burns([plan], "1", out=mine, task=_one_row, progress=False, workers=1,
+                          processes=False)
+    assert list(res.table.status) == ["infeasible"]
+    kept = list(mine.parent.glob("burn_count.stale-*.csv"))
+    assert len(kept) == 1 and kept[0].read_text() == stale
+    assert "written by an older lunarcap" in capsys.readouterr().err
+    theirs = tmp_path / "mine.csv"
+    theirs.write_text(stale)
+    with pytest.raises(InputError, match="is not a table of this study"):
+        burns.run_burns([plan], "1", out=theirs, task=_one_row, progress=False, workers=1,
+                        processes=False)
+    assert theirs.read_text() == stale
