@@ -373,6 +373,7 @@ def set_aside_if_stale(path: Path, fmt: TableFormat) -> Path | None:
     cannot be resumed, so it is renamed ``<name>.stale-<UTC time>.csv`` beside it (kept,
     not deleted) and the study starts a new table, saying so on stderr. A table anywhere
     else is the user's: :func:`read_table` refuses it. None when nothing was renamed.
+    The line goes to the process's own stderr, not to a notebook cell's output.
     """
     path = Path(path)
     if not path.is_file() or not path.resolve().is_relative_to(paths.CACHE.resolve()):
@@ -391,7 +392,7 @@ def set_aside_if_stale(path: Path, fmt: TableFormat) -> Path | None:
     path.rename(aside)
     print(f"lunarcap: {path} was written by an older lunarcap (no column "
           f"{', '.join(missing)}); kept as {aside.name}, starting a new table",
-          file=sys.stderr)
+          file=sys.__stderr__ or sys.stderr)  # a terminal, or a notebook kernel's log
     return aside
 
 

@@ -204,7 +204,7 @@ def _one_row(plan, n, *rest):
 
 
 def test_a_stale_table_in_the_cache_is_set_aside_one_elsewhere_refused(tmp_path, monkeypatch,
-                                                                        capsys):
+                                                                        capfd):
     """A study table written by an older lunarcap (its cases had other key columns).
 
     In lunarcap's cache (the book's tables) it is renamed beside itself and the study
@@ -222,7 +222,7 @@ def test_a_stale_table_in_the_cache_is_set_aside_one_elsewhere_refused(tmp_path,
     assert list(res.table.status) == ["infeasible"]
     kept = list(mine.parent.glob("burn_count.stale-*.csv"))
     assert len(kept) == 1 and kept[0].read_text() == stale
-    assert "written by an older lunarcap" in capsys.readouterr().err
+    assert "written by an older lunarcap" in capfd.readouterr().err
     theirs = tmp_path / "mine.csv"
     theirs.write_text(stale)
     with pytest.raises(InputError, match="is not a table of this study"):
