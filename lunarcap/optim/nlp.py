@@ -220,10 +220,15 @@ def leg_solution(layout, prefix: str, w: np.ndarray, prob: BurnProblem, mesh: Me
             "x_coast": np.column_stack([Xb[:, -1], Xc]), "u_inertial": u_in}
 
 
+def nlp_for(prob: BurnProblem, mesh: Mesh) -> BurnNLP:
+    """The compiled NLP of this burn problem's shape on ``mesh`` (built on first use)."""
+    return build_burn_nlp(mesh, prob.target.kind, prob.free_start, prob.steering,
+                          prob.model.mode, prob.free_end)
+
+
 def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     """Solve the burn's NLP on one mesh from a guess; no verification here."""
-    nlp = build_burn_nlp(mesh, prob.target.kind, prob.free_start, prob.steering,
-                         prob.model.mode, prob.free_end)
+    nlp = nlp_for(prob, mesh)
     lay = nlp.compiled.layout
     # meshes: burn uniform in time, coast equally spaced in the Sundman variable
     mb = np.linspace(0.0, 1.0, mesh.n_burn + 1)

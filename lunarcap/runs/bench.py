@@ -267,7 +267,7 @@ def engine_profile(engines=((300.0, 250.0), (420.0, 250.0)), dynamics: str = "fu
     import joblib
 
     import lunarcap.optim.solve as solve_mod
-    from lunarcap.optim.nlp import build_burn_nlp
+    from lunarcap.optim.nlp import build_burn_nlp, nlp_for
     from lunarcap.repro import cache
     from lunarcap.runs.study import solve_engine
 
@@ -277,8 +277,7 @@ def engine_profile(engines=((300.0, 250.0), (420.0, 250.0)), dynamics: str = "fu
     def counted(prob, mesh, guess):
         before = build_burn_nlp.cache_info().currsize
         t0 = time.perf_counter()
-        nlp = build_burn_nlp(mesh, prob.target.kind, prob.free_start, prob.steering,
-                             prob.model.mode)
+        nlp = nlp_for(prob, mesh)
         if build_burn_nlp.cache_info().currsize > before:
             acc["build_s"] = acc.get("build_s", 0.0) + time.perf_counter() - t0
         t0 = time.perf_counter()
