@@ -660,7 +660,7 @@ def format_rows(plan: CapturePlan, burn: int, rows: list, result) -> str:
             f"{str(r['contingency']):<13} {r['fraction']:8.3g} {r['delay_min']:9.4g} "
             f"{r['late_min']:8.4g} | {str(r['cutoff_orbit']):<16} {r['cutoff_e']:6.3f} "
             f"{ra_txt} | "
-            + (f"{r['recovery_delta_v_mps']:12.3f} {r['penalty_mps']:11.3f} "
+            + (f"{r['recovery_delta_v_mps']:12.3f} {r['penalty_mps']:z11.3f} "
                f"{r['time_to_final_orbit_h']:13.2f} | recovered" if ok else
                f"{'—':>12} {'—':>11} {'—':>13} | {r['status']}: {r['reason'] or r['error']}"))
     if rows:

@@ -164,3 +164,21 @@ def test_classify_energy_apolune_and_sphere_of_influence(plan):
 def test_bad_cases_are_input_errors(plan, burn, fraction, delay, match):
     with pytest.raises(InputError, match=match):
         check_case(plan, burn, fraction, delay)
+
+
+def test_a_penalty_that_rounds_to_zero_is_printed_without_a_sign(plan):
+    """The CLI's table: a recovery within 0.5 mm/s of the nominal reads 0.000, not -0.000."""
+    from types import SimpleNamespace
+
+    from lunarcap.runs.missed import format_rows
+
+    row = dict(contingency="cut-off", fraction=0.5, delay_min=0.0, late_min=0.0,
+               cutoff_orbit="escape", cutoff_e=1.066, cutoff_ra_km=math.inf,
+               recovery_delta_v_mps=728.392, penalty_mps=-4e-4, time_to_final_orbit_h=27.42,
+               status="recovered", reason="", error="", max_period_h=24.0,
+               nominal_remaining_delta_v_mps=869.963, nominal_burn_duration_min=15.93,
+               nominal_time_to_final_orbit_h=27.42)
+    run = dict(computed=1, reused=0, wall_s=1.0, scheduler="local", workers=1, cache="off")
+    text = format_rows(plan, 1, [row], SimpleNamespace(run=run, path="t.csv"))
+    line = text.splitlines()[2]
+    assert " 728.392       0.000 " in line and "-0.000" not in line, line
