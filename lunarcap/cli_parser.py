@@ -241,7 +241,7 @@ def _add_missed(sub, func) -> None:
 
 _SIGMAS = (("--thrust-sigma-pct", "%", "thrust, per burn"),
            ("--isp-sigma-pct", "%", "specific impulse, per burn"),
-           ("--pointing-sigma-deg", "deg", "each of two tilt angles of the thrust direction, "
+           ("--pointing-sigma-deg", "deg", "thrust direction, each of two tilt angles, "
                                            "fixed over a burn"),
            ("--ignition-sigma-s", "s", "ignition epoch, per burn"),
            ("--arrival-sigma-km", "km", "arrival position, per RTN axis"),
