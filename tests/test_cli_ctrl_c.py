@@ -168,6 +168,8 @@ def _case_running(proc, n, cpu_s=3.0):
     # several cases: one two-body recovery now takes a few seconds, over before Ctrl-C
     (["missed", "song2011-150N", "--fractions", "0.25,0.5,0.75,0.9", "--delays-min",
       "30,120"], "cases"),
+    (["dispersions", "song2011-150N", "--samples", "200", "--thrust-sigma-pct", "1",
+      "--pointing-sigma-deg", "0.3"], "samples"),
 ])
 def test_ctrl_c_in_a_study(argv, unit, tmp_path):
     proc = Command([*argv, "--dynamics", "two-body", "--no-cache", "--no-progress",
