@@ -156,7 +156,8 @@ def format_summary(plan: CapturePlan, model: ErrorModel, s: dict, result) -> str
                      f"{s[f'propellant_p{q:g}_kg']:13.3f}")
     lines.append(f"  99 % budget above nominal: {s['budget_p99_above_nominal_mps']:.3f} m/s, "
                  f"{100 * s['ci_level']:g} % interval [{lo:.3f}, {hi:.3f}] m/s "
-                 f"(order statistics, distribution-free; inf: too few samples)")
+                 f"(order statistics, distribution-free"
+                 f"{'; inf: too few samples' if math.isinf(hi) else ''})")
     lines.append(f"  not captured: {s['p_not_captured']:.4g} (95 % upper bound "
                  f"{s['p_not_captured_upper95']:.3g}); correction failed: "
                  f"{s['p_correction_failed']:.4g} (upper bound "
