@@ -203,6 +203,10 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
         page.value(f"nominal_{tag}", float(r["nominal_delta_v_mps"]))
     page.value("median_sample_s", float(budget.median_sample_s.median()))
     page.value("median_sample_cpu_s", float(budget.median_sample_cpu_s.median()))
+    every = pd.concat(tables.values())
+    page.value("n_samples_all", int(len(every)))
+    page.value("samples_cpu_s", float((every.task_cpu_s if "task_cpu_s" in every
+                                       else every.task_wall_s).sum()))
     page.value("wall_s", float(sum(r["wall_s"] for r in runs)))
     page.value("n_failed", int(sum((t.status != "ok").sum() for t in tables.values())))
     bugs = pd.concat([t[~t.status.isin(disp.OK_STATUSES)] for t in tables.values()])
