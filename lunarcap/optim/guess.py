@@ -14,6 +14,7 @@ import numpy as np
 
 from lunarcap.optim.problem import BurnProblem, anti_velocity_u
 from lunarcap.physics import constants as C
+from lunarcap.physics.elements import mean_motion_and_anomaly
 from lunarcap.physics.propagate import Trajectory, propagate
 from lunarcap.physics.rocket import burn_duration_estimate_s
 from lunarcap.physics.steering import law
@@ -52,16 +53,6 @@ def make_guess(prob: BurnProblem, t1_s: float | None = None, tune: bool = True) 
     return guess_arcs(prob, t1)
 
 
-def mean_motion_and_anomaly(x, mu=C.MU_MOON):
-    """Osculating mean motion (rad/s) and mean anomaly (rad, in (-pi, pi]) of MEE state(s)."""
-    p, f, g, L = x[0], x[1], x[2], x[5]
-    e = np.hypot(f, g)
-    a = p / (1 - e * e)
-    nu = np.angle(np.exp(1j * (L - np.arctan2(g, f))))  # wrapped to (-pi, pi]
-    E = 2 * np.arctan2(np.sqrt(1 - e) * np.sin(nu / 2), np.sqrt(1 + e) * np.cos(nu / 2))
-    return np.sqrt(mu / a ** 3), E - e * np.sin(E)
-
-
 def tune_duration(prob: BurnProblem, t1: float, revs: int = 1):
     """Burn duration for which the anti-velocity guess reaches perilune at t_end.
 
@@ -78,7 +69,7 @@ def tune_duration(prob: BurnProblem, t1: float, revs: int = 1):
     xs = g.burn(prob.t_ign_s + ts)
     ok = np.hypot(xs[1], xs[2]) < 1
     ts = ts[ok]
-    n, M = mean_motion_and_anomaly(xs[:, ok])
+    n, M = mean_motion_and_anomaly(xs[:, ok], C.MU_MOON)
     tot = M + n * (span - ts) - 2 * np.pi * revs
     sign = np.nonzero(np.diff(np.sign(tot)) != 0)[0]
     if sign.size == 0:
@@ -88,7 +79,7 @@ def tune_duration(prob: BurnProblem, t1: float, revs: int = 1):
     slope = (tot[i + 1] - tot[i]) / (ts[i + 1] - ts[i])
     for _ in range(4):  # numerical correction of the Kepler root
         arc = guess_arcs(prob, tk)
-        _, Mend = mean_motion_and_anomaly(arc.coast.x[:, -1])
+        _, Mend = mean_motion_and_anomaly(arc.coast.x[:, -1], C.MU_MOON)
         if abs(Mend) < 1e-5:  # ~0.1 s from perilune on a 12 h orbit: ample for a guess
             return float(tk), arc
         tk = tk - Mend / slope

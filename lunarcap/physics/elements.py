@@ -219,3 +219,17 @@ def orbit_summary(x, mu) -> dict:
             "gamma_deg": float(np.degrees(flight_path_angle(p, f, g, L))),
             "e": e, "p_km": p, "v_kmps": float(speed_from_mee(p, f, g, L, mu)),
             "r_km": float(np.linalg.norm(r))}
+
+
+def mean_motion_and_anomaly(x, mu):
+    """Osculating mean motion (rad/s) and mean anomaly (rad, in (-pi, pi]) of MEE state(s).
+
+    ``x``: (p km, f, g, h, k, L rad, ...) of one state or of states in columns; ``mu``
+    km^3/s^2. An elliptic orbit only (e < 1).
+    """
+    p, f, g, L = x[0], x[1], x[2], x[5]
+    e = np.hypot(f, g)
+    a = p / (1 - e * e)
+    nu = np.angle(np.exp(1j * (L - np.arctan2(g, f))))  # wrapped to (-pi, pi]
+    E = 2 * np.arctan2(np.sqrt(1 - e) * np.sin(nu / 2), np.sqrt(1 + e) * np.cos(nu / 2))
+    return np.sqrt(mu / a ** 3), E - e * np.sin(E)
