@@ -36,13 +36,13 @@ from lunarcap.errors import SolveError
 from lunarcap.mission.plan import CapturePlan
 from lunarcap.mission.targets import N_VALUES
 from lunarcap.optim.collocation import LU, N_X, TU, Mesh, state_scale
+from lunarcap.optim.flight import BurnPlan
 from lunarcap.optim.guess import Guess
 from lunarcap.optim.nlp import (
     RawSolution,
     initial_point,
     leg_bounds,
     leg_solution,
-    steering_function,
 )
 from lunarcap.optim.problem import END_WINDOW_FRACTION, burn_problem
 from lunarcap.optim.solution import Solution
@@ -153,7 +153,7 @@ class JointResult:
 
 def warm_start(sol: Solution) -> tuple:
     """(problem, Guess, coast mesh fractions) of one leg, from a solved burn."""
-    u_fn, burn = steering_function(sol.raw), sol.flight.burn
+    u_fn, burn = BurnPlan.of(sol.raw).direction, sol.flight.burn
     guess = Guess(sol.raw.t1_s, lambda t, u_fn=u_fn, b=burn: u_fn(t, b(t)), burn,
                   sol.flight.coast)
     return sol.problem, guess, sol.raw.mesh_coast

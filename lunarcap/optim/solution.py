@@ -7,13 +7,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from lunarcap.optim.nlp import RawSolution, burn_bounds, steering_function
-from lunarcap.optim.verify import Flight, Verification
+from lunarcap.optim.flight import BurnPlan, Flight
+from lunarcap.optim.nlp import RawSolution
+from lunarcap.optim.verify import Verification
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import rtn_from_mee
 from lunarcap.physics.elements import orbit_summary, period_from_semi_major_axis, rv_from_mee
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.frames import thrust_angles_deg
+from lunarcap.physics.propagate import N_X
 
 
 @dataclass
@@ -115,11 +117,11 @@ class Solution:
 
         burn, coast = self.flight.burn, self.flight.coast
         prob = self.problem
-        u_fn = steering_function(self.raw)
-        bounds = burn_bounds(self.raw)
+        plan = BurnPlan.of(self.raw)
+        bounds = plan.bounds_s
         tb = np.linspace(bounds[0], bounds[-1], n_burn)
-        xb = burn(tb)[:7]
-        ub = np.column_stack([u_fn(t, xb[:, i]) for i, t in enumerate(tb)])
+        xb = burn(tb)[:N_X]
+        ub = np.column_stack([plan.direction(t, xb[:, i]) for i, t in enumerate(tb)])
         tc = np.linspace(coast.t[0], coast.t[-1], n_coast)[1:]
         xc = coast(tc)
         t = np.concatenate([tb, tc])

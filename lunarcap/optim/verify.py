@@ -2,7 +2,7 @@
 
 The optimal steering (Lagrange-interpolated from the collocation points of each mesh
 interval and normalised; or the closed-form law on the state) is flown from the initial
-state with CVODES (adaptive Adams steps, rtol 1e-13; :mod:`lunarcap.physics.propagate`),
+state with CVODES (adaptive Adams steps, rtol 1e-13; :func:`lunarcap.optim.flight.fly_solution`),
 interval by interval through the burn, then the coast to the fixed end epoch: a method
 and an error control of its own, from the initial state alone. The target is checked
 with the **same** condition functions the NLPs impose
@@ -31,10 +31,10 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from lunarcap.mission.targets import ELLIPSE
-from lunarcap.optim.nlp import RawSolution, interval_steering
+from lunarcap.optim.flight import fly_solution
+from lunarcap.optim.nlp import RawSolution
 from lunarcap.physics.constants import MU_MOON
 from lunarcap.physics.elements import orbit_summary, rv_from_mee
-from lunarcap.physics.propagate import Trajectory, propagate
 
 #: Gate tolerances: objective (m/s), radii (m), angles (deg), end position (m), end speed (m/s).
 TOL_DV_MPS = 0.01
@@ -46,25 +46,6 @@ TOL_SPEED_MPS = 1e-3
 #: the perilune of a 12 h orbit moves the apolune by ~70 m.
 TOL_RA_M = 50.0
 TOL_PERIOD_S = 0.5
-
-
-@dataclass
-class Flight:
-    """The re-propagated flight of a solution: the burn (piecewise) and the coast."""
-
-    burn: Trajectory
-    coast: Trajectory
-    delta_v_mps: float
-
-    @property
-    def end_state(self) -> np.ndarray:
-        """State (p, f, g, h, k, L, m) at the end of the coast."""
-        return self.coast.final
-
-    @property
-    def nfev(self) -> int:
-        """Right-hand-side evaluations of the whole flight."""
-        return self.burn.nfev + self.coast.nfev
 
 
 @dataclass
@@ -119,61 +100,13 @@ class Verification:
         return out
 
 
-def fly(raw: RawSolution) -> Flight:
-    """Re-propagate the solution's steering from its initial state (burn, then coast).
-
-    The burn is flown interval by interval of the collocation mesh: within an interval the
-    steering is the interpolating polynomial of its collocated controls (or the
-    closed-form law on the state), which is smooth there and only there.
-    """
-    prob = raw.prob
-    x, arcs = np.append(prob.x0, 0.0), []
-    rel = raw.t1_s * raw.mesh_burn  # interval bounds in time since ignition (full precision)
-    for j in range(len(rel) - 1):
-        arcs.append(propagate(prob.model, prob.t_ign_s + rel[j], x[:7], None,
-                              u=interval_steering(raw, j), dense=True, dense_points=24,
-                              delta_v=True, dv0_kmps=x[7], duration_s=rel[j + 1] - rel[j]))
-        x = arcs[-1].final
-    burn = Trajectory.join(arcs)
-    coast = propagate(prob.model, prob.t_ign_s + raw.t1_s, x[:7], prob.t_end_s, u=None,
-                      dense=True)
-    return Flight(burn, coast, float(x[7]) * 1e3)
-
-
-def fly_burn_until(raw: RawSolution, duration_s: float) -> np.ndarray:
-    """State and delta-V after the first ``duration_s`` of the solution's burn, re-flown.
-
-    The steering is flown from the initial state as in :func:`fly` and the engine stops
-    after ``duration_s`` (0 <= duration_s <= the burn's duration): a burn cut short.
-
-    Returns
-    -------
-    ndarray (8,)
-        (p km, f, g, h, k, L rad, m kg, delta-V km/s) at ignition + ``duration_s``.
-    """
-    prob = raw.prob
-    if not 0.0 <= duration_s <= raw.t1_s * (1 + 1e-12):
-        raise ValueError(f"a cut-off after {duration_s} s is outside the burn's "
-                         f"{raw.t1_s} s")
-    x = np.append(prob.x0, 0.0)
-    rel = raw.t1_s * raw.mesh_burn
-    for j in range(len(rel) - 1):
-        if duration_s <= rel[j]:
-            break
-        span = min(rel[j + 1], duration_s) - rel[j]
-        x = propagate(prob.model, prob.t_ign_s + rel[j], x[:7], None,
-                      u=interval_steering(raw, j), delta_v=True, dv0_kmps=x[7],
-                      duration_s=span).final
-    return x
-
-
 def verify(raw: RawSolution, return_flight: bool = False):
     """Re-propagate ``raw`` and measure its residuals against the gate.
 
     Returns the Verification, or (Verification, Flight) with ``return_flight``.
     """
     prob = raw.prob
-    flight = fly(raw)
+    flight = fly_solution(raw)
     xf = flight.end_state
     err = prob.target.errors(xf[:6])
     v_end = orbit_summary(xf, MU_MOON)["v_kmps"]
