@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from lunarcap.errors import InputError
+from lunarcap.optim.flight import ExecutionErrors
 
 #: Most burns a plan may have in this study (the draws' block is sized for it).
 MAX_BURNS = 8
@@ -151,18 +152,8 @@ def sample_draws(seed: int, index: int, antithetic: bool = False) -> np.ndarray:
     return draws(seed, index)
 
 
-@dataclass(frozen=True)
-class BurnErrors:
-    """The errors of one burn: thrust and Isp factors, tilt (rad, 2), ignition offset (s)."""
-
-    thrust_factor: float = 1.0
-    isp_factor: float = 1.0
-    tilt_rad: tuple = (0.0, 0.0)
-    ignition_s: float = 0.0
-
-
 def realise(z: np.ndarray, model: ErrorModel, n_burns: int) -> tuple:
-    """(arrival error (6,) km and km/s in RTN, [BurnErrors per burn]) from the draws."""
+    """(arrival error (6,) km and km/s in RTN, [ExecutionErrors per burn]) from the draws."""
     z = np.asarray(z, float)
     if model.arrival_cov is not None:
         d_arr = arrival_factor(model.arrival_cov) @ z[:6]
@@ -172,7 +163,7 @@ def realise(z: np.ndarray, model: ErrorModel, n_burns: int) -> tuple:
     out = []
     for i in range(n_burns):
         b = z[6 + PER_BURN * i: 6 + PER_BURN * (i + 1)]
-        out.append(BurnErrors(1.0 + model.thrust_sigma_pct / 100 * b[0],
+        out.append(ExecutionErrors(1.0 + model.thrust_sigma_pct / 100 * b[0],
                               1.0 + model.isp_sigma_pct / 100 * b[1],
                               (math.radians(model.pointing_sigma_deg) * b[2],
                                math.radians(model.pointing_sigma_deg) * b[3]),

@@ -7,7 +7,7 @@ A Monte Carlo of the whole capture, corrected in closed loop. In one **sample**:
    (``arrival_sigma_km``, ``arrival_sigma_mps`` per axis) or from a 6x6 covariance (km,
    km/s). It is a navigation error: burn 1 is not re-planned for it.
 2. **Burn 1** is flown open loop: the nominal optimal steering (the collocated polynomial
-   of each mesh interval, :func:`lunarcap.optim.nlp.interval_steering`), re-propagated
+   of each mesh interval, :func:`lunarcap.optim.flight.interval_steering`), re-propagated
    from the dispersed state with the burn's own errors: thrust scaled by (1 + dT), Isp by
    (1 + dIsp), the thrust direction tilted by a fixed random rotation in the local RTN
    frame (two angles perpendicular to the burn's mean direction, each of standard
@@ -55,26 +55,35 @@ from __future__ import annotations
 import json
 import math
 import time
-from dataclasses import dataclass, replace
 
 import numpy as np
 
 from lunarcap.errors import InputError, SolveError, integer
 from lunarcap.mission.plan import CapturePlan, PlanError
-from lunarcap.optim.guess import Guess, mean_motion_and_anomaly
-from lunarcap.optim.nlp import interval_steering
+from lunarcap.optim.flight import (
+    BurnPlan,
+    ExecutionErrors,
+    Flown,
+    coast,
+    coast_to_perilune,
+    flown_guess,
+    fly,
+)
 from lunarcap.optim.problem import burn_problem
 from lunarcap.optim.solve import solve_burn_problem
 from lunarcap.physics import constants as C
-from lunarcap.physics.elements import mee_from_rv, orbit_summary, rv_from_mee
-from lunarcap.physics.propagate import Trajectory, propagate
-from lunarcap.physics.steering import Steering, polynomial
+from lunarcap.physics.elements import (
+    mean_motion_and_anomaly,
+    mee_from_rv,
+    orbit_summary,
+    rv_from_mee,
+)
+from lunarcap.physics.state import State
 from lunarcap.repro.cache import code_version, enabled, position
 from lunarcap.runs.dispersion_model import (  # noqa: F401
     BLOCK,
     MAX_BURNS,
     PER_BURN,
-    BurnErrors,
     ErrorModel,
     arrival_factor,
     draws,
@@ -113,93 +122,7 @@ OK_STATUSES = ("ok", "not captured", "correction failed")
 _MODULES = ("runs/dispersions.py", "runs/dispersion_model.py", "runs/dispersion_summary.py")
 
 
-# ====================================================================== flying with errors
-def rotation(axis_angle) -> np.ndarray:
-    """Rotation matrix of a rotation vector (rad), Rodrigues."""
-    w = np.asarray(axis_angle, float)
-    th = float(np.linalg.norm(w))
-    if th == 0.0:
-        return np.eye(3)
-    k = w / th
-    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
-    return np.eye(3) + math.sin(th) * K + (1 - math.cos(th)) * K @ K
-
-
-def tilt_matrix(raw, tilt_rad) -> np.ndarray:
-    """The RTN rotation tilting a burn's thrust by ``tilt_rad`` (two angles, rad).
-
-    The rotation vector lies perpendicular to the burn's mean thrust direction (the mean
-    of its collocated controls): e1 = mean x n / |.|, e2 = mean x e1 with n the orbit
-    normal (or the radial axis if the mean is nearly normal); its length is the tilt.
-    """
-    if not any(tilt_rad):
-        return np.eye(3)
-    u = np.asarray(raw.u, float)
-    u = u / np.linalg.norm(u, axis=0)
-    m = u.mean(axis=1)
-    m /= np.linalg.norm(m)
-    ref = np.array([0.0, 0.0, 1.0]) if abs(m[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
-    e1 = np.cross(m, ref)
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(m, e1)
-    return rotation(tilt_rad[0] * e1 + tilt_rad[1] * e2)
-
-
-def tilted_steering(raw, j: int, R: np.ndarray) -> Steering:
-    """Interval ``j``'s steering rotated by R (RTN): the polynomial of R U, same nodes.
-
-    The direction of a polynomial steering is U l(tau) / |U l(tau)|, so rotating the
-    controls rotates the direction: (R U) l / |R U l| = R (U l / |U l|).
-    """
-    s = interval_steering(raw, j)
-    if np.array_equal(R, np.eye(3)):
-        return s
-    if s.kind != "polynomial":
-        raise InputError(f"pointing errors need the optimal steering (a polynomial per mesh "
-                         f"interval); burn {raw.prob.index} uses {raw.prob.steering!r}")
-    d = len(s.nodes)
-    U = np.asarray(s.params, float).reshape(3, d, order="F")
-    return polynomial(s.nodes, R @ U)
-
-
-@dataclass
-class FlownBurn:
-    """A burn flown with its errors: ignition and end epochs, end state, delta-V, trajectory."""
-
-    t_ign_s: float
-    t_end_s: float
-    x_end: np.ndarray        # (p, f, g, h, k, L, m)
-    delta_v_mps: float       # int T/m dt along the flight, actual thrust and mass
-    burn: Trajectory
-
-
-def fly_with_errors(raw, x_ref, t_ref_s: float, err: BurnErrors, dense: bool = False
-                    ) -> FlownBurn:
-    """Fly a solved burn's steering from the state ``x_ref`` at ``t_ref_s`` with its errors.
-
-    The coast from ``t_ref_s`` to the ignition (the solution's, plus ``err.ignition_s``)
-    in the solution's dynamics; then the mesh intervals of the burn, each with its
-    collocated steering tilted by ``err.tilt_rad``, with thrust and Isp scaled, for the
-    planned duration (a timer cut-off). With no errors this is the verification's flight
-    (:func:`lunarcap.optim.verify.fly`) from the same state.
-    """
-    prob = raw.prob
-    model = replace(prob.model, thrust_N=prob.model.thrust_N * err.thrust_factor,
-                    isp_s=prob.model.isp_s * err.isp_factor)
-    t_ign = prob.t_ign_s + err.ignition_s
-    x0 = propagate(prob.model, t_ref_s, np.asarray(x_ref, float)[:7], t_ign).final
-    R = tilt_matrix(raw, err.tilt_rad)
-    x, arcs = np.append(x0, 0.0), []
-    rel = raw.t1_s * raw.mesh_burn
-    for j in range(len(rel) - 1):
-        arcs.append(propagate(model, t_ign + rel[j], x[:7], None, u=tilted_steering(raw, j, R),
-                              dense=dense, dense_points=24, delta_v=True, dv0_kmps=x[7],
-                              duration_s=rel[j + 1] - rel[j]))
-        x = arcs[-1].final
-    return FlownBurn(t_ign, t_ign + raw.t1_s, x[:7].copy(), float(x[7]) * 1e3,
-                     Trajectory.join(arcs) if dense else arcs[-1])
-
-
+# ====================================================================== the orbit reached
 def orbit_check(x) -> str:
     """'' if the orbit of state ``x`` is captured, else why not (physical terms)."""
     o = orbit_summary(np.asarray(x, float), C.MU_MOON)
@@ -213,53 +136,6 @@ def orbit_check(x) -> str:
         return (f"perilune {o['rp_km'] - C.R_MOON:.0f} km below the surface: the spacecraft "
                 "would hit the Moon")
     return ""
-
-
-def next_perilune(model, t_s: float, x, t_guess_s: float, tol_s: float = 1e-3) -> tuple:
-    """(epoch, state) of the perilune nearest ``t_guess_s`` on the arc from (t_s, x).
-
-    Propagates to the guess, jumps by the osculating mean anomaly, then Newton on
-    r.v = 0 (rate v^2 - mu/r), in the model's dynamics.
-    """
-    t, xx = float(t_s), np.asarray(x, float)[:7]
-    target = float(t_guess_s)
-    xx = propagate(model, t, xx, target).final
-    t = target
-    n, M = mean_motion_and_anomaly(xx)
-    dt = -float(M) / float(n)
-    for _ in range(8):
-        if abs(dt) < tol_s:
-            break
-        xx = propagate(model, t, xx, t + dt).final
-        t += dt
-        r, v = (np.array(a, float) for a in rv_from_mee(*xx[:6], C.MU_MOON))
-        rv = float(r @ v)
-        rate = float(v @ v) - C.MU_MOON / float(np.linalg.norm(r))
-        dt = -rv / rate
-    return t, xx
-
-
-def warm_guess(nominal_raw, prob) -> Guess:
-    """The nominal burn's steering flown from the re-planned problem's ignition: its guess.
-
-    The nominal duration and collocated steering (shifted to the new ignition), the burn
-    and the coast to the problem's end propagated from the problem's initial state: a
-    guess that is the nominal solution where the dispersion is zero.
-    """
-    raw = replace(nominal_raw, prob=replace(nominal_raw.prob, x0=prob.x0, t_ign_s=prob.t_ign_s,
-                                            model=prob.model))
-    flown = fly_with_errors(raw, prob.x0, prob.t_ign_s, BurnErrors(), dense=True)
-    bounds = prob.t_ign_s + raw.t1_s * raw.mesh_burn
-    pieces = [interval_steering(raw, j) for j in range(len(bounds) - 1)]
-
-    def u(t):
-        j = int(np.clip(np.searchsorted(bounds, t, side="right") - 1, 0, len(pieces) - 1))
-        tau = (t - bounds[j]) / (bounds[j + 1] - bounds[j])
-        return pieces[j](flown.burn(t)[:7], tau)
-
-    coast = propagate(prob.model, flown.t_end_s, flown.x_end, prob.t_end_s, dense=True,
-                      rtol=1e-8, atol=1e-10)
-    return Guess(raw.t1_s, u, flown.burn, coast)
 
 
 # ====================================================================== nominal
@@ -346,20 +222,21 @@ def _replan(plan: CapturePlan, i: int, t_p: float, x_p, nom) -> object:
 def replan_guesses(nominal_raw, prob) -> list:
     """The guesses a re-plan tries in turn: the nominal steering, or the timed burn first.
 
-    The nominal burn's steering (:func:`warm_guess`) is the natural start, except when the
-    plan's timeline makes it the wrong one: with the paper's target (a perilune at the
-    plan's fixed epoch) a burn error of a few m/s moves the perilune reached by tens of
-    minutes, and the next orbit must then have another period to bring its perilune back
-    onto the plan's epoch. The nominal steering's coast then misses that epoch by more
-    than :data:`TIMING_MISS_REV` of a revolution, and IPOPT started from it stalls or ends
-    on a costlier branch (one more revolution in a smaller orbit); the anti-velocity burn
-    whose duration is tuned to reach perilune at the epoch (``None``: the solver's own
-    :func:`lunarcap.optim.guess.make_guess`) goes first. The other guess is the fallback.
+    The nominal burn's steering (:func:`lunarcap.optim.flight.flown_guess`) is the natural
+    start, except when the plan's timeline makes it the wrong one: with the paper's target
+    (a perilune at the plan's fixed epoch) a burn error of a few m/s moves the perilune
+    reached by tens of minutes, and the next orbit must then have another period to bring
+    its perilune back onto the plan's epoch. The nominal steering's coast then misses that
+    epoch by more than :data:`TIMING_MISS_REV` of a revolution, and IPOPT started from it
+    stalls or ends on a costlier branch (one more revolution in a smaller orbit); the
+    anti-velocity burn whose duration is tuned to reach perilune at the epoch (``None``: the
+    solver's own :func:`lunarcap.optim.guess.make_guess`) goes first. The other guess is the
+    fallback.
     """
-    warm = warm_guess(nominal_raw, prob)
+    warm = flown_guess(nominal_raw, prob)
     if prob.free_end or prob.circular:
         return [warm, None]
-    _, mean_anomaly = mean_motion_and_anomaly(warm.coast.x[:, -1])
+    _, mean_anomaly = mean_motion_and_anomaly(warm.coast.x[:, -1], C.MU_MOON)
     if abs(float(mean_anomaly)) > 2 * math.pi * TIMING_MISS_REV:
         return [None, warm]
     return [warm, None]
@@ -395,11 +272,11 @@ def _corrected(plan: CapturePlan, i: int, t_ref: float, x_ref, nom) -> tuple:
                       .split("\n")[0])
 
 
-def _burn_record(i: int, sol, flown: FlownBurn, e: BurnErrors, t_ref: float) -> dict:
+def _burn_record(i: int, sol, flown: Flown, e: ExecutionErrors, t_ref: float) -> dict:
     """One flown burn of a sample, as stored in its row's ``burns_json``."""
     return {"burn": i + 1, "delta_v_mps": flown.delta_v_mps,
             "planned_delta_v_mps": sol.delta_v_mps,
-            "ignition_min": (flown.t_ign_s - t_ref) / 60.0,
+            "ignition_min": (flown.start.t_s - t_ref) / 60.0,
             "duration_min": sol.raw.t1_s / 60.0,
             "thrust_error_pct": 100 * (e.thrust_factor - 1),
             "isp_error_pct": 100 * (e.isp_factor - 1),
@@ -407,11 +284,11 @@ def _burn_record(i: int, sol, flown: FlownBurn, e: BurnErrors, t_ref: float) -> 
             "ignition_error_s": e.ignition_s}
 
 
-def _final_orbit(sol, flown: FlownBurn) -> dict:
+def _final_orbit(sol, flown: Flown) -> dict:
     """The final orbit's errors after the last burn, at the end of the plan's last coast."""
-    x_f = propagate(sol.problem.model, flown.t_end_s, flown.x_end, sol.problem.t_end_s).final
-    err = sol.problem.target.errors(x_f[:6])
-    o = orbit_summary(x_f, C.MU_MOON)
+    end = coast(sol.problem.model, flown.end, sol.problem.t_end_s).end
+    err = sol.problem.target.errors(end.mee)
+    o = orbit_summary(end.x, C.MU_MOON)
     return {"final_rp_error_km": err["rp_error_m"] / 1e3,
             "final_ra_error_km": (err["ra_error_m"] / 1e3 if err["ra_error_m"] is not None
                                   else math.nan),
@@ -444,19 +321,20 @@ def fly_sample(plan: CapturePlan, z, model: ErrorModel) -> dict:
                 out["burns_json"] = json.dumps(burns)
                 return _fail(out, "correction failed", why)
         e = errs[i]
-        flown = fly_with_errors(sol.raw, x_ref, t_ref, e)
+        flown = fly(BurnPlan.of(sol.raw).with_errors(e), State(t_ref, x_ref))
         burns.append(_burn_record(i, sol, flown, e, t_ref))
         out["burns_flown"] = i + 1
-        out["propellant_kg"] = float(plan.initial_mass_kg - flown.x_end[6])
+        out["propellant_kg"] = float(plan.initial_mass_kg - flown.end.mass_kg)
         out["total_delta_v_mps"] = float(sum(b["delta_v_mps"] for b in burns))
         out["burns_json"] = json.dumps(burns)
-        why = orbit_check(flown.x_end)
+        why = orbit_check(flown.end.x)
         if why:
             return _fail(out, "not captured", f"after burn {i + 1}, {why}")
         if i < plan.n_burns - 1:
             try:
-                t_ref, x_ref = next_perilune(sol.problem.model, flown.t_end_s, flown.x_end,
-                                             sol.problem.t_end_s + e.ignition_s)
+                peri = coast_to_perilune(sol.problem.model, flown.end,
+                                         sol.problem.t_end_s + e.ignition_s)
+                t_ref, x_ref = peri.t_s, peri.x
             except InputError as exc:   # beyond the burn's ephemeris fit (+-6 h)
                 return _fail(out, "correction failed",
                              f"the perilune after burn {i + 1} is not found within 6 h of the "

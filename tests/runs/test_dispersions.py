@@ -137,7 +137,9 @@ def test_a_perilune_tens_of_minutes_early_is_corrected_on_the_cheap_branch(plan,
 
 @pytest.mark.slow
 def test_the_burn_timed_to_the_plans_epoch_goes_first_when_the_nominal_misses_it(plan):
+    from lunarcap.optim.flight import BurnPlan, coast_to_perilune, fly
     from lunarcap.optim.problem import burn_problem
+    from lunarcap.physics.state import State
 
     m = D.ErrorModel(thrust_sigma_pct=1.0, isp_sigma_pct=0.5, pointing_sigma_deg=0.3,
                      ignition_sigma_s=1.0, arrival_sigma_km=1.0, arrival_sigma_mps=1.0)
@@ -146,9 +148,10 @@ def test_the_burn_timed_to_the_plans_epoch_goes_first_when_the_nominal_misses_it
     for k in (8, 13):   # the perilune reached 0.1 min late (sample 8), 51 min early (13)
         d_arr, errs = D.realise(D.draws(2011, k), m, plan.n_burns)
         t0, x0 = D._arrival_state(plan, d_arr)
-        fl = D.fly_with_errors(noms[0].raw, x0, t0, errs[0])
-        t_p, x_p = D.next_perilune(noms[0].problem.model, fl.t_end_s, fl.x_end,
-                                   noms[0].problem.t_end_s + errs[0].ignition_s)
+        fl = fly(BurnPlan.of(noms[0].raw).with_errors(errs[0]), State(t0, x0))
+        peri = coast_to_perilune(noms[0].problem.model, fl.end,
+                                 noms[0].problem.t_end_s + errs[0].ignition_s)
+        t_p, x_p = peri.t_s, peri.x
         b = plan.burns[1]
         rp = plan.resumed(1, t_p, x_p, window_min=(b.start_min, b.start_min)
                           ).with_start(0, b.start_min)
