@@ -12,11 +12,12 @@ arrival to one revolution of the final orbit:
   :data:`lunarcap.exchange.spk.DEFAULT_OBJECT_ID` (-310001) unless given;
 * ``<name>_attitude.csv`` and ``<name>_maneuvers.csv`` (:mod:`lunarcap.exchange.burns`).
 
-The arcs are the solutions' flights (:class:`lunarcap.optim.verify.Flight`): each burn
-flown interval by interval with the steering the verification flew, from the same states;
-each coast from the flown cut-off state, in the burn's own dynamics (its ephemeris fit),
-to the next ignition. States at the file's epochs are propagated there (CVODES, rtol
-1e-13), not interpolated, and nothing is re-optimised. The approach starts
+The arcs are the solutions' flights (:class:`lunarcap.optim.flight.Flight`), re-flown by
+:class:`lunarcap.optim.flight.Arc`: each burn interval by interval with the steering the
+verification flew, from the same states; each coast from the flown cut-off state, in the
+burn's own dynamics (its ephemeris fit), to the next ignition. States at the file's
+epochs are propagated there (CVODES, rtol 1e-13), not interpolated, and nothing is
+re-optimised. The approach starts
 :data:`APPROACH_MIN` before the first ignition (or at the state of a state arrival).
 """
 
@@ -33,15 +34,15 @@ from lunarcap.errors import InputError
 from lunarcap.exchange.burns import mean_direction, write_attitude, write_maneuvers
 from lunarcap.exchange.ccsds import OemSegment, interpolation_error, write_oem
 from lunarcap.exchange.spk import DEFAULT_OBJECT_ID, write_spk
-from lunarcap.optim.nlp import burn_bounds, interval_steering, steering_function
+from lunarcap.optim.flight import Arc, BurnPlan, burn_arc, coast_arc
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model, rtn_from_mee
 from lunarcap.physics.elements import orbit_summary, period_from_semi_major_axis, rv_from_mee
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import leap_second_table
 from lunarcap.physics.frames import icrf_from_mme
-from lunarcap.physics.propagate import propagate
-from lunarcap.physics.steering import COAST
+from lunarcap.physics.propagate import N_X
+from lunarcap.physics.state import MASS, State
 
 #: Step of the exported states on coasts and in burns, s.
 COAST_STEP_S = 60.0
@@ -50,44 +51,6 @@ BURN_STEP_S = 10.0
 ATTITUDE_STEP_S = 1.0
 #: The approach exported before the first ignition (v_inf arrivals), min.
 APPROACH_MIN = 60.0
-
-
-@dataclass
-class Arc:
-    """One exported arc: pieces ``(t0, x0 (7,), duration, steering)`` flown in ``model``."""
-
-    name: str
-    model: Model
-    pieces: list
-    thrust_N: float = 0.0
-
-    @property
-    def span(self) -> tuple:
-        """(first, last) epoch, s."""
-        ends = [p[0] for p in self.pieces] + [p[0] + p[2] for p in self.pieces]
-        return min(ends), max(ends)
-
-    def states(self, t) -> np.ndarray:
-        """(7, M) states (p, f, g, h, k, L, m) at increasing epochs ``t`` within the arc."""
-        t = np.asarray(t, float)
-        out = np.full((7, t.size), np.nan)
-        for t0, x0, dur, steer in self.pieces:
-            lo, hi = min(t0, t0 + dur), max(t0, t0 + dur)
-            sel = np.flatnonzero((t >= lo - 1e-9) & (t <= hi + 1e-9) & np.isnan(out[0]))
-            if not sel.size:
-                continue
-            order = sel if dur > 0 else sel[::-1]   # in the direction of integration
-            tt = np.clip(t[order], lo, hi)
-            exact = tt == t0
-            if exact.all():
-                out[:, order] = np.asarray(x0)[:, None]
-                continue
-            tr = propagate(self.model, t0, x0, None, u=steer, duration_s=dur,
-                           thrust_N=self.thrust_N if steer.thrusting else 0.0,
-                           t_eval=tt[~exact])
-            out[:, order[~exact]] = tr.x
-            out[:, order[exact]] = np.asarray(x0)[:, None]
-        return out
 
 
 def _grid(t0: float, t1: float, step: float) -> np.ndarray:
@@ -113,28 +76,19 @@ def flight_arcs(solutions, approach_min: float = APPROACH_MIN, t_start_s: float 
         model = Model(model.mode, 0.0, model.isp_s,
                       ChebyshevFit.fit(eph, t_a - 3600.0, fb.t[0] + 3600.0))
     if t_a < fb.t[0]:
-        arcs.append(Arc("approach", model, [(fb.t[0], fb.x[:7, 0], t_a - fb.t[0], COAST)]))
+        arcs.append(coast_arc("approach", model, State(fb.t[0], fb.x[:N_X, 0]), t_a - fb.t[0]))
     for i, sol in enumerate(solutions):
-        raw, flight, prob = sol.raw, sol.flight, sol.problem
-        bounds = burn_bounds(raw)
-        burn = flight.burn
-        pieces = []
-        for j in range(len(bounds) - 1):
-            k = int(np.argmin(np.abs(burn.t - bounds[j])))
-            pieces.append((burn.t[k], burn.x[:7, k], bounds[j + 1] - bounds[j],
-                           interval_steering(raw, j)))
-        arcs.append(Arc(f"burn {i + 1}", prob.model, pieces, prob.model.thrust_N))
-        coast = flight.coast
+        prob, flight = sol.problem, sol.flight
+        arcs.append(burn_arc(f"burn {i + 1}", sol.raw, flight))
+        cutoff = flight.cutoff
         if i + 1 < len(solutions):
             t_next = solutions[i + 1].flight.burn.t[0]
-            arcs.append(Arc(f"coast {i + 1}", prob.model,
-                            [(coast.t[0], coast.x[:7, 0], t_next - coast.t[0], COAST)]))
+            arcs.append(coast_arc(f"coast {i + 1}", prob.model, cutoff, t_next - cutoff.t_s))
         else:
-            o = orbit_summary(coast.x[:7, 0], C.MU_MOON)
+            o = orbit_summary(cutoff.x, C.MU_MOON)
             a = 0.5 * (o["rp_km"] + o["ra_km"])
             period = float(period_from_semi_major_axis(a, C.MU_MOON))
-            arcs.append(Arc("final orbit", prob.model,
-                            [(coast.t[0], coast.x[:7, 0], period, COAST)]))
+            arcs.append(coast_arc("final orbit", prob.model, cutoff, period))
     return arcs
 
 
@@ -158,16 +112,15 @@ def segment_of(arc: Arc, pole: str, step_s: float) -> tuple:
 
 def burn_samples(sol, arc: Arc, pole: str, step_s: float = ATTITUDE_STEP_S) -> dict:
     """Thrust direction (ICRF), mass and epochs of a burn every ``step_s`` (its cut-off last)."""
-    raw = sol.raw
+    burn = BurnPlan.of(sol.raw)
     t0, t1 = arc.span
     t = _grid(t0, t1, step_s)
     x = arc.states(t)
-    u_fn = steering_function(raw)
-    u_rtn = np.column_stack([u_fn(tj, x[:, j]) for j, tj in enumerate(t)])
+    u_rtn = np.column_stack([burn.direction(tj, x[:, j]) for j, tj in enumerate(t)])
     ir, it, i_n = (np.array(a) for a in rtn_from_mee(x[3], x[4], x[5]))
     u_mme = u_rtn[0] * ir + u_rtn[1] * it + u_rtn[2] * i_n
     u = icrf_from_mme(u_mme / np.linalg.norm(u_mme, axis=0), pole)
-    return {"t_s": t, "u_icrf": u, "thrust_N": arc.thrust_N, "mass_kg": x[6]}
+    return {"t_s": t, "u_icrf": u, "thrust_N": arc.thrust_N, "mass_kg": x[MASS]}
 
 
 def safe_name(name: str) -> str:
