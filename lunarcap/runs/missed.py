@@ -3,7 +3,7 @@
 Two contingencies of burn n of a plan (``contingency`` in the table):
 
 * **cut-off** (fraction f, delay d): burn n is flown as planned (its optimal steering,
-  re-propagated from its ignition state, :func:`lunarcap.optim.verify.fly_burn_until`)
+  re-propagated from its ignition state, :func:`lunarcap.optim.flight.cut_off`)
   and the engine stops after ``f`` of its duration; the spacecraft coasts for ``d`` (the
   fault being cleared).
 * **late ignition** (``late_min`` L, as studied for KPLO's LOI burns by Bae et al. 2017,
@@ -57,10 +57,10 @@ from lunarcap.errors import InputError, SolveError, number_list
 from lunarcap.mission.plan import CapturePlan, PlanError, plan_ephemeris
 from lunarcap.mission.targets import PERILUNE
 from lunarcap.optim.collocation import DEFAULT_MESHES, sundman_fractions
+from lunarcap.optim.flight import cut_off
 from lunarcap.optim.guess import guess_arcs, make_guess
 from lunarcap.optim.joint import solve_joint, warm_start
 from lunarcap.optim.problem import burn_problem
-from lunarcap.optim.verify import fly_burn_until
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
@@ -406,10 +406,10 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
     raw = legs[i].raw
     t_ref = nplan.nominal_perilunes_s
     t_cut_rel = fraction * raw.t1_s
-    xc = fly_burn_until(raw, t_cut_rel)
-    t_cut = legs[i].problem.t_ign_s + t_cut_rel
-    partial = float(xc[7]) * 1e3
-    cut = classify(xc[:7], t_cut, plan.ephemeris)
+    flown = cut_off(raw, t_cut_rel)
+    t_cut, xc = flown.end.t_s, flown.end.x
+    partial = flown.delta_v_mps
+    cut = classify(xc, t_cut, plan.ephemeris)
     out = {"contingency": "cut-off", "status": "recovered", "reason": "",
            "cutoff_epoch": calendar_from_seconds(t_cut),
            "cutoff_min_after_ignition": t_cut_rel / 60.0, "partial_delta_v_mps": partial,
@@ -419,7 +419,7 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
     rest = sum(nplan.coast_s(k) for k in range(burn, plan.n_burns))
     fit = _fit_for(plan, t_cut, delay_s + 60 * window_min[1] + max_period_s + 7200.0 + rest)
     coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
-    x_r = propagate(coast, t_cut, xc[:7], t_r).final if delay_s > 0 else xc[:7]
+    x_r = propagate(coast, t_cut, xc, t_r).final if delay_s > 0 else xc
     out["recovery_start_e"] = float(math.hypot(x_r[1], x_r[2]))
     why = physical_bound(plan, i, t_r, x_r, window_min, max_period_s, coast)
     if why:

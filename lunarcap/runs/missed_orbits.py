@@ -14,10 +14,10 @@ import numpy as np
 
 from lunarcap.mission.plan import CapturePlan, plan_ephemeris
 from lunarcap.mission.targets import PERILUNE
-from lunarcap.optim.guess import mean_motion_and_anomaly
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.elements import (
+    mean_motion_and_anomaly,
     mee_from_rv,
     orbit_summary,
     period_from_semi_major_axis,
