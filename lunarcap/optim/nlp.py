@@ -28,7 +28,6 @@ from lunarcap.optim.collocation import (
     Mesh,
     hk_bound,
     node_epochs,
-    radau_matrices,
     state_scale,
     sundman_fractions,
 )
@@ -40,7 +39,6 @@ from lunarcap.physics.dynamics import N_PARAM
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.rocket import rocket_delta_v_mps
-from lunarcap.physics.steering import Steering, law, polynomial
 
 
 @dataclass
@@ -254,38 +252,3 @@ def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
                        solve_s=solve_s, build_s=nlp.compiled.build_s,
                        max_defect=float(np.max(np.abs(gval[defect]))),
                        **leg_solution(lay, "", w, prob, mesh, mb, mc, S))
-
-
-def interval_steering(raw: RawSolution, j: int) -> Steering:
-    """The steering flown over burn interval ``j``.
-
-    The polynomial through its collocated controls (optimal law), or the closed-form law
-    with its parameters.
-    """
-    if raw.prob.steering == "optimal":
-        c, _ = radau_matrices(raw.mesh.degree)
-        d = raw.mesh.degree
-        return polynomial(c, raw.u[:, j * d:(j + 1) * d])
-    return law(raw.prob.steering, raw.u_inertial)
-
-
-def burn_bounds(raw: RawSolution) -> np.ndarray:
-    """Epochs of the burn's mesh-interval boundaries, s past J2000."""
-    return raw.prob.t_ign_s + raw.t1_s * raw.mesh_burn
-
-
-def steering_function(raw: RawSolution):
-    """u(t, x): the solution's thrust direction in RTN at epoch t and state x.
-
-    The steering of each mesh interval (:func:`interval_steering`: the polynomial through
-    the collocated controls, or the closed-form law on the state), evaluated numerically;
-    the same :class:`~lunarcap.physics.steering.Steering` the verification flies.
-    """
-    bounds = burn_bounds(raw)
-    pieces = [interval_steering(raw, j) for j in range(len(bounds) - 1)]
-
-    def u(t, x):
-        j = int(np.clip(np.searchsorted(bounds, t, side="right") - 1, 0, len(pieces) - 1))
-        tau = (t - bounds[j]) / (bounds[j + 1] - bounds[j])
-        return pieces[j](x, tau)
-    return u

@@ -2,8 +2,8 @@
 
 Each figure has a data function returning plain arrays in a dataclass; the drawing
 functions of :mod:`lunarcap.report.figures` only draw them. Trajectories are sampled from
-verified solutions (:class:`lunarcap.optim.solution.Solution`) and coasts propagated with
-:func:`lunarcap.physics.propagate.propagate`; each drawn arc keeps the
+verified solutions (:class:`lunarcap.optim.solution.Solution`) and coasts flown by
+:func:`lunarcap.optim.flight.coast`; each drawn arc keeps the
 :class:`~lunarcap.physics.propagate.Trajectory` it samples.
 """
 
@@ -15,10 +15,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from lunarcap.mission.scenario import paper_scenario
+from lunarcap.optim.flight import coast
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import rv_from_coe, rv_from_mee, semi_major_axis_from_period
 from lunarcap.physics.frames import rtn_basis, thrust_angles_deg, thrust_direction_rtn
-from lunarcap.physics.propagate import Trajectory, propagate
+from lunarcap.physics.propagate import Trajectory
+from lunarcap.physics.state import State
 
 
 # =============================================================================== Fig. 1
@@ -324,14 +326,14 @@ def _hyperbola_arc(basis, arrival, p1, hyperbola_hours: float) -> DrawnArc:
         raise ValueError("hyperbola_hours must reach back before the first ignition")
     x_peri = np.asarray(arrival.state, float)
     t_back = np.linspace(p1.t_ign_s, t_start, 1500)
+    peri = State(t_peri, x_peri)
     if p1.t_ign_s < t_peri:
-        tr = propagate(model, t_peri, x_peri, t_start, u=None, t_eval=t_back)
+        tr = coast(model, peri, t_start, t_eval=t_back).arc
         t_h, x_h = tr.t[::-1], tr.x[:, ::-1]
     else:  # ignition at or after the arrival perilune
-        tr = propagate(model, t_peri, x_peri, t_start, u=None,
-                       t_eval=np.linspace(t_peri, t_start, 1500))
-        fw = propagate(model, t_peri, x_peri, p1.t_ign_s, u=None,
-                       t_eval=np.linspace(t_peri, p1.t_ign_s, 200)[1:])
+        tr = coast(model, peri, t_start, t_eval=np.linspace(t_peri, t_start, 1500)).arc
+        fw = coast(model, peri, p1.t_ign_s,
+                   t_eval=np.linspace(t_peri, p1.t_ign_s, 200)[1:]).arc
         t_h = np.concatenate([tr.t[::-1], fw.t])
         x_h = np.column_stack([tr.x[:, ::-1], fw.x])
     return _make_arc(basis, "hyperbola", 0, "arrival hyperbola", t_h, x_h)
@@ -363,13 +365,13 @@ def _extra_arcs(basis, sols: list, arrival, final_revolutions: float,
         t0 = last.problem.t_end_s
         t1 = t0 + final_revolutions * (t0 - last.problem.t_perilune_s)
         tf = np.linspace(t0, t1, max(int(600 * final_revolutions), 50))
-        tr = propagate(last.problem.model, t0, last.end_state, t1, u=None, t_eval=tf)
+        tr = coast(last.problem.model, State(t0, last.end_state), t1, t_eval=tf).arc
         arcs.append(_make_arc(basis, "final", last.problem.index,
                               "final orbit, one more revolution", tr.t, tr.x))
     if uncaptured_hours and uncaptured_hours > 0:
         t1 = float(arrival.epoch_s) + 3600.0 * float(uncaptured_hours)
         tu = np.linspace(p1.t_ign_s, t1, 1500)
-        tr = propagate(p1.model, p1.t_ign_s, p1.x0, t1, u=None, t_eval=tu)
+        tr = coast(p1.model, State(p1.t_ign_s, p1.x0), t1, t_eval=tu).arc
         arcs.append(_make_arc(basis, "uncaptured", 0, "arrival hyperbola without burn 1",
                               tr.t, tr.x))
     return arcs
