@@ -17,6 +17,7 @@ import numpy as np
 from lunarcap.errors import SolveError
 from lunarcap.optim.collocation import DEFAULT_MESHES
 from lunarcap.optim.guess import make_guess
+from lunarcap.optim.nlp import prebuild as _prebuild_nlps
 from lunarcap.optim.nlp import solve_nlp
 from lunarcap.optim.problem import BurnProblem
 from lunarcap.optim.solution import Solution
@@ -57,6 +58,16 @@ def solve_burn_problem(prob: BurnProblem, meshes=DEFAULT_MESHES, guess=None,
             return _solve_on_meshes(wider, meshes[:1], None, progress, t0)
         except SolveError:
             raise exc from None
+
+
+def prebuild(shapes, workers: int = 2) -> None:
+    """Build at once (in threads) the NLPs that solving burns of these shapes starts with.
+
+    ``shapes``: (target kind, free start, steering, dynamics[, free end]) tuples, one per
+    burn; each NLP is built on the first mesh :func:`solve_burn_problem` tries, once per
+    process (here or at the first solve).
+    """
+    _prebuild_nlps([(DEFAULT_MESHES[0], *shape) for shape in shapes], workers)
 
 
 def widened(prob: BurnProblem) -> BurnProblem | None:

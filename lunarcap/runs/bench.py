@@ -55,16 +55,14 @@ def run(dynamics: str = "full", out=print, cases=None, reuse: bool = True) -> li
     """Solve the cases uncached; print one line each and the medians. Returns the rows."""
     import contextlib
 
-    from lunarcap.optim.collocation import DEFAULT_MESHES
-    from lunarcap.optim.nlp import prebuild
+    from lunarcap.optim.solve import prebuild
     from lunarcap.repro.cache import caching
     from lunarcap.runs.chain import paper_case, reuse_earlier_burns
 
     t0 = time.perf_counter()
     # the two NLP shapes of the paper's cases (ellipse and circle targets, fixed ignition),
     # built at once on the machine's two cores; their time is part of the total
-    prebuild([(DEFAULT_MESHES[0], kind, False, "optimal", dynamics)
-              for kind in ("perilune", "circular")])
+    prebuild([(kind, False, "optimal", dynamics) for kind in ("perilune", "circular")])
     with caching(False), (reuse_earlier_burns() if reuse else contextlib.nullcontext()):
         return _run(dynamics, out, cases, reuse, paper_case, t0)  # nothing read or written
 

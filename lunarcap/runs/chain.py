@@ -340,20 +340,19 @@ def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True) -> None:
     ``burns``: 1-based burn numbers (default all). Burns (and impulsive limits) already in
     the disk cache need no NLP and are left out.
     """
-    from lunarcap.optim.collocation import DEFAULT_MESHES
-    from lunarcap.optim.nlp import prebuild
+    from lunarcap.optim.solve import prebuild
 
-    mesh, shapes = DEFAULT_MESHES[0], []
+    shapes = []
     for n in (burns or range(1, plan.n_burns + 1)):
         key, b = plan.key(n), plan.burns[n - 1]
         kind = plan.targets[n - 1].kind
         free_end = plan.targets[n - 1].free_epoch
         if not (enabled() and _in_cache(solve_burn, key)):
-            shapes.append((mesh, kind, b.free_start, b.steering, plan.dynamics, free_end))
+            shapes.append((kind, b.free_start, b.steering, plan.dynamics, free_end))
         if impulsive:
             if not (enabled() and _in_cache(_impulsive_limit, impulsive_key(key))):
-                shapes += [(mesh, kind, True, "optimal", plan.dynamics, free_end),
-                           (mesh, kind, False, "optimal", plan.dynamics, free_end)]
+                shapes += [(kind, True, "optimal", plan.dynamics, free_end),
+                           (kind, False, "optimal", plan.dynamics, free_end)]
     prebuild(shapes)
 
 
