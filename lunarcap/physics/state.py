@@ -3,7 +3,7 @@
 Everywhere else a state is the array (p, f, g, h, k, L, m) that the dynamics, the
 propagator and the collocation share (:data:`lunarcap.physics.propagate.N_X` = 7);
 :class:`State` names its parts where one is read, so that ``state.mass_kg`` is written
-instead of ``x[6]`` and ``state.mee`` instead of ``x[:6]``.
+instead of an index into the array, and ``state.mee`` for the elements.
 """
 
 from __future__ import annotations
