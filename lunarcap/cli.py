@@ -308,23 +308,34 @@ def _resumable(run, unit: str):
         return None, 130
 
 
-def cmd_study(args) -> int:
-    """Engine trade study on Dask: loss against thrust-to-weight, free ignition, per Isp."""
-    from lunarcap.runs.study import StudySpec, format_summary, run_study
+def run_study(args, study, run, head: dict | None = None, extra=None, **context) -> int:
+    """Run any study (a :class:`lunarcap.runs.shape.Study`) and report it; the exit status.
 
-    spec = StudySpec(args.thrust_min, args.thrust_max, args.points, args.isp, args.dynamics)
-    res, status = _resumable(lambda: run_study(
-        spec, out=args.out, workers=args.workers, scheduler=args.scheduler,
-        retry_failed=args.retry_failed, progress=not args.no_progress), "engines")
+    ``run()``: the study's run (resumable: Ctrl-C is one line, status 130); then its
+    ``--json`` document (``head``, the table and run, ``extra(result)``, the decoded rows)
+    or its text (``study.text(result, **context)``). Status 0 when every case has an
+    answer (a status of ``study.ok_statuses``), 3 otherwise.
+    """
+    res, status = _resumable(run, study.units)
     if status:
         return status
-    print(format_summary(res))
-    return 0 if res.failures.empty else 3
+    if getattr(args, "json", False):
+        doc = study.to_json(res, head or {}, extra(res) if extra else None)
+        print(json.dumps(_jsonable(doc), indent=2))
+    else:
+        print(study.text(res, **context))
+    return 0 if study.answered(res.table.to_dict("records")) else 3
 
 
-def _periods_h(text) -> list:
-    """The intermediate periods (h) of a burns-table cell ("8.365;3.5", empty or NaN)."""
-    return [float(p) for p in text.split(";") if p] if isinstance(text, str) else []
+def cmd_study(args) -> int:
+    """Engine trade study on Dask: loss against thrust-to-weight, free ignition, per Isp."""
+    from lunarcap.runs import study
+
+    spec = study.StudySpec(args.thrust_min, args.thrust_max, args.points, args.isp,
+                           args.dynamics)
+    return run_study(args, study.STUDY, lambda: study.run_study(
+        spec, out=args.out, workers=args.workers, scheduler=args.scheduler,
+        retry_failed=args.retry_failed, progress=not args.no_progress))
 
 
 def cmd_burns(args) -> int:
@@ -335,22 +346,11 @@ def cmd_burns(args) -> int:
     counts = burns.parse_counts(args.counts)
     max_period_h = number("--max-period-h", args.max_period_h, "h", positive=True)
     max_days = number("--max-days", args.max_days, "days", positive=True)
-    res, status = _resumable(lambda: burns.run_burns(
+    return run_study(args, burns.STUDY, lambda: burns.run_burns(
         [plan], counts, max_period_h, max_days, out=args.out, workers=args.workers,
-        scheduler=args.scheduler, progress=not args.no_progress), "counts")
-    if status:
-        return status
-    rows = res.table.to_dict("records")
-    if args.json:
-        out = {"plan": plan.to_dict(), "max_period_h": max_period_h, "max_days": max_days,
-               "table": str(res.path), "run": res.run,
-               "counts": [dict({k: v for k, v in r.items() if k != "burns_json"},
-                               periods_h=_periods_h(r["periods_h"]), burns=burns.burns_of(r))
-                          for r in rows]}
-        print(json.dumps(_jsonable(out), indent=2))
-    else:
-        print(burns.format_rows(plan, rows, res))
-    return 0 if all(r["status"] in ("ok", "infeasible") for r in rows) else 3
+        scheduler=args.scheduler, progress=not args.no_progress),
+        {"plan": plan.to_dict(), "max_period_h": max_period_h, "max_days": max_days},
+        plan=plan)
 
 
 def cmd_missed(args) -> int:
@@ -369,22 +369,11 @@ def cmd_missed(args) -> int:
     delays = number_list("--delays-min", args.delays_min, "min", minimum=0.0, distinct=True)
     late = None if args.late_min is None else \
         number_list("--late-min", args.late_min, "min", minimum=0.0, distinct=True)
-    res, status = _resumable(lambda: missed.run_missed(
+    return run_study(args, missed.STUDY, lambda: missed.run_missed(
         plan, burn, fractions, delays, max_period_h, out=args.out,
         workers=args.workers, scheduler=args.scheduler, progress=not args.no_progress,
-        late_min=late), "cases")
-    if status:
-        return status
-    rows = res.table.to_dict("records")
-    if args.json:
-        out = {"plan": plan.to_dict(), "burn": burn, "max_period_h": max_period_h,
-               "table": str(res.path), "run": res.run,
-               "cases": [dict({k: v for k, v in r.items() if k != "recovery_burns_json"},
-                              recovery_burns=missed.recovery_burns_of(r)) for r in rows]}
-        print(json.dumps(_jsonable(out), indent=2))
-    else:
-        print(missed.format_rows(plan, burn, rows, res))
-    return 0 if all(r["status"] in ("recovered", "no recovery") for r in rows) else 3
+        late_min=late), {"plan": plan.to_dict(), "burn": burn, "max_period_h": max_period_h},
+        plan=plan, burn=burn)
 
 
 def cmd_dispersions(args) -> int:
@@ -407,23 +396,13 @@ def cmd_dispersions(args) -> int:
                                             "pointing_sigma_deg", "ignition_sigma_s",
                                             "arrival_sigma_km", "arrival_sigma_mps")},
                             arrival_cov=cov)
-    res, status = _resumable(lambda: disp.run_dispersions(
+    return run_study(args, disp.STUDY, lambda: disp.run_dispersions(
         plan, samples, seed, model, out=args.out, workers=args.workers,
-        scheduler=args.scheduler, progress=not args.no_progress), "samples")
-    if status:
-        return status
-    rows = res.table.to_dict("records")
-    summary = disp.summarise(rows)
-    if args.json:
-        out = {"plan": plan.to_dict(), "error_model": model.key() | {
-                   "description": model.describe()},
-               "seed": seed, "table": str(res.path), "run": res.run, "summary": summary,
-               "samples": [dict({k: v for k, v in r.items() if k != "burns_json"},
-                                burns=disp.burns_of(r)) for r in rows]}
-        print(json.dumps(_jsonable(out), indent=2))
-    else:
-        print(disp.format_summary(plan, model, summary, res))
-    return 0 if all(r["status"] in disp.OK_STATUSES for r in rows) else 3
+        scheduler=args.scheduler, progress=not args.no_progress),
+        {"plan": plan.to_dict(),
+         "error_model": model.key() | {"description": model.describe()}, "seed": seed},
+        lambda res: {"summary": disp.summarise(res.table.to_dict("records"))},
+        plan=plan, model=model)
 
 
 def build_parser():

@@ -321,7 +321,7 @@ def study_walls(out=print) -> list[dict]:
     from lunarcap.runs import study
 
     rows = []
-    for path in sorted(study.default_table_path().parent.glob("*.runs.json")):
+    for path in sorted(study.STUDY.default_table_path().parent.glob("*.runs.json")):
         try:
             runs = json.loads(path.read_text())
         except (OSError, ValueError):

@@ -32,7 +32,6 @@ fails as "failed" with IPOPT's status; neither is an error of the study.
 
 from __future__ import annotations
 
-import hashlib
 import math
 import re
 import time
@@ -49,7 +48,9 @@ from lunarcap.physics.elements import period_from_semi_major_axis
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.repro.cache import cached, code_version, position
+from lunarcap.runs.campaign import TableFormat
 from lunarcap.runs.chain import impulsive_limit, solve_plan, time_to_final_orbit_h
+from lunarcap.runs.shape import Study, check_workers, json_list, plan_columns
 
 #: Longest intermediate period allowed by default, h (the paper's first ellipse: longer
 #: orbits are strongly perturbed by the Earth).
@@ -324,31 +325,10 @@ COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "n_burns", "max_p
 KEY = ("plan_id", "n_burns", "max_period_h", "max_days")
 
 
-def table_format():
-    """The campaign table format of this study."""
-    from lunarcap.runs.campaign import TableFormat
-
-    return TableFormat(KEY, COLUMNS, text_columns=("plan", "plan_id", "dynamics", "reason",
-                                                   "periods_h", "ipopt_status",
-                                                   "burns_json"))
-
-
-def plan_id(plan: CapturePlan) -> str:
-    """A short hash of what a plan's solves depend on (its key), for the study's table."""
-    return hashlib.sha256(repr(plan.key()).encode()).hexdigest()[:12]
-
-
 def parse_counts(text) -> tuple:
     """Counts of burns from ``"1,2,3"`` (or a sequence): distinct integers >= 1, sorted."""
     counts = number_list("--counts", text, "", distinct=True)
     return tuple(sorted(integer("--counts", n, 1) for n in counts))
-
-
-def default_table_path():
-    """``<cache>/study/burns.csv``."""
-    from lunarcap.repro import paths
-
-    return paths.CACHE / "study" / "burns.csv"
 
 
 def count_row(plan: CapturePlan, n: int, max_period_h: float, max_days: float,
@@ -386,9 +366,6 @@ def run_burns(plans, counts, max_period_h: float = DEFAULT_MAX_PERIOD_H,
     its current position, :func:`lunarcap.repro.cache.position`). InputError (bad counts or
     bounds, an unusable ``out``, an unreachable scheduler) before any solve.
     """
-    from lunarcap.runs.campaign import run_campaign
-    from lunarcap.runs.study import check_workers
-
     use_cache = position(use_cache)
     counts = parse_counts(counts)
     check_bounds(_hours(max_period_h) * 3600.0, _days(max_days) * 86400.0)
@@ -396,20 +373,13 @@ def run_burns(plans, counts, max_period_h: float = DEFAULT_MAX_PERIOD_H,
     cases = []
     for plan in plans:
         for n in counts:
-            key = {"plan": plan.name, "plan_id": plan_id(plan), "thrust_N":
-                   plan.engine.thrust_N, "isp_s": plan.engine.isp_s,
-                   "dynamics": plan.dynamics, "n_burns": n,
-                   "max_period_h": float(max_period_h), "max_days": float(max_days)}
+            key = {**plan_columns(plan), "n_burns": n, "max_period_h": float(max_period_h),
+                   "max_days": float(max_days)}
             cases.append((key, (plan, n, float(max_period_h), float(max_days), use_cache)))
-    return run_campaign(cases, task or count_row, out or default_table_path(),
-                        table_format(), code_version(_MODULE),
-                        workers=workers, scheduler=scheduler, progress=progress,
-                        processes=processes, desc="burns study", unit="count",
-                        recompute=not use_cache, ok_statuses=("ok", "infeasible"),
-                        longest=lambda key: key["n_burns"],  # an NLP of n legs
-                        affinity=_nlp_shapes,
-                        describe={"study": "burns", "counts": list(counts),
-                                  "max_period_h": max_period_h, "max_days": max_days})
+    return STUDY.run(cases, out, task=task, workers=workers, scheduler=scheduler,
+                     progress=progress, processes=processes, recompute=not use_cache,
+                     describe={"study": "burns", "counts": list(counts),
+                               "max_period_h": max_period_h, "max_days": max_days})
 
 
 def _nlp_shapes(key: dict) -> tuple:
@@ -434,16 +404,14 @@ def _days(v) -> float:
     return float(v)
 
 
-def burns_of(row) -> list:
-    """The per-burn rows of a table row (decoded ``burns_json``)."""
-    import json
-
-    text = row["burns_json"] if isinstance(row, dict) else row.burns_json
-    return json.loads(text) if isinstance(text, str) and text else []
+def periods_of(text) -> list:
+    """The intermediate periods (h) of a ``periods_h`` cell ("8.365;3.5", empty or NaN)."""
+    return [float(p) for p in text.split(";") if p] if isinstance(text, str) else []
 
 
-def format_rows(plan: CapturePlan, rows: list, result) -> str:
-    """The CLI's text: one block per count (its burns), then the run."""
+def format_rows(result, plan: CapturePlan) -> str:
+    """The study's text: one block per count (its burns), then the run."""
+    rows = result.table.to_dict("records")
     lines = [f"Plan {plan.name} in N burns: {plan.engine.thrust_N:g} N / "
              f"{plan.engine.isp_s:g} s, {plan.dynamics} dynamics, final orbit "
              f"{plan.burns[-1].describe()}; intermediate periods optimised (longest "
@@ -468,21 +436,28 @@ def format_rows(plan: CapturePlan, rows: list, result) -> str:
             f"after arrival; periods "
             + (", ".join(f"{float(p):.3f}" for p in periods.split(";")) + " h" if periods
                else "none"))
-        for b in burns_of(r):
+        for b in STUDY.decoded(r)["burns"]:
             lines.append(f"    burn {b['burn']}: {b['target_orbit']:<20} ignition "
                          f"{b['ignition_epoch']}"
                          f" ({b['start_min']:+.2f} min), {b['burn_duration_min']:6.2f} min, "
                          f"dV {b['delta_v_mps']:8.3f} m/s, impulsive "
                          f"{_num(b['impulsive_limit_mps'])}, loss {_num(b['delta_v_loss_mps'])} m/s"
                          f"{'' if b['verified'] else ', NOT VERIFIED'}")
-    run = result.run
-    lines.append(f"{run['computed']} count(s) computed, {run['reused']} taken from the table; "
-                 f"wall time {run['wall_s']:.1f} s ({run['scheduler']}, {run['workers']} "
-                 f"worker(s), cache: {run['cache']})")
-    lines.append(f"table: {result.path}")
-    return "\n".join(lines)
+    return "\n".join(lines + STUDY.run_lines(result))
 
 
 def _num(v, fmt: str = ".3f") -> str:
     return "—" if v is None or (isinstance(v, float) and not math.isfinite(v)) else \
         f"{v:{fmt}}"
+
+
+#: The study, declared once (:class:`lunarcap.runs.shape.Study`).
+STUDY = Study(
+    "burns", TableFormat(KEY, COLUMNS, text_columns=("plan", "plan_id", "dynamics", "reason",
+                                                     "periods_h", "ipopt_status",
+                                                     "burns_json")),
+    count_row, STATUSES, ("ok", "infeasible"), "count", "burns study", (_MODULE,),
+    decoders=(("periods_h", "periods_h", periods_of), ("burns_json", "burns", json_list)),
+    rows_key="counts", text=format_rows,
+    longest=lambda key: key["n_burns"],  # an NLP of n legs
+    affinity=_nlp_shapes)

@@ -1,8 +1,7 @@
 """Studies as campaigns of independent cases on Dask: a table, resumable, logged, with progress.
 
-The machinery the engine trade study (:mod:`lunarcap.runs.study`), the number-of-burns
-study (:mod:`lunarcap.runs.burns`) and the missed-thrust study (:mod:`lunarcap.runs.missed`)
-share:
+The machinery every study (:class:`lunarcap.runs.shape.Study`: the engine trade study,
+the number of burns, missed thrust, dispersions) runs on:
 
 * **Execution**: one Dask task per case. By default a
   :class:`dask.distributed.LocalCluster` of ``workers`` processes, one thread each;
@@ -480,50 +479,46 @@ class CampaignResult:
     run: dict
 
 
-def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, version: str,
-                 *, workers: int = 2, scheduler: str | None = None, progress: bool = True,
+def run_campaign(study, cases: list, out: str | os.PathLike, *, task=None, workers: int = 2,
+                 scheduler: str | None = None, progress: bool = True,
                  retry_failed: bool = False, lock_wait_s: float = 0.0, processes: bool = True,
-                 desc: str = "study", unit: str = "case", describe: dict | None = None,
-                 ok_statuses=("ok",), recompute: bool = False,
-                 error_rows=None, longest=None, affinity=None) -> CampaignResult:
-    """Run (or resume) a campaign: one Dask task per case not yet in the table.
+                 describe: dict | None = None, recompute: bool = False) -> CampaignResult:
+    """Run (or resume) a study's campaign: one Dask task per case not yet in the table.
 
     Parameters
     ----------
+    study : lunarcap.runs.shape.Study
+        The study's declaration: its table format, task, code version, the statuses that
+        answer a case, the progress bar's words, and optionally the rows of a task that
+        raised (``error_rows``, default: the key with ``status`` "task error" and the
+        message), an estimate of each case's cost (``longest``: cases are submitted in
+        decreasing order of it, so few workers do not end on one long case; the table keeps
+        the order of ``cases``) and a grouping of cases (``affinity``: cases solving NLPs of
+        the same shapes go to one worker, which builds those NLPs once,
+        :func:`assign_workers`).
     cases : list of (key, args)
         ``key`` a dict of the key columns (scalars), ``args`` the task's arguments.
-    task : callable(*args) -> dict, or list of dict with ``fmt.row_key``
-        Computes one case (in a worker) and returns its row or rows (without the key
-        columns); it should record a failure in the rows (``status``) rather than raise.
-        A task that raises (or whose worker dies) is recorded by ``error_rows``.
     out : path of the CSV table (checked writable before any work)
-    fmt : TableFormat
-    version : str
-        The code version rows are computed with; rows of another version are not reused.
+    task : callable(*args) -> dict, or list of dict with the table's ``row_key``
+        Replaces the study's task (tests). A task records a failure in its rows
+        (``status``) rather than raise; one that raises (or whose worker dies) is
+        recorded by ``error_rows``.
     workers, scheduler, processes : the cluster (see :func:`dask_client`); without
         ``scheduler``, the one named by the environment variable :data:`SCHEDULER_ENV`
         if set (``workers`` and ``processes`` are then those of that cluster)
     progress : show a tqdm bar on stderr
-    retry_failed : recompute cases whose row's status is not in ``ok_statuses``
+    retry_failed : recompute cases whose row's status does not answer them
     lock_wait_s : how long to wait for another run writing the same table
-    desc, unit : the progress bar's words; ``describe``: added to the run record
+    describe : added to the run record
     recompute : compute every case again, whatever the table holds
-    error_rows : callable(key, message) -> list of dict, optional
-        The rows recorded for a case whose task raised (default: the key with ``status``
-        "task error" and the message).
-    longest : callable(key) -> number, optional
-        An estimate of each case's cost: the cases are submitted in decreasing order of
-        it (stable; default: in the order given), so few workers do not end on one long
-        case. The table keeps the order of ``cases``.
-    affinity : callable(key) -> hashable, optional
-        Cases of one group (solving NLPs of the same shapes) go to one worker, which
-        builds those NLPs once (:func:`assign_workers`).
 
     Raises
     ------
     InputError
         An unusable table path, a table in use, an unreachable scheduler: before any case.
     """
+    fmt, version, ok_statuses = study.table, study.version(), study.ok_statuses
+    longest = study.longest
     path = check_output_path(out)
     scheduler = check_scheduler(scheduler or os.environ.get(SCHEDULER_ENV) or None)
     info = {"t0": time.perf_counter(), "scheduler": scheduler, "version": version,
@@ -545,11 +540,11 @@ def run_campaign(cases: list, task, out: str | os.PathLike, fmt: TableFormat, ve
                 tc = time.perf_counter()
                 with dask_client(workers, scheduler, processes) as client:
                     _start_s(state, tc, client, workers)
-                    where = assign_workers(client, todo, affinity, longest)
-                    _compute(client, task, todo, fmt, version, path, counts, progress,
-                             f"{desc} ({state['workers']} worker"
-                             f"{'s' * (state['workers'] > 1)})", unit, ok_statuses,
-                             error_rows or _task_error_row, set(have), where)
+                    where = assign_workers(client, todo, study.affinity, longest)
+                    _compute(client, task or study.task, todo, fmt, version, path, counts,
+                             progress, f"{study.desc} ({state['workers']} worker"
+                             f"{'s' * (state['workers'] > 1)})", study.unit, ok_statuses,
+                             study.error_rows or _task_error_row, set(have), where)
         except KeyboardInterrupt:
             state["interrupted"] = True
             record()

@@ -8,7 +8,6 @@ and the command line's text (:func:`format_summary`). Pure data: no solving.
 
 from __future__ import annotations
 
-import json
 import math
 
 import numpy as np
@@ -131,15 +130,8 @@ def settled_after(conv, tol_mps: float = 1.0) -> int | None:
     return int(conv.samples.iloc[idx[-1] + 1]) if idx.size else int(conv.samples.iloc[0])
 
 
-def burns_of(row) -> list:
-    """The per-burn records of a table row (decoded ``burns_json``)."""
-    text = row["burns_json"] if isinstance(row, dict) else row.burns_json
-    return json.loads(text) if isinstance(text, str) and text else []
-
-
-def format_summary(plan: CapturePlan, model: ErrorModel, s: dict, result) -> str:
-    """The CLI's text: the error model, the budget, failures, final orbit, the run."""
-    run = result.run
+def format_summary(plan: CapturePlan, model: ErrorModel, s: dict) -> str:
+    """The text of a summary ``s``: the error model, the budget, failures, final orbit."""
     lo, hi = s["budget_p99_ci_mps"]
     lines = [
         f"Dispersions of plan {plan.name} ({plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} "
@@ -169,8 +161,4 @@ def format_summary(plan: CapturePlan, model: ErrorModel, s: dict, result) -> str
                  f"{s['final_rms_ra_error_km']:.3g} / {s['final_max_abs_ra_error_km']:.3g} km, "
                  f"inclination {s['final_rms_inc_error_deg']:.3g} / "
                  f"{s['final_max_abs_inc_error_deg']:.3g} deg")
-    lines.append(f"{run['computed']} sample(s) computed, {run['reused']} taken from the table; "
-                 f"wall time {run['wall_s']:.1f} s ({run['scheduler']}, {run['workers']} "
-                 f"worker(s), cache: {run['cache']})")
-    lines.append(f"table: {result.path}")
     return "\n".join(lines)

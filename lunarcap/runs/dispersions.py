@@ -79,7 +79,8 @@ from lunarcap.physics.elements import (
     rv_from_mee,
 )
 from lunarcap.physics.state import State
-from lunarcap.repro.cache import code_version, enabled, position
+from lunarcap.repro.cache import enabled, position
+from lunarcap.runs.campaign import TableFormat
 from lunarcap.runs.dispersion_model import (  # noqa: F401
     BLOCK,
     MAX_BURNS,
@@ -93,13 +94,13 @@ from lunarcap.runs.dispersion_model import (  # noqa: F401
 )
 from lunarcap.runs.dispersion_summary import (  # noqa: F401
     PERCENTILES,
-    burns_of,
     convergence,
     format_summary,
     quantile_ci,
     settled_after,
     summarise,
 )
+from lunarcap.runs.shape import Study, check_workers, json_list, plan_columns
 
 #: Mean Earth-Moon distance, km (IAU 2009 / JPL: 384,400 km), for the Moon's sphere of
 #: influence (Laplace's radius a (m_Moon/m_Earth)^(2/5) = 66,200 km).
@@ -361,22 +362,6 @@ KEY = ("plan_id", "seed", "sample", "antithetic", "thrust_sigma_pct", "isp_sigma
        "arrival_cov")
 
 
-def table_format():
-    """The campaign table format of this study."""
-    from lunarcap.runs.campaign import TableFormat
-
-    return TableFormat(KEY, COLUMNS, text_columns=("plan", "plan_id", "dynamics", "reason",
-                                                   "arrival_cov", "burns_json"),
-                       name="dispersions table")
-
-
-def default_table_path():
-    """``<cache>/study/dispersions.csv``."""
-    from lunarcap.repro import paths
-
-    return paths.CACHE / "study" / "dispersions.csv"
-
-
 def sample_row(plan: CapturePlan, seed: int, index: int, model: ErrorModel,
                antithetic: bool = False, use_cache: bool | None = None) -> dict:
     """Dask task: one sample as a row of the table (a failure is a status, not raised)."""
@@ -417,10 +402,6 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
     :data:`MAX_BURNS` burns, an unusable ``out``, an unreachable scheduler) before any
     sample.
     """
-    from lunarcap.runs.burns import plan_id
-    from lunarcap.runs.campaign import run_campaign
-    from lunarcap.runs.study import check_workers
-
     use_cache = position(use_cache)   # None: the switch's current position
     samples, seed = check_samples(samples, seed)
     plans = list(plan) if isinstance(plan, (list, tuple)) else [plan]
@@ -434,15 +415,26 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
     workers = check_workers(workers)
     cases = []
     for p in plans:   # one campaign: one cluster, whose workers build each NLP shape once
-        base = {"plan": p.name, "plan_id": plan_id(p), "thrust_N": p.engine.thrust_N,
-                "isp_s": p.engine.isp_s, "dynamics": p.dynamics, "seed": seed,
-                "antithetic": bool(antithetic), **model.key()}
+        base = {**plan_columns(p), "seed": seed, "antithetic": bool(antithetic),
+                **model.key()}
         cases += [(dict(base, sample=k), (p, seed, k, model, bool(antithetic), use_cache))
                   for k in range(int(first), int(first) + samples)]
-    return run_campaign(cases, task or sample_row, out or default_table_path(),
-                        table_format(), code_version(*_MODULES),
-                        workers=workers, scheduler=scheduler, progress=progress,
-                        processes=processes, desc="dispersions", unit="sample",
-                        recompute=not use_cache, ok_statuses=OK_STATUSES,
-                        describe={"study": "dispersions", "seed": seed, "samples": samples,
-                                  "error_model": model.describe()})
+    return STUDY.run(cases, out, task=task, workers=workers, scheduler=scheduler,
+                     progress=progress, processes=processes, recompute=not use_cache,
+                     describe={"study": "dispersions", "seed": seed, "samples": samples,
+                               "error_model": model.describe()})
+
+
+def format_report(result, plan: CapturePlan, model: ErrorModel) -> str:
+    """The study's text: the error model, the budget, failures, final orbit, the run."""
+    return "\n".join([format_summary(plan, model, summarise(result.table.to_dict("records"))),
+                      *STUDY.run_lines(result)])
+
+
+#: The study, declared once (:class:`lunarcap.runs.shape.Study`).
+STUDY = Study(
+    "dispersions", TableFormat(KEY, COLUMNS, text_columns=(
+        "plan", "plan_id", "dynamics", "reason", "arrival_cov", "burns_json"),
+        name="dispersions table"),
+    sample_row, STATUSES, OK_STATUSES, "sample", "dispersions", _MODULES,
+    decoders=(("burns_json", "burns", json_list),), rows_key="samples", text=format_report)

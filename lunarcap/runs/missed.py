@@ -68,6 +68,7 @@ from lunarcap.physics.propagate import propagate
 from lunarcap.physics.rocket import burn_duration_estimate_s
 from lunarcap.repro.cache import cached, caching, code_version, position
 from lunarcap.runs.burns import MAX_FIT_SPAN_S
+from lunarcap.runs.campaign import TableFormat
 from lunarcap.runs.chain import solve_plan, time_to_final_orbit_h
 from lunarcap.runs.missed_orbits import (  # noqa: F401  (this module's API too)
     classify,
@@ -77,6 +78,7 @@ from lunarcap.runs.missed_orbits import (  # noqa: F401  (this module's API too)
     soi_radius_km,
     time_to_perilune_after_impulse_s,
 )
+from lunarcap.runs.shape import Study, check_workers, json_list, plan_columns
 
 #: Longest period of the orbit after burn n, in the recovery and in the nominal alike, h.
 #: About twice the paper's 12.235 h. For the paper's 150 N plan the nominal's own optimum
@@ -524,23 +526,6 @@ COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "burn", "continge
 KEY = ("plan_id", "burn", "contingency", "fraction", "delay_min", "late_min", "max_period_h")
 
 
-def table_format():
-    """The campaign table format of this study."""
-    from lunarcap.runs.campaign import TableFormat
-
-    return TableFormat(KEY, COLUMNS, text_columns=("plan", "plan_id", "dynamics",
-                                                   "contingency", "reason", "cutoff_orbit",
-                                                   "cutoff_epoch", "ipopt_status",
-                                                   "recovery_burns_json"))
-
-
-def default_table_path():
-    """``<cache>/study/missed.csv``."""
-    from lunarcap.repro import paths
-
-    return paths.CACHE / "study" / "missed.csv"
-
-
 def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
              max_period_h: float, use_cache: bool | None = None, late_min: float | None = None,
              nominal_result: dict | None = None) -> dict:
@@ -570,10 +555,7 @@ def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
 def _cases(plan: CapturePlan, burn: int, fractions, delays, late, max_period_h: float,
            use_cache: bool, nom: dict) -> list:
     """The campaign's (key, args) of every case: cut-offs (fractions major), then late."""
-    from lunarcap.runs.burns import plan_id
-
-    base = {"plan": plan.name, "plan_id": plan_id(plan), "thrust_N": plan.engine.thrust_N,
-            "isp_s": plan.engine.isp_s, "dynamics": plan.dynamics, "burn": int(burn)}
+    base = {**plan_columns(plan), "burn": int(burn)}
     h = float(max_period_h)
     cases = [({**base, "contingency": "cut-off", "fraction": f, "delay_min": d,
                "late_min": 0.0, "max_period_h": h},
@@ -597,9 +579,6 @@ def run_missed(plan: CapturePlan, burn: int, fractions, delays_min,
     per case). InputError (a burn the plan lacks, fractions outside (0, 1], negative
     delays, an unusable ``out``, an unreachable scheduler) before any solve.
     """
-    from lunarcap.runs.campaign import run_campaign
-    from lunarcap.runs.study import check_workers
-
     fractions = number_list("--fractions", fractions, "", positive=True, maximum=1.0,
                             distinct=True) if fractions not in (None, "", []) else ()
     delays = number_list("--delays-min", delays_min, "min", minimum=0.0, distinct=True)
@@ -618,29 +597,17 @@ def run_missed(plan: CapturePlan, burn: int, fractions, delays_min,
     if task is None:   # the real study: its nominal, once, in this process
         with caching(use_cache):
             nom = nominal_of(plan, int(burn), float(max_period_h) * 3600.0)
-    return run_campaign(_cases(plan, burn, fractions, delays, late, max_period_h, use_cache,
-                               nom),
-                        task or case_row, out or default_table_path(), table_format(),
-                        code_version(*_MODULES), workers=workers,
-                        scheduler=scheduler, progress=progress, processes=processes,
-                        desc="missed-thrust study", unit="case", recompute=not use_cache,
-                        ok_statuses=("recovered", "no recovery"),
-                        describe={"study": "missed", "burn": int(burn),
-                                  "fractions": list(fractions), "delays_min": list(delays),
-                                  "late_min": list(late),
-                                  "max_period_h": float(max_period_h)})
+    return STUDY.run(_cases(plan, burn, fractions, delays, late, max_period_h, use_cache, nom),
+                     out, task=task, workers=workers, scheduler=scheduler, progress=progress,
+                     processes=processes, recompute=not use_cache,
+                     describe={"study": "missed", "burn": int(burn),
+                               "fractions": list(fractions), "delays_min": list(delays),
+                               "late_min": list(late), "max_period_h": float(max_period_h)})
 
 
-def recovery_burns_of(row) -> list:
-    """The recovery's burns of a table row (decoded ``recovery_burns_json``)."""
-    import json
-
-    text = row["recovery_burns_json"] if isinstance(row, dict) else row.recovery_burns_json
-    return json.loads(text) if isinstance(text, str) and text else []
-
-
-def format_rows(plan: CapturePlan, burn: int, rows: list, result) -> str:
-    """The CLI's text: one line per case, then the run."""
+def format_rows(result, plan: CapturePlan, burn: int) -> str:
+    """The study's text: one line per case, then the run."""
+    rows = result.table.to_dict("records")
     h = rows[0]["max_period_h"] if rows else DEFAULT_MAX_PERIOD_H
     lines = [f"Burn {burn} of plan {plan.name} ({plan.engine.thrust_N:g} N / "
              f"{plan.engine.isp_s:g} s, {plan.dynamics} dynamics) cut off (the engine stops "
@@ -670,9 +637,13 @@ def format_rows(plan: CapturePlan, burn: int, rows: list, result) -> str:
                      f"{r0['nominal_burn_duration_min']:.2f} min; final orbit "
                      f"{r0['nominal_time_to_final_orbit_h']:.2f} h after the arrival "
                      f"perilune")
-    run = result.run
-    lines.append(f"{run['computed']} case(s) computed, {run['reused']} taken from the table; "
-                 f"wall time {run['wall_s']:.1f} s ({run['scheduler']}, {run['workers']} "
-                 f"worker(s), cache: {run['cache']})")
-    lines.append(f"table: {result.path}")
-    return "\n".join(lines)
+    return "\n".join(lines + STUDY.run_lines(result))
+
+#: The study, declared once (:class:`lunarcap.runs.shape.Study`).
+STUDY = Study(
+    "missed", TableFormat(KEY, COLUMNS, text_columns=(
+        "plan", "plan_id", "dynamics", "contingency", "reason", "cutoff_orbit", "cutoff_epoch",
+        "ipopt_status", "recovery_burns_json")),
+    case_row, STATUSES, ("recovered", "no recovery"), "case", "missed-thrust study", _MODULES,
+    decoders=(("recovery_burns_json", "recovery_burns", json_list),), rows_key="cases",
+    text=format_rows)

@@ -41,7 +41,7 @@ cluster instead (its workers need lunarcap installed). Solutions are also cached
 by joblib inside the workers (:mod:`lunarcap.repro.cache`), so a later study or notebook that
 needs the same engine reuses them.
 
-Results go to one CSV table (default :func:`default_table_path`, below the cache
+Results go to one CSV table (default ``STUDY.default_table_path()``, below the cache
 directory), four rows per engine (``part`` = LOI1, LOI2, LOI3, sequence), appended as
 each task completes: the table is rewritten to a temporary file and moved into place,
 so it is never half-written. Rows carry :func:`lunarcap.repro.cache.code_version`; a rerun
@@ -75,8 +75,8 @@ import pandas as pd
 
 from lunarcap.errors import InputError, integer, number_list, positive_number
 from lunarcap.physics.losses import schuler_rate_rad_s
-from lunarcap.repro import paths
 from lunarcap.runs import campaign as _campaign
+from lunarcap.runs.shape import Study, check_workers
 from lunarcap.runs.study_theory import (  # noqa: F401  (this module's API too)
     G_MOON_MPS2,
     PERILUNE_RADIUS_KM,
@@ -207,16 +207,6 @@ class StudySpec:
         d = asdict(self)
         d["isp_s"] = list(self.isp_s)
         return d
-
-
-def check_workers(workers) -> int:
-    """Number of local Dask workers (an integer >= 1), else InputError."""
-    return integer("--workers", workers, 1)
-
-
-def default_table_path() -> Path:
-    """``<cache>/study/engine_trade.csv`` (below :data:`lunarcap.repro.paths.CACHE`)."""
-    return paths.CACHE / "study" / "engine_trade.csv"
 
 
 def _case(thrust_N, isp_s, dynamics) -> dict:
@@ -440,7 +430,7 @@ def run_study(spec: StudySpec | None = None, out: str | os.PathLike | None = Non
     spec : StudySpec
         The grid (default: 50-2000 N, 30 points, Isp 200, 250, 300 s, full dynamics).
     out : path, optional
-        The CSV table (default :func:`default_table_path`).
+        The CSV table (default ``<cache>/study/engine_trade.csv``).
     workers : int
         Worker processes of the local cluster (one thread each); ignored with
         ``scheduler``.
@@ -468,22 +458,17 @@ def run_study(spec: StudySpec | None = None, out: str | os.PathLike | None = Non
         Bad parameters, an unusable table path, a table in use (after ``lock_wait_s``),
         or an unreachable scheduler; always before any engine is solved.
     """
-    from lunarcap.repro.cache import code_version
-
     spec = spec if spec is not None else StudySpec()
     if not isinstance(spec, StudySpec):
         raise InputError(f"spec must be a StudySpec, got {type(spec).__name__}")
     workers = check_workers(workers)
-    cv = code_version()
     # slow (low-thrust) engines first, for better packing on few workers
     cases = [(_case(t, i, spec.dynamics), (t, i, spec.dynamics))
              for t, i in sorted(spec.engines, key=lambda e: e[0])]
-    res = _campaign.run_campaign(
-        cases, task or solve_engine, out if out is not None else default_table_path(), TABLE,
-        cv, workers=workers, scheduler=scheduler, progress=progress,
-        retry_failed=retry_failed, lock_wait_s=lock_wait_s, processes=processes,
-        desc="trade study", unit="engine", error_rows=_task_error_rows,
-        describe={"engines": len(spec.engines), "grid": spec.to_dict()})
+    res = STUDY.run(cases, out, task=task, workers=workers, scheduler=scheduler,
+                    progress=progress, retry_failed=retry_failed, lock_wait_s=lock_wait_s,
+                    processes=processes,
+                    describe={"engines": len(spec.engines), "grid": spec.to_dict()})
     # res.table: the last attempt at each engine of the grid, this code version
     return StudyResult(_in_grid_order(res.table), res.path, res.run)
 
@@ -546,13 +531,8 @@ def format_summary(result: StudyResult) -> str:
             f"{_f(r.objective_loss_percent_loi3, 6)} {_f(r.objective_loss_percent_sequence, 6)} "
             f"{_f(r.objective_loss_mps_sequence, 8)} | {_f(ratio, 15)} | "
             + (r.status if r.status == "ok" else f"{r.status}: {r.failed_part}"))
-    run = result.run
     n_bad = int((w.status != "ok").sum()) if len(w) else 0
-    lines.append(f"{run['computed']} engine(s) computed, {run['reused']} taken from the "
-                 f"table, {n_bad} failed; wall time {run['wall_s']:.1f} s "
-                 f"({run['scheduler']}, {run['workers']} worker(s), cache: {run['cache']})")
-    lines.append(f"table: {result.path}")
-    return "\n".join(lines)
+    return "\n".join(lines + STUDY.run_lines(result, failed=n_bad))
 
 
 def _f(v, width: int, fmt: str = ".3f") -> str:
@@ -589,3 +569,7 @@ def analytic_curves(thrusts_N, isp_s) -> pd.DataFrame:
     return df
 
 
+#: The study, declared once (:class:`lunarcap.runs.shape.Study`): one case per engine,
+#: four rows (LOI1, LOI2, LOI3, sequence); its rows depend on the whole numerical code.
+STUDY = Study("engine_trade", TABLE, solve_engine, STATUSES, ("ok",), "engine",
+              "trade study", error_rows=_task_error_rows, text=format_summary)

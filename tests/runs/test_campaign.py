@@ -126,7 +126,7 @@ def test_no_cache_after_an_interrupted_study_replaces_rows_not_duplicates(tmp_pa
     with pytest.raises(KeyboardInterrupt):
         burns.run_burns([plan], "1,2,3", **kw)
     monkeypatch.setattr(campaign, "_compute", real)
-    before = burns.table_format()
+    before = burns.STUDY.table
     assert len(campaign.read_table(out, before)) == 2
     FAKE_CALLS.clear()
     res = burns.run_burns([plan], "1,2,3", use_cache=False, **kw)  # --no-cache

@@ -170,7 +170,9 @@ def test_a_penalty_that_rounds_to_zero_is_printed_without_a_sign(plan):
     """The CLI's table: a recovery within 0.5 mm/s of the nominal reads 0.000, not -0.000."""
     from types import SimpleNamespace
 
-    from lunarcap.runs.missed import format_rows
+    import pandas as pd
+
+    from lunarcap.runs.missed import STUDY
 
     row = dict(contingency="cut-off", fraction=0.5, delay_min=0.0, late_min=0.0,
                cutoff_orbit="escape", cutoff_e=1.066, cutoff_ra_km=math.inf,
@@ -179,6 +181,7 @@ def test_a_penalty_that_rounds_to_zero_is_printed_without_a_sign(plan):
                nominal_remaining_delta_v_mps=869.963, nominal_burn_duration_min=15.93,
                nominal_time_to_final_orbit_h=27.42)
     run = dict(computed=1, reused=0, wall_s=1.0, scheduler="local", workers=1, cache="off")
-    text = format_rows(plan, 1, [row], SimpleNamespace(run=run, path="t.csv"))
+    text = STUDY.text(SimpleNamespace(table=pd.DataFrame([row]), run=run, path="t.csv"),
+                      plan=plan, burn=1)
     line = text.splitlines()[2]
     assert " 728.392       0.000 " in line and "-0.000" not in line, line

@@ -18,6 +18,7 @@ from lunarcap.report import figures
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.runs import burns
+from lunarcap.runs.shape import plan_id
 
 NOTEBOOK = "notebooks/burn_count.ipynb"
 
@@ -47,7 +48,7 @@ def burn_rows(table: pd.DataFrame) -> pd.DataFrame:
     """One row per burn of every successful count."""
     rows = []
     for r in table.to_dict("records"):
-        for b in burns.burns_of(r):
+        for b in burns.STUDY.decoded(r)["burns"]:
             rows.append({"plan": r["plan"], "n_burns": int(r["n_burns"]), **b})
     return pd.DataFrame(rows)
 
@@ -121,7 +122,7 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
     res = burns.run_burns(ps, counts, max_period_h, max_days,
                           out=paths.CACHE / "study" / f"{output_name}.csv", workers=workers,
                           progress=False)
-    labels = {burns.plan_id(p): label_of(p) for p in ps}
+    labels = {plan_id(p): label_of(p) for p in ps}
     table = count_table(res.table, labels)
     page.data.update(table=table, run=res.run)
     page.table("counts", table, caption=(
@@ -143,7 +144,7 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
         "axis marks a count with no capture."),
         alt="Total loss and time to the final orbit against the number of burns")
     # ---- numbers the prose quotes (the first plan is the reference)
-    ref = table[table.plan_id == burns.plan_id(ps[0])]
+    ref = table[table.plan_id == plan_id(ps[0])]
     ok = ref[ref.status == "ok"].sort_values("n_burns")
     page.value("ref_plan", ps[0].name)
     page.value("two_body_total_mps", capture_total_mps(ps[0].perilune_radius_km,

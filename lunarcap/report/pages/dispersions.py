@@ -19,7 +19,7 @@ from lunarcap.mission.plan import load_plan
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.runs import dispersions as disp
-from lunarcap.runs.burns import plan_id
+from lunarcap.runs.shape import plan_id
 
 NOTEBOOK = "notebooks/dispersions.ipynb"
 

@@ -324,7 +324,7 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
     thrust_min_N, thrust_max_N, points, isp_s, dynamics : the grid (:class:`StudySpec`)
     workers : local Dask worker processes
     output_name, quick : the page's output name and whether it is a quick build
-    out : the study's CSV table (default :func:`lunarcap.runs.study.default_table_path`)
+    out : the study's CSV table (default ``<cache>/study/engine_trade.csv``)
     task, processes : passed to :func:`lunarcap.runs.study.run_study` (tests)
     timing_dir : directory of the timing runs listed in the runs table
         (default ``<cache>/study/timing``)
