@@ -331,22 +331,15 @@ def parse_counts(text) -> tuple:
     return tuple(sorted(integer("--counts", n, 1) for n in counts))
 
 
-def count_row(plan: CapturePlan, n: int, max_period_h: float, max_days: float,
-              use_cache: bool | None = None) -> dict:
+def count_row(plan: CapturePlan, n: int, max_period_h: float, max_days: float) -> dict:
     """Dask task: one plan in ``n`` burns, as a row of the study's table.
 
-    Never raises for a solver failure (status "failed" with IPOPT's status); any other
-    exception is recorded as status "error". ``use_cache``: the cache switch's position
-    (:func:`lunarcap.runs.campaign.guarded`).
+    Never raises for a solver failure (status "failed" with IPOPT's status); the campaign
+    records any other exception as status "error" (:func:`lunarcap.runs.campaign.guarded`).
     """
     import json
 
-    from lunarcap.runs import campaign
-
-    r, error = campaign.guarded(lambda: count_result(plan, n, max_period_h, max_days),
-                                use_cache)
-    if error:
-        return error
+    r = count_result(plan, n, max_period_h, max_days)
     row = {k: r.get(k) for k in COLUMNS if k in r and k not in ("burns_json",)}
     row["periods_h"] = ";".join(f"{p:.6f}" for p in r["periods_h"])
     row["burns_json"] = json.dumps(r["burns"])
@@ -375,9 +368,9 @@ def run_burns(plans, counts, max_period_h: float = DEFAULT_MAX_PERIOD_H,
         for n in counts:
             key = {**plan_columns(plan), "n_burns": n, "max_period_h": float(max_period_h),
                    "max_days": float(max_days)}
-            cases.append((key, (plan, n, float(max_period_h), float(max_days), use_cache)))
+            cases.append((key, (plan, n, float(max_period_h), float(max_days))))
     return STUDY.run(cases, out, task=task, workers=workers, scheduler=scheduler,
-                     progress=progress, processes=processes, recompute=not use_cache,
+                     progress=progress, processes=processes, use_cache=use_cache,
                      describe={"study": "burns", "counts": list(counts),
                                "max_period_h": max_period_h, "max_days": max_days})
 

@@ -482,7 +482,8 @@ class CampaignResult:
 def run_campaign(study, cases: list, out: str | os.PathLike, *, task=None, workers: int = 2,
                  scheduler: str | None = None, progress: bool = True,
                  retry_failed: bool = False, lock_wait_s: float = 0.0, processes: bool = True,
-                 describe: dict | None = None, recompute: bool = False) -> CampaignResult:
+                 describe: dict | None = None, recompute: bool = False,
+                 use_cache: bool | None = None) -> CampaignResult:
     """Run (or resume) a study's campaign: one Dask task per case not yet in the table.
 
     Parameters
@@ -511,6 +512,8 @@ def run_campaign(study, cases: list, out: str | os.PathLike, *, task=None, worke
     lock_wait_s : how long to wait for another run writing the same table
     describe : added to the run record
     recompute : compute every case again, whatever the table holds
+    use_cache : the cache switch's position for the tasks of a study whose ``guarded`` is
+        true: each runs inside :func:`guarded` (an exception becomes its error row)
 
     Raises
     ------
@@ -544,7 +547,8 @@ def run_campaign(study, cases: list, out: str | os.PathLike, *, task=None, worke
                     _compute(client, task or study.task, todo, fmt, version, path, counts,
                              progress, f"{study.desc} ({state['workers']} worker"
                              f"{'s' * (state['workers'] > 1)})", study.unit, ok_statuses,
-                             study.error_rows or _task_error_row, set(have), where)
+                             study.error_rows or _task_error_row, set(have), where,
+                             (use_cache,) if study.guarded else None)
         except KeyboardInterrupt:
             state["interrupted"] = True
             record()
@@ -614,13 +618,14 @@ def assign_workers(client, todo: list, affinity=None, longest=None) -> list:
 
 
 def _compute(client, task, todo, fmt, version, path, counts, progress, desc, unit,
-             ok_statuses, error_rows, present=frozenset(), where=None) -> None:
+             ok_statuses, error_rows, present=frozenset(), where=None, guard=None) -> None:
     """Submit one task per case; append each case's rows as its task completes.
 
     ``present``: case keys with rows of ``version`` in the table already (a case
     recomputed on request, or retried): their rows are replaced, not duplicated.
     ``where``: per case, the worker it should run on (None: any; see
-    :func:`assign_workers`).
+    :func:`assign_workers`). ``guard``: ``(use_cache,)`` to run each task inside
+    :func:`guarded`, None to run it as it is.
     """
     from dask.distributed import as_completed
     from tqdm import tqdm
@@ -628,7 +633,7 @@ def _compute(client, task, todo, fmt, version, path, counts, progress, desc, uni
     futures = {}
     for rank, (key, args) in enumerate(todo):
         addr = where[rank] if where else None
-        fut = client.submit(_run_task, task, key, args, pure=False,
+        fut = client.submit(_run_task, task, key, args, guard, pure=False,
                             priority=len(todo) - rank, workers=[addr] if addr else None,
                             allow_other_workers=bool(addr))
         futures[fut] = key
@@ -660,10 +665,18 @@ def _task_error_row(key: dict, message: str) -> dict:
     return dict(key, status="task error", error=message)
 
 
-def _run_task(task, key: dict, args: tuple) -> dict | list[dict]:
-    """In a worker: the task's row (or rows) with key, timing and worker recorded."""
+def _run_task(task, key: dict, args: tuple, guard: tuple | None = None) -> dict | list[dict]:
+    """In a worker: the task's row (or rows) with key, timing and worker recorded.
+
+    ``guard``: ``(use_cache,)``: the task runs inside :func:`guarded` (the cache switch at
+    that position; an exception is the error row).
+    """
     t0 = time.perf_counter()
-    out = task(*args)
+    if guard is None:
+        out = task(*args)
+    else:
+        out, error = guarded(lambda: task(*args), *guard)
+        out = error or out
     rows = [dict(r) for r in out] if isinstance(out, list) else [dict(out)]
     done = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S")
     for row in rows:

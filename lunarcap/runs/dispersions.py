@@ -363,20 +363,12 @@ KEY = ("plan_id", "seed", "sample", "antithetic", "thrust_sigma_pct", "isp_sigma
 
 
 def sample_row(plan: CapturePlan, seed: int, index: int, model: ErrorModel,
-               antithetic: bool = False, use_cache: bool | None = None) -> dict:
+               antithetic: bool = False) -> dict:
     """Dask task: one sample as a row of the table (a failure is a status, not raised)."""
-    from lunarcap.runs import campaign
-
-    def compute():
-        r = fly_sample(plan, sample_draws(seed, index, antithetic), model)
-        r.update(nominal_totals(plan))
-        if "total_delta_v_mps" in r:
-            r["delta_v_above_nominal_mps"] = r["total_delta_v_mps"] - r["nominal_delta_v_mps"]
-        return r
-
-    r, error = campaign.guarded(compute, use_cache)
-    if error:
-        return error
+    r = fly_sample(plan, sample_draws(seed, index, antithetic), model)
+    r.update(nominal_totals(plan))
+    if "total_delta_v_mps" in r:
+        r["delta_v_above_nominal_mps"] = r["total_delta_v_mps"] - r["nominal_delta_v_mps"]
     row = {k: v for k, v in r.items() if k in COLUMNS}
     row["task_wall_s"] = r.get("sample_wall_s")
     row["task_cpu_s"] = r.get("sample_cpu_s")
@@ -417,10 +409,10 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
     for p in plans:   # one campaign: one cluster, whose workers build each NLP shape once
         base = {**plan_columns(p), "seed": seed, "antithetic": bool(antithetic),
                 **model.key()}
-        cases += [(dict(base, sample=k), (p, seed, k, model, bool(antithetic), use_cache))
+        cases += [(dict(base, sample=k), (p, seed, k, model, bool(antithetic)))
                   for k in range(int(first), int(first) + samples)]
     return STUDY.run(cases, out, task=task, workers=workers, scheduler=scheduler,
-                     progress=progress, processes=processes, recompute=not use_cache,
+                     progress=progress, processes=processes, use_cache=use_cache,
                      describe={"study": "dispersions", "seed": seed, "samples": samples,
                                "error_model": model.describe()})
 

@@ -527,7 +527,7 @@ KEY = ("plan_id", "burn", "contingency", "fraction", "delay_min", "late_min", "m
 
 
 def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
-             max_period_h: float, use_cache: bool | None = None, late_min: float | None = None,
+             max_period_h: float, late_min: float | None = None,
              nominal_result: dict | None = None) -> dict:
     """Dask task: one case as a row of the study's table (a failure is a status, not raised).
 
@@ -536,15 +536,9 @@ def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
     """
     import json
 
-    from lunarcap.runs import campaign
-
     if nominal_result is not None:
         _NOMINALS[(plan.key(), int(burn), float(max_period_h) * 3600.0)] = nominal_result
-    r, error = campaign.guarded(
-        lambda: case_result(plan, burn, fraction, delay_min, max_period_h,
-                            late_min=late_min), use_cache)
-    if error:
-        return error
+    r = case_result(plan, burn, fraction, delay_min, max_period_h, late_min=late_min)
     row = {k: v for k, v in r.items() if k in COLUMNS}
     row["recovery_burns_json"] = json.dumps(r.get("recovery_burns", []))
     row["task_wall_s"] = r.get("wall_s")
@@ -553,17 +547,17 @@ def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
 
 
 def _cases(plan: CapturePlan, burn: int, fractions, delays, late, max_period_h: float,
-           use_cache: bool, nom: dict) -> list:
+           nom: dict) -> list:
     """The campaign's (key, args) of every case: cut-offs (fractions major), then late."""
     base = {**plan_columns(plan), "burn": int(burn)}
     h = float(max_period_h)
     cases = [({**base, "contingency": "cut-off", "fraction": f, "delay_min": d,
                "late_min": 0.0, "max_period_h": h},
-              (plan, int(burn), f, d, h, use_cache, None, nom))
+              (plan, int(burn), f, d, h, None, nom))
              for f in fractions for d in delays]
     cases += [({**base, "contingency": "late ignition", "fraction": 0.0, "delay_min": 0.0,
                 "late_min": m, "max_period_h": h},
-               (plan, int(burn), None, 0.0, h, use_cache, m, nom)) for m in late]
+               (plan, int(burn), None, 0.0, h, m, nom)) for m in late]
     return cases
 
 
@@ -597,9 +591,9 @@ def run_missed(plan: CapturePlan, burn: int, fractions, delays_min,
     if task is None:   # the real study: its nominal, once, in this process
         with caching(use_cache):
             nom = nominal_of(plan, int(burn), float(max_period_h) * 3600.0)
-    return STUDY.run(_cases(plan, burn, fractions, delays, late, max_period_h, use_cache, nom),
+    return STUDY.run(_cases(plan, burn, fractions, delays, late, max_period_h, nom),
                      out, task=task, workers=workers, scheduler=scheduler, progress=progress,
-                     processes=processes, recompute=not use_cache,
+                     processes=processes, use_cache=use_cache,
                      describe={"study": "missed", "burn": int(burn),
                                "fractions": list(fractions), "delays_min": list(delays),
                                "late_min": list(late), "max_period_h": float(max_period_h)})

@@ -78,6 +78,10 @@ class Study:
         The name of the list of rows in the ``--json`` output ("counts", "cases", ...).
     text : callable(result, **context) -> str
         The study's plain-text report (the run's lines are :meth:`run_lines`).
+    guarded : bool
+        The campaign runs each task inside :func:`lunarcap.runs.campaign.guarded` with the
+        cache switch's position of :meth:`run` (an exception becomes an error row); False
+        for a task that records its own failures (the trade study's four rows).
     error_rows, longest, affinity : callables, optional
         :func:`lunarcap.runs.campaign.run_campaign`'s: the rows of a case whose task raised,
         the cost estimate that orders submission, the grouping of cases on workers.
@@ -94,6 +98,7 @@ class Study:
     decoders: tuple = ()
     rows_key: str = "rows"
     text: Callable | None = None
+    guarded: bool = True
     error_rows: Callable | None = None
     longest: Callable | None = None
     affinity: Callable | None = field(default=None)
@@ -117,16 +122,20 @@ class Study:
 
     def run(self, cases: list, out: str | os.PathLike | None = None, *, task=None,
             workers: int = 2, scheduler: str | None = None, progress: bool = True,
-            processes: bool = True, recompute: bool = False, retry_failed: bool = False,
-            lock_wait_s: float = 0.0, describe: dict | None = None) -> CampaignResult:
+            processes: bool = True, use_cache: bool | None = None,
+            retry_failed: bool = False, lock_wait_s: float = 0.0,
+            describe: dict | None = None) -> CampaignResult:
         """Run (or resume) the study's ``cases`` ((key, args) pairs) on Dask.
 
         ``out``: the table (default :meth:`default_table_path`); ``task`` replaces the
-        study's own (tests); the rest as :func:`lunarcap.runs.campaign.run_campaign`.
+        study's own (tests); ``use_cache``: the cache switch's position in the tasks (False:
+        every case computed again, whatever the table holds); the rest as
+        :func:`lunarcap.runs.campaign.run_campaign`.
         """
         return run_campaign(self, cases, out if out is not None else self.default_table_path(),
                             task=task, workers=workers, scheduler=scheduler,
-                            progress=progress, processes=processes, recompute=recompute,
+                            progress=progress, processes=processes,
+                            recompute=use_cache is False, use_cache=use_cache,
                             retry_failed=retry_failed, lock_wait_s=lock_wait_s,
                             describe=describe)
 

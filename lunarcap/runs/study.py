@@ -572,4 +572,4 @@ def analytic_curves(thrusts_N, isp_s) -> pd.DataFrame:
 #: The study, declared once (:class:`lunarcap.runs.shape.Study`): one case per engine,
 #: four rows (LOI1, LOI2, LOI3, sequence); its rows depend on the whole numerical code.
 STUDY = Study("engine_trade", TABLE, solve_engine, STATUSES, ("ok",), "engine",
-              "trade study", error_rows=_task_error_rows, text=format_summary)
+              "trade study", text=format_summary, guarded=False, error_rows=_task_error_rows)

@@ -101,12 +101,14 @@ def test_guarded_turns_a_bug_into_a_row_and_restores_the_cache_setting(monkeypat
     assert r is False
 
 
-#: Calls of the fake burns task below: (n_burns, use_cache).
+#: Calls of the fake burns task below: (n_burns, the cache switch's position in the task).
 FAKE_CALLS = []
 
 
-def _fake_count_row(plan, n, max_period_h, max_days, use_cache=True):
-    FAKE_CALLS.append((n, use_cache))
+def _fake_count_row(plan, n, max_period_h, max_days):
+    from lunarcap.repro.cache import enabled
+
+    FAKE_CALLS.append((n, enabled()))
     return {"status": "ok", "reason": "", "total_delta_v_mps": 800.0 + n + len(FAKE_CALLS),
             "error": ""}
 
