@@ -429,7 +429,7 @@ def format_rows(result, plan: CapturePlan) -> str:
             f"after arrival; periods "
             + (", ".join(f"{float(p):.3f}" for p in periods.split(";")) + " h" if periods
                else "none"))
-        for b in STUDY.decoded(r)["burns"]:
+        for b in STUDY.decode(r, "burns"):
             lines.append(f"    burn {b['burn']}: {b['target_orbit']:<20} ignition "
                          f"{b['ignition_epoch']}"
                          f" ({b['start_min']:+.2f} min), {b['burn_duration_min']:6.2f} min, "

@@ -144,8 +144,13 @@ class Study:
         out = {k: v for k, v in row.items()
                if not any(k == col and key != col for col, key, _ in self.decoders)}
         for col, key, fn in self.decoders:
-            out[key] = fn(row[col])
+            out[key] = fn(row.get(col))
         return out
+
+    def decode(self, row: dict, key: str):
+        """One decoded value of a table row: ``decoded(row)[key]`` alone."""
+        col, _, fn = next(d for d in self.decoders if d[1] == key)
+        return fn(row.get(col))
 
     def to_json(self, result: CampaignResult, head: dict, extra: dict | None = None) -> dict:
         """The ``--json`` document: ``head``, the table and run, ``extra``, the rows."""

@@ -131,7 +131,7 @@ def test_a_perilune_tens_of_minutes_early_is_corrected_on_the_cheap_branch(plan,
     r = D.fly_sample(plan, D.draws(2011, k), m)
     assert r["status"] == "ok", r["reason"]
     assert r["total_delta_v_mps"] - nom < 10.0
-    burns = D.STUDY.decoded(r)["burns"]
+    burns = D.STUDY.decode(r, "burns")
     assert burns[1]["planned_delta_v_mps"] < 230.0   # the nominal burn 2 is 257.8 m/s
 
 

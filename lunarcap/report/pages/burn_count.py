@@ -48,7 +48,7 @@ def burn_rows(table: pd.DataFrame) -> pd.DataFrame:
     """One row per burn of every successful count."""
     rows = []
     for r in table.to_dict("records"):
-        for b in burns.STUDY.decoded(r)["burns"]:
+        for b in burns.STUDY.decode(r, "burns"):
             rows.append({"plan": r["plan"], "n_burns": int(r["n_burns"]), **b})
     return pd.DataFrame(rows)
 

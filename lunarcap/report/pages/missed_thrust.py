@@ -31,7 +31,7 @@ def recovery_rows(table: pd.DataFrame) -> pd.DataFrame:
     """One row per recovery burn of every recovered case."""
     rows = []
     for r in table.to_dict("records"):
-        for b in missed.STUDY.decoded(r)["recovery_burns"]:
+        for b in missed.STUDY.decode(r, "recovery_burns"):
             rows.append({"contingency": r.get("contingency", "cut-off"),
                          "fraction": r["fraction"], "delay_min": r["delay_min"],
                          "late_min": r.get("late_min", 0.0), **b})
