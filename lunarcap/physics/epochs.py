@@ -124,17 +124,56 @@ def seconds_from_calendar(text: str, scale: str | None = None) -> float:
                          f"after the time, e.g. '2040-06-01 00:00:00 UTC' (the two differ "
                          f"by more than a minute)")
     hh, mm, ss = int(m[4]), int(m[5]), float(m[6])
-    leap_ok = named == "UTC"  # 23:59:60 exists in UTC on the day of a leap second
-    if not (1 <= mo <= 12 and 1 <= d <= 31 and hh < 24 and mm < 60
-            and ss < (61 if leap_ok else 60)):
-        raise InputError(f"epoch {text!r} has a field out of range")
+    _check_fields(text, y, mo, d, hh, mm, ss, named)
     days = _days_from_civil(y, mo, d)
-    if _civil_from_days(days) != (y, mo, d):
-        raise InputError(f"epoch {text!r} is not a calendar date")
     if named == "UTC":
         return _tdb_seconds_from_utc(y, mo, d, hh, mm, ss, text)
     # exact: integers plus the seconds field, rounded to the microsecond
     return (days - _J2000_DAYS) * DAY_S + (hh * 3600 + mm * 60 - 43200) + round(ss, 6)
+
+
+def _check_fields(text: str, y: int, mo: int, d: int, hh: int, mm: int, ss: float,
+                  scale: str) -> None:
+    """InputError naming the field of a calendar epoch that does not exist.
+
+    A day has hours 00-23 (``24:00:00`` is the next day's ``00:00:00``: refused, not
+    carried over). In UTC the second 60 exists only in the last minute of a day that
+    ends with a leap second (IERS's table, :func:`leap_second_table`; none is assumed
+    after its expiry); in TDB never.
+    """
+    for name, value, lo, hi in (("month", mo, 1, 12), ("day", d, 1, 31), ("hour", hh, 0, 23),
+                                ("minute", mm, 0, 59)):
+        if not lo <= value <= hi:
+            raise InputError(f"epoch {text!r} does not exist: its {name} {value} is not in "
+                             f"{lo:02d}-{hi:02d}")
+    if _civil_from_days(_days_from_civil(y, mo, d)) != (y, mo, d):
+        raise InputError(f"epoch {text!r} is not a calendar date")
+    if ss < 60.0:
+        return
+    day = f"{y:04d}-{mo:02d}-{d:02d}"
+    leap = _leap_second_s(y, mo, d) if scale == "UTC" else 0.0
+    if leap <= 0.0 or (hh, mm) != (23, 59) or ss >= 60.0 + leap:
+        why = (f"{day} ends at 23:59:59.999... UTC (no leap second that day in IERS's "
+               f"table, valid to {leap_second_table()['expires']})"
+               if scale == "UTC" and leap <= 0.0 else
+               "a minute has seconds 00-59 (60 only at the end of a UTC day with a leap "
+               "second)" if scale != "UTC" or (hh, mm) != (23, 59) else
+               f"the leap second of {day} is 23:59:60.000-23:59:60.999... UTC")
+        raise InputError(f"epoch {text!r} does not exist: {why}")
+
+
+def _leap_second_s(y: int, mo: int, d: int) -> float:
+    """The leap second added at the end of the UTC day (y, mo, d), s (0: none).
+
+    TAI - UTC at the start of the next day minus at the start of this one (ERFA's
+    ``eraDat`` with IERS's table); 0 outside the table (before 1960).
+    """
+    erfa = _erfa()
+    nxt = _civil_from_days(_days_from_civil(y, mo, d) + 1)
+    try:
+        return float(_quiet(erfa.dat, *nxt, 0.0)) - float(_quiet(erfa.dat, y, mo, d, 0.0))
+    except erfa.ErfaError:
+        return 0.0
 
 
 def calendar_from_seconds(t_s: float, decimals: int = 3, scale: str = "TDB",
@@ -212,7 +251,13 @@ def leap_second_table() -> dict:
                 rows.append((int(year), int(month_n), float(tai_utc)))
         import numpy as np
 
-        table = np.array(rows, dtype=erfa.leap_seconds.get().dtype)
+        # the file starts in 1972; ERFA's rows before it (UTC with a drift, which eraDat
+        # applies to the table's first 14 rows) are kept, else eraDat drifts 1972-1985
+        # (TAI - UTC of 40.1 s in 1985 instead of 22 s)
+        erfa.leap_seconds.set()
+        builtin = erfa.leap_seconds.get()
+        table = np.concatenate([builtin[builtin["year"] < 1972],
+                                np.array(rows, dtype=builtin.dtype)])
         import datetime as _dt
 
         erfa.leap_seconds.set(table)

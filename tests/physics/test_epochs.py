@@ -4,7 +4,7 @@ The independent reference is Python's :mod:`datetime`, which implements the same
 proleptic Gregorian calendar with its own (C) arithmetic.
 """
 
-from datetime import datetime, timedelta
+from datetime import date, datetime, timedelta
 
 import numpy as np
 import pytest
@@ -139,6 +139,43 @@ def test_utc_leap_second_and_table():
     assert table["tai_minus_utc_s"] == 37.0 and table["expires"] >= "2027-01-01"
     # before 1972-01-01 + the table: 2000-01-01 12:00 TDB = 11:58:55.816 UTC (32 s leap)
     assert epochs.calendar_from_seconds(0.0, scale="UTC") == "2000-01-01 11:58:55.816 UTC"
+
+
+def test_every_leap_second_of_the_table_exists_and_no_other_second_60():
+    # issue 24: 23:59:60 on a day without a leap second was read as the next day's 00:00
+    # (ERFA's warning swallowed). Every day the table ends with a leap second (TAI - UTC
+    # up by 1 s the next day, 1972 on) has a 23:59:60 one second after 23:59:59; the day
+    # before it, a day in the middle of the year and a day past the table have none.
+    import erfa
+
+    epochs.leap_second_table()
+    table = erfa.leap_seconds.get()
+    steps = [(int(r["year"]), int(r["month"])) for prev, r in zip(table[:-1], table[1:])
+             if r["year"] >= 1972 and r["tai_utc"] - prev["tai_utc"] == 1.0]
+    assert len(steps) == 27       # 1972-06-30 to 2016-12-31 (IERS Bulletin C)
+    for y, mo in steps:
+        last = date(y, mo, 1) - timedelta(days=1)
+        a, b = (epochs.seconds_from_calendar(f"{last} 23:59:{s} UTC") for s in ("59", "60.5"))
+        assert b - a == pytest.approx(1.5, abs=3e-6)   # each rounded to 1 us
+        for bad in (f"{last - timedelta(days=1)} 23:59:60 UTC",
+                    f"{last} 23:58:60 UTC", f"{last} 23:59:61 UTC", f"{last} 23:59:60 TDB"):
+            with pytest.raises(InputError, match="does not exist"):
+                epochs.seconds_from_calendar(bad)
+    for bad in ("2026-11-03 23:59:60.000 UTC", "2016-06-30 23:59:60 UTC",
+                "2090-12-31 23:59:60 UTC", "2026-11-03 24:00:00 UTC"):
+        with pytest.raises(InputError, match="does not exist"):
+            epochs.seconds_from_calendar(bad)
+
+
+@pytest.mark.parametrize("day, tai_minus_utc_s", [
+    ("1972-03-01", 10.0), ("1975-03-01", 14.0), ("1985-03-01", 22.0), ("2017-03-01", 37.0)])
+def test_tai_minus_utc_from_1972_is_the_iers_table(day, tai_minus_utc_s):
+    # IERS Bulletin C / Leap_Second.dat: whole seconds from 1972. TDB - UTC = TAI - UTC +
+    # 32.184 s (TT - TAI) + TDB - TT (|.| < 2 ms). Loading the file without ERFA's
+    # pre-1972 rows made eraDat drift: 40.1 s instead of 22 s in 1985.
+    d = (epochs.seconds_from_calendar(f"{day} 00:00:00 TDB")
+         - epochs.seconds_from_calendar(f"{day} 00:00:00 UTC"))
+    assert -d == pytest.approx(tai_minus_utc_s + 32.184, abs=2e-3)
 
 
 def test_utc_round_trip_random_epochs():
