@@ -172,6 +172,10 @@ def cmd_plan(args) -> int:
     from lunarcap.runs.chain import PlanResult, plan_result
 
     plan = _plan_from_args(args)
+    if args.export:   # before any solve: a directory that cannot be written is refused
+        from lunarcap.runs.export import check_export_dir
+
+        check_export_dir(args.export, "--export")
     done = []
 
     def on_burn(b):

@@ -23,7 +23,9 @@ re-optimised. The approach starts
 
 from __future__ import annotations
 
+import os
 import re
+import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -153,6 +155,35 @@ class Export:
                 "segments": self.segments}
 
 
+def check_export_dir(out_dir, what: str = "export directory") -> Path:
+    """The export directory, created if missing; InputError if no file can be written in it.
+
+    Checked before any solve (``lunarcap plan --export DIR``) by creating and removing a
+    file there, so a read-only mount, a path under a file or a file in the way is refused
+    with the reason even for a user whom permissions do not stop.
+
+    Raises
+    ------
+    InputError
+        ``"<what> <dir>: cannot write files there (<reason>)"``.
+    """
+    out = Path(out_dir).expanduser()
+    try:
+        if out.exists() and not out.is_dir():
+            raise NotADirectoryError(0, f"{out} is a file, not a directory")
+        out.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(dir=out, prefix=".lunarcap-probe-")
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        blocking = next((p for p in out.parents if p.exists() and not p.is_dir()), None)
+        if blocking is not None:
+            reason = f"{blocking} is a file, not a directory"
+        raise InputError(f"{what} {out}: cannot write files there ({reason})") from None
+    return out
+
+
 def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFAULT_OBJECT_ID,
                 coast_step_s: float = COAST_STEP_S, burn_step_s: float = BURN_STEP_S,
                 approach_min: float = APPROACH_MIN) -> Export:
@@ -169,6 +200,7 @@ def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFA
     from lunarcap.mission.plan import CapturePlan
     from lunarcap.runs.chain import plan_result
 
+    out = check_export_dir(out_dir)
     if isinstance(result, CapturePlan):
         result = plan_result(result, impulsive=False)
     if not all(b.solution.verification.passed for b in result.burns):
@@ -181,8 +213,6 @@ def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFA
     arrival_state = getattr(plan.arrival, "state", None)
     t_start = None if arrival_state is None else arrival_state.epoch_s
     arcs = flight_arcs(sols, approach_min, t_start, plan.ephemeris_model())
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
     stem = safe_name(plan.name)
     segs, report = [], []
     for arc in arcs:
