@@ -288,6 +288,14 @@ _add("target", "target", "Plan file: the orbit a burn is asked for ('circular', 
 _add("target_apolune_altitude_km", "apolune asked", "Apolune altitude a plan asks of an "
      "ellipse.")
 _add("coast_min", "coast", "Coast after a burn to the perilune where its target is met.")
+_add("start_bounds_min", "start bounds", "Plan file: the interval [lo, hi] a free ignition is "
+     "optimised within, min from the nominal perilune (negative: before it).", "array")
+_add("start", "start state", "Plan file: a known state the capture starts from instead of "
+     "the arrival perilune (a re-plan after a fault).", "object")
+_add("mee", "MEE", "Modified equinoctial elements (p km, f, g, h, k, L rad), M-MME2000.",
+     "array")
+_add("first_coast_min", "first coast", "Plan file: from a start state's epoch to the nominal "
+     "perilune where the first burn's target must hold.")
 # ------------------------------------------------------------------ a study's run log
 for _k, _l, _d, _t in (
         ("study", "study", "Which study.", "string"),

@@ -53,10 +53,57 @@ def test_package_data_includes_the_schemas():
     assert "*.schema.json" in pyproject["tool"]["setuptools"]["package-data"]["lunarcap.schemas"]
 
 
+@pytest.mark.parametrize("plan", cli_outputs.PLANS)
 @pytest.mark.parametrize("command", list(cli_outputs.COMMANDS))
-def test_real_output_validates(command):
-    data, _ = cli_outputs.outputs()[command]
+def test_real_output_validates(command, plan):
+    data, _ = cli_outputs.outputs(plan)[command]
     jsonschema.validate(data, schemas.load(command), cls=jsonschema.Draft202012Validator)
+
+
+@pytest.mark.parametrize("command", ["plan", "burns", "missed", "dispersions"])
+def test_outputs_carry_free_ignitions_both_altitudes_and_a_state_arrival(command):
+    # what test_real_output_validates must meet: the plans as the user wrote them
+    tb = cli_outputs.outputs("two-burn-8h")[command][0]["plan"]
+    sa = cli_outputs.outputs("state-arrival")[command][0]["plan"]
+    assert [b["start_min"] for b in tb["burns"]] == ["free", "free"]
+    assert tb["burns"][1]["target"] == "circular"
+    assert sa["burns"][1]["target"] == {"perilune_altitude_km": 100.0,
+                                        "apolune_altitude_km": 300.0}
+    assert sa["arrival"]["epoch"].endswith("UTC") and len(sa["arrival"]["position_km"]) == 3
+
+
+def test_plan_file_schema_knows_every_key_a_plan_file_takes():
+    from lunarcap.mission import plan_io
+
+    plan = schemas.load("plan")["properties"]["plan"]["properties"]
+    assert set(plan) == plan_io.TOP_KEYS
+    assert set(plan["arrival"]["properties"]) == \
+        plan_io.ARRIVAL_KEYS | plan_io.STATE_ARRIVAL_KEYS | {"opm"}
+    assert set(plan["burns"]["items"]["properties"]) == plan_io.BURN_KEYS
+    assert set(plan["start"]["properties"]) == plan_io.START_KEYS
+
+
+def test_plan_file_values_outside_their_kinds_fail_validation():
+    from lunarcap.mission.targets import CIRCULAR, PERILUNE
+
+    data, _ = cli_outputs.outputs("state-arrival")["plan"]
+    schema = schemas.load("plan")
+    target = schema["properties"]["plan"]["properties"]["burns"]["items"]["properties"]["target"]
+    assert set(target["anyOf"][0]["enum"]) == {CIRCULAR, PERILUNE}
+    for where, bad in ((("start_min",), "fixed"), (("target",), "elliptic"),
+                       (("target", "apolune_altitude_km"), None),
+                       (("target", "apolune_altitude_km"), "300")):
+        wrong = copy.deepcopy(data)
+        burn = wrong["plan"]["burns"][1]
+        *path, last = where
+        for k in path:
+            burn = burn[k]
+        if bad is None:
+            del burn[last]
+        else:
+            burn[last] = bad
+        with pytest.raises(jsonschema.ValidationError):
+            jsonschema.validate(wrong, schema, cls=jsonschema.Draft202012Validator)
 
 
 def test_a_stray_key_or_a_string_period_fails_validation():

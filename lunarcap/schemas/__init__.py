@@ -47,7 +47,7 @@ RECORDS = {
                        "m_before_kg", "m_after_kg", "fuel_kg", "eq19_duration_min"],
     "solve": [*_SUMMARY, "target_orbit", "u_inertial", {"verification": "verification"},
               {"attempts": "attempt"},
-              *_LOSSES, "plan", "previous_starts_min"],
+              *_LOSSES, "plan", ("previous_starts_min", "starts")],
     "verification": _VERIFICATION,
     "attempt": ["mesh", "ipopt_status", "iterations", "nlp_solve_s", "delta_v_mps", "verified",
                 "rp_error_m", "inc_error_deg", "gamma_error_deg", "delta_v_diff_mps",
@@ -63,13 +63,15 @@ RECORDS = {
                "all_verified"],
     "plan_file": ["name", "description", {"arrival": "plan_arrival"},
                   {"engine": "plan_engine"}, "dynamics", "ephemeris", "lunar_pole",
-                  {"burns": "plan_file_burn"}, "formulation"],
+                  {"burns": "plan_file_burn"}, "formulation", {"start": "plan_start"}],
     "plan_arrival": ["epoch", "perilune_altitude_km", "inclination_deg", "impulsive_loi1_mps",
                      "v_inf_kmps", "hemisphere", "approach_dir", "mass_kg", "frame",
                      "position_km", "velocity_kmps", "opm"],
     "plan_engine": ["thrust_N", "isp_s"],
-    "plan_file_burn": ["target", "target_period_h", "target_apolune_altitude_km", "coast_min",
-                       "start_min", "steering"],
+    "plan_file_burn": [("target", "target"), "target_period_h", "target_apolune_altitude_km",
+                       "coast_min", ("start_min", "number or free"), "steering",
+                       "start_bounds_min"],
+    "plan_start": ["epoch", "mee", "mass_kg", "first_coast_min"],
     "burns": [{"plan": "plan_file"}, "max_period_h", "max_days", "table", {"run": "run"},
               {"counts": "burns_count"}],
     "burns_count": ["plan", "plan_id", "thrust_N", "isp_s", "dynamics", "n_burns",
@@ -145,12 +147,30 @@ ARRAYS = {"attempt", "impulsive_burn", "plan_burn", "plan_file_burn", "burns_cou
           "failed_sample"}
 
 
+#: What a plan file writes where one JSON type is not enough (see
+#: :mod:`lunarcap.mission.plan_io`): an ignition offset is minutes or ``"free"``; a target
+#: is ``"circular"``, ``"perilune"`` (an ellipse of the plan's perilune given by a period
+#: or an apolune beside it) or an ellipse given by both altitudes.
+_FREE = {"anyOf": [{"type": "number"}, {"const": "free"}]}
+_ALTITUDES = ["perilune_altitude_km", "apolune_altitude_km"]
+
+
+def _types(kind: str) -> dict:
+    """The JSON type of a leaf of ``kind`` (a glossary kind, or one of the plan file's)."""
+    if kind == "number or free":
+        return dict(_FREE)
+    if kind == "starts":
+        return {"type": ["array", "null"], "items": _FREE}
+    if kind == "target":
+        both = {"type": "object", "properties": {k: _leaf(k) for k in _ALTITUDES},
+                "required": _ALTITUDES, "additionalProperties": False}
+        return {"anyOf": [{"enum": ["circular", "perilune"]}, both]}
+    return {"type": [kind, "null"]}
+
+
 def _leaf(name: str, kind: str | None = None) -> dict:
     q = Q.lookup(name)
-    types = {"number": ["number", "null"], "integer": ["integer", "null"],
-             "string": ["string", "null"], "boolean": ["boolean", "null"],
-             "array": ["array", "null"], "object": ["object", "null"]}[kind or q.kind]
-    out = {"type": types, "title": q.header, "description": q.definition}
+    out = _types(kind or q.kind) | {"title": q.header, "description": q.definition}
     if q.unit:
         out["x-unit"] = q.unit
     return out
