@@ -224,6 +224,7 @@ def cmd_solve(args) -> int:
     from lunarcap.runs.chain import (
         BurnResult,
         impulsive_limit,
+        labelled,
         prebuild_for,
         reuse_earlier_burns,
         solve_burn,
@@ -246,12 +247,10 @@ def cmd_solve(args) -> int:
         plan = plan.with_steering(n - 1, args.steering)
     key = plan.key(n)
     verbose = not args.quiet
-    prebuild_for(key, [n], impulsive=not args.no_impulsive)
-    with reuse_earlier_burns():
+    prebuild_for(key, [n], impulsive=not args.no_impulsive, verbose=verbose)
+    with reuse_earlier_burns(), labelled(plan):
         sol = solve_burn(key, verbose=verbose)
-    imp = None
-    if not args.no_impulsive:
-        imp = impulsive_limit(key, verbose=verbose)
+        imp = None if args.no_impulsive else impulsive_limit(key, verbose=verbose)
     r = BurnResult(sol, imp)
     if args.json:
         out = sol.to_dict()
@@ -458,6 +457,33 @@ def _interrupt_outside_casadi():
 def main(argv=None) -> int:
     """Entry point; returns the exit status."""
     args = cli_parser.parse_args(_commands(), __doc__.splitlines()[0], argv)
+    code = _run(args)
+    if code == 130:
+        _leave_abandoned_calls()
+    return code
+
+
+def _leave_abandoned_calls() -> None:
+    """After Ctrl-C, exit at once (status 130) if a CasADi call still runs in a thread.
+
+    Such a call (an NLP build, an IPOPT solve: :mod:`lunarcap.optim.interrupt`) may last
+    seconds more, and tearing the interpreter down under it crashes (a segmentation fault
+    instead of status 130): the streams are flushed and the process leaves with
+    ``os._exit``; every ``finally`` of the command has run.
+    """
+    import os
+
+    from lunarcap.optim.interrupt import busy
+
+    if busy():
+        for stream in (sys.stdout, sys.stderr):
+            with contextlib.suppress(Exception):
+                stream.flush()
+        os._exit(130)
+
+
+def _run(args) -> int:
+    """The command of ``args``, its errors turned into one line and an exit status."""
     from lunarcap.repro.cache import caching
 
     # --no-cache: the one cache switch, off for the whole command (studies ship its

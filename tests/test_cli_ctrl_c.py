@@ -132,6 +132,22 @@ def test_ctrl_c_in_plan(tmp_path):
     _check(code, out, err, left, "lunarcap: interrupted")
 
 
+def test_ctrl_c_while_the_nlps_are_built_acts_within_1_s(tmp_path):
+    # issue 24: during the NLP builds (seconds each in C++, in full dynamics) Ctrl-C took
+    # 6-13 s to act; the builds now run in threads the command does not wait for
+    proc = Command(["plan", "song2011-150N", "--no-cache"], tmp_path)
+    _wait_for(proc, lambda: any(ln.startswith("building ") for ln in proc.err))
+    time.sleep(1.0)  # into the builds (the first takes several seconds)
+    assert not any(ln.startswith("  ") for ln in proc.err), proc.err  # none built yet
+    t0 = time.monotonic()
+    code, out, err, left = _interrupt(proc)
+    acted_s = time.monotonic() - t0
+    assert "Traceback" not in out + err, err
+    assert err.splitlines()[1:] == ["lunarcap: interrupted"], err
+    assert code == 130 and left == [], (code, left)
+    assert acted_s < 1.0, acted_s
+
+
 def _workers(pid):
     """The Dask worker processes below ``pid`` (not multiprocessing's resource tracker)."""
     out = []

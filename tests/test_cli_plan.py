@@ -87,6 +87,28 @@ def test_plan_text_prints_every_burn_and_totals(plan_file):
     assert "ellipse, 8 h" in r.stdout and "circle" in r.stdout and "total: dV" in r.stdout
 
 
+def test_progress_says_what_is_built_and_counts_burns_out_of_the_plan():
+    # issue 24: silence while the NLPs were built; "burn 2 of 2", "burn 3 of 3" for a
+    # 3-burn plan (each burn is solved from the plan's prefix); unlabelled impulsive solves
+    r = _run("plan", "song2011-450N", "--dynamics", "two-body", "--no-cache")
+    assert r.returncode == 0, r.stderr
+    err = r.stderr.splitlines()
+    first = next(i for i, ln in enumerate(err) if ln.startswith("burn "))
+    assert err[0].startswith("building 4 NLPs") and err[first - 1].startswith("  NLPs built in")
+    built = err[1:first - 1]
+    assert len(built) == 4 and all(ln.endswith(" s") and "two-body dynamics, mesh 8x16 LGR-5"
+                                   in ln for ln in built), built
+    assert [ln.split(" (")[0] for ln in err if ln.startswith("burn ")] == \
+        ["burn 1 of 3", "burn 2 of 3", "burn 3 of 3"]
+    assert [ln.split(":")[0] for ln in err if ln.startswith("impulsive limit")] == \
+        [f"impulsive limit of burn {k} of 3" for k in (1, 2, 3)]
+    meshes = [ln for ln in err[first:] if "mesh 8x16 LGR-5:" in ln]
+    labels = ("4 s burn before the perilune, mesh", "4 s burn after the perilune, mesh",
+              "2 s burn, mesh")
+    assert sum(ln.startswith(tuple("  " + x for x in labels)) for ln in meshes) == 9, err
+    assert len(meshes) == 12, err   # and one per finite burn
+
+
 def test_failed_solve_exits_3_and_keeps_what_was_done(monkeypatch, capsys, plan_file):
     # burn 2 fails: burn 1's row is printed first, then one error line, exit 3
     import lunarcap.runs.chain as chain

@@ -241,7 +241,7 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
                            coast_bounds_s, max_time_s, max_period_s if period_rows else None)
     meshes = _legs_start(lay, warm, mesh, fit, S, (w0, lbx, ubx, lbg, ubg), params)
     t0 = time.perf_counter()
-    res = nlp.compiled.solver(x0=w0, p=lay.params(**params), lbx=lbx, ubx=ubx, lbg=lbg,
+    res = nlp.compiled.solve(x0=w0, p=lay.params(**params), lbx=lbx, ubx=ubx, lbg=lbg,
                               ubg=ubg)
     solve_s = time.perf_counter() - t0
     stats = nlp.compiled.solver.stats()

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, replace
-from functools import lru_cache
 
 import numpy as np
 
@@ -32,6 +31,7 @@ from lunarcap.optim.collocation import (
     sundman_fractions,
 )
 from lunarcap.optim.guess import Guess
+from lunarcap.optim.interrupt import map_in_threads
 from lunarcap.optim.problem import BurnProblem
 from lunarcap.optim.transcription import CompiledNLP, Leg, NLPBuilder, add_leg
 from lunarcap.physics import constants as C
@@ -49,10 +49,22 @@ class BurnNLP:
     leg: Leg
 
 
-@lru_cache(maxsize=None)
+#: The NLPs built in this process, by shape (the arguments of :func:`build_burn_nlp`).
+_NLPS: dict = {}
+
+
 def build_burn_nlp(mesh: Mesh, target_kind: str, free_start: bool = False,
                    steering: str = "optimal", mode: str = "full",
                    free_end: bool = False) -> BurnNLP:
+    """The NLP of one shape, built on first use (once per process; see :func:`_build`)."""
+    shape = (mesh, target_kind, free_start, steering, mode, free_end)
+    if shape not in _NLPS:
+        _NLPS[shape] = _build(*shape)
+    return _NLPS[shape]
+
+
+def _build(mesh: Mesh, target_kind: str, free_start: bool, steering: str, mode: str,
+           free_end: bool) -> BurnNLP:
     """Build (once per mesh shape, target kind, start mode, steering law, dynamics) the NLP.
 
     Parameters (by name): ``x_start`` (7, physical: the state at ignition, or at the
@@ -83,21 +95,67 @@ def build_burn_nlp(mesh: Mesh, target_kind: str, free_start: bool = False,
     return BurnNLP(nlp.compile(leg.dv + leg.v_end, name), leg)
 
 
-def prebuild(shapes, workers: int = 2) -> None:
+def describe_shape(mesh: Mesh, target_kind: str, free_start: bool = False,
+                   steering: str = "optimal", mode: str = "full", free_end: bool = False) -> str:
+    """An NLP shape (the arguments of :func:`build_burn_nlp`) in words."""
+    return (f"{target_kind} target, {'free' if free_start else 'fixed'} ignition"
+            f"{', free perilune epoch' if free_end else ''}"
+            f"{'' if steering == 'optimal' else f', {steering} steering'}, {mode} dynamics, "
+            f"mesh {mesh.label()}")
+
+
+def is_built(mesh: Mesh, prob: BurnProblem) -> bool:
+    """True if this process has built the NLP of ``prob``'s shape on ``mesh``."""
+    return shape_of(mesh, prob) in _NLPS
+
+
+def shape_of(mesh: Mesh, prob: BurnProblem) -> tuple:
+    """The NLP shape of ``prob`` on ``mesh``: the arguments of :func:`build_burn_nlp`."""
+    return (mesh, prob.target.kind, prob.free_start, prob.steering, prob.model.mode,
+            prob.free_end)
+
+
+def clear_nlps() -> None:
+    """Forget every NLP built in this process (the next use builds it again)."""
+    _NLPS.clear()
+
+
+def n_built() -> int:
+    """How many NLP shapes this process holds built."""
+    return len(_NLPS)
+
+
+def prebuild(shapes, workers: int = 2, progress=None) -> None:
     """Build several NLP shapes at once, in threads (CasADi releases the GIL while it builds).
 
-    ``shapes``: iterable of (mesh, target kind, free start, steering, dynamics) tuples, the
-    arguments of :func:`build_burn_nlp`; each is built once per process, here or later.
+    ``shapes``: iterable of (mesh, target kind, free start, steering, dynamics[, free end])
+    tuples, the arguments of :func:`build_burn_nlp`; each is built once per process, here
+    or later. The caller waits so that Ctrl-C acts at once
+    (:func:`lunarcap.optim.interrupt.map_in_threads`). ``progress(str)``: a line before
+    the builds, one per shape built (what, how long) and the total.
     """
-    from concurrent.futures import ThreadPoolExecutor
-
-    shapes = list(dict.fromkeys(shapes))
-    if len(shapes) < 2:
-        for shape in shapes:
-            build_burn_nlp(*shape)
+    shapes = [s for s in dict.fromkeys(_normal(*s) for s in shapes) if s not in _NLPS]
+    if not shapes:
         return
-    with ThreadPoolExecutor(max_workers=workers) as pool:
-        list(pool.map(lambda shape: build_burn_nlp(*shape), shapes))
+    if progress:
+        progress(f"building {len(shapes)} NLP{'s' * (len(shapes) > 1)} "
+                 f"({min(workers, len(shapes))} at a time, once per process):")
+    t0 = time.perf_counter()
+
+    def build(shape):
+        t = time.perf_counter()
+        build_burn_nlp(*shape)
+        if progress:
+            progress(f"  {describe_shape(*shape)}: {time.perf_counter() - t:.1f} s")
+
+    map_in_threads(build, shapes, workers)
+    if progress and len(shapes) > 1:
+        progress(f"  NLPs built in {time.perf_counter() - t0:.1f} s")
+
+
+def _normal(mesh: Mesh, target_kind: str, free_start: bool = False, steering: str = "optimal",
+            mode: str = "full", free_end: bool = False) -> tuple:
+    return (mesh, target_kind, free_start, steering, mode, free_end)
 
 
 @dataclass
@@ -220,8 +278,7 @@ def leg_solution(layout, prefix: str, w: np.ndarray, prob: BurnProblem, mesh: Me
 
 def nlp_for(prob: BurnProblem, mesh: Mesh) -> BurnNLP:
     """The compiled NLP of this burn problem's shape on ``mesh`` (built on first use)."""
-    return build_burn_nlp(mesh, prob.target.kind, prob.free_start, prob.steering,
-                          prob.model.mode, prob.free_end)
+    return build_burn_nlp(*shape_of(mesh, prob))
 
 
 def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
@@ -240,7 +297,7 @@ def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     pvec = lay.params(x_start=xs, t_ref=ts, t_end=prob.t_end_s, dynamics=prob.model.params(),
                       mesh_burn=mb, mesh_coast=mc, target=prob.target.values(LU))
     t0 = time.perf_counter()
-    res = nlp.compiled.solver(x0=w0, p=pvec, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
+    res = nlp.compiled.solve(x0=w0, p=pvec, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
     solve_s = time.perf_counter() - t0
     stats = nlp.compiled.solver.stats()
     w = np.asarray(res["x"]).ravel()

@@ -17,8 +17,8 @@ import numpy as np
 from lunarcap.errors import SolveError
 from lunarcap.optim.collocation import DEFAULT_MESHES
 from lunarcap.optim.guess import make_guess
+from lunarcap.optim.nlp import describe_shape, is_built, shape_of, solve_nlp
 from lunarcap.optim.nlp import prebuild as _prebuild_nlps
-from lunarcap.optim.nlp import solve_nlp
 from lunarcap.optim.problem import BurnProblem
 from lunarcap.optim.solution import Solution
 from lunarcap.optim.verify import verify
@@ -60,14 +60,15 @@ def solve_burn_problem(prob: BurnProblem, meshes=DEFAULT_MESHES, guess=None,
             raise exc from None
 
 
-def prebuild(shapes, workers: int = 2) -> None:
+def prebuild(shapes, workers: int = 2, progress=None) -> None:
     """Build at once (in threads) the NLPs that solving burns of these shapes starts with.
 
     ``shapes``: (target kind, free start, steering, dynamics[, free end]) tuples, one per
     burn; each NLP is built on the first mesh :func:`solve_burn_problem` tries, once per
-    process (here or at the first solve).
+    process (here or at the first solve). ``progress(str)``: what is built, how long
+    (:func:`lunarcap.optim.nlp.prebuild`).
     """
-    _prebuild_nlps([(DEFAULT_MESHES[0], *shape) for shape in shapes], workers)
+    _prebuild_nlps([(DEFAULT_MESHES[0], *shape) for shape in shapes], workers, progress)
 
 
 def widened(prob: BurnProblem) -> BurnProblem | None:
@@ -98,6 +99,8 @@ def _solve_on_meshes(prob: BurnProblem, meshes, guess, progress, t0: float) -> S
     guess = guess or make_guess(prob)
     attempts = []
     for mesh in meshes:
+        if progress and not is_built(mesh, prob):   # seconds, once per process
+            progress(f"  building the NLP ({describe_shape(*shape_of(mesh, prob))})")
         raw = solve_nlp(prob, mesh, guess)
         rec = {"mesh": mesh.label(), "ipopt_status": raw.status,
                "iterations": raw.iterations, "nlp_solve_s": raw.solve_s,

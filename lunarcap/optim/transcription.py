@@ -32,6 +32,7 @@ from lunarcap.optim.collocation import (
     Mesh,
     collocation_defects,
 )
+from lunarcap.optim.interrupt import off_main_thread
 from lunarcap.optim.problem import steering_law_expr
 from lunarcap.physics.dynamics import N_PARAM, P_THRUST, P_VEX
 from lunarcap.physics.elements import speed_from_mee
@@ -152,8 +153,9 @@ class NLPBuilder:
         """
         t0 = time.perf_counter()
         w, p, g = ca.vertcat(*self._w), ca.vertcat(*self._p), ca.vertcat(*self._g)
-        solver = ca.nlpsol(name, "ipopt", {"x": w, "p": p, "f": objective, "g": g},
-                           {"expand": expand, "print_time": False, "ipopt": IPOPT_OPTIONS})
+        solver = off_main_thread(   # seconds in C++: Ctrl-C must not wait for it
+            ca.nlpsol, name, "ipopt", {"x": w, "p": p, "f": objective, "g": g},
+            {"expand": expand, "print_time": False, "ipopt": IPOPT_OPTIONS})
         g_fun = ca.Function(f"{name}_g", [w, p], [g])
         return CompiledNLP(solver, self.layout, g_fun, time.perf_counter() - t0)
 
@@ -166,6 +168,10 @@ class CompiledNLP:
     layout: Layout
     g: ca.Function
     build_s: float
+
+    def solve(self, **args) -> dict:
+        """``solver(**args)`` (IPOPT), off the main thread so that Ctrl-C acts at once."""
+        return off_main_thread(self.solver, **args)
 
 
 @dataclass

@@ -189,14 +189,14 @@ def nlp_builds(dynamics: str = "full", out=print) -> list[dict]:
     wall of one call of each (ms).
     """
     from lunarcap.optim.collocation import DEFAULT_MESHES
-    from lunarcap.optim.nlp import build_burn_nlp
+    from lunarcap.optim.nlp import build_burn_nlp, clear_nlps
 
     mesh, rows = DEFAULT_MESHES[0], []
     out(f"{'NLP shape':<44} {'build s':>7} {'vars':>5} {'hess_l instr':>12} "
         f"{'hess_l ms':>9} {'jac_g instr':>11} {'jac_g ms':>8}")
     for kind in ("perilune", "circular"):
         for free in (False, True):
-            build_burn_nlp.cache_clear()
+            clear_nlps()
             nlp = build_burn_nlp(mesh, kind, free, "optimal", dynamics)
             s = nlp.compiled.solver
             h, j = s.get_function("nlp_hess_l"), s.get_function("nlp_jac_g")
@@ -209,7 +209,7 @@ def nlp_builds(dynamics: str = "full", out=print) -> list[dict]:
             out(f"{row['shape']:<44} {row['build_s']:7.2f} {row['n_vars']:5d} "
                 f"{row['hess_l_instructions']:12,d} {row['hess_l_ms']:9.2f} "
                 f"{row['jac_g_instructions']:11,d} {row['jac_g_ms']:8.2f}")
-    build_burn_nlp.cache_clear()
+    clear_nlps()
     return rows
 
 
@@ -265,7 +265,7 @@ def engine_profile(engines=((300.0, 250.0), (420.0, 250.0)), dynamics: str = "fu
     import joblib
 
     import lunarcap.optim.solve as solve_mod
-    from lunarcap.optim.nlp import build_burn_nlp, nlp_for
+    from lunarcap.optim.nlp import n_built, nlp_for
     from lunarcap.repro import cache
     from lunarcap.runs.study import solve_engine
 
@@ -273,10 +273,10 @@ def engine_profile(engines=((300.0, 250.0), (420.0, 250.0)), dynamics: str = "fu
     plain = solve_mod.solve_nlp
 
     def counted(prob, mesh, guess):
-        before = build_burn_nlp.cache_info().currsize
+        before = n_built()
         t0 = time.perf_counter()
         nlp = nlp_for(prob, mesh)
-        if build_burn_nlp.cache_info().currsize > before:
+        if n_built() > before:
             acc["build_s"] = acc.get("build_s", 0.0) + time.perf_counter() - t0
         t0 = time.perf_counter()
         raw = plain(prob, mesh, guess)

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import sys
 from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -97,10 +98,31 @@ def perilune_epoch_state(plan: CapturePlan, i: int, verbose: bool = False) -> tu
     return sol.problem.t_end_s, sol.end_state
 
 
+#: Burns of the plan being solved, for progress lines ("burn 2 of 5"): a burn is solved
+#: from the plan's prefix up to it (:meth:`CapturePlan.key`), which knows no later burn.
+_PLAN_BURNS: ContextVar = ContextVar("lunarcap_plan_burns", default=None)
+
+
+@contextmanager
+def labelled(plan: CapturePlan):
+    """Within the block, progress lines count burns out of ``plan``'s ("burn k of N")."""
+    token = _PLAN_BURNS.set(plan.n_burns)
+    try:
+        yield
+    finally:
+        _PLAN_BURNS.reset(token)
+
+
+def _burn_number(i: int) -> str:
+    """'burn 2 of 5' (0-based ``i``; 'burn 2' outside :func:`labelled`)."""
+    n = _PLAN_BURNS.get()
+    return f"burn {i + 1}" + ("" if n is None else f" of {n}")
+
+
 def _burn_label(plan: CapturePlan, i: int) -> str:
     b = plan.burns[i]
     start = "free" if b.free_start else f"{b.start_min:g} min"
-    return (f"burn {i + 1} of {plan.n_burns} ({b.describe()}), {plan.engine.thrust_N:g} N / "
+    return (f"{_burn_number(i)} ({b.describe()}), {plan.engine.thrust_N:g} N / "
             f"{plan.engine.isp_s:g} s, start {start}, {plan.dynamics}"
             + ("" if b.steering == "optimal" else f", {b.steering} steering"))
 
@@ -138,7 +160,7 @@ def solve_plan(plan: CapturePlan, verbose: bool = False) -> list:
 
     Cached as the cache switch says (:func:`lunarcap.repro.cache.caching`).
     """
-    with reuse_earlier_burns():
+    with reuse_earlier_burns(), labelled(plan):
         return [solve_burn(plan.key(n), verbose=verbose) for n in range(1, plan.n_burns + 1)]
 
 
@@ -201,26 +223,36 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     dv_guess = plan.impulsive()[i].delta_v_mps
     d_long, d_short = IMPULSIVE_LIMIT_DURATIONS_S
     big = x_peri[6] * dv_guess / d_long  # N: m * dV / t
-    progress = _log if verbose else None
+    if verbose:
+        _log(f"impulsive limit of {_burn_number(i)}: {d_long:g} s burns either side of the "
+             f"perilune, then a {d_short:g} s burn, extrapolated to 0 s")
+
+    def progress(what):
+        return (lambda line: _log(f"  {what}, {line.strip()}")) if verbose else None
     # The objective is nearly flat along the impulse epoch and has a local optimum on each
     # side of the perilune (a few seconds before and after, differing by ~0.2 m/s in
     # delta-V and ~0.003 m/s in J): solve on each side and keep the lower objective.
     centre = -d_long / 120.0  # ignition (min) of a 4 s burn centred on the perilune
     fit = burn_fit(plan, i, eph, t_peri)
     sides = []
-    for bounds, guess in (((-10.0, centre), centre - 0.1), ((centre, 10.0), centre + 0.1)):
+    for side, bounds, guess in (("before", (-10.0, centre), centre - 0.1),
+                                ("after", (centre, 10.0), centre + 0.1)):
         prob = burn_problem(plan, i, x_peri, eph, start_min="free", thrust_N=big,
                             start_bounds_min=bounds, guess_start_min=guess, fit=fit,
                             t_perilune_s=t_peri)
-        sides.append(solve_burn_problem(prob, progress=progress))
+        sides.append(solve_burn_problem(
+            prob, progress=progress(f"{d_long:g} s burn {side} the perilune")))
     s_long = min(sides, key=lambda s: s.raw.objective_kmps)
     # the short burn is centred on the same epoch, so both lie on one t^2 curve
     centre_min = s_long.problem.start_min + s_long.raw.t1_s / 120.0
     t_short_min = s_long.raw.t1_s * d_short / d_long / 60.0
     prob2 = burn_problem(plan, i, x_peri, eph, start_min=centre_min - t_short_min / 2,
                          thrust_N=big * d_long / d_short, fit=fit, t_perilune_s=t_peri)
-    s_short = solve_burn_problem(prob2, progress=progress)
+    s_short = solve_burn_problem(prob2, progress=progress(f"{d_short:g} s burn"))
     dv4, dv2 = s_long.delta_v_mps, s_short.delta_v_mps
+    if verbose:
+        _log(f"  -> {(4 * dv2 - dv4) / 3:.3f} m/s ({d_long:g} s: {dv4:.3f}, {d_short:g} s: "
+             f"{dv2:.3f} m/s)")
     return {"burn": i + 1, "delta_v_mps": (4 * dv2 - dv4) / 3,
             "delta_v_long_mps": dv4, "delta_v_short_mps": dv2,
             "burn_long_s": s_long.raw.t1_s, "burn_short_s": s_short.raw.t1_s,
@@ -334,11 +366,12 @@ def _in_cache(fn, *args) -> bool:
     return bool(check and check(*args))
 
 
-def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True) -> None:
+def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
+                 verbose: bool = False) -> None:
     """Build at once (two threads) the NLP shapes that solving ``burns`` of ``plan`` needs.
 
     ``burns``: 1-based burn numbers (default all). Burns (and impulsive limits) already in
-    the disk cache need no NLP and are left out.
+    the disk cache need no NLP and are left out. ``verbose``: say what is built, how long.
     """
     from lunarcap.optim.solve import prebuild
 
@@ -353,7 +386,7 @@ def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True) -> None:
             if not (enabled() and _in_cache(_impulsive_limit, impulsive_key(key))):
                 shapes += [(kind, True, "optimal", plan.dynamics, free_end),
                            (kind, False, "optimal", plan.dynamics, free_end)]
-    prebuild(shapes)
+    prebuild(shapes, progress=_log if verbose else None)
 
 
 def plan_result(plan: CapturePlan, impulsive: bool = True, verbose: bool = False,
@@ -364,9 +397,9 @@ def plan_result(plan: CapturePlan, impulsive: bool = True, verbose: bool = False
     recomputes every burn, the earlier ones included). ``on_burn(BurnResult)`` is called as
     each burn completes, so a caller can print what is done even if a later burn fails.
     """
-    prebuild_for(plan, impulsive=impulsive)
+    prebuild_for(plan, impulsive=impulsive, verbose=verbose)
     burns = []
-    with reuse_earlier_burns():
+    with reuse_earlier_burns(), labelled(plan):
         for n in range(1, plan.n_burns + 1):
             key = plan.key(n)
             sol = solve_burn(key, verbose=verbose)
@@ -394,4 +427,5 @@ def paper_case(thrust_N: float, isp_s: float, burn: int, start_min,
     for j, s in enumerate((*previous_starts, start_min)):
         plan = plan.with_start(j, s)
     plan = plan.with_steering(burn - 1, steering)
-    return solve_burn(plan.key(burn), verbose=verbose)
+    with labelled(plan):
+        return solve_burn(plan.key(burn), verbose=verbose)
