@@ -124,7 +124,9 @@ def test_failed_solve_exits_3_and_keeps_what_was_done(monkeypatch, capsys, plan_
     out, err = capsys.readouterr()
     assert rc == 3
     assert "ellipse, 8 h" in out and "total" not in out
-    assert "Infeasible_Problem_Detected" in _one_error_line(err)
+    # the solve saw the plan's key (name blanked); the message names the plan (issue 24)
+    assert _one_error_line(err) == ("lunarcap: error: plan two-burn-test: burn 2 failed on "
+                                    "every mesh: 8x16 LGR-5: IPOPT Infeasible_Problem_Detected")
 
 
 BAD_PLANS = [

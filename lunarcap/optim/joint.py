@@ -60,6 +60,14 @@ class JointNLP:
     legs: list
 
 
+def _of(plan) -> str:
+    """' of plan NAME' for a message, or '' for a plan whose name a cache key blanked.
+
+    The caller that knows the name says it (a study's row, the command line).
+    """
+    return f" of plan {plan.name}" if plan.name else ""
+
+
 @lru_cache(maxsize=None)
 def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
                     free_coasts: tuple = (), period_rows: bool = False,
@@ -246,7 +254,7 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     solve_s = time.perf_counter() - t0
     stats = nlp.compiled.solver.stats()
     if not stats["success"]:
-        raise SolveError(f"all-burns NLP of plan {plan.name!r}: IPOPT "
+        raise SolveError(f"all-burns NLP{_of(plan)}: IPOPT "
                          f"{stats['return_status']}", status=stats["return_status"])
     w = np.asarray(res["x"]).ravel()
     coasts = [float(lay.get(w, f"leg{k}.coast")[0]) * TU if free[k] else None
@@ -323,7 +331,7 @@ def _verified_legs(plan: CapturePlan, lay, w, warm: list, meshes: list, mesh: Me
                           build_s=build_s, max_defect=float("nan"), **fixed)
         ver, flight = verify(raw, return_flight=True)
         if not ver.passed:
-            raise SolveError(f"all-burns NLP of plan {plan.name!r}: leg {k + 1} failed "
+            raise SolveError(f"all-burns NLP{_of(plan)}: leg {k + 1} failed "
                              "verification: " + "; ".join(ver.failures()),
                              status="verification failed", details=ver.to_dict())
         legs.append(Solution(raw, ver, flight, [], solve_s, guess.t1_s))

@@ -23,7 +23,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from lunarcap.errors import InputError
+from lunarcap.errors import InputError, SolveError
 from lunarcap.mission.arrival import Arrival, ArrivalSpec
 from lunarcap.mission.plan import CapturePlan, paper_plan, plan_ephemeris
 from lunarcap.optim.problem import burn_fit, burn_problem
@@ -105,10 +105,19 @@ _PLAN_BURNS: ContextVar = ContextVar("lunarcap_plan_burns", default=None)
 
 @contextmanager
 def labelled(plan: CapturePlan):
-    """Within the block, progress lines count burns out of ``plan``'s ("burn k of N")."""
+    """Within the block, progress lines and errors name ``plan``.
+
+    Progress lines count burns out of the plan's ("burn k of N") and a SolveError names
+    it (``plan two-burn-8h: burn 2 (...) failed ...``): the solves see the plan's key, its
+    name blanked.
+    """
     token = _PLAN_BURNS.set(plan.n_burns)
     try:
         yield
+    except SolveError as exc:
+        if not plan.name or str(exc).startswith(f"plan {plan.name}: "):
+            raise
+        raise SolveError(f"plan {plan.name}: {exc}", exc.status, exc.details) from None
     finally:
         _PLAN_BURNS.reset(token)
 
