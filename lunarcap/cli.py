@@ -217,6 +217,8 @@ def _export_plan(res, args) -> None:
           f"OEM interpolation within {ex.max_interpolation_error_m:.2g} m):", file=out)
     for kind, path in ex.files.items():
         print(f"  {path}  {ex.sizes_bytes[kind]:,} bytes", file=out)
+    for line in ex.reference:   # also at the head of every file
+        print(f"  {line}", file=out)
 
 
 def cmd_solve(args) -> int:

@@ -1,6 +1,8 @@
 """The burns for other tools: an attitude file (thrust direction in time) and a maneuver file.
 
-Both are CSV with one header line, units in the column names, one row per sample or per
+Both are CSV: first ``#`` comment lines (the Moon's GM and radius,
+:func:`lunarcap.exchange.ccsds.reference_comments`; ``pandas.read_csv(path, comment="#")``
+skips them), then one header line, units in the column names, one row per sample or per
 burn; epochs twice: as text in the export's time system and as TDB seconds past J2000
 (SPICE's ET), so no tool has to convert. Directions are unit vectors in Moon-centred ICRF.
 
@@ -23,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from lunarcap.errors import InputError
+from lunarcap.exchange.ccsds import reference_comments
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.frames import DEFAULT_LUNAR_POLE, mme_from_icrf
@@ -51,7 +54,7 @@ def write_attitude(path, burns, time_system: str = "TDB") -> Path:
     """
     path = Path(path)
     with path.open("w", newline="", encoding="ascii") as fh:
-        w = csv.writer(fh)
+        w = _writer(fh)
         w.writerow(ATTITUDE_COLUMNS)
         for i, b in enumerate(burns, 1):
             u = np.asarray(b["u_icrf"], float)
@@ -71,7 +74,7 @@ def write_maneuvers(path, rows, time_system: str = "TDB") -> Path:
     """
     path = Path(path)
     with path.open("w", newline="", encoding="ascii") as fh:
-        w = csv.writer(fh)
+        w = _writer(fh)
         w.writerow(MANEUVER_COLUMNS)
         for i, r in enumerate(rows, 1):
             d = r["dir_icrf"]
@@ -83,10 +86,16 @@ def write_maneuvers(path, rows, time_system: str = "TDB") -> Path:
     return path
 
 
+def _writer(fh):
+    """A CSV writer on ``fh`` after the ``#`` lines of the Moon's constants."""
+    fh.writelines(f"# {c}\r\n" for c in reference_comments())
+    return csv.writer(fh)
+
+
 def _read(path, columns) -> list:
     path = Path(path)
     with path.open(newline="", encoding="ascii") as fh:
-        rows = list(csv.DictReader(fh))
+        rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
     if not rows or tuple(rows[0]) != columns:
         raise InputError(f"{path.name}: expected the columns {', '.join(columns)}")
     return [{k: (v if k.endswith("epoch") else float(v)) for k, v in r.items()} for r in rows]

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from lunarcap.errors import InputError
+from lunarcap.physics.constants import MU_MOON, R_MOON, R_MOON_IAU
 from lunarcap.physics.epochs import SCALES, calendar_from_seconds, seconds_from_calendar
 
 #: Frames accepted in a file (ICRF axes; EME2000/J2000 taken as ICRF) and the plan's own.
@@ -146,21 +147,41 @@ def read_opm(path) -> StateVector:
                        f"{kv['EPOCH']} {scale}")
 
 
-def _header(kind: str, version: str, originator: str, creation_s: float | None) -> list:
+def reference_comments() -> list:
+    """The Moon's GM and radius behind lunarcap's numbers, as lines of at most 80 characters.
+
+    Every file lunarcap exports starts with them (CCSDS ``COMMENT`` lines, the SPK's
+    comment area, ``#`` lines of the CSV files): the states need no radius, but the
+    altitudes lunarcap reports, and the orbits it plans, are measured with these.
+    """
+    return [f"Moon GM {MU_MOON:.3f} km^3/s^2, mean radius {R_MOON:.1f} km (Song et al. 2011, "
+            "Sec. 3.1).",
+            f"lunarcap's altitudes are |r| - {R_MOON:.1f} km; with the IAU mean radius "
+            f"{R_MOON_IAU:.1f} km",
+            f"(Seidelmann et al. 2007) the same states read {R_MOON - R_MOON_IAU:.1f} km "
+            "higher."]
+
+
+def _header(kind: str, version: str, originator: str, comments=()) -> list:
+    """The KVN header: version, COMMENT lines (the Moon's constants first), date, originator."""
     import datetime as _dt
 
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%S")
-    return [f"CCSDS_{kind}_VERS = {version}", f"CREATION_DATE = {now}",
-            f"ORIGINATOR = {originator}", ""]
+    return [f"CCSDS_{kind}_VERS = {version}",
+            *[f"COMMENT {c}" for c in (*reference_comments(), *comments)],
+            f"CREATION_DATE = {now}", f"ORIGINATOR = {originator}", ""]
 
 
 def write_opm(path, state: StateVector, object_name: str, object_id: str,
-              time_system: str = "TDB", originator: str = "lunarcap") -> Path:
-    """Write one ICRF state as a CCSDS OPM 2.0 (KVN)."""
+              time_system: str = "TDB", originator: str = "lunarcap", comments=()) -> Path:
+    """Write one ICRF state as a CCSDS OPM 2.0 (KVN).
+
+    The header's COMMENT lines are :func:`reference_comments` and ``comments``.
+    """
     if state.frame != "ICRF":
         raise InputError(f"an OPM is written in ICRF, got a state in {state.frame}")
     path = Path(path)
-    lines = _header("OPM", "2.0", originator, None) + [
+    lines = _header("OPM", "2.0", originator, comments) + [
         f"OBJECT_NAME = {object_name}", f"OBJECT_ID = {object_id}", "CENTER_NAME = MOON",
         "REF_FRAME = ICRF", f"TIME_SYSTEM = {time_system.upper()}", "",
         f"EPOCH = {calendar_from_seconds(state.epoch_s, 6, time_system, iso=True)}"]
@@ -176,7 +197,8 @@ def write_oem(path, segments, object_name: str, object_id: str, time_system: str
               originator: str = "lunarcap", comments=(), degree: int = OEM_DEGREE) -> Path:
     """Write ICRF segments as a CCSDS OEM 2.0 (KVN), one META block per segment.
 
-    Epochs are written to the microsecond in ``time_system`` (TDB or UTC), positions to
+    The header's COMMENT lines are :func:`reference_comments` and ``comments``. Epochs are
+    written to the microsecond in ``time_system`` (TDB or UTC), positions to
     the millimetre (km, 6 decimals) and velocities to the nanometre per second (km/s, 9
     decimals). Each segment declares ``INTERPOLATION = LAGRANGE`` of ``degree``.
     """
@@ -184,8 +206,7 @@ def write_oem(path, segments, object_name: str, object_id: str, time_system: str
     if ts not in SCALES:
         raise InputError(f"time system {time_system!r}: lunarcap writes TDB or UTC")
     path = Path(path)
-    out = _header("OEM", "2.0", originator, None)
-    out += [f"COMMENT {c}" for c in comments]
+    out = _header("OEM", "2.0", originator, comments)
     for seg in segments:
         t = np.asarray(seg.t_s, float)
         if t.size < degree + 1 or np.any(np.diff(t) <= 0):

@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from lunarcap.errors import InputError
+from lunarcap.exchange.ccsds import reference_comments
 
 #: NAIF ID of the spacecraft in lunarcap's SPK files (see the module docstring).
 DEFAULT_OBJECT_ID = -310001
@@ -33,7 +34,8 @@ def write_spk(path, segments, object_id: int = DEFAULT_OBJECT_ID,
     """Write segments (:class:`lunarcap.exchange.ccsds.OemSegment`, ICRF, TDB) as an SPK.
 
     Each segment becomes an SPK type 9 segment named after it (at most 40 characters);
-    ``comments`` go to the file's comment area (``commnt`` shows them).
+    The file's comment area (``commnt`` shows it) holds
+    :func:`lunarcap.exchange.ccsds.reference_comments` and ``comments``.
     """
     import spiceypy as sp
 
@@ -49,9 +51,9 @@ def write_spk(path, segments, object_id: int = DEFAULT_OBJECT_ID,
             states = np.ascontiguousarray(np.vstack([seg.r_km, seg.v_kmps]).T)
             sp.spkw09(handle, int(object_id), MOON_ID, FRAME, float(t[0]), float(t[-1]),
                       (seg.name or "lunarcap")[:40], degree, t.size, states, t)
-        lines = [c[i:i + 80] for c in comments for i in range(0, max(len(c), 1), 80)]
-        if lines:
-            sp.dafac(handle, lines)
+        lines = [c[i:i + 80] for c in (*reference_comments(), *comments)
+                 for i in range(0, max(len(c), 1), 80)]
+        sp.dafac(handle, lines)
     finally:
         sp.spkcls(handle)
     return path

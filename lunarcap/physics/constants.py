@@ -28,8 +28,15 @@ MU_SUN = 1.32712440018e11
 #: so the book can show the discrepancy), km^3/s^2.
 MU_SUN_AS_PRINTED = 13_271_244_207.6
 
-#: Mean radius of the Moon, km (Song 2011, Sec. 3.1).
+#: Mean radius of the Moon, km (Song 2011, Sec. 3.1). Every altitude lunarcap reads or
+#: writes is a distance from the Moon's centre minus this radius.
 R_MOON = 1738.2
+
+#: The IAU's mean radius of the Moon, km (Seidelmann et al. 2007, Celest. Mech. Dyn. Astr.
+#: 98, 155, Table 5: 1737.4 +- 1 km), which tools that follow the IAU use: the same
+#: state's altitude is R_MOON - R_MOON_IAU = 0.8 km higher there. Named in exported files
+#: only; lunarcap computes with R_MOON.
+R_MOON_IAU = 1737.4
 
 #: Unnormalised second zonal harmonic of the Moon (Song 2011, Sec. 3.1).
 J2_MOON = 0.2027e-3

@@ -34,7 +34,12 @@ import numpy as np
 
 from lunarcap.errors import InputError
 from lunarcap.exchange.burns import mean_direction, write_attitude, write_maneuvers
-from lunarcap.exchange.ccsds import OemSegment, interpolation_error, write_oem
+from lunarcap.exchange.ccsds import (
+    OemSegment,
+    interpolation_error,
+    reference_comments,
+    write_oem,
+)
 from lunarcap.exchange.spk import DEFAULT_OBJECT_ID, write_spk
 from lunarcap.optim.flight import Arc, BurnPlan, burn_arc, coast_arc
 from lunarcap.physics import constants as C
@@ -142,6 +147,11 @@ class Export:
     segments: list = field(default_factory=list)   # per segment: name, start, stop, n, error
 
     @property
+    def reference(self) -> list:
+        """The Moon's GM and radius behind the files, as at the head of each."""
+        return reference_comments()
+
+    @property
     def max_interpolation_error_m(self) -> float:
         """Largest error of the OEM's Lagrange interpolation at the mid-steps, m."""
         return max(s["interpolation_error_m"] for s in self.segments)
@@ -152,7 +162,7 @@ class Export:
                 "sizes_bytes": self.sizes_bytes, "export_s": self.seconds,
                 "object_id": self.object_id, "time_system": self.time_system,
                 "max_interpolation_error_m": self.max_interpolation_error_m,
-                "segments": self.segments}
+                "segments": self.segments, "reference": self.reference}
 
 
 def check_export_dir(out_dir, what: str = "export directory") -> Path:

@@ -126,6 +126,43 @@ def test_spk_read_through_spice_equals_oem_within_1_m(exported):
     assert worst < 1.0
 
 
+def test_every_exported_file_states_the_moons_gm_and_radius(exported, tmp_path):
+    # issue 24: a tool with the IAU radius 1,737.4 km reads every altitude 0.8 km off;
+    # each file says which GM and radius lunarcap's numbers use, at its head
+    import pandas as pd
+    import spiceypy as sp
+
+    ex, res = exported
+    first = "Moon GM 4902.800 km^3/s^2, mean radius 1738.2 km (Song et al. 2011, Sec. 3.1)."
+    assert (C.MU_MOON, C.R_MOON) == (4902.800, 1738.2)   # what the dynamics use
+    lines = ccsds.reference_comments()
+    assert lines[0] == first and "1737.4 km" in lines[1] and "0.8 km higher" in lines[2]
+    oem = ex.files["oem"].read_text().splitlines()
+    assert oem[:4] == ["CCSDS_OEM_VERS = 2.0", *[f"COMMENT {c}" for c in lines]]
+    created = next(i for i, ln in enumerate(oem) if ln.startswith("CREATION_DATE = "))
+    assert all(ln.startswith("COMMENT ") for ln in oem[1:created])   # where CCSDS puts them
+    handle = sp.dafopr(str(ex.files["spk"]))
+    try:
+        _, spk_comments, _ = sp.dafec(handle, 50, 100)
+    finally:
+        sp.dafcls(handle)
+    assert list(spk_comments[:3]) == lines
+    for kind in ("attitude", "maneuvers"):
+        text = ex.files[kind].read_text().splitlines()
+        assert text[:3] == [f"# {c}" for c in lines], kind
+        assert list(pd.read_csv(ex.files[kind], comment="#").columns) == \
+            list(xburns.ATTITUDE_COLUMNS if kind == "attitude" else xburns.MANEUVER_COLUMNS)
+    assert ex.reference == lines
+    state = ccsds.StateVector(0.0, (1838.2, 0.0, 0.0), (0.0, 1.6, 0.0))
+    opm = ccsds.write_opm(tmp_path / "x.opm", state, "probe", "-310001")
+    assert opm.read_text().splitlines()[1] == f"COMMENT {first}"
+    assert ccsds.read_opm(opm).r_km == state.r_km
+    # and it is the radius behind the altitudes: the final orbit's 100 km is |r| - 1738.2 km
+    final = _oem_states(ex.files["oem"])[-1]
+    alt = np.linalg.norm(final.r_km, axis=0) - C.R_MOON
+    assert alt.min() == pytest.approx(res.plan.arrival.perilune_altitude_km, abs=0.01)
+
+
 def _arrival_plan(plan, t_s, r, v, m, epoch_text):
     d = plan.to_dict()
     d["name"] = "from-oem"
@@ -216,6 +253,7 @@ def test_cli_export_in_utc(exported, tmp_path, capsys):
     assert rc == 0
     out = capsys.readouterr().out
     assert "Exported in" in out and "song2011-150N.bsp" in out
+    assert "  Moon GM 4902.800 km^3/s^2, mean radius 1738.2 km" in out   # the summary
     text = (tmp_path / "song2011-150N.oem").read_text()
     assert "TIME_SYSTEM = UTC" in text and "TIME_SYSTEM = TDB" not in text
     # the same instants as the TDB file: 69.18 s earlier on the UTC clock
