@@ -154,8 +154,17 @@ def build_book(entries: list[Entry], log=print) -> bool:
         log(f"full log: {_shown(paths.BUILD / 'jupyter-book.log')}")
         marker.unlink(missing_ok=True)
         return False
-    paths.write_text_atomic(marker, digest)
     log(f"      jupyter-book ... ok {dt:.1f} s")
+    from lunarcap.report.bookcheck import check_pages
+
+    said_nan = check_pages(paths.HTML, toc_files(paths.TOC))
+    if said_nan:
+        log(f"error: {len(said_nan)} built page(s) print \"nan\" where a value is missing "
+            f"(glue it as missing with its reason, Page.value(name, v, why=...)):")
+        for page, contexts in said_nan.items():
+            log(f"  {page}: " + " | ".join(repr(c) for c in contexts[:3]))
+        return False
+    paths.write_text_atomic(marker, digest)
     return True
 
 

@@ -21,6 +21,7 @@ from lunarcap.report.figstyle import (
     burn_colour,
     coast_colour,
     draw_moon,
+    legibility_problems,
     save_figure,
 )
 from lunarcap.report.figures_capture import (
@@ -46,7 +47,7 @@ from lunarcap.report.figures_studies import (
 
 __all__ = [
     "FIG_WIDTH_IN", "HYPERBOLA_COLOUR", "ISP_MARKERS", "MIN_FONT_PT", "burn_colour",
-    "coast_colour", "draw_moon", "save_figure",
+    "coast_colour", "draw_moon", "legibility_problems", "save_figure",
     "plot_fig1_geometry", "plot_fig2_capture", "plot_fig3_burn_arcs", "plot_fig4_steering",
     "plot_fig5_vectors",
     "plot_burn_count", "plot_engine_loss", "plot_exported_trajectory",

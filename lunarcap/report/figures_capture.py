@@ -14,9 +14,15 @@ import numpy as np
 
 from lunarcap.physics import constants as C
 from lunarcap.report.figstyle import (
+    ALPHA_COLOUR,
+    BETA_COLOUR,
     HYPERBOLA_COLOUR,
+    MASS_COLOUR,
+    RTN_COLOURS,
+    VELOCITY_COLOUR,
     burn_colour,
     coast_colour,
+    colour_name,
     draw_moon,
 )
 
@@ -32,7 +38,7 @@ def _text_align(vec) -> dict:
     return {"ha": ha, "va": va}
 
 
-_FIG1_COLOURS = {"r": "tab:red", "t": "tab:green", "n": "tab:blue", "u": "black", "v": "0.45"}
+_FIG1_COLOURS = {**RTN_COLOURS, "u": "black", "v": "0.45"}
 
 
 def _fig1_plane(ax, geo: Fig1Geometry) -> None:
@@ -60,9 +66,9 @@ def _fig1_plane(ax, geo: Fig1Geometry) -> None:
         ax.text(rx + 1.06 * s * vec[0], ry + 1.06 * s * vec[1], lab, color=col[key],
                 fontsize=11, **_text_align(vec))
     arc = 0.45 * s * geo.alpha_arc
-    ax.plot(rx + arc[0], ry + arc[1], color="tab:purple", lw=1.2)
+    ax.plot(rx + arc[0], ry + arc[1], color=ALPHA_COLOUR, lw=1.2)
     mid = geo.alpha_arc[:, geo.alpha_arc.shape[1] // 2]
-    ax.text(rx + 0.55 * s * mid[0], ry + 0.55 * s * mid[1], r"$\alpha$", color="tab:purple",
+    ax.text(rx + 0.55 * s * mid[0], ry + 0.55 * s * mid[1], r"$\alpha$", color=ALPHA_COLOUR,
             fontsize=13, **_text_align(mid))
     tips = np.array(tips)
     pad = 0.05 * span
@@ -96,12 +102,12 @@ def _fig1_triad(ax3, geo: Fig1Geometry) -> None:
     ax3.plot([up[0], u[0]], [up[1], u[1]], [0, u[2]], color="0.6", ls=":", lw=1)
     aa = 0.45 * (geo.rtn @ geo.alpha_arc)
     ba = 0.7 * (geo.rtn @ geo.beta_arc)
-    ax3.plot(*aa, color="tab:purple", lw=1.4)
-    ax3.plot(*ba, color="tab:orange", lw=1.4)
+    ax3.plot(*aa, color=ALPHA_COLOUR, lw=1.4)
+    ax3.plot(*ba, color=BETA_COLOUR, lw=1.4)
     am = aa[:, aa.shape[1] // 2] * 1.3
     bm = ba[:, ba.shape[1] // 2] * 1.15
-    ax3.text(*am, r"$\alpha$", color="tab:purple", fontsize=13)
-    ax3.text(*bm, r"$\beta$", color="tab:orange", fontsize=13)
+    ax3.text(*am, r"$\alpha$", color=ALPHA_COLOUR, fontsize=13)
+    ax3.text(*bm, r"$\beta$", color=BETA_COLOUR, fontsize=13)
     # the orbit plane (r-t plane) as a faint square
     sq = np.array([[-1, -1, 1, 1, -1], [-1, 1, 1, -1, -1], [0, 0, 0, 0, 0]]) * 1.05
     ax3.plot(*sq, color="0.8", lw=0.8)
@@ -186,7 +192,7 @@ def plot_fig2_capture(geo: CaptureGeometry, figsize=None):
     ax.set_xlabel(_PLANE_XLABEL)
     ax.set_ylabel(_PLANE_YLABEL)
     ax.grid(alpha=0.3)
-    ax.legend(loc="lower right", fontsize=9.5, framealpha=0.9)
+    ax.legend(loc="lower right", framealpha=0.9)
     return fig
 
 
@@ -240,7 +246,7 @@ def _fig3_zoom(ax, geo: CaptureGeometry) -> None:
     ax.set_xlabel(_PLANE_XLABEL)
     ax.set_ylabel(_PLANE_YLABEL)
     ax.grid(alpha=0.3)
-    ax.legend(loc="lower right", fontsize=9, framealpha=0.9)
+    ax.legend(loc="lower right", framealpha=0.9)
     ax.set_title("(a) zoom on the burn arcs (● ignition, ■ cutoff)", fontsize=10, loc="left")
 
 
@@ -265,7 +271,7 @@ def _fig3_altitudes(ax2, geo: CaptureGeometry) -> None:
     ax2.set_xlabel("angle in the orbit plane from the pass's perilune (deg)")
     ax2.set_ylabel("altitude (km)")
     ax2.grid(alpha=0.3)
-    ax2.legend(loc="upper center", fontsize=9.5, framealpha=0.9)
+    ax2.legend(loc="upper center", framealpha=0.9)
     ax2.set_title("(b) altitude along each perilune pass (dashed: coasting)", fontsize=10,
                   loc="left")
 
@@ -317,23 +323,23 @@ def plot_fig4_steering(d: Fig4Steering, paper_alpha_deg=None, paper_mass_end_kg=
     fig, axs = plt.subplots(3, 1, figsize=figsize, sharex=True, layout="constrained")
     t = d.t_min
     t_end = t[-1] if paper_duration_min is None else t[0] + paper_duration_min
-    axs[0].plot(t, d.alpha_deg, color="tab:purple", lw=1.8, label="lunarcap")
+    axs[0].plot(t, d.alpha_deg, color=ALPHA_COLOUR, lw=1.8, label="lunarcap")
     axs[0].axhline(180.0, color="0.6", lw=0.8, ls=":")
     if paper_alpha_deg is not None:
         axs[0].plot([t[0], t_end], paper_alpha_deg, "D", color="black", ms=6, mfc="none",
                     label="paper: start and end values (Sec. 3.3)")
     axs[0].set_ylabel("in-plane angle α (deg)")
-    axs[0].legend(loc="upper left", fontsize=9.5)
-    axs[1].plot(t, d.beta_deg, color="tab:orange", lw=1.8)
+    axs[0].legend(loc="upper left")
+    axs[1].plot(t, d.beta_deg, color=BETA_COLOUR, lw=1.8)
     lim = max(0.5, 1.3 * float(np.abs(d.beta_deg).max()))
     axs[1].set_ylim(-lim, lim)
     axs[1].axhline(0.0, color="0.6", lw=0.8, ls=":")
     axs[1].set_ylabel("out-of-plane angle β (deg)")
-    axs[2].plot(t, d.m_kg, color="tab:blue", lw=1.8, label="lunarcap")
+    axs[2].plot(t, d.m_kg, color=MASS_COLOUR, lw=1.8, label="lunarcap")
     if paper_mass_end_kg is not None:
         axs[2].plot([t_end], [paper_mass_end_kg], "D", color="black", ms=6, mfc="none",
                     label=f"paper: {paper_mass_end_kg:g} kg after burn {d.burn} (Sec. 3.2.1)")
-        axs[2].legend(loc="upper right", fontsize=9.5)
+        axs[2].legend(loc="upper right")
     axs[2].set_ylabel("mass (kg)")
     axs[2].set_xlabel(f"time from burn {d.burn} ignition (min)")
     for ax in axs:
@@ -373,7 +379,7 @@ def _fig5_arrows(ax, d: Fig5Vectors, geo: CaptureGeometry | None,
     ax.add_patch(plt.Circle((0, 0), C.R_MOON, color="0.85", zorder=0))
     if geo is not None:
         _fig5_context(ax, d, geo)
-    ax.plot(*xy, color="0.25", lw=1.2, label=f"burn {d.burn} arc", zorder=5)
+    ax.plot(*xy, color="0.6", lw=1.0, label=f"burn {d.burn} arc", zorder=5)
     i = d.arrows
     vmax = float(np.linalg.norm(d.v_xy_kmps[:, i], axis=0).max())
     amax = float(np.linalg.norm(d.a_xy_mps2[:, i], axis=0).max())
@@ -381,9 +387,10 @@ def _fig5_arrows(ax, d: Fig5Vectors, geo: CaptureGeometry | None,
     v_scale = vmax / L    # km/s per km of arrow
     a_scale = amax / L    # m/s^2 per km of arrow
     qv = ax.quiver(xy[0, i], xy[1, i], d.v_xy_kmps[0, i], d.v_xy_kmps[1, i], angles="xy",
-                   scale_units="xy", scale=v_scale, color="tab:blue", width=0.004, zorder=6)
+                   scale_units="xy", scale=v_scale, color=VELOCITY_COLOUR, width=0.006, zorder=6)
     qa = ax.quiver(xy[0, i], xy[1, i], d.a_xy_mps2[0, i], d.a_xy_mps2[1, i], angles="xy",
-                   scale_units="xy", scale=a_scale, color="tab:red", width=0.004, zorder=7)
+                   scale_units="xy", scale=a_scale, color=burn_colour(d.burn), width=0.006,
+                   zorder=7)
     ax.plot(xy[0, i], xy[1, i], "o", color="black", ms=3, zorder=8)
     ax.annotate("ignition", xy[:, 0], xytext=(8, -2), textcoords="offset points", fontsize=9)
     ax.annotate("cutoff", xy[:, -1], xytext=(8, -2), textcoords="offset points", fontsize=9)
@@ -391,10 +398,10 @@ def _fig5_arrows(ax, d: Fig5Vectors, geo: CaptureGeometry | None,
     a_ref = _nice(amax)
     ax.quiverkey(qv, 0.04, 0.95, v_ref, f"velocity: arrow of {v_ref:g} km/s "
                  f"= {v_ref / v_scale:.0f} km", labelpos="E", coordinates="axes",
-                 fontproperties={"size": 8.5})
+                 fontproperties={"size": 10})
     ax.quiverkey(qa, 0.04, 0.89, a_ref, f"thrust acceleration: arrow of {a_ref:g} m/s² "
                  f"= {a_ref / a_scale:.0f} km", labelpos="E", coordinates="axes",
-                 fontproperties={"size": 8.5})
+                 fontproperties={"size": 10})
     pad = 0.3 * extent
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
     ax.set_ylim(lo[1] - pad, hi[1] + 1.3 * pad)
@@ -402,8 +409,9 @@ def _fig5_arrows(ax, d: Fig5Vectors, geo: CaptureGeometry | None,
     ax.set_xlabel("x′: M-MME2000 equator, along the orbit's ascending node (km)")
     ax.set_ylabel("z: M-MME2000 pole (km)")
     ax.grid(alpha=0.3)
-    ax.legend(loc="lower right", fontsize=9, framealpha=0.9)
-    ax.set_title(f"(a) burn {d.burn}: velocity (blue) and thrust acceleration (red), projected",
+    ax.legend(loc="lower right", framealpha=0.9)
+    ax.set_title(f"(a) burn {d.burn}: velocity ({colour_name(VELOCITY_COLOUR)}) and thrust "
+                 f"acceleration ({colour_name(burn_colour(d.burn))}), projected",
                  fontsize=10, loc="left")
 
 
@@ -412,9 +420,9 @@ def _fig5_angle(ax2, d: Fig5Vectors) -> None:
     i = d.arrows
     ax2.plot(d.t_min, d.angle_deg, color="black", lw=1.6)
     ax2.plot(d.t_min[i], d.angle_deg[i], "o", color="black", ms=3)
-    ax2.axhline(90.0, color="tab:red", lw=0.8, ls=":")
+    ax2.axhline(90.0, color=burn_colour(d.burn), lw=0.8, ls=":")
     ax2.text(d.t_min[0], 91.5, " 90°: above it the thrust slows the spacecraft", fontsize=9,
-             color="tab:red", va="bottom")
+             color=burn_colour(d.burn), va="bottom")
     ax2.set_ylim(80, 182)
     ax2.set_xlabel(f"time from burn {d.burn} ignition (min)")
     ax2.set_ylabel("angle thrust–velocity (deg)")

@@ -15,9 +15,16 @@ from lunarcap.report.figstyle import (
     FIG_WIDTH_IN,
     HYPERBOLA_COLOUR,
     ISP_MARKERS,
+    LAW_COLOURS,
+    OURS_COLOUR,
+    OURS_MODEL_COLOUR,
+    PAPER_COLOUR,
+    RULE_COLOUR,
     burn_colour,
     coast_colour,
     draw_moon,
+    isp_colour,
+    label_colour,
 )
 
 
@@ -40,19 +47,19 @@ def plot_sweep_dv(sweep, printed=None, printed_label: str = "paper"):
     eq19_min = float(sweep.eq19_duration_min.iloc[0])
     fig, ax = plt.subplots(figsize=(6.4, 4.4), layout="constrained")
     order = sweep.sort_values("start_min")
-    ax.plot(order.start_min, order.delta_v_mps, "o-", color="C0", label="lunarcap")
+    ax.plot(order.start_min, order.delta_v_mps, "o-", color=OURS_COLOUR, label="lunarcap")
     if printed is not None:
-        ax.plot(printed.start_min, printed.delta_v_mps, "s", mfc="none", mec="C1", ms=8,
+        ax.plot(printed.start_min, printed.delta_v_mps, "s", mfc="none", mec=PAPER_COLOUR, ms=8,
                 label=printed_label)
     b = sweep[sweep.best].iloc[0]
-    ax.plot(b.start_min, b.delta_v_mps, "*", color="C0", ms=14, label="our best")
+    ax.plot(b.start_min, b.delta_v_mps, "*", color=OURS_COLOUR, ms=14, label="our best")
     ax.axhline(imp, color="0.4", ls=":", lw=1, label=f"impulsive, paper ({imp:.3f} m/s)")
-    ax.axvline(-eq19_min / 2, color="C2", ls="--", lw=1,
+    ax.axvline(-eq19_min / 2, color=RULE_COLOUR, ls="--", lw=1,
                label=f"−½ Eq. (19) duration ({-eq19_min / 2:.2f} min)")
     ax.set_xlabel("ignition, min from the nominal perilune")
     ax.set_ylabel("ΔV (m/s)")
     ax.grid(alpha=0.3)
-    fig.legend(loc="outside lower center", ncols=2, fontsize=9, frameon=False)
+    fig.legend(loc="outside lower center", ncols=2, frameon=False)
     return fig
 
 
@@ -62,14 +69,13 @@ def _trade_axes(ax, newton_per_ratio: float):
     ax.set_xscale("log")
     top = ax.secondary_xaxis("top", functions=(lambda r: np.asarray(r) * newton_per_ratio,
                                                lambda t: np.asarray(t) / newton_per_ratio))
-    top.set_xlabel("thrust (N)", fontsize=9)
+    top.set_xlabel("thrust (N)")
     top.tick_params(labelsize=9)
     ax.grid(alpha=0.3, which="both")
 
 
 def _isp_colours(isp_s) -> dict:
-    cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    return {float(isp): cycle[k % len(cycle)] for k, isp in enumerate(isp_s)}
+    return {float(isp): isp_colour(isp, k) for k, isp in enumerate(isp_s)}
 
 
 def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict,
@@ -123,7 +129,7 @@ def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict,
     handles, labels = axes[0, 0].get_legend_handles_labels()
     handles.append(plt.Line2D([], [], marker="*", ms=11, ls="none", color="0.6", mec="black"))
     labels.append("paper, Table B1 (colour: its Isp)")
-    fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=9)
+    fig.legend(handles, labels, loc="outside lower center", ncol=2)
     return fig
 
 
@@ -164,8 +170,8 @@ def plot_trade_study_duration(ok, isp_s, part_titles: dict, newton_per_ratio: fl
             _trade_axes(ax, newton_per_ratio)
     for ax in axes[-1]:
         ax.set_xlabel("T / (m₀ g₀)")
-    axes[0, 0].legend(fontsize=9)
-    axes[0, 1].legend(fontsize=9)
+    axes[0, 0].legend()
+    axes[0, 1].legend()
     return fig
 
 
@@ -190,17 +196,18 @@ def plot_summary_loss(chains: dict):
     w = 0.27
     for ax, (name, s) in zip(axes[0], chains.items()):
         x = np.arange(len(s))
-        ax.bar(x - w, s.paper_delta_v_mps - s.paper_impulsive_delta_v_mps, w, color="C1",
+        ax.bar(x - w, s.paper_delta_v_mps - s.paper_impulsive_delta_v_mps, w, color=PAPER_COLOUR,
                label="paper (Table B1)")
-        ax.bar(x, s.loss_vs_paper_impulse_mps, w, color="C0",
+        ax.bar(x, s.loss_vs_paper_impulse_mps, w, color=OURS_COLOUR,
                label="ours vs the paper's impulsive ΔV")
-        ax.bar(x + w, s.delta_v_loss_mps, w, color="C2", label="ours vs our impulsive ΔV")
+        ax.bar(x + w, s.delta_v_loss_mps, w, color=OURS_MODEL_COLOUR,
+               label="ours vs our impulsive ΔV")
         ax.set_xticks(x, [f"LOI {k}" for k in s.loi])
         ax.set_title(name, fontsize=10)
         ax.grid(axis="y", alpha=0.3)
     axes[0][0].set_ylabel("ΔV loss (m/s)")
     fig.legend(*axes[0][0].get_legend_handles_labels(), loc="outside lower center",
-               ncols=1, fontsize=9, frameon=False)
+               ncols=1, frameon=False)
     return fig
 
 
@@ -228,12 +235,12 @@ def plot_mesh_convergence(mesh, tol_objective_mps: float, default_points: int):
         g = g[g.delta_v_change_vs_finest_mps != 0]
         y = g.delta_v_change_vs_finest_mps.abs().clip(lower=1e-12)
         ok = g.accepted.astype(bool)
-        ax.plot(g.collocation_points, y, "-", color=f"C{k}", lw=1)
+        ax.plot(g.collocation_points, y, "-", color=burn_colour(k + 1), lw=1)
         if ok.any():
-            ax.plot(g.collocation_points[ok], y[ok], "o", color=f"C{k}",
+            ax.plot(g.collocation_points[ok], y[ok], "o", color=burn_colour(k + 1),
                     label=f"{case}, accepted")
         if (~ok).any():
-            ax.plot(g.collocation_points[~ok], y[~ok], "x", color=f"C{k}", ms=8,
+            ax.plot(g.collocation_points[~ok], y[~ok], "x", color=burn_colour(k + 1), ms=8,
                     label=f"{case}, rejected by the gate")
     ax.axhline(tol_objective_mps, color="0.4", ls=":", lw=1,
                label=f"{tol_objective_mps:g} m/s: the gate on the objective")
@@ -242,7 +249,7 @@ def plot_mesh_convergence(mesh, tol_objective_mps: float, default_points: int):
     ax.set_yscale("log")
     y0 = ax.get_ylim()[0]
     for j, (k, n) in enumerate(finest):
-        ax.plot([n], [y0], "v", color=f"C{k}", ms=8, clip_on=False,
+        ax.plot([n], [y0], "v", color=burn_colour(k + 1), ms=8, clip_on=False,
                 label="finest mesh (the reference, change 0)" if j == 0 else None)
     ax.set_ylim(bottom=y0)
     ax.set_xticks([20, 30, 50, 100, 200, 300], ["20", "30", "50", "100", "200", "300"])
@@ -250,7 +257,7 @@ def plot_mesh_convergence(mesh, tol_objective_mps: float, default_points: int):
     ax.set_xlabel("collocation points")
     ax.set_ylabel("|ΔV − ΔV on the finest mesh| (m/s)")
     ax.grid(alpha=0.3, which="both")
-    fig.legend(loc="outside lower center", ncols=2, fontsize=9, frameon=False)
+    fig.legend(loc="outside lower center", ncols=2, frameon=False)
     return fig
 
 
@@ -271,14 +278,15 @@ def plot_free_ignition_rule(rule):
     marks = {1: "o", 2: "s", 3: "^"}
     fig, (ax, bx) = plt.subplots(2, 1, figsize=(FIG_WIDTH_IN, 7.6), layout="constrained")
     for k, engine in enumerate(dict.fromkeys(rule.engine)):
+        c = label_colour(engine, k)
         for r in rule[rule.engine == engine].itertuples():
             m = marks.get(int(r.burn), "D")
-            ax.plot(r.rule_start_min, r.free_start_min, m, color=f"C{k}", ms=7)
+            ax.plot(r.rule_start_min, r.free_start_min, m, color=c, ms=7)
             if np.isfinite(r.grid_start_min):
-                ax.plot(r.rule_start_min, r.grid_start_min, m, color=f"C{k}", ms=9,
+                ax.plot(r.rule_start_min, r.grid_start_min, m, color=c, ms=9,
                         mfc="none", alpha=0.7)
-            bx.plot(r.eq19_duration_min, r.start_minus_rule_min, m, color=f"C{k}", ms=7)
-        ax.plot([], [], "-", color=f"C{k}", lw=6, label=engine)
+            bx.plot(r.eq19_duration_min, r.start_minus_rule_min, m, color=c, ms=7)
+        ax.plot([], [], "-", color=c, lw=6, label=engine)
     lo = np.nanmin([rule.rule_start_min.min(), rule.free_start_min.min(),
                     rule.grid_start_min.min()]) - 0.7
     ax.plot([lo, 0], [lo, 0], "k--", lw=0.8, label="optimal = −Eq. (19)/2")
@@ -288,7 +296,7 @@ def plot_free_ignition_rule(rule):
     ax.set_xlabel("rule start, −Eq. (19) duration / 2 (min)")
     ax.set_ylabel("ignition (min from the nominal perilune)")
     ax.set_title("filled: free optimum; open: paper's best grid point", fontsize=9)
-    ax.legend(fontsize=9.5, loc="upper left")
+    ax.legend(loc="upper left")
     ax.grid(alpha=0.3)
     bx.axhline(0, color="k", lw=0.8)
     bx.set_xlabel("Eq. (19) duration (min)")
@@ -315,7 +323,7 @@ def plot_steering_penalty(steer, engines: list, laws=("inertial", "antivelocity"
     -------
     matplotlib.figure.Figure
     """
-    colours = {"inertial": "C0", "antivelocity": "C3"}
+    colours = LAW_COLOURS
     n = len(engines)
     fig, axes = plt.subplots(2, n, figsize=(FIG_WIDTH_IN, 6.0), sharex=True, squeeze=False,
                              layout="constrained")
@@ -325,7 +333,7 @@ def plot_steering_penalty(steer, engines: list, laws=("inertial", "antivelocity"
         for k, law in enumerate(laws):
             s = sel[sel.steering == law].sort_values("loi")
             off = (k - (len(laws) - 1) / 2) * w
-            c = colours.get(law, f"C{k + 4}")
+            c = colours.get(law, label_colour(law, k))
             axes[0][j].bar(s.loi + off, s.delta_v_penalty_mps, w, color=c, label=law)
             axes[1][j].bar(s.loi + off, s.objective_penalty_mps, w, color=c, label=law)
             if law == "antivelocity":
@@ -345,7 +353,7 @@ def plot_steering_penalty(steer, engines: list, laws=("inertial", "antivelocity"
         axes[1][j].set_xticks(x, [f"LOI {i}" for i in x])
     axes[0][0].set_ylabel("ΔV penalty (m/s)")
     axes[1][0].set_ylabel("J penalty (m/s)")
-    axes[0][-1].legend(fontsize=9)
+    axes[0][-1].legend()
     return fig
 
 
@@ -365,11 +373,11 @@ def plot_engine_loss(totals, loss_column: str, loss_label: str):
     -------
     matplotlib.figure.Figure
     """
-    isp_colours = {200.0: "C0", 250.0: "C1", 300.0: "C2"}
+    isp_colours = _isp_colours((200.0, 250.0, 300.0))
     fig, (ax, bx) = plt.subplots(2, 1, figsize=(FIG_WIDTH_IN, 6.6), sharex=True,
                                  layout="constrained")
     for r in totals.sort_values("thrust_N").itertuples():
-        c = isp_colours.get(float(r.isp_s), "C7")
+        c = isp_colours.get(float(r.isp_s), isp_colour(r.isp_s, 4))
         cited = r.origin != "paper's engine"
         for a, y in ((ax, getattr(r, loss_column)), (bx, r.total_fuel_kg)):
             a.plot(r.thrust_N, y, "D" if cited else "o", color=c, ms=8,
@@ -382,7 +390,7 @@ def plot_engine_loss(totals, loss_column: str, loss_label: str):
     ax.plot([], [], "o", color="0.4", mfc="white", mew=2, label="paper's engines")
     ax.plot([], [], "D", color="0.4", label="cited in Sec. 3.1")
     ax.set_ylabel(loss_label)
-    ax.legend(fontsize=9)
+    ax.legend()
     bx.set_xlabel("thrust (N)")
     bx.set_ylabel("propellant, LOI 1–3 (kg)")
     for a in (ax, bx):
@@ -410,7 +418,7 @@ def plot_burn_count(counts):
     for j, (label, g) in enumerate(counts.groupby("label", sort=False)):
         g = g.sort_values("n_burns")
         ok = g[g.status == "ok"]
-        c = f"C{j}"
+        c = label_colour(label, j)
         m = ISP_MARKERS[j % len(ISP_MARKERS)]
         ax.plot(ok.n_burns, ok.total_delta_v_loss_mps, "-", marker=m, color=c, label=label)
         bx.plot(ok.n_burns, ok.time_to_final_orbit_h, "-", marker=m, color=c, label=label)
@@ -424,7 +432,7 @@ def plot_burn_count(counts):
         a.grid(alpha=0.3)
         a.set_xticks(sorted(set(counts.n_burns.astype(int))))
     ax.plot([], [], "x", color="0.4", mew=2, label="no plan (infeasible or failed)")
-    ax.legend(fontsize=9)
+    ax.legend()
     return fig
 
 
@@ -489,24 +497,24 @@ def plot_exported_trajectory(arcs, r_moon_km: float):
     matplotlib.figure.Figure
     """
     fig, axes = plt.subplots(1, 2, figsize=(FIG_WIDTH_IN, 3.8), layout="constrained")
-    burn_labelled = False
+    n_burns = sum(bool(is_burn) for _, _, is_burn in arcs)
     for (i, j), ax in zip(((0, 1), (0, 2)), axes):
         draw_moon(ax, r_moon_km, label=False)
-        k = 0
         for name, xyz, is_burn in arcs:
+            # "burn n" and "coast n" (the orbit burn n reached) by n; the final orbit is
+            # the last burn's
+            n = n_burns if name == "final orbit" else int(name.split()[-1]) \
+                if name.split()[-1].isdigit() else 0
+            label = name if ax is axes[0] else None
             if is_burn:
-                ax.plot(xyz[i], xyz[j], color=burn_colour(1), lw=3.0, zorder=4,
-                        solid_capstyle="butt",
-                        label=None if burn_labelled or ax is axes[1] else "burns")
-                burn_labelled = True
+                ax.plot(xyz[i], xyz[j], color=burn_colour(n), lw=3.0, zorder=4,
+                        solid_capstyle="butt", label=label)
             else:
-                ax.plot(xyz[i], xyz[j], color=HYPERBOLA_COLOUR if name == "approach"
-                        else coast_colour(k), lw=1.1,
-                        label=name if ax is axes[0] else None)
-                k += name != "approach"
+                ax.plot(xyz[i], xyz[j], color=coast_colour(n) if n else HYPERBOLA_COLOUR,
+                        lw=1.1, label=label)
         ax.set_aspect("equal")
         ax.grid(alpha=0.3)
         ax.set_xlabel(f"{'xyz'[i]} ICRF (km)")
         ax.set_ylabel(f"{'xyz'[j]} ICRF (km)")
-    fig.legend(loc="outside lower center", ncols=6, fontsize=8.5)
+    fig.legend(loc="outside lower center", ncols=4)
     return fig

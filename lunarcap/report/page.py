@@ -15,10 +15,51 @@ calls, prose and glue::
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from lunarcap.report import display as _display
 from lunarcap.report.labels import labels as _labels
+
+#: Head of the glued text of a missing value: :mod:`lunarcap.report.sphinx_ext` prints the
+#: reason that follows it wherever the prose pastes the value, whatever the number format
+#: (``{glue:text}`x:.2f``` of a missing ``x`` reads "— (not run in the quick book)").
+MISSING_PREFIX = "lunarcap-missing:"
+#: Why a value is missing when the page does not say: a quick build leaves cases out.
+QUICK_REASON = "not run in the quick book"
+FULL_REASON = "not computed in this run"
+
+
+def missing(reason: str) -> str:
+    """The glued text of a value that is missing for ``reason`` (see :data:`MISSING_PREFIX`).
+
+    >>> missing("not run in the quick book")
+    'lunarcap-missing:not run in the quick book'
+    """
+    return f"{MISSING_PREFIX}{reason}"
+
+
+def missing_text(text) -> str | None:
+    """The words a missing value is printed as, or None if ``text`` is not one.
+
+    >>> missing_text(missing("no recovery")), missing_text("12.5")
+    ('— (no recovery)', None)
+    """
+    if isinstance(text, str) and text.startswith(MISSING_PREFIX):
+        return f"— ({text[len(MISSING_PREFIX):]})"
+    return None
+
+
+def is_missing(v) -> bool:
+    """True for NaN (or None) and for a value already marked missing."""
+    if v is None:
+        return True
+    if isinstance(v, str):
+        return v.startswith(MISSING_PREFIX)
+    try:
+        return math.isnan(float(v))
+    except (TypeError, ValueError):
+        return False
 
 
 def solver_description(**extra) -> dict:
@@ -108,13 +149,34 @@ class Page:
         plt.close(fig)
         self.items[key] = Figure(fig, caption, alt, width, name, paper)
 
-    def value(self, name: str, v) -> None:
+    def value(self, name: str, v, why: str | None = None) -> None:
         """A number (or short text) the page's prose quotes through glue.
 
         NumPy scalars are stored as plain Python numbers: myst-nb's ``{glue:text}`` formats
-        those, while a NumPy 2 scalar would print as ``np.float64(...)``.
+        those, while a NumPy 2 scalar would print as ``np.float64(...)``. A missing value
+        (NaN or None) is stored as :func:`missing` with ``why`` (default: not run in the
+        quick book, or not computed in this run), so the prose says why instead of
+        printing "nan".
         """
+        if is_missing(v):
+            if not (isinstance(v, str) and v.startswith(MISSING_PREFIX)):
+                v = missing(why or self.missing_reason)
+            self.values[name] = v
+            return
         self.values[name] = v.item() if hasattr(v, "item") and not isinstance(v, str) else v
+
+    @property
+    def missing_reason(self) -> str:
+        """Why a value this page did not compute is missing, when the page does not say."""
+        return QUICK_REASON if self.quick else FULL_REASON
+
+    def headline(self, markdown: str) -> None:
+        """The page's finding in one or two sentences with its numbers (MyST Markdown).
+
+        Glued as ``headline``; the findings page and the landing page quote it with a link
+        to this page (:mod:`lunarcap.report.findings`).
+        """
+        self.notes["headline"] = markdown
 
     def note(self, name: str, markdown: str) -> None:
         """A MyST block the prose includes through ``{glue:md}``."""

@@ -1,6 +1,7 @@
 """Sphinx extension of the book: the paper's tables and figures get no book number.
 
-(Also: link addresses with ``&`` are mended, :func:`unescape_link_ampersands`.)
+(Also: link addresses with ``&`` are mended, :func:`unescape_link_ampersands`; a glued
+value a page marks as missing is printed as its reason, :func:`format_glued_text`.)
 
 Sphinx numbers every captioned table and figure, here "Book table N" and "Book figure N"
 (``numfig_format`` in ``book/_config.yml``). A table or figure that regenerates one of the
@@ -24,6 +25,9 @@ from sphinx.transforms import AutoNumbering, SphinxTransform
 #: :data:`lunarcap.report.display.PAPER_CLASS` sets (not imported from there, which would
 #: bring matplotlib into Sphinx; a test checks they are the same).
 PAPER_CLASS = "lc-paper"
+#: Head of a missing value's glued text: :data:`lunarcap.report.page.MISSING_PREFIX` (not
+#: imported, for the same reason; a test checks they are the same).
+MISSING_PREFIX = "lunarcap-missing:"
 _ENV_KEY = "lunarcap_paper_ids"   # attribute of the build environment: docname -> ids
 
 
@@ -124,8 +128,45 @@ def _mend_links(app, doctree, docname) -> None:
     unescape_link_ampersands(doctree)
 
 
+def format_glued_text(original):
+    """myst-nb's ``format_plain_text`` that prints a missing value as its reason.
+
+    A page glues a value it could not compute as ``MISSING_PREFIX + reason``
+    (:meth:`lunarcap.report.page.Page.value`); the prose pastes it with a number format
+    (``{glue:text}`x:.2f```), which myst-nb cannot apply to a text. Whatever the format, such
+    a value reads "— (reason)"; every other value is formatted by ``original``.
+
+    >>> fmt = format_glued_text(lambda text, spec: format(float(text), spec))
+    >>> fmt("12.345", ".1f"), fmt("'lunarcap-missing:not run in the quick book'", ".2f")
+    ('12.3', '— (not run in the quick book)')
+    """
+    import ast
+
+    def fmt(text: str, fmt_spec: str) -> str:
+        try:
+            value = ast.literal_eval(text)
+        except (SyntaxError, ValueError):
+            value = text
+        if isinstance(value, str) and value.startswith(MISSING_PREFIX):
+            return f"— ({value[len(MISSING_PREFIX):]})"
+        return original(text, fmt_spec)
+
+    fmt.lunarcap = True
+    return fmt
+
+
+def _patch_glue_formatting() -> None:
+    """Route myst-nb's glue text formatting (same page and other pages) through ours."""
+    from myst_nb.ext.glue import crossref, roles
+
+    for mod in (roles, crossref):
+        if not getattr(mod.format_plain_text, "lunarcap", False):
+            mod.format_plain_text = format_glued_text(mod.format_plain_text)
+
+
 def setup(app):
     """Register the transform and the renumbering (Sphinx extension entry point)."""
+    _patch_glue_formatting()
     app.add_transform(NotePaperItems)
     app.connect("doctree-resolved", _mend_links)
     app.connect("env-purge-doc", _purge)

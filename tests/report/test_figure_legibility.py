@@ -84,3 +84,10 @@ def test_trade_study_curves_differ_by_marker_as_well_as_colour():
     assert len({ln.get_marker() for ln in lines}) == len(ISP)
     robbins = [ln for ln in fig.axes[0].get_lines() if ln.get_label().startswith("Robbins")]
     assert all(ln.get_linestyle() != "-" for ln in robbins)
+
+
+@pytest.mark.parametrize("name,fig", FIGURES, ids=[n for n, _ in FIGURES])
+def test_every_legend_reads_as_large_as_the_axes(name, fig):
+    # figstyle.save_figure refuses a figure with any of these problems (the book build
+    # would fail on it): legend text below the axis labels, or any text below 9 pt
+    assert F.legibility_problems(fig) == [], name

@@ -301,7 +301,17 @@ def test_capture_figures_draw(capture):
             assert "(" in ax.get_ylabel()
             assert "(" in ax.get_xlabel() or ax is not fig.axes[-1] and not ax.get_xlabel()
         assert "(" in fig.axes[-1].get_xlabel()
+        assert figures.legibility_problems(fig) == []
         plt.close(fig)
+    # Fig. 5 (a): the arrows stand out from every orbit and arc drawn under them (the
+    # velocity arrows were blue on the blue capture orbit)
+    ax = figs[3][0].axes[0]
+    from matplotlib.colors import to_hex
+    from matplotlib.quiver import Quiver
+
+    lines = {to_hex(ln.get_color()) for ln in ax.get_lines() if ln.get_linestyle() != "None"}
+    arrows = [to_hex(q.get_facecolor()[0]) for q in ax.get_children() if isinstance(q, Quiver)]
+    assert len(arrows) == 2 and not set(arrows) & lines, (arrows, lines)
 
 
 # ------------------------------------------------------------------ reproduction report

@@ -19,6 +19,7 @@ from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.report import figdata, figures
+from lunarcap.report.figstyle import colour_name
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.runs import chain
@@ -77,11 +78,9 @@ def burns_table(geo, sols, paper_case: bool) -> pd.DataFrame:
 
 def _orbits_text(plan, geo) -> str:
     """'blue: the 1st capture orbit (12.235 h); ...' for the caption of Fig. 2."""
-    colour = {"tab:blue": "blue", "tab:green": "green", "tab:purple": "purple",
-              "tab:olive": "olive", "tab:cyan": "cyan", "tab:pink": "pink"}
     parts = []
     for a in geo.select("coast"):
-        c = colour[figures.coast_colour(a.burn)]
+        c = colour_name(figures.coast_colour(a.burn))
         if plan.burns[a.burn - 1].target == "circular":
             parts.append(f"{c}: the final {plan.arrival.perilune_altitude_km:g} km circular "
                          f"orbit ({plan.coast_s(a.burn - 1) / 60:.6g} min; its coast plus one "

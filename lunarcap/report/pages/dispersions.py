@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.mission.plan import load_plan
+from lunarcap.report.figstyle import FIG_WIDTH_IN, label_colour
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.runs import dispersions as disp
@@ -86,20 +87,20 @@ def plot_cdf(tables: dict):
     """
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(7.2, 4.0), layout="constrained")
-    for label, t in tables.items():
+    fig, ax = plt.subplots(figsize=(FIG_WIDTH_IN, 4.0), layout="constrained")
+    for k, (label, t) in enumerate(tables.items()):
         nom = float(t.nominal_delta_v_mps.iloc[0])
         v = np.sort(t.loc[t.status == "ok", "total_delta_v_mps"].astype(float) - nom)
         n = len(t)
         if v.size:
             ax.step(np.concatenate([[v[0]], v]), np.arange(0, v.size + 1) / n, where="post",
-                    label=f"{label} ({n} samples)")
+                    label=f"{label} ({n} samples)", color=label_colour(label, k))
     ax.axhline(0.99, color="0.5", lw=0.8, ls=":")
     ax.axvline(0.0, color="0.5", lw=0.8)
     ax.set_xlabel("ΔV above the nominal (m/s)")
     ax.set_ylabel("fraction of samples")
     ax.set_ylim(0, 1.02)
-    ax.legend(loc="lower right", fontsize=8)
+    ax.legend(loc="lower right")
     ax.grid(alpha=0.3)
     return fig
 
@@ -108,17 +109,17 @@ def plot_convergence(tables: dict):
     """The 99 % estimate above the nominal and its 95 % interval against the samples."""
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(7.2, 4.0), layout="constrained")
+    fig, ax = plt.subplots(figsize=(FIG_WIDTH_IN, 4.0), layout="constrained")
     for k, (label, t) in enumerate(tables.items()):
         c = disp.convergence(t)
-        color = f"C{k}"
+        color = label_colour(label, k)
         ax.plot(c.samples, c.estimate_mps, color=color, label=label, drawstyle="steps-post")
         lo = c.ci_lo_mps.replace(-np.inf, np.nan)
         hi = c.ci_hi_mps.replace(np.inf, np.nan)
         ax.fill_between(c.samples, lo, hi, color=color, alpha=0.15, step="post")
     ax.set_xlabel("samples N")
     ax.set_ylabel("99 % ΔV above the nominal (m/s)")
-    ax.legend(fontsize=8)
+    ax.legend()
     ax.grid(alpha=0.3)
     return fig
 
