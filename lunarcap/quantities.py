@@ -12,7 +12,7 @@ either kind and :func:`is_known` says whether a name is in the glossary.
 The losses, named apart because they differ (issue 17):
 
 * ``delta_v_loss_mps``: delta-V minus the impulsive limit in the *same* dynamics
-  (``impulsive_limit_mps``), what Song et al. tabulate as the loss;
+  (``impulsive_limit_mps``): the finite-burn loss, model against model, the book's loss;
 * ``objective_loss_mps``: the same, measured by the objective of Eq. (9) (delta-V plus the
   speed at the next perilune), which is flat along the ignition epoch;
 * ``loss_vs_paper_impulse_mps``: delta-V minus the paper's printed impulse
@@ -143,7 +143,8 @@ _add("impulsive_verified", "impulsive limit verified",
      "boolean")
 _add("delta_v_loss_mps", "ΔV loss",
      "Delta-V minus the impulsive limit in the same dynamics (delta_v_mps - "
-     "impulsive_limit_mps): the paper's loss.")
+     "impulsive_limit_mps): the finite-burn loss, model against model. The paper measures "
+     "its loss against the impulse it prints instead (loss_vs_paper_impulse_mps).")
 _add("delta_v_loss_percent", "ΔV loss",
      "delta_v_loss_mps as a percentage of impulsive_limit_mps.")
 _add("objective_j_mps", "J",
@@ -156,7 +157,8 @@ _add("objective_loss_percent", "J loss",
      "objective_loss_mps as a percentage of impulsive_limit_mps.")
 _add("loss_vs_paper_impulse_mps", "loss vs paper's impulse",
      "Delta-V minus the impulse Song et al. (2011) print for the same burn "
-     "(paper_impulsive_delta_v_mps): mixes our dynamics with theirs.")
+     "(paper_impulsive_delta_v_mps): the paper's loss as the paper measures it (its "
+     "Tables 1-5 and B1), which set against our delta-V mixes our dynamics with theirs.")
 _add("loss_vs_paper_impulse_percent", "loss vs paper's impulse",
      "loss_vs_paper_impulse_mps as a percentage of paper_impulsive_delta_v_mps (Table B1's "
      "'difference from impulsive').")
@@ -641,3 +643,36 @@ def is_known(name: str) -> bool:
 def unknown(names) -> list:
     """The names of ``names`` that are not in the glossary, in order."""
     return [n for n in names if not is_known(n)]
+
+
+# ------------------------------------------------------------------ the captures compared
+#: The captures of the paper's arrival the book compares, by the name every page uses for
+#: them ("the 150 N capture" is one of these, in some dynamics; each page names which):
+#: key -> (name, definition).
+CAPTURES = {
+    "fixed": ("the paper's fixed timings",
+              "The paper's three burns (hyperbola to 12.235 h, to 3.525 h, to the 100 km "
+              "circle), each ignited at the paper's best offset of its Table B1 (150 N: 10, 6 "
+              "and 5 min before the perilune) and optimised after the one before (Eq. 9), its "
+              "coast ending at the nominal perilune (Eq. 17): the packaged song2011-* plans."),
+    "free": ("free ignitions",
+             "The same three burns and orbits, every ignition time optimised (within two "
+             "Eq. (19) durations of the perilune), one burn after the other."),
+    "joint": ("free ignitions, jointly optimised",
+              "The same three burns and orbits with free ignitions, all in one optimisation "
+              "whose objective is their total delta-V."),
+    "free_periods": ("re-optimised with free periods",
+                     "All the burns in one optimisation of their total delta-V, ignitions "
+                     "free and the periods of the intermediate orbits free up to a bound "
+                     "(the missed-thrust nominal: the orbit after burn 1 up to 24 h; the "
+                     "burn-count study: every period up to 12.235 h)."),
+}
+
+
+def capture_name(key: str) -> str:
+    """The glossary name of a capture (:data:`CAPTURES`), e.g. "the paper's fixed timings".
+
+    >>> capture_name("free")
+    'free ignitions'
+    """
+    return CAPTURES[key][0]

@@ -243,6 +243,21 @@ def _dependency_problems(entries: list[Entry], seen: set[str]) -> list[str]:
     return errors
 
 
+#: ``depends_on: ["*"]``: the entry depends on every other entry of the manifest.
+ALL = "*"
+
+
+def expand_all_dependencies(entries: list[Entry]) -> list[Entry]:
+    """Entries with ``depends_on: ["*"]`` made to depend on every other entry, in file order.
+
+    An entry that reads what every page made (the findings page) runs last and is
+    stamped with every other entry's digest, so any change reruns it.
+    """
+    names = [e.name for e in entries]
+    return [dataclasses.replace(e, depends_on=tuple(n for n in names if n != e.name))
+            if ALL in e.depends_on else e for e in entries]
+
+
 def validate_manifest(data, notebooks_dir: Path | None = None,
                       check_notebooks: bool = True) -> list[Entry]:
     """Validate a parsed manifest and return its entries in file order.
@@ -283,6 +298,7 @@ def validate_manifest(data, notebooks_dir: Path | None = None,
         errors += problems
         if entry is not None:
             entries.append(entry)
+    entries = expand_all_dependencies(entries)
     errors += _dependency_problems(entries, seen)
     if errors:
         raise ManifestError("invalid manifest:\n  - " + "\n  - ".join(errors))

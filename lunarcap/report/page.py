@@ -170,6 +170,18 @@ class Page:
         """Why a value this page did not compute is missing, when the page does not say."""
         return QUICK_REASON if self.quick else FULL_REASON
 
+    def text(self, name: str, spec: str = "", unit: str = "") -> str:
+        """A glued value as the prose prints it: formatted, or its missing reason.
+
+        >>> p = Page("nb", {}, "x", quick=True)
+        >>> p.value("dv_mps", 12.345); p.value("other_mps", float("nan"))
+        >>> p.text("dv_mps", ".1f", " m/s"), p.text("other_mps", ".1f", " m/s")
+        ('12.3 m/s', '— (not run in the quick book)')
+        """
+        v = self.values[name]
+        gone = missing_text(v)
+        return gone if gone is not None else f"{format(v, spec)}{unit}"
+
     def headline(self, markdown: str) -> None:
         """The page's finding in one or two sentences with its numbers (MyST Markdown).
 

@@ -14,6 +14,7 @@ import pandas as pd
 
 from lunarcap.mission.impulsive import capture_total_mps
 from lunarcap.mission.plan import load_plan
+from lunarcap.quantities import capture_name
 from lunarcap.report import figures
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
@@ -174,4 +175,9 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
     bugs = table[~table.status.isin(["ok", "infeasible", "failed"])]
     page.expect("no count ended in an unexpected error (failures are reported, not hidden)",
                 bugs.empty, "; ".join(bugs.error.astype(str)))
+    t = page.text
+    page.headline(f"For {t('ref_plan')} (*{capture_name('free_periods')}*), the loss is "
+                  f"{t('loss_1_mps', '.1f', ' m/s')} in one burn, "
+                  f"{t('loss_2_mps', '.1f', ' m/s')} in two and {t('loss_3_mps', '.1f', ' m/s')} "
+                  f"in three: impulses cost the same whatever the count, the finite burns do not.")
     return page

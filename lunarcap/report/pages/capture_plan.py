@@ -517,4 +517,9 @@ def build(plan="lro-like-5burn", dynamics: str | None = None,
         page.value(k, float(v))
     _add_checks(page, p, burns, tot)
     page.data.update(result=res, plan=p, totals=tot)
+    t = page.text
+    page.headline(f"The {t('n_burns', '.0f')} burns of `{p.name}` ({p.dynamics} dynamics) lose "
+                  f"{t('total_delta_v_loss_mps', '.2f', ' m/s')} against impulses in the same "
+                  f"dynamics, and the last burn ends {t('time_to_final_orbit_h', '.2f', ' h')} "
+                  f"after the arrival perilune.")
     return page

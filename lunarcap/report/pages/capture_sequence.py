@@ -18,6 +18,7 @@ from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
+from lunarcap.quantities import capture_name
 from lunarcap.report import figdata, figures
 from lunarcap.report.figstyle import colour_name
 from lunarcap.report.page import Page, solver_description
@@ -383,4 +384,9 @@ def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
         page.value(name, float(v))
     _add_checks(page, table, geo, d4, d5, ctx)
     page.data.update({"plan": plan, "solutions": sols, "geometry": geo, "fig4": d4, "fig5": d5})
+    t = page.text
+    page.headline(f"The 150 N capture (*{capture_name('fixed')}*, {dynamics} dynamics) burns for "
+                  f"{t('total_burn_min', '.2f', ' min')} in all and leaves "
+                  f"{t('mass_final_kg', '.3f', ' kg')} in the final orbit; every burn arc "
+                  f"straddles its perilune, as in the paper.")
     return page

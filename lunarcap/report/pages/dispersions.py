@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.mission.plan import load_plan
+from lunarcap.quantities import capture_name
 from lunarcap.report.figstyle import FIG_WIDTH_IN, label_colour
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
@@ -217,4 +218,10 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
     bugs = pd.concat([t[~t.status.isin(disp.OK_STATUSES)] for t in tables.values()])
     page.expect("no sample ended in an unexpected error (failures are reported, not hidden)",
                 bugs.empty, "; ".join(bugs.error.astype(str)))
+    t = page.text
+    page.headline(f"With the page's error model, the worst of {t('n_samples', '.0f')} samples "
+                  f"per engine lies {t('p99_above_150N', '.2f')}, {t('p99_above_300N', '.2f')} "
+                  f"and {t('p99_above_450N', '.2f', ' m/s')} above the nominal (150, 300, "
+                  f"450 N; *{capture_name('fixed')}*, re-planned after each burn); "
+                  f"{t('n_failed', '.0f')} samples not captured or not corrected.")
     return page

@@ -84,4 +84,7 @@ def build(alpha_deg: float = 55.0, beta_deg: float = 30.0, true_anomaly_deg: flo
     page.expect("the out-of-plane component of u is sin(beta)",
                 abs(geo.u @ geo.rtn[2] - math.sin(math.radians(beta_deg))) < 1e-12)
     page.data["geometry"] = geo
+    t = page.text
+    page.headline(f"Eq. (14) recovers α = {t('alpha_deg', '.1f')}° and β = {t('beta_deg', '.1f')}° "
+                  f"from the drawn thrust direction, with the RTN frame of the dynamics.")
     return page

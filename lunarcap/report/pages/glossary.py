@@ -51,6 +51,12 @@ def composition_table() -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def captures_table() -> pd.DataFrame:
+    """The captures of the paper's arrival the pages compare, by the name they use."""
+    return pd.DataFrame([{"key": k, "capture": name, "definition": text}
+                         for k, (name, text) in Q.CAPTURES.items()])
+
+
 def build(output_name: str = "glossary", quick: bool = False) -> Page:
     """The glossary page (see the module docstring)."""
     page = Page(NOTEBOOK, {}, output_name, quick, ephemeris=False)
@@ -68,7 +74,16 @@ def build(output_name: str = "glossary", quick: bool = False) -> Page:
     page.table("composition", composition_table(),
                caption="Names composed from a glossary name by a prefix or a suffix.",
                show_columns=["part", "definition", "example"])
+    page.table("captures", captures_table(),
+               caption=("The captures of the paper's arrival the book compares. A page that "
+                        "quotes a capture's delta-V names it by one of these names and says "
+                        "in which dynamics it was flown: the same engine gives a different "
+                        "total for each."),
+               show_columns=["capture", "definition"])
     page.value("n_quantities", len(Q.GLOSSARY))
+    page.headline(f"{len(Q.GLOSSARY)} quantities, each with one name (its CSV column and "
+                  f"JSON key), one unit and one definition; "
+                  f"{len(Q.CAPTURES)} captures of the paper's arrival named apart.")
     page.value("n_schemas", len(schemas.COMMANDS))
     page.value("schema_commands", ", ".join(schemas.COMMANDS))
     page.expect("every confusable name resolves", all(Q.is_known(n) for n in CONFUSABLE))

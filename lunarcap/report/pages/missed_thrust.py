@@ -13,6 +13,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.mission.plan import load_plan
+from lunarcap.quantities import capture_name
 from lunarcap.report import figures
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
@@ -74,6 +75,67 @@ def late_reading(t: pd.DataFrame) -> str:
     return " ".join(x for x in out if x)
 
 
+#: A penalty within this of zero is "nothing above the nominal" (the solver's tolerance on
+#: the total delta-V of the two optimisations it compares), m/s.
+ZERO_PENALTY_MPS = 0.01
+
+
+def bound_verdict(ok: pd.DataFrame, max_period_h: float,
+                  zero_mps: float = ZERO_PENALTY_MPS) -> str:
+    """Whether the bound on the make-up orbit's period shapes the recovered penalties.
+
+    Computed from the recovered cases ``ok`` (``make_up_period_h``, ``penalty_mps``): a
+    recovery whose make-up orbit sits at the bound and whose penalty is above ``zero_mps``
+    would cost less with a longer bound; one at the bound that already costs nothing above
+    the nominal (within ``zero_mps``) would not.
+    """
+    rows = ok.dropna(subset=["make_up_period_h"])
+    at = rows[rows.make_up_period_h >= max_period_h - 1e-3]
+    costly = at[at.penalty_mps > zero_mps]
+    head = (f"In {len(at)} of {len(rows)} recoveries with a make-up orbit its period sits at "
+            f"the {max_period_h:g} h bound")
+    if not len(at):
+        return head + ": the bound shapes none of these penalties."
+    if not len(costly):
+        return (head + f", and none of them costs more than {zero_mps:g} m/s above the "
+                "nominal: the bound shapes none of these penalties.")
+    free = len(at) - len(costly)
+    return (head + f"; for the {len(costly)} of them with a penalty above {zero_mps:g} m/s a "
+            "longer bound would lower the penalty"
+            + (f", while the other {free} already cost nothing above the nominal (within "
+               f"{zero_mps:g} m/s)." if free else "."))
+
+
+def escape_fractions(t: pd.DataFrame) -> list[float]:
+    """The fractions of the burn whose cut-off leaves a hyperbola (whatever the delay).
+
+    A cut-off is a fraction of the burn: the orbit it leaves does not depend on how long
+    the spacecraft coasts afterwards, so it is counted once, not once per delay.
+    """
+    return sorted(set(t.fraction[t.cutoff_orbit == "escape"].astype(float)))
+
+
+def escape_sentence(t: pd.DataFrame) -> str:
+    """Which cut-offs leave a hyperbola, counted as fractions of the burn (and cases).
+
+    >>> t = pd.DataFrame({"fraction": [0.25, 0.25, 0.5, 0.5, 0.9, 0.9],
+    ...                   "cutoff_orbit": ["escape"] * 4 + ["captured"] * 2})
+    >>> escape_sentence(t)[:70]
+    'A cut-off after 0.25 or 0.5 of the burn (2 of the 3 fractions tried; 4'
+    """
+    esc = escape_fractions(t)
+    tried = sorted(set(t.fraction.astype(float)))
+    if not esc:
+        return (f"No cut-off tried (after {', '.join(f'{f:g}' for f in tried)} of the burn) "
+                "leaves the spacecraft on a hyperbola")
+    which = " or ".join([", ".join(f"{f:g}" for f in esc[:-1]), f"{esc[-1]:g}"]
+                        if len(esc) > 1 else [f"{esc[0]:g}"])
+    n_cases = int((t.cutoff_orbit == "escape").sum())
+    return (f"A cut-off after {which} of the burn ({len(esc)} of the {len(tried)} fractions "
+            f"tried; {n_cases} of the {len(t)} cases with their delays) leaves the spacecraft "
+            "on a hyperbola")
+
+
 def reading(t: pd.DataFrame, max_period_h: float | None = None) -> str:
     """What the table says for mission planning, in sentences computed from it."""
     t = cut_offs(t).reset_index(drop=True)
@@ -100,12 +162,7 @@ def reading(t: pd.DataFrame, max_period_h: float | None = None) -> str:
         out.append(f"The worst recovered case (fraction {worst.fraction:g}, "
                    f"{worst.delay_min:g} min) costs {worst.penalty_mps:.1f} m/s.")
     if len(ok) and max_period_h is not None and "make_up_period_h" in ok:
-        per = ok.make_up_period_h.dropna()
-        at = int((per >= max_period_h - 1e-3).sum())
-        out.append(f"In {at} of {len(per)} recoveries with a make-up orbit its period sits "
-                   f"at the {max_period_h:g} h bound" + (
-                       ": for those, a longer bound would lower the penalty." if at else
-                       ": the bound shapes none of these penalties."))
+        out.append(bound_verdict(ok, max_period_h))
     refused = t[t.status != "recovered"]
     for r in refused.itertuples():
         out.append(f"Fraction {r.fraction:g}, {r.delay_min:g} min: {r.status}, "
@@ -183,13 +240,26 @@ def _values(page: Page, p, burn: int, t: pd.DataFrame, late: pd.DataFrame, run: 
     page.value("n_recovered", int(len(ok)))
     page.value("n_no_recovery", int((t.status == "no recovery").sum()))
     page.value("n_escape", int((t.cutoff_orbit == "escape").sum()))
+    esc = escape_fractions(t)
+    page.value("n_escape_fractions", len(esc))
+    page.value("n_fractions", int(t.fraction.nunique()))
+    page.value("escape_sentence", escape_sentence(t))
     page.value("wall_s", float(run["wall_s"]))
-    page.value("max_penalty_mps", float(ok.penalty_mps.max()) if len(ok) else np.nan)
+    page.value("max_penalty_mps", float(ok.penalty_mps.max()) if len(ok) else np.nan,
+               why="no case recovered")
     # + 0.0: a penalty of -0.0003 m/s is shown as 0.00, not -0.00
     page.value("min_penalty_mps", round(float(ok.penalty_mps.min()), 2) + 0.0 if len(ok)
-               else np.nan)
+               else np.nan, why="no case recovered")
     page.value("n_failed", int((~t.status.isin(["recovered", "no recovery"])).sum()))
     page.note("reading", reading(t, max_period_h))
+    tx = page.text
+    page.headline(f"When burn {burn} of `{p.name}` ({p.dynamics} dynamics) is cut short, the "
+                  f"cut-offs at {tx('n_escape_fractions', '.0f')} of the "
+                  f"{tx('n_fractions', '.0f')} fractions tried leave the spacecraft on a "
+                  f"hyperbola; {tx('n_recovered', '.0f')} of the {tx('n_cases', '.0f')} "
+                  f"cut-off cases are recovered (penalty at most "
+                  f"{tx('max_penalty_mps', '.1f', ' m/s')} against the nominal "
+                  f"*{capture_name('free_periods')}*).")
     page.note("late_reading", late_reading(late))
     bugs = t[~t.status.isin(["recovered", "no recovery", "failed"])]
     page.expect("no case ended in an unexpected error (failures are reported, not hidden)",

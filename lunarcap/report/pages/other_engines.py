@@ -30,6 +30,7 @@ import pandas as pd
 from lunarcap.mission.plan import paper_plan
 from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
+from lunarcap.quantities import capture_name
 from lunarcap.report import figures
 from lunarcap.report.display import verdict
 from lunarcap.report.page import Page, solver_description
@@ -354,6 +355,10 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
     if dynamics == "full" and ignition == "free":
         _add_measured_checks(page, totals, seqs, rows, model_loss)
     page.data.update({"sequences": seqs, "totals": totals, "plan_results": results})
+    t = page.text
+    page.headline(f"The LRO-class engine (320 N / 200 s, *{capture_name('free')}*) burns "
+                  f"{t('total_fuel_kg_320N', '.1f', ' kg')} of propellant; going from 150 to "
+                  f"320 N at 200 s divides the LOI 1 loss by {t('loss_ratio_150_320', '.2f')}.")
     return page
 
 

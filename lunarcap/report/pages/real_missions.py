@@ -21,6 +21,7 @@ from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import orbit_summary
 from lunarcap.physics.rocket import burn_duration_estimate_s, rocket_mass_after
+from lunarcap.quantities import capture_name
 from lunarcap.report.page import Page
 from lunarcap.runs.chain import arrival_for
 from lunarcap.runs.sweeps import sequence_table
@@ -407,4 +408,9 @@ def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
         page.value(name, v)
     _add_checks(page, chains, compare, kplo)
     page.data["chains"] = chains
+    t = page.text
+    page.headline(f"Our LRO-class LOI 1 (*{capture_name('free')}*, {dynamics} dynamics) lasts "
+                  f"{t('lro_loi1_ours_min', '.1f', ' min')} on the paper's spacecraft and "
+                  f"{t('lro_loi1_scaled_min', '.1f', ' min')} at LRO's launch mass, against "
+                  f"LRO's {LRO_LOI_MIN:g} min burn.")
     return page

@@ -460,4 +460,10 @@ def build(engines=paper_engine_pairs(), dynamics: str = "full",
     sweeps, dur = _part_a(page, engines, dynamics, output_name)
     chains, _ = _part_b(page, sweeps, dynamics, output_name, findings)
     _part_c(page, findings, chains, dur, output_name)
+    t = page.text
+    page.headline(f"{t('n_table_numbers')} numbers of the paper's tables beside ours: the "
+                  f"median ΔV difference is {t('median_dv_diff_mps', '.3f', ' m/s')}, Table B1 "
+                  f"agrees within {t('b1_max_dv_diff_percent', '.2f', ' %')}; "
+                  f"{t('n_inconsistent', 'd')} of {t('n_findings', 'd')} checks of the paper "
+                  f"against itself find an inconsistency beyond print resolution.")
     return page

@@ -188,4 +188,9 @@ def build(engines=paper_engine_pairs(), dynamics: str = "full",
         page.value(name, v)
     _add_checks(page, steer, dynamics)
     page.data["steering"] = steer
+    t = page.text
+    page.headline(f"One optimised inertial direction costs at most "
+                  f"{t('inertial_j_loi1_150N_mps', '.2f', ' m/s')} (150 N LOI 1, the longest "
+                  f"burn, {t('duration_loi1_150N_min', '.1f', ' min')}); thrust opposite the "
+                  f"velocity misses the paper's targets ({dynamics} dynamics).")
     return page

@@ -411,4 +411,8 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
         page.value(k, float(v))
     _add_checks(page, ver, imp, mesh, values, default_points)
     page.data.update(cases=ver, mesh=mesh, impulsive=imp)
+    t = page.text
+    page.headline(f"{t('n_passed', '.0f')} of {t('n_cases', '.0f')} solutions pass the "
+                  f"re-propagation gate; the flown end positions are within "
+                  f"{t('worst_final_position_diff_m', '.1f', ' m')} of the collocation's.")
     return page

@@ -70,3 +70,33 @@ def test_missed_reading_counts_recoveries_per_delay_and_signs_penalties():
     lt = missed_thrust.late_reading(missed_thrust.late_ignitions(both))
     assert "1 min: +0.30 m/s; 5 min: +8.90 m/s; 10 min: +34.80 m/s" in lt
     assert "The later, the dearer" in lt
+
+
+def test_the_period_bound_verdict_follows_the_penalties_of_the_cases_at_the_bound():
+    # was a fixed "a longer bound would lower the penalty" for every case at the bound,
+    # four of which cost 0.00 m/s in the book's full run
+    def rec(period, penalty):
+        return {"make_up_period_h": period, "penalty_mps": penalty}
+    free = pd.DataFrame([rec(24.0, 0.002), rec(24.0, 0.004), rec(20.0, 3.0)])
+    text = missed_thrust.bound_verdict(free, 24.0)
+    assert text.startswith("In 2 of 3 recoveries") and "none of them costs more" in text
+    assert "would lower" not in text
+    costly = free.assign(penalty_mps=[0.002, 5.0, 3.0])    # one case at the bound now costs
+    text = missed_thrust.bound_verdict(costly, 24.0)
+    assert "for the 1 of them with a penalty above 0.01 m/s a longer bound would lower" in text
+    assert "the other 1 already cost nothing above the nominal" in text
+    away = free.assign(make_up_period_h=[23.0, 22.0, 20.0])  # none at the bound
+    assert "the bound shapes none" in missed_thrust.bound_verdict(away, 24.0)
+
+
+def test_escapes_are_counted_per_fraction_of_the_burn_not_per_case():
+    # a cut-off is a fraction; its delays are cases of the same cut-off (the page said
+    # "8 of the 16 cut-offs" for 2 fractions)
+    t = pd.DataFrame({"fraction": [0.25] * 4 + [0.5] * 4 + [0.9] * 4,
+                      "cutoff_orbit": ["escape"] * 8 + ["captured"] * 4})
+    text = missed_thrust.escape_sentence(t)
+    assert text.startswith("A cut-off after 0.25 or 0.5 of the burn (2 of the 3 fractions "
+                           "tried; 8 of the 12 cases")
+    assert missed_thrust.escape_fractions(t) == [0.25, 0.5]
+    none = t.assign(cutoff_orbit="captured")
+    assert missed_thrust.escape_sentence(none).startswith("No cut-off tried")

@@ -1,0 +1,119 @@
+"""The findings page (notebooks/findings.ipynb) and the landing page's first screen.
+
+Run after every other page of the book (manifest ``depends_on: ["*"]``), :func:`build`
+reads what each executed page glued (:mod:`lunarcap.report.findings`): its finding
+(``headline``) for the list of every page's finding, in the order of the table of
+contents, and the numbers of a few pages for the landing page's first screen
+(:func:`first_screen`): the paper reproduced within x %, the finite-burn losses of the
+paper's three engines, the paper's inconsistencies, what lunarcap adds (the pages of the
+"Beyond the paper" part, whatever they are), and how to cite. The landing page
+(``book/index.md``) includes the Markdown files this page writes below
+``book/generated``: :data:`LANDING`, :data:`BY_PAGE` and :data:`CITATION`.
+"""
+
+from __future__ import annotations
+
+import pandas as pd
+import yaml
+
+from lunarcap.report import findings as F
+from lunarcap.report.page import Page
+from lunarcap.repro import paths
+
+NOTEBOOK = "notebooks/findings.ipynb"
+#: Files below book/generated that book/index.md includes.
+LANDING, BY_PAGE, CITATION = "findings_landing.md", "findings_by_page.md", "citation.md"
+#: The part of the table of contents whose pages are "what lunarcap adds".
+BEYOND_CAPTION = "Beyond the paper"
+#: The paper's engines, as the landing page names them (thrust N, Isp s).
+PAPER_ENGINES = ((150, 200), (300, 250), (450, 300))
+#: The label of the landing page's "How to cite" section (book/index.md).
+CITE_LABEL = "how-to-cite"
+
+
+def toc_parts(toc_path=None) -> list[tuple[str, list[str]]]:
+    """``[(caption, [files])]`` of the table of contents' parts, in order."""
+    toc = yaml.safe_load((toc_path or paths.TOC).read_text(encoding="utf-8"))
+    return [(p.get("caption", ""), [c["file"] for c in p.get("chapters", [])])
+            for p in toc.get("parts", [])]
+
+
+#: What a value no page glued is shown as (a page left out of a partial build).
+F_MISSING = "lunarcap-missing:not in this build"
+
+
+def _losses(summary: dict) -> str:
+    parts = [f"{F.shown(summary.get(f'total_delta_v_loss_mps_{t}N', F_MISSING), '.1f', ' m/s')}"
+             f" ({t} N / {i} s)" for t, i in PAPER_ENGINES]
+    return f"{parts[0]}, {parts[1]} and {parts[2]}"
+
+
+def first_screen(values: dict, items: list, beyond: list[str]) -> str:
+    """The landing page's first screen (MyST Markdown, links from ``book/index.md``).
+
+    Parameters
+    ----------
+    values : dict
+        ``{entry name: glued values}`` of the executed pages
+        (:func:`lunarcap.report.findings.glued`).
+    items : list of :class:`lunarcap.report.findings.Headline`
+        Every page's finding (for the titles of the pages listed).
+    beyond : list of str
+        The toc files of the "Beyond the paper" part.
+    """
+    def v(page, name):
+        return values.get(page, {}).get(name, F_MISSING)
+
+    rr, ver, summ = (values.get(k, {}) for k in ("reproduction_report", "verification",
+                                                 "summary"))
+    title = {h.page: h.title for h in items}
+    added = ", ".join(f"{{doc}}`{title.get(f, f)} </{f}>`" for f in beyond if f in title)
+    return (
+        ":::{admonition} What this book found\n:class: lc-findings\n\n"
+        f"- **The paper, reproduced.** Solved again with an independent optimiser, the "
+        f"delta-Vs of the paper's best burns (Table B1) agree with the printed ones within "
+        f"{F.shown(v('reproduction_report', 'b1_max_dv_diff_percent'), '.2f', ' %')}; "
+        f"{F.shown(v('verification', 'n_passed'), '.0f')} of "
+        f"{F.shown(v('verification', 'n_cases'), '.0f')} solutions of its Tables 1–5 pass an "
+        f"independent re-propagation check ({{doc}}`reproduction report "
+        f"</generated/reproduction_report>`).\n"
+        f"- **Finite-burn losses.** Over the whole three-burn capture (*the paper's fixed "
+        f"timings*, full dynamics) the paper's engines need {_losses(summ)} more than impulses "
+        f"in the same dynamics ({{doc}}`Table B1 and totals </generated/summary>`).\n"
+        f"- **The paper against itself.** {F.shown(rr.get('n_inconsistent', F_MISSING), 'd')} "
+        f"of {F.shown(rr.get('n_findings', F_MISSING), 'd')} checks of its printed numbers "
+        f"against one another fail beyond print resolution; among them the Sun's "
+        f"gravitational parameter, printed "
+        f"{F.shown(rr.get('sun_ratio', F_MISSING), '.0f')} times too small.\n"
+        f"- **What lunarcap adds.** {added}.\n\n"
+        f"How to cite lunarcap, with a BibTeX entry, its licence, version and date: "
+        f"{{ref}}`how to cite <{CITE_LABEL}>`.\n:::\n")
+
+
+def build(output_name: str = "findings", quick: bool = False) -> Page:
+    """The findings page (see the module docstring); writes the landing page's includes."""
+    from lunarcap.report.manifest import load_manifest, toc_files
+
+    entries = [e for e in load_manifest(check_notebooks=False) if e.name != output_name]
+    page = Page(NOTEBOOK, {}, output_name, quick)
+    items = F.headlines(entries, paths.GENERATED, toc_files())
+    values = {e.name: F.glued(e.output) for e in entries if e.output.is_file()}
+    beyond = next((files for cap, files in toc_parts() if cap == BEYOND_CAPTION), [])
+    landing = first_screen(values, items, beyond)
+    by_page = F.by_page_markdown(items, link_prefix="/")
+    cite = F.citation_markdown(F.citation(paths.ROOT / "CITATION.cff"))
+    for name, text in ((LANDING, landing), (BY_PAGE, by_page), (CITATION, cite)):
+        paths.write_text_atomic(paths.GENERATED / name, text)
+    page.note("by_page", by_page)
+    page.note("landing", landing)
+    page.table("pages", pd.DataFrame(
+        [{"page": h.page, "title": h.title, "finding": " ".join((h.markdown or "").split())}
+         for h in items]),
+        caption="Every page's finding, as the page computed it (the CSV for a reader's own "
+                "use; the list above shows the same).", show_columns=["title", "page"])
+    page.value("n_pages", len(items))
+    page.expect("every page of the book glues its finding (Page.headline)",
+                all(h.markdown for h in items),
+                ", ".join(h.page for h in items if not h.markdown))
+    page.data.update(items=items, values=values)
+    return page
