@@ -25,6 +25,7 @@ from lunarcap.mission.plan import PLAN_DIR, CapturePlan, load_plan, paper_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import period_from_semi_major_axis, semi_major_axis_from_period
 from lunarcap.physics.rocket import exhaust_speed_mps, rocket_delta_v_mps
+from lunarcap.quantities import capture_name
 from lunarcap.report import figdata, figures
 from lunarcap.report.display import verdict
 from lunarcap.report.labels import period_text
@@ -159,6 +160,43 @@ def constant_thrust_delta_v_mps(m0_kg: float, thrust_N: float, isp_s: float,
     return rocket_delta_v_mps(m0_kg, m1_kg, isp_s)
 
 
+#: The first orbit "is LRO's" when both its altitudes are within this of the published
+#: ones (the sources print them to 10 km; the plan meets its apolune to 50 m), km.
+FIRST_ORBIT_TOL_KM = 1.0
+
+
+def first_orbit_verdict(rp_alt_km: float, ra_alt_km: float, nominal_h: float,
+                        period_h: float, perilune_timed: bool,
+                        tol_km: float = FIRST_ORBIT_TOL_KM) -> str:
+    """Our first orbit against LRO's 220 x 3,100 km, in words computed from the numbers.
+
+    ``perilune_timed``: the burn's target is the paper's (the orbit must hold at the nominal
+    epoch of the next perilune), which a long burn can meet only on another ellipse; else
+    the apolune itself is the target.
+
+    >>> first_orbit_verdict(220.0, 3100.02, 3.1, 3.1, False)[:62]
+    'Our first orbit is 220.0 × 3,100.0 km (osculating, at the next'
+    >>> "not 220 × 3,100 km" in first_orbit_verdict(220.0, 3180.0, 3.1, 3.15, True)
+    True
+    """
+    pub_rp, pub_ra = LRO["first_orbit_km"]
+    head = (f"Our first orbit is {rp_alt_km:.1f} × {ra_alt_km:,.1f} km (osculating, at the "
+            "next perilune)")
+    d_rp, d_ra = rp_alt_km - pub_rp, ra_alt_km - pub_ra
+    if abs(d_rp) <= tol_km and abs(d_ra) <= tol_km:
+        return (f"{head}: LRO's {pub_rp:g} × {pub_ra:,.0f} km, within {tol_km:g} km, since "
+                "the plan asks for that ellipse and the burn meets it as asked.")
+    why = (f": the target is the perilune radius at the nominal epoch of the next perilune, "
+           f"one period of the {pub_rp:g} × {pub_ra:,.0f} km ellipse ({nominal_h:.3f} h) "
+           f"after the arrival perilune, but the long burn moves the flown perilune, so the "
+           f"ellipse reached has a period of {period_h:.3f} h "
+           f"({60 * (period_h - nominal_h):+.1f} min)" if perilune_timed else
+           f": its apolune misses the {pub_ra:,.0f} km asked")
+    return (f"{head}, not {pub_rp:g} × {pub_ra:,.0f} km{why}; its apolune is "
+            f"{abs(d_ra):,.0f} km {'lower' if d_ra < 0 else 'higher'} and its perilune "
+            f"{d_rp:+.1f} km from LRO's.")
+
+
 def lro_comparison(plan: CapturePlan, burns: pd.DataFrame, tot: dict) -> tuple:
     """Our LRO-like capture beside the published LRO figures: (table, values, reading)."""
     b1 = burns.iloc[0]
@@ -216,15 +254,10 @@ def lro_comparison(plan: CapturePlan, burns: pd.DataFrame, tot: dict) -> tuple:
         f"So LRO arrived slower than we assumed, or lighter than its launch mass, or with "
         f"more thrust than \"about 320 N\": the sources consulted give neither its arrival "
         f"speed, nor its mass at arrival, nor its LOI ΔV, so which is not known.\n\n"
-        f"Our first orbit is {rp_alt:.1f} × {ra_alt:,.1f} km (osculating, at the next "
-        f"perilune), not 220 × 3,100 km: the target is the perilune radius at the nominal "
-        f"epoch of the next perilune, one period of the 220 × 3,100 km ellipse "
-        f"({nominal_h:.3f} h) after the arrival perilune, but the "
-        f"{values['lro_ours_burn_min']:.0f} min burn moves the flown perilune, so the ellipse "
-        f"reached has a period of {period_h:.3f} h ({60 * (period_h - nominal_h):+.1f} min) "
-        f"and an apolune {abs(ra_alt - LRO['first_orbit_km'][1]):.0f} km "
-        f"{'lower' if ra_alt < LRO['first_orbit_km'][1] else 'higher'}. Our "
-        f"{plan.n_burns} burns use {fuel:.0f} kg of propellant, " + fuel_txt
+        + first_orbit_verdict(rp_alt, ra_alt, nominal_h, period_h,
+                              plan.formulation == "song2011"
+                              or bool(getattr(plan.burns[0], "nominal_timing", False)))
+        + f" Our {plan.n_burns} burns use {fuel:.0f} kg of propellant, " + fuel_txt
         + " LRO's four later burns also lowered its perilune (to a 30 × 216 km orbit, S7); "
         "ours keep it at 220 km and end on the 220 km circle, through intermediate apolunes "
         "of our choosing.")
@@ -264,7 +297,7 @@ def paper_comparison(plan: CapturePlan, tot: dict) -> tuple:
     sooner = "sooner" if d["time_to_final_orbit_h"] < 0 else "later"
     reading = (
         f"**Beside the paper's three-burn capture** (the same arrival and engine, "
-        f"{plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} s, every ignition free, "
+        f"{plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} s, *{capture_name('free')}*, "
         f"{plan.dynamics} dynamics). All the burns are tangential near a perilune of the same "
         f"radius, so the impulsive totals agree to "
         f"{abs(d['total_impulsive_limit_mps']):.2f} m/s: a chain of tangential perilune "
@@ -403,8 +436,10 @@ def _add_totals(page: Page, p: CapturePlan, res, tot: dict, case: str) -> None:
         "totals", totals_table(tot),
         caption=(f"Totals of {case}. The impulsive total is the sum of each burn's impulsive "
                  "limit in the same dynamics; the time to the final orbit runs from the "
-                 "arrival perilune to the perilune at which the last target is verified "
-                 f"({tot['final_perilune_epoch']}); the final orbit is osculating there."),
+                 "arrival perilune to the end of the last burn "
+                 f"({tot['final_orbit_epoch']}, TDB; the glossary's time_to_final_orbit_h); the "
+                 "final orbit's elements are osculating at the perilune after it "
+                 f"({tot['final_perilune_epoch']})."),
         show_columns=["quantity", "value", "unit"], floatfmt={"value": ",.3f"})
     arrival = arrival_for(p.arrival, p.ephemeris, p.lunar_pole)
     geo = figdata.capture_geometry(solutions(res), arrival)
@@ -445,10 +480,11 @@ def _add_comparison(page: Page, p: CapturePlan, burns: pd.DataFrame, tot: dict,
             "comparison", table, name="vs_paper",
             caption=("This plan beside the paper's three-burn capture (12.235 h → 3.525 h → "
                      "100 km circle) from the same arrival, with the same engine and "
-                     f"dynamics ({p.dynamics}), every ignition free (optimised). Total ΔV, "
-                     "impulsive total and loss in m/s (loss: total ΔV − the impulsive total "
-                     "in the same dynamics, also in %), propellant in kg, time from the "
-                     "arrival perilune to the final orbit in h."),
+                     f"dynamics ({p.dynamics}), with *{capture_name('free')}* (every ignition "
+                     "optimised). Total ΔV, impulsive total and loss in m/s (loss: total ΔV − "
+                     "the impulsive total in the same dynamics, also in %), propellant in kg, "
+                     "time to the final orbit in h (from the arrival perilune to the end of "
+                     "the last burn)."),
             columns={"capture": "capture", "total_impulsive_limit_mps": "impulsive (m/s)",
                      "total_delta_v_loss_mps": "loss (m/s)",
                      "total_delta_v_loss_percent": "loss (%)",

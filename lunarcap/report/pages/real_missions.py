@@ -305,6 +305,48 @@ def prose_values(compare: pd.DataFrame, kplo: pd.DataFrame, m0_kg: float,
     return out
 
 
+#: Published and computed durations within this factor of each other "agree in order of
+#: magnitude" (the sources give the intervals to the minute; the masses are not known).
+ORDER_FACTOR = 3.0
+
+
+def ce1_verdict(ratios, why_missing: str = "") -> str:
+    """What Chang'e-1's braking intervals say against our scaled durations, computed.
+
+    ``ratios``: published interval over our duration at Chang'e-1's mass and thrust, for
+    LOI 1, 2, 3 (NaN where not computed). The verdict follows the numbers: the order of
+    magnitude agrees only if every ratio is within :data:`ORDER_FACTOR` of 1, and the
+    launch-mass explanation is offered only when ours are all longer.
+
+    >>> ce1_verdict([0.8, 0.7, 0.9]).split(" (")[0]
+    'The order of magnitude agrees: the reported intervals are 0.70 to 0.90 of ours'
+    >>> ce1_verdict([0.1, 0.7, 0.9]).split(":")[0]
+    'The order of magnitude differs'
+    """
+    r = np.asarray(ratios, dtype=float)
+    if not np.isfinite(r).any():
+        return f"Not compared in this build ({why_missing or 'no duration computed'})."
+    r = r[np.isfinite(r)]
+    span = f"{r.min():.2f} to {r.max():.2f}" if r.min() != r.max() else f"{r.min():.2f}"
+    if np.all((r > 1 / ORDER_FACTOR) & (r < ORDER_FACTOR)):
+        head = (f"The order of magnitude agrees: the reported intervals are {span} of ours "
+                f"(within a factor {ORDER_FACTOR:g}).")
+    else:
+        return (f"The order of magnitude differs: the reported intervals are {span} of ours, "
+                f"beyond a factor {ORDER_FACTOR:g}, more than the unknown arrival mass and "
+                "specific impulse can explain.")
+    if np.all(r < 1):
+        return head + (" Ours are longer, mainly because 2,350 kg is the launch mass: "
+                       "Chang'e-1 made four orbital transfers of its own in Earth orbit "
+                       "before the brakings, and its fuel was nearly half of its mass (S6), "
+                       "so it arrived at the Moon lighter, by an amount not found.")
+    if np.all(r > 1):
+        return head + (" Ours are shorter although 2,350 kg is the launch mass (it arrived "
+                       "lighter): a weaker engine or a larger ΔV than ours would explain it.")
+    return head + (" Some of ours are longer and some shorter: beside the unknown arrival "
+                   "mass, its own orbits and arrival speed shape each burn differently.")
+
+
 def _add_published(page: Page, chains: dict, m0: float, dynamics: str) -> pd.DataFrame:
     """The published figures and the durations tables; returns the durations."""
     page.table(
@@ -374,8 +416,6 @@ def _add_checks(page: Page, chains: dict, compare: pd.DataFrame, kplo: pd.DataFr
         page.expect("Chang'e-1: the scaled durations are the right order of magnitude "
                     "(published / scaled 0.5-1.5)", bool(np.all((ratios > 0.5) & (ratios < 1.5))),
                     str(np.round(ratios, 3)))
-        page.expect("Chang'e-1: the scaled durations are longer than the published ones "
-                    "(the prose)", bool(np.all(ratios < 1.0)), str(np.round(ratios, 3)))
     if LRO_CLASS in chains:
         r = LRO_LOI_MIN / float(compare.ours_at_mission_mass_min.iloc[0])
         page.expect("LRO: published / scaled duration 0.5-2", 0.5 < r < 2.0, f"{r:.3f}")
@@ -405,7 +445,13 @@ def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
     _add_kplo(page, kplo, engines, dynamics)
     page.note("sources", sources_markdown())
     for name, v in prose_values(compare, kplo, m0, arrival_speed).items():
-        page.value(name, v)
+        page.value(name, v, why=f"the SELENE-class engine is not run in the "
+                                f"{'quick book' if quick else 'this build'}"
+                   if name.startswith("ce1_") else None)
+    page.note("ce1_verdict", ce1_verdict(
+        [page.values[f"ce1_loi{n}_ratio"] if isinstance(page.values[f"ce1_loi{n}_ratio"], float)
+         else np.nan for n in (1, 2, 3)],
+        "the SELENE-class engine is not run in the quick book" if quick else ""))
     _add_checks(page, chains, compare, kplo)
     page.data["chains"] = chains
     t = page.text

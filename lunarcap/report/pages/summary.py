@@ -20,6 +20,7 @@ from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics.rocket import rocket_mass_after
+from lunarcap.quantities import capture_name
 from lunarcap.report import figures
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
@@ -471,4 +472,14 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
     if dynamics == "full" and starts is None:
         _add_paper_checks(page, engines, seqs, totals, values)
     page.data.update(chains=chains, totals=totals, b1=b1)
+    t = page.text
+    which = (f"*{capture_name('fixed')}*" if starts is None else "the offsets given")
+    page.headline(
+        f"With {which} ({dynamics} dynamics) the whole capture needs "
+        f"{t('total_delta_v_mps_150N', '.3f')}, {t('total_delta_v_mps_300N', '.3f')} and "
+        f"{t('total_delta_v_mps_450N', '.3f', ' m/s')} (150, 300, 450 N), "
+        f"{t('total_delta_v_loss_mps_150N', '.2f')}, {t('total_delta_v_loss_mps_300N', '.2f')} "
+        f"and {t('total_delta_v_loss_mps_450N', '.2f', ' m/s')} more than impulses in the same "
+        f"dynamics; each burn's ΔV is within {t('max_abs_b1_diff_percent', '.2f', ' %')} of "
+        f"Table B1's.")
     return page

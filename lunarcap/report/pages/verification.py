@@ -232,6 +232,16 @@ def case_context(case_list) -> dict:
                             for t, i, n, s, p in case_list)}
 
 
+def gate_verdict(n_passed: int, n_cases: int) -> str:
+    """How many solutions pass the gate, in words that follow the counts.
+
+    >>> gate_verdict(37, 37), gate_verdict(35, 37)
+    ('All 37 of 37 solutions pass the gate', 'Only 35 of 37 solutions pass the gate')
+    """
+    return (f"{'All' if n_passed == n_cases else 'Only'} {n_passed} of {n_cases} solutions "
+            "pass the gate")
+
+
 def prose_values(ver: pd.DataFrame, mesh: pd.DataFrame, default_points: int) -> dict:
     """The numbers the prose quotes: the gates, the counts, the meshes IPOPT got wrong."""
     ipopt_ok = mesh.ipopt_status.isin(IPOPT_OK.values())
@@ -241,6 +251,7 @@ def prose_values(ver: pd.DataFrame, mesh: pd.DataFrame, default_points: int) -> 
               "tol_angle_deg": verify.TOL_ANGLE_DEG, "tol_position_m": verify.TOL_POSITION_M,
               "tol_speed_mmps": verify.TOL_SPEED_MPS * 1e3,
               "n_cases": len(ver), "n_passed": int((ver.passed == PASSED).sum()),
+              "gate_verdict": gate_verdict(int((ver.passed == PASSED).sum()), len(ver)),
               "n_fooled": len(fooled), "n_mesh_solves": len(mesh),
               "fooled_max_rp_m": fooled.rp_error_m.abs().max() if len(fooled) else np.nan,
               "fooled_max_gamma_deg": (fooled.gamma_error_deg.abs().max() if len(fooled)

@@ -38,3 +38,17 @@ def test_negative_loss_note_names_each_negative_burn():
     note = capture_plan.negative_loss_note(_burns([3.0, -0.1, 0.5]))
     assert "burn 2: -0.100 m/s, but +0.100 m/s in the objective" in note
     assert "burn 1" not in note and "burn 3" not in note
+
+
+def test_the_lro_first_orbit_verdict_follows_the_orbit_reached():
+    # was a fixed "not 220 x 3,100 km" that read "220.0 x 3,100.0 km ..., not 220 x 3,100 km
+    # (+0.0 min) and an apolune 0 km higher" once the plan met its apolune as asked
+    from lunarcap.report.pages.capture_plan import first_orbit_verdict
+
+    met = first_orbit_verdict(220.0, 3100.04, 3.2, 3.2, perilune_timed=False)
+    assert "LRO's 220 × 3,100 km, within 1 km" in met and "not 220" not in met
+    missed = first_orbit_verdict(220.0, 3183.0, 3.2, 3.26, perilune_timed=True)
+    assert "not 220 × 3,100 km" in missed and "83 km higher" in missed
+    assert "(+3.6 min)" in missed
+    low = first_orbit_verdict(219.0, 3050.0, 3.2, 3.2, perilune_timed=False)
+    assert "50 km lower" in low and "perilune -1.0 km" in low

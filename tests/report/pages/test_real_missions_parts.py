@@ -20,3 +20,20 @@ def test_prose_values_ratios_and_kplo_differences():
     assert v["kplo_max_abs_after_diff_mps"] == 3.0
     assert v["kplo_loi1_dv_diff_mps"] == 1.5
     assert v["kplo_total_dv_diff_mps"] == pytest.approx(1.25)
+
+
+def test_the_change1_verdict_is_computed_from_the_ratios_it_judges():
+    # was a fixed "The order of magnitude agrees." after whatever ratios (also after
+    # "nan, nan and nan" in the quick book)
+    from lunarcap.report.pages.real_missions import ce1_verdict
+
+    agree = ce1_verdict([0.72, 0.65, 0.58])
+    assert agree.startswith("The order of magnitude agrees") and "launch mass" in agree
+    shorter = ce1_verdict([1.4, 1.2, 1.1])
+    assert shorter.startswith("The order of magnitude agrees") and "launch mass is" not in \
+        shorter and "Ours are shorter" in shorter
+    far = ce1_verdict([0.05, 0.65, 0.58])
+    assert far.startswith("The order of magnitude differs") and "agrees" not in far
+    gone = ce1_verdict([float("nan")] * 3, "the SELENE-class engine is not run in the quick book")
+    assert gone == ("Not compared in this build (the SELENE-class engine is not run in the "
+                    "quick book).")
