@@ -26,6 +26,13 @@ def short_where(where: str) -> str:
     return where.split(" ('", 1)[0].split(" (\"", 1)[0]
 
 
+#: The row of the paper's printed impulse beside ours, named by which impulse is ours: here
+#: the closed-form two-body impulse (353.272 m/s for LOI 1); the sweep pages set the
+#: impulsive limit in the same dynamics beside it instead (353.110 m/s in full dynamics),
+#: under their own label (lunarcap.report.pages.sweep.IMPULSE_ROW_LIMIT).
+IMPULSE_ROW_TWO_BODY = "impulse (ours: two-body impulse)"
+
+
 def paper_tables_long(sweeps: dict, impulsive_dv_mps=None):
     """Every number of the paper's Tables 1-5 and B1 beside ours, one row per number.
 
@@ -88,7 +95,7 @@ def paper_tables_long(sweeps: dict, impulsive_dv_mps=None):
         for loi, (p, o) in enumerate(zip(P.PAPER_IMPULSIVE_DV_MPS, impulsive_dv_mps), 1):
             rows.append({"source": "Tables 1-5, B1 (impulsive)", "thrust_N": np.nan,
                          "isp_s": np.nan, "loi": loi, "start_min": np.nan,
-                         "quantity": "impulsive delta-V", "unit": "m/s", "paper": float(p),
+                         "quantity": IMPULSE_ROW_TWO_BODY, "unit": "m/s", "paper": float(p),
                          "ours": float(o), "difference": float(o) - float(p),
                          "paper_best": False, "ours_best": False, "verified": True})
     return pd.DataFrame(rows)

@@ -37,7 +37,7 @@ NOTEBOOK = "notebooks/reproduction_report.ipynb"
 #: Labels of the quantities of part (a), with their units.
 QUANTITY_LABELS = {"burn duration": "duration (min)", "delta-V": "ΔV (m/s)",
                    "difference from impulsive": "ΔV above impulsive (%)",
-                   "impulsive delta-V": "impulsive ΔV (m/s)"}
+                   rep.IMPULSE_ROW_TWO_BODY: "impulse, ours two-body (m/s)"}
 
 #: Findings the prose of part (c) discusses: each must be inconsistent.
 DISCUSSED_FINDINGS = ("sun-gm", "fuel/150N/which-is-larger", "mass/arrival-implied",
@@ -72,7 +72,7 @@ def _tables_range(sources) -> str:
 
 #: Quantities of part (a) in the wide form: long name -> column stem and unit suffix.
 WIDE_QUANTITIES = {"burn duration": ("duration", "min"), "delta-V": ("delta_v", "mps"),
-                   "impulsive delta-V": ("delta_v", "mps"),
+                   rep.IMPULSE_ROW_TWO_BODY: ("delta_v", "mps"),
                    "difference from impulsive": ("excess", "percent")}
 #: Glossary names of the wide form's columns: (column stem, paper / ours / difference).
 WIDE_NAMES = {
@@ -97,7 +97,7 @@ WIDE_LABELS = {"source": "source", "start": "start (min)", "best": "best",
 def tables_wide(long: pd.DataFrame) -> pd.DataFrame:
     """Part (a) in wide form: one row per row of the paper's tables, as the paper prints them.
 
-    Columns ``source``, ``start`` (the ignition offset, min, or "impulsive, LOI n" for the
+    Columns ``source``, ``start`` (the ignition offset, min, or "impulse, LOI n (ours: two-body)" for the
     paper's impulsive delta-Vs, which go in the ΔV columns), ``best`` (paper / ours /
     both), then paper, ours and ours − paper for the duration (min), the ΔV (m/s) and the
     ΔV above the impulsive one (%). A third as many rows as the long form, and every
@@ -105,8 +105,8 @@ def tables_wide(long: pd.DataFrame) -> pd.DataFrame:
     """
     rows: dict = {}
     for r in long.itertuples(index=False):
-        impulsive = r.quantity == "impulsive delta-V"
-        start = f"impulsive, LOI {r.loi}" if impulsive else f"{r.start_min:g}"
+        impulsive = r.quantity == rep.IMPULSE_ROW_TWO_BODY
+        start = f"impulse, LOI {r.loi} (ours: two-body)" if impulsive else f"{r.start_min:g}"
         source = r.source.replace(" (impulsive)", "")
         row = rows.setdefault((source, r.loi, start),
                               {"source": source, "start": start, "best": ""})

@@ -17,7 +17,10 @@ def page():
 
 def test_delta_v_table_sets_ours_beside_the_paper(page):
     df = page.items["dv"].df
-    assert list(df.burn) == ["impulsive", "finite", "finite"]
+    assert list(df.burn) == [sweep.IMPULSE_ROW_LIMIT, "finite", "finite"]
+    # one row label per impulse: the reproduction report's row holds the two-body impulse
+    from lunarcap.report.reproduction import IMPULSE_ROW_TWO_BODY
+    assert IMPULSE_ROW_TWO_BODY != sweep.IMPULSE_ROW_LIMIT
     fin = df[df.burn == "finite"]
     printed = paper.paper_table(150.0, 1).set_index("start_min")
     np.testing.assert_allclose(fin.paper_delta_v_mps,

@@ -153,10 +153,40 @@ def stub_engine(thrust_N, isp_s, dynamics):
 def test_a_failed_engine_is_listed_not_hidden(tmp_path):
     p = trade_study.build(100.0, 400.0, 3, [250.0], 1, "two-body", "t_trade_stub", True,
                           out=tmp_path / "stub.csv", task=stub_engine, processes=False,
-                          timing_dir=tmp_path)
+                          timing_dir=tmp_path, solve=stub_engine)
     assert p.values["n_failed"] == 1
     note = p.notes["failures"]
     assert "Infeasible_Problem_Detected" in note and "| 200 |" in note
     assert "not run" in note  # LOI 3 after the failed LOI 2
     assert p.items["grid"].df.status.tolist() == ["ok", "incomplete", "ok"]
     p.check()  # a failure is reported, not an error of the page
+
+
+def test_the_paper_engines_are_solved_directly_and_the_interpolation_error_is_measured(
+        tmp_path):
+    # the loss at 300 N / 250 s was read off the grid's curve (linear in log T/W) and the
+    # Table B1 comparison partly measured that interpolation; now the engine is solved
+    # itself (here: the stub, whose loss is 0.9 x Robbins' estimate at any thrust)
+    solved = []
+
+    def solve(thrust_N, isp_s, dynamics):
+        solved.append((thrust_N, isp_s))
+        return stub_engine(thrust_N, isp_s, dynamics)
+
+    p = trade_study.build(100.0, 1000.0, 3, [250.0], 1, "two-body", "t_trade_direct", True,
+                          out=tmp_path / "stub.csv", task=stub_engine, processes=False,
+                          timing_dir=tmp_path, solve=solve)
+    assert solved == [(300.0, 250.0)]          # only the paper's engine of this Isp
+    df = p.items["paper_engines"].df
+    row = df[(df.thrust_N == 300.0) & (df.part == "LOI1")].iloc[0]
+    exact = 0.9 * study.capture_chain_estimate(300.0, 250.0)[0]["analytic_loss_percent"]
+    assert row.optimal_loss_percent == pytest.approx(exact, rel=1e-12)
+    # the curve through 100, 316.2 and 1000 N is not exact at 300 N: its error is shown
+    assert row.interpolated_loss_percent != pytest.approx(exact, rel=1e-6)
+    assert row.interpolation_error_pp == pytest.approx(row.interpolated_loss_percent - exact)
+    assert p.values["interp_error_max_pp"] == pytest.approx(
+        df.interpolation_error_pp.abs().max())
+    assert p.values["paper_diff_max"] == pytest.approx(
+        (df.optimal_loss_percent - df.paper_delta_v_loss_percent).abs().max())
+    # the engines of the other Isps are not solved in this grid: missing, with a reason
+    assert df[df.thrust_N != 300.0].optimal_loss_percent.isna().all()
