@@ -99,9 +99,9 @@ def tables_wide(long: pd.DataFrame) -> pd.DataFrame:
 
     Columns ``source``, ``start`` (the ignition offset, min, or "impulse, LOI n (ours:
     two-body)" for the paper's impulsive delta-Vs, which go in the ΔV columns), ``best``
-    (paper / ours / both), then paper, ours and ours − paper for the duration (min), the ΔV (m/s) and the
-    ΔV above the impulsive one (%). A third as many rows as the long form, and every
-    number of a row side by side.
+    (paper / ours / both), then paper, ours and ours − paper for the duration (min), the
+    ΔV (m/s) and the ΔV above the impulsive one (%). A third as many rows as the long
+    form, and every number of a row side by side.
     """
     rows: dict = {}
     for r in long.itertuples(index=False):
