@@ -163,7 +163,8 @@ _add("loss_vs_paper_impulse_percent", "loss vs paper's impulse",
      "loss_vs_paper_impulse_mps as a percentage of paper_impulsive_delta_v_mps (Table B1's "
      "'difference from impulsive').")
 _add("analytic_loss_mps", "analytic loss",
-     "Closed-form estimate of the delta-V loss (lunarcap.physics.losses, after Robbins 1966).")
+     "Closed-form estimate of the delta-V loss (lunarcap.physics.losses, after Robbins 1966 as "
+     "quoted in Confraria 2020).")
 _add("analytic_loss_percent", "analytic loss",
      "analytic_loss_mps as a percentage of the two-body impulse.")
 _add("analytic_eq19_duration_min", "analytic Eq. (19)",

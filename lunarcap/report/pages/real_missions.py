@@ -185,6 +185,18 @@ SOURCES = {
            "duration was found.",
 }
 
+#: The sources that are not primary ones (not the agency, the builder, a journal or a
+#: press release): what they are. The source list marks each; a primary source for their
+#: figures was searched for and not found.
+NOT_PRIMARY = {
+    "S1": "(b) is a secondary mission page",
+    "S10": "a news site",
+    "S12": "(a) is an encyclopaedia",
+    "S14": "a broadcaster's news report",
+    "S16": "a newspaper report",
+    "S17": "a news site citing a broadcaster",
+}
+
 #: What was searched for and not found (the last entry of the source list).
 NOT_FOUND = ("LRO's LOI ΔV and engine thrust; SELENE's LOI burn durations and ΔVs; "
              "Chang'e-1's specific impulse and mass at arrival; KPLO's thrust and mass at "
@@ -205,8 +217,12 @@ def source_keys(text: str) -> list[str]:
 
 
 def sources_markdown() -> str:
-    """The source list as a MyST definition list (keys in order, then what was not found)."""
-    items = [f"{k}\n: {v}" for k, v in SOURCES.items()]
+    """The source list as a MyST definition list (keys in order, then what was not found).
+
+    A source that is not a primary one (:data:`NOT_PRIMARY`) says so at its head.
+    """
+    items = [f"{k}\n: " + (f"*Not a primary source: {NOT_PRIMARY[k]}.* " if k in NOT_PRIMARY
+                            else "") + v for k, v in SOURCES.items()]
     items.append(f"Not found\n: {NOT_FOUND}")
     return "\n\n".join(items)
 

@@ -37,3 +37,15 @@ def test_the_change1_verdict_is_computed_from_the_ratios_it_judges():
     gone = ce1_verdict([float("nan")] * 3, "the SELENE-class engine is not run in the quick book")
     assert gone == ("Not compared in this build (the SELENE-class engine is not run in the "
                     "quick book).")
+
+
+def test_news_and_encyclopaedia_sources_are_marked_as_not_primary():
+    from lunarcap.report.pages.real_missions import NOT_PRIMARY, SOURCES, sources_markdown
+
+    md = sources_markdown()
+    for key, what in NOT_PRIMARY.items():
+        assert key in SOURCES
+        assert f"{key}\n: *Not a primary source: {what}.*" in md
+    # the encyclopaedia and the news site the issue named
+    assert "Wikipedia" in SOURCES["S12"] and "encyclopaedia" in NOT_PRIMARY["S12"]
+    assert "news site" in SOURCES["S10"] and "news site" in NOT_PRIMARY["S10"]
