@@ -159,3 +159,37 @@ def citation_markdown(c: dict, paper_key: str = "song2011") -> str:
             + (f"DOI\n: {c['doi']}\n\n" if c.get("doi") else "")
             + f"The paper it reproduces\n: {{cite:t}}`{paper_key}`.\n\n"
             f"BibTeX\n: \n\n```bibtex\n{bibtex(c)}\n```\n")
+
+
+# ====================================================================== the data archive
+#: The folders below book/generated whose files are the book's data (not its figures).
+DATA_DIRS = ("tables", "data", "export")
+#: A fixed timestamp for every member, so the archive depends on its content only.
+_ZIP_TIME = (2011, 1, 1, 0, 0, 0)
+
+
+def write_archive(generated: Path, name: str) -> tuple[Path, int]:
+    """One zip of all the book's data: every file below :data:`DATA_DIRS` of ``generated``.
+
+    The tables (one CSV per table of every page), the study tables and other data the
+    pages link (``data/``), the exported files of the plan (``export/``). Members are
+    sorted and dated :data:`_ZIP_TIME`, so the archive changes only with its content.
+    Returns (path, number of files).
+    """
+    import zipfile
+
+    from lunarcap.repro import paths
+
+    generated = Path(generated)
+    files = sorted(f for d in DATA_DIRS if (generated / d).is_dir()
+                   for f in (generated / d).rglob("*")
+                   if f.is_file() and not f.name.startswith("."))
+    out = generated / name
+    with paths.atomic_path(out) as tmp:
+        with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
+            for f in files:
+                info = zipfile.ZipInfo(f.relative_to(generated).as_posix(), _ZIP_TIME)
+                info.compress_type = zipfile.ZIP_DEFLATED
+                info.external_attr = 0o644 << 16
+                z.writestr(info, f.read_bytes())
+    return out, len(files)

@@ -182,6 +182,27 @@ class Page:
         gone = missing_text(v)
         return gone if gone is not None else f"{format(v, spec)}{unit}"
 
+    def data_link(self, src, name: str | None = None) -> str:
+        """Copy a data file this page used into ``book/generated/data/``; its download link.
+
+        For the data a reader cannot otherwise take away (a study's whole table, kept in
+        the cache directory): the copy is ``data/<output_name>_<name>`` (default: the
+        file's name) and the MyST ``{download}`` link to it is returned, for a caption or
+        the prose. The book's archive of all its data includes it
+        (:func:`lunarcap.report.findings.write_archive`).
+        """
+        import shutil
+        from pathlib import Path
+
+        from lunarcap.repro import paths
+
+        src = Path(src)
+        dest = paths.GENERATED / "data" / f"{self.output_name}_{name or src.name}"
+        dest.parent.mkdir(parents=True, exist_ok=True)
+        with paths.atomic_path(dest) as tmp:
+            shutil.copyfile(src, tmp)
+        return f"{{download}}`{dest.name} <{paths.relative_to_page(dest)}>`"
+
     def headline(self, markdown: str) -> None:
         """The page's finding in one or two sentences with its numbers (MyST Markdown).
 

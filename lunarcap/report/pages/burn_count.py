@@ -132,7 +132,8 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
         f"burns within {max_days:g} days of the arrival perilune). Loss: total ΔV minus the "
         f"sum of each burn's impulsive limit in the same dynamics from the same pre-burn "
         f"state. Time: from the arrival perilune to the end of the last burn. A status "
-        f"other than ok says why that count has no capture."),
+        f"other than ok says why that count has no capture. The study's whole table, every "
+        f"column and every burn: {page.data_link(res.path, 'study.csv')}."),
         show_columns=COUNT_SHOWN, floatfmt=".3f",
         columns={"periods_h": "periods (h)", "n_burns": "N"})
     page.table("burns", burn_rows(res.table), caption=(

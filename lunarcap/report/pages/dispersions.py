@@ -181,7 +181,8 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
         f"nominal with the low end of its distribution-free 95 % interval from order "
         f"statistics (the high end is infinite with fewer than 299 samples), and the "
         f"probability that a sample is not captured or not corrected. The 99 % propellant, "
-        f"the final orbit's RMS errors and the time per sample are in the CSV."),
+        f"the final orbit's RMS errors and the time per sample are in the CSV. Every sample, "
+        f"with its errors and its reason if it failed: {page.data_link(res.path, 'samples.csv')}."),
         show_columns=BUDGET_SHOWN, columns=BUDGET_HEADS,
         floatfmt={c: ".2f" for c in BUDGET_SHOWN} | {"final_rms_inc_error_deg": ".4f",
                                                      "p_failure": ".3f",

@@ -33,9 +33,15 @@ FILE_KINDS = {"oem": "CCSDS OEM 2.0 (KVN): states, one segment per arc",
 
 
 def files_table(export) -> pd.DataFrame:
-    """The exported files: kind, name, size (kB) and what each holds."""
+    """The exported files: kind, name, size (kB), what each holds, a link to download it.
+
+    The files are written below ``book/generated/export/``, so the built book serves them:
+    ``download`` is the MyST link to each (the CSV keeps the plain name in ``file``).
+    """
     return pd.DataFrame([{"kind": k, "file": p.name, "size_kB": export.sizes_bytes[k] / 1e3,
-                          "what": FILE_KINDS[k]} for k, p in export.files.items()])
+                          "what": FILE_KINDS[k],
+                          "download": f"{{download}}`{p.name} <{paths.relative_to_page(p)}>`"}
+                         for k, p in export.files.items()])
 
 
 def segments_table(export) -> pd.DataFrame:
@@ -90,9 +96,11 @@ def build(plan: str = "song2011-150N", dynamics: str | None = None,
     ex_utc = export_plan(res, out / "utc", time_system="UTC")
     page.table("files", files_table(ex),
                caption=(f"The files `lunarcap plan {plan} --export DIR` writes "
-                        f"({p.dynamics} dynamics), their sizes (kB) and contents."),
-               columns={"kind": "kind", "file": "file", "size_kB": "size (kB)",
-                        "what": "contents"}, floatfmt={"size_kB": ".1f"})
+                        f"({p.dynamics} dynamics), their sizes (kB) and contents; each "
+                        "can be downloaded from its link."),
+               columns={"kind": "kind", "download": "file", "size_kB": "size (kB)",
+                        "what": "contents"}, floatfmt={"size_kB": ".1f"},
+               show_columns=["kind", "download", "size_kB", "what"])
     page.table("segments", segments_table(ex),
                caption=("The OEM's segments (TDB) and the largest error of the file's own "
                         "interpolation (Lagrange, degree 7) half-way between its states, "

@@ -23,6 +23,8 @@ from lunarcap.repro import paths
 NOTEBOOK = "notebooks/findings.ipynb"
 #: Files below book/generated that book/index.md includes.
 LANDING, BY_PAGE, CITATION = "findings_landing.md", "findings_by_page.md", "citation.md"
+#: The archive of all the book's data (below book/generated), linked from the landing page.
+ARCHIVE = "lunarcap-book-data.zip"
 #: The part of the table of contents whose pages are "what lunarcap adds".
 BEYOND_CAPTION = "Beyond the paper"
 #: The paper's engines, as the landing page names them (thrust N, Isp s).
@@ -87,7 +89,8 @@ def first_screen(values: dict, items: list, beyond: list[str]) -> str:
         f"{F.shown(rr.get('sun_ratio', F_MISSING), '.0f')} times too small.\n"
         f"- **What lunarcap adds.** {added}.\n\n"
         f"How to cite lunarcap, with a BibTeX entry, its licence, version and date: "
-        f"{{ref}}`how to cite <{CITE_LABEL}>`.\n:::\n")
+        f"{{ref}}`how to cite <{CITE_LABEL}>`. All the book's data in one archive: "
+        f"{{download}}`{ARCHIVE} <generated/{ARCHIVE}>`.\n:::\n")
 
 
 def build(output_name: str = "findings", quick: bool = False) -> Page:
@@ -104,6 +107,10 @@ def build(output_name: str = "findings", quick: bool = False) -> Page:
     cite = F.citation_markdown(F.citation(paths.ROOT / "CITATION.cff"))
     for name, text in ((LANDING, landing), (BY_PAGE, by_page), (CITATION, cite)):
         paths.write_text_atomic(paths.GENERATED / name, text)
+    archive, n_files = F.write_archive(paths.GENERATED, ARCHIVE)
+    page.value("n_archive_files", n_files)
+    page.value("archive_kB", archive.stat().st_size / 1e3)
+    page.note("archive", f"{{download}}`{ARCHIVE} <{paths.relative_to_page(archive)}>`")
     page.note("by_page", by_page)
     page.note("landing", landing)
     page.table("pages", pd.DataFrame(

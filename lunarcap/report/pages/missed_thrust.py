@@ -203,7 +203,9 @@ def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75
         "Every cut-off: the orbit at cut-off (escape: hyperbola; captured: apolune inside the "
         "Moon's sphere of influence), ΔV of the recovery, penalty (m/s), the make-up "
         "burn's ΔV (m/s), and why a case has no recovery (the partial burn's ΔV, the "
-        "make-up orbit's period and the time to the final orbit are in the CSV)."),
+        "make-up orbit's period and the time to the final orbit are in the CSV). The study's "
+        f"whole table, late ignitions and every column included: "
+        f"{page.data_link(res.path, 'study.csv')}."),
         show_columns=CASE_SHOWN,
         floatfmt={"fraction": ".2f", "delay_min": ".0f", "cutoff_ra_km": ".0f"},  # else .3f
         columns={"cutoff_orbit": "orbit at cut-off",

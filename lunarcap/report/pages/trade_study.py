@@ -281,9 +281,9 @@ def _add_duration_grid_runs(page: Page, loi_ok, wide, spec, newton_per_ratio: fl
         caption=("The grid: loss per LOI and for the sequence, and Robbins' estimate for the "
                  "sequence, in % of the impulsive ΔV; thrust in N, Isp in s, T/(m₀ g₀) "
                  f"dimensionless. {loss_def} The CSV adds the sequence's loss in m/s, LOI 1's "
-                 "optimal and Eq. (19) burn durations (min) and the status; the study's table "
-                 "in the cache directory holds every column (ignition offsets, masses, IPOPT "
-                 "status, verification)."),
+                 "optimal and Eq. (19) burn durations (min) and the status; the study's whole "
+                 f"table, {page.data_link(result.path, 'study.csv')}, holds every column "
+                 "(ignition offsets, masses, IPOPT status, verification)."),
         columns={"objective_loss_percent_loi1": "LOI 1 (%)",
                  "objective_loss_percent_loi2": "LOI 2 (%)",
                  "objective_loss_percent_loi3": "LOI 3 (%)",
