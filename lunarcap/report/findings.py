@@ -38,10 +38,13 @@ def glued(notebook: Path) -> dict:
     out = {}
     for cell in nb.cells:
         for o in cell.get("outputs", []):
-            name = o.get("metadata", {}).get("scrapbook", {}).get("name")
+            book = o.get("metadata", {}).get("scrapbook", {})
+            name = book.get("name")
             if not name:
                 continue
-            data = o.get("data", {})
+            prefix = book.get("mime_prefix", "")
+            data = {k[len(prefix):]: v for k, v in o.get("data", {}).items()
+                    if k.startswith(prefix)}
             if "text/markdown" in data:
                 out[name] = data["text/markdown"]
             elif "text/plain" in data:

@@ -83,6 +83,42 @@ def solver_description(**extra) -> dict:
     return out
 
 
+def _words(xs: list[str]) -> str:
+    return xs[0] if len(xs) == 1 else ", ".join(xs[:-1]) + " and " + xs[-1]
+
+
+def listing(values: dict, names_labels, spec: str = "", unit: str = "") -> str:
+    """Several values as prose lists them, the missing ones grouped by their reason.
+
+    ``values``: glued values (a missing one is :func:`missing`); ``names_labels``:
+    [(name, label)], e.g. [("loss_150N", "150 N"), ...]. Labels sharing their last word
+    are joined ("150 and 300 N").
+
+    >>> v = {"a": 1.0, "b": 2.0, "c": missing("not run in the quick book")}
+    >>> listing(v, [("a", "150 N"), ("b", "300 N")], ".1f", " m/s")
+    '1.0 and 2.0 m/s (150 and 300 N)'
+    >>> listing(v, [("a", "150 N"), ("c", "450 N")], ".1f", " m/s")
+    '1.0 m/s (150 N; 450 N: not run in the quick book)'
+    """
+    have = [(n, lab) for n, lab in names_labels if not is_missing(values.get(n))]
+    gone: dict[str, list[str]] = {}
+    for n, lab in names_labels:
+        v = values.get(n)
+        if is_missing(v):
+            why = v[len(MISSING_PREFIX):] if isinstance(v, str) else FULL_REASON
+            gone.setdefault(why, []).append(lab)
+    rest = "; ".join(f"{_words(labs)}: {why}" for why, labs in gone.items())
+    if not have:
+        return f"— ({rest})"
+    labels = [lab for _, lab in have]
+    last = labels[-1].split()[-1]
+    shared = len(labels) > 1 and all(len(x.split()) == 2 and x.split()[-1] == last
+                                     for x in labels)
+    labs = _words([x.split()[0] for x in labels]) + f" {last}" if shared else _words(labels)
+    nums = _words([format(values[n], spec) for n, _ in have])
+    return f"{nums}{unit} ({labs}" + (f"; {rest}" if rest else "") + ")"
+
+
 @dataclass
 class Table:
     """A table of a page: the CSV content and how it is shown."""
@@ -202,6 +238,16 @@ class Page:
         with paths.atomic_path(dest) as tmp:
             shutil.copyfile(src, tmp)
         return f"{{download}}`{dest.name} <{paths.relative_to_page(dest)}>`"
+
+    def listing(self, names_labels, spec: str = "", unit: str = "") -> str:
+        """Several glued values as prose lists them (:func:`listing` of this page's values).
+
+        >>> p = Page("nb", {}, "x", quick=True)
+        >>> for k, v in (("a", 1.0), ("b", float("nan")), ("c", float("nan"))): p.value(k, v)
+        >>> p.listing([("a", "150 N"), ("b", "300 N"), ("c", "450 N")], ".1f", " m/s")
+        '1.0 m/s (150 N; 300 N and 450 N: not run in the quick book)'
+        """
+        return listing(self.values, names_labels, spec, unit)
 
     def headline(self, markdown: str) -> None:
         """The page's finding in one or two sentences with its numbers (MyST Markdown).

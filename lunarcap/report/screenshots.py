@@ -166,6 +166,71 @@ SETTLE_JS = r"""
 """
 
 
+# Runs in the page: what a reader sees in the first screen (the viewport, before scrolling):
+# its text, and the links wholly inside it. Returns plain JSON.
+FIRST_SCREEN_JS = r"""
+(async () => {
+  if (window.MathJax && MathJax.startup && MathJax.startup.promise) {
+    await MathJax.startup.promise;
+  }
+  await document.fonts.ready;
+  await new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)));
+  window.scrollTo(0, 0);
+  const h = window.innerHeight, w = window.innerWidth;
+  const inView = (el) => { const r = el.getBoundingClientRect();
+    return r.width > 0 && r.height > 0 && r.top >= 0 && r.bottom <= h && r.left < w; };
+  const main = document.querySelector('#main-content') || document.querySelector('main')
+               || document.body;
+  const blocks = [...main.querySelectorAll('p, li, h1, h2, h3, dt, dd, td, th, .admonition-title')]
+    .filter(inView).map(e => e.innerText.replace(/\s+/g, ' ').trim()).filter(t => t);
+  const links = [...main.querySelectorAll('a[href]')].filter(inView)
+    .map(a => ({text: a.innerText.trim(), href: a.getAttribute('href')}));
+  const findings = [...main.querySelectorAll('.lc-findings')].map(e => {
+    const r = e.getBoundingClientRect(); return {top: r.top, bottom: r.bottom}; });
+  return {height: h, width: w, text: blocks, links, findings};
+})()
+"""
+
+
+def first_screen(html: Path, page: str, width: int, height: int, out: Path | None = None,
+                 chromium: str = "chromium") -> dict:
+    """What the first screen of a built page shows at ``width`` x ``height`` CSS px.
+
+    Serves ``html`` on 127.0.0.1 (every other host unresolvable), opens ``page`` (a toc
+    file, no extension) in headless Chromium and returns the text blocks and the links
+    lying wholly inside the viewport (:data:`FIRST_SCREEN_JS`); with ``out``, also a
+    screenshot of that screen there (PNG). Raises :class:`ChromiumError` if Chromium is
+    missing or fails.
+    """
+    with tempfile.TemporaryDirectory(prefix="lunarcap-chromium-") as profile, \
+            serve(html) as base:
+        rules = "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1"
+        dt = DevTools(chromium, profile, extra_flags=(rules,))
+        try:
+            target = dt.send("Target.createTarget", {"url": "about:blank"})["targetId"]
+            session = dt.send("Target.attachToTarget", {"targetId": target,
+                                                        "flatten": True})["sessionId"]
+            dt.send("Page.enable", session=session)
+            dt.send("Emulation.setDeviceMetricsOverride",
+                    {"width": width, "height": height, "deviceScaleFactor": 1,
+                     "mobile": False}, session=session)
+            dt.events(session)
+            dt.send("Page.navigate", {"url": f"{base}{page}.html"}, session=session)
+            dt.wait_event(session, "Page.loadEventFired")
+            res = dt.send("Runtime.evaluate", {"expression": FIRST_SCREEN_JS,
+                                               "awaitPromise": True, "returnByValue": True},
+                          session=session)
+            if "exceptionDetails" in res:
+                raise ChromiumError(f"{page}: measuring failed: {res['exceptionDetails']}")
+            if out is not None:
+                shot = dt.send("Page.captureScreenshot", {"format": "png"}, session=session)
+                out.parent.mkdir(parents=True, exist_ok=True)
+                out.write_bytes(base64.b64decode(shot["data"]))
+            return res["result"]["value"]
+        finally:
+            dt.close()
+
+
 def png_dpi(path: Path) -> float | None:
     """The resolution a PNG records (its ``pHYs`` chunk), dots per inch; None if absent.
 

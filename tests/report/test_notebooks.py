@@ -359,6 +359,58 @@ def test_caption_numbers_never_read_like_the_papers(quick_build):
 
 
 @pytest.mark.notebooks
+def test_no_built_page_says_nan(quick_build):
+    # a value a quick run leaves out is printed as its reason ("— (not run in the quick
+    # book)"), never "nan" (the landing page read "lose 20.35, nan and nan m/s"); the
+    # build itself refuses such a page, for the full book too (report/bookcheck.py)
+    from lunarcap.report.bookcheck import check_pages
+
+    assert check_pages(paths.HTML, book.toc_files()) == {}
+    assert "not run in the quick book" in (paths.HTML / "index.html").read_text(
+        encoding="utf-8")   # the quick book says why it leaves the 300 N and 450 N out
+
+
+#: A finding: a number with the unit of a delta-V, a loss or a share.
+_FINDING = re.compile(r"\d+(?:\.\d+)?\s?(?:m/s|%)")
+
+
+@pytest.mark.notebooks
+def test_the_landing_pages_first_screen_states_a_finding_and_how_to_cite(quick_build):
+    # read as a reader does: headless Chromium, 1280 x 800 CSS px, offline. Before issue 27
+    # the first screen held the title, a paragraph citing the paper and "The problem".
+    import shutil
+
+    from lunarcap.report import screenshots
+
+    if shutil.which("chromium") is None:
+        pytest.fail("this test reads the landing page in headless Chromium, which is not "
+                    "installed: on Debian, `apt-get install -y chromium` (README, 'Two "
+                    "commands')")
+    shot = paths.BUILD / "screenshots" / "first_screen_1280x800.png"
+    seen = screenshots.first_screen(paths.HTML, "index", 1280, 800, shot)
+    findings = [t for t in seen["text"] if _FINDING.search(t)]
+    assert findings, f"no finding with a number in the first 800 px: {seen['text'][:6]}"
+    assert seen["findings"] and seen["findings"][0]["top"] < 800
+    cite = [a for a in seen["links"] if a["href"].endswith("#how-to-cite")]
+    assert cite, f"no link to how to cite in the first 800 px: {seen['links'][:8]}"
+    assert shot.is_file() and shot.stat().st_size > 10_000
+
+
+@pytest.mark.notebooks
+def test_the_findings_page_lists_every_page_with_its_finding(quick_build):
+    from lunarcap.report import findings
+
+    items = findings.headlines(ENTRIES, paths.GENERATED, book.toc_files())
+    assert {h.page for h in items} == {f"generated/{e.name}" for e in ENTRIES
+                                       if e.name != "findings"}
+    assert all(h.markdown for h in items), [h.page for h in items if not h.markdown]
+    landing = (paths.GENERATED / "findings_landing.md").read_text(encoding="utf-8")
+    for h in items:   # the landing page's list names every page of the book's last part
+        if h.page in ("generated/missed_thrust", "generated/dispersions", "generated/exchange"):
+            assert f"</{h.page}>" in landing, h.page
+
+
+@pytest.mark.notebooks
 def test_rerun_with_nothing_changed_executes_nothing(quick_build):
     run = subprocess.run([sys.executable, "-m", "lunarcap.report.build", "build", "--quick",
                           "--no-build"], cwd=paths.ROOT, capture_output=True, text=True,

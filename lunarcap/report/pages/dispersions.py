@@ -220,9 +220,10 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
     page.expect("no sample ended in an unexpected error (failures are reported, not hidden)",
                 bugs.empty, "; ".join(bugs.error.astype(str)))
     t = page.text
+    worst = page.listing([(f"p99_above_{n}N", f"{n} N") for n in (150, 300, 450)], ".2f",
+                         " m/s")
     page.headline(f"With the page's error model, the worst of {t('n_samples', '.0f')} samples "
-                  f"per engine lies {t('p99_above_150N', '.2f')}, {t('p99_above_300N', '.2f')} "
-                  f"and {t('p99_above_450N', '.2f', ' m/s')} above the nominal (150, 300, "
-                  f"450 N; *{capture_name('fixed')}*, re-planned after each burn); "
-                  f"{t('n_failed', '.0f')} samples not captured or not corrected.")
+                  f"per engine lies {worst} above the nominal (*{capture_name('fixed')}*, "
+                  f"re-planned after each burn); {t('n_failed', '.0f')} samples not captured "
+                  f"or not corrected.")
     return page

@@ -17,7 +17,7 @@ import pandas as pd
 import yaml
 
 from lunarcap.report import findings as F
-from lunarcap.report.page import Page
+from lunarcap.report.page import Page, listing
 from lunarcap.repro import paths
 
 NOTEBOOK = "notebooks/findings.ipynb"
@@ -45,9 +45,10 @@ F_MISSING = "lunarcap-missing:not in this build"
 
 
 def _losses(summary: dict) -> str:
-    parts = [f"{F.shown(summary.get(f'total_delta_v_loss_mps_{t}N', F_MISSING), '.1f', ' m/s')}"
-             f" ({t} N / {i} s)" for t, i in PAPER_ENGINES]
-    return f"{parts[0]}, {parts[1]} and {parts[2]}"
+    return listing({k: summary.get(k, F_MISSING) for k in
+                    (f"total_delta_v_loss_mps_{t}N" for t, _ in PAPER_ENGINES)},
+                   [(f"total_delta_v_loss_mps_{t}N", f"{t} N / {i} s")
+                    for t, i in PAPER_ENGINES], ".1f", " m/s")
 
 
 def first_screen(values: dict, items: list, beyond: list[str]) -> str:

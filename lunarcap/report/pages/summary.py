@@ -474,12 +474,15 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
     page.data.update(chains=chains, totals=totals, b1=b1)
     t = page.text
     which = (f"*{capture_name('fixed')}*" if starts is None else "the offsets given")
+    engines_of = [f"{t:g} N" for t, _ in PAPER_ENGINES]
+    page.value("total_delta_v_loss_listing", page.listing(
+        [(f"total_delta_v_loss_mps_{e.replace(' ', '')}", e) for e in engines_of], ".2f",
+        " m/s"))
     page.headline(
         f"With {which} ({dynamics} dynamics) the whole capture needs "
-        f"{t('total_delta_v_mps_150N', '.3f')}, {t('total_delta_v_mps_300N', '.3f')} and "
-        f"{t('total_delta_v_mps_450N', '.3f', ' m/s')} (150, 300, 450 N), "
-        f"{t('total_delta_v_loss_mps_150N', '.2f')}, {t('total_delta_v_loss_mps_300N', '.2f')} "
-        f"and {t('total_delta_v_loss_mps_450N', '.2f', ' m/s')} more than impulses in the same "
-        f"dynamics; each burn's ΔV is within {t('max_abs_b1_diff_percent', '.2f', ' %')} of "
-        f"Table B1's.")
+        + page.listing([(f"total_delta_v_mps_{e.replace(' ', '')}", e) for e in engines_of],
+                       ".3f", " m/s")
+        + ", which is " + page.values["total_delta_v_loss_listing"]
+        + f" more than impulses in the same dynamics; each burn's ΔV is within "
+        f"{t('max_abs_b1_diff_percent', '.2f', ' %')} of Table B1's.")
     return page

@@ -419,7 +419,7 @@ def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
     _add_mesh(page, mesh, mesh_list, default_points)
     values = prose_values(ver, mesh, default_points)
     for k, v in values.items():
-        page.value(k, float(v))
+        page.value(k, v if isinstance(v, str) else float(v))
     _add_checks(page, ver, imp, mesh, values, default_points)
     page.data.update(cases=ver, mesh=mesh, impulsive=imp)
     t = page.text
