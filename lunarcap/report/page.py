@@ -249,6 +249,22 @@ class Page:
         """
         return listing(self.values, names_labels, spec, unit)
 
+    def capture(self, key: str, dynamics: str | None) -> str:
+        """Name the capture this page flies, glued as ``capture_named`` for its prose.
+
+        ``key``: one of :data:`lunarcap.quantities.CAPTURES` ("fixed", "free", "joint",
+        "free_periods"); the same engine needs a different delta-V in each, and in each
+        dynamics, so every page that quotes one says which.
+
+        >>> Page("nb", {}, "x").capture("free", "full")
+        'free ignitions, full dynamics'
+        """
+        from lunarcap.quantities import capture_name
+
+        text = f"{capture_name(key)}, {dynamics or 'the plan’s own'} dynamics"
+        self.value("capture_named", text)
+        return text
+
     def headline(self, markdown: str) -> None:
         """The page's finding in one or two sentences with its numbers (MyST Markdown).
 

@@ -58,13 +58,16 @@ def test_the_first_screen_states_the_findings_with_their_numbers_and_how_to_cite
               "summary": {"total_delta_v_loss_mps_150N": 20.35,
                           "total_delta_v_loss_mps_300N": 5.12,
                           "total_delta_v_loss_mps_450N": 3.17}}
-    items = [findings.Headline("generated/missed_thrust", "Missed thrust", "x")]
-    md = findings_page.first_screen(values, items, ["generated/missed_thrust"])
+    items = [findings.Headline("generated/missed_thrust", "Missed thrust: a burn gone wrong",
+                               "x")]
+    cite = {"version": "0.1.0", "date": "2026-11-27"}
+    md = findings_page.first_screen(values, items, ["generated/missed_thrust"], cite)
+    assert md.index("{ref}`how to cite it <how-to-cite>`") < md.index("The paper, reproduced")
+    assert "lunarcap 0.1.0 of 2026-11-27" in md
     assert "within 0.21 %" in md and "37 of 37" in md
     assert "20.4, 5.1 and 3.2 m/s (150 N / 200 s, 300 N / 250 s and 450 N / 300 s)" in md
     assert "14 of 61 checks" in md and "10 times too small" in md
-    assert "{doc}`Missed thrust </generated/missed_thrust>`" in md
-    assert "{ref}`how to cite <how-to-cite>`" in md
+    assert "1 pages beyond the paper: {doc}`Missed thrust </generated/missed_thrust>`" in md
     # a value no build produced says so instead of a number
     values["summary"].pop("total_delta_v_loss_mps_450N")
     md = findings_page.first_screen(values, items, [])

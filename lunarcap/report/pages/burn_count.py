@@ -181,4 +181,5 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
                   f"{t('loss_1_mps', '.1f', ' m/s')} in one burn, "
                   f"{t('loss_2_mps', '.1f', ' m/s')} in two and {t('loss_3_mps', '.1f', ' m/s')} "
                   f"in three: impulses cost the same whatever the count, the finite burns do not.")
+    page.capture("free_periods", dynamics)
     return page

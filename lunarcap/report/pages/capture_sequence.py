@@ -389,4 +389,5 @@ def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
                   f"{t('total_burn_min', '.2f', ' min')} in all and leaves "
                   f"{t('mass_final_kg', '.3f', ' kg')} in the final orbit; every burn arc "
                   f"straddles its perilune, as in the paper.")
+    page.capture("fixed", dynamics)
     return page

@@ -226,4 +226,5 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
                   f"per engine lies {worst} above the nominal (*{capture_name('fixed')}*, "
                   f"re-planned after each burn); {t('n_failed', '.0f')} samples not captured "
                   f"or not corrected.")
+    page.capture("fixed", p.dynamics)
     return page

@@ -51,7 +51,7 @@ def _losses(summary: dict) -> str:
                     for t, i in PAPER_ENGINES], ".1f", " m/s")
 
 
-def first_screen(values: dict, items: list, beyond: list[str]) -> str:
+def first_screen(values: dict, items: list, beyond: list[str], cite: dict | None = None) -> str:
     """The landing page's first screen (MyST Markdown, links from ``book/index.md``).
 
     Parameters
@@ -63,16 +63,22 @@ def first_screen(values: dict, items: list, beyond: list[str]) -> str:
         Every page's finding (for the titles of the pages listed).
     beyond : list of str
         The toc files of the "Beyond the paper" part.
+    cite : dict, optional
+        :func:`lunarcap.report.findings.citation` (the version and date named first).
     """
     def v(page, name):
         return values.get(page, {}).get(name, F_MISSING)
 
     rr, ver, summ = (values.get(k, {}) for k in ("reproduction_report", "verification",
                                                  "summary"))
-    title = {h.page: h.title for h in items}
-    added = ", ".join(f"{{doc}}`{title.get(f, f)} </{f}>`" for f in beyond if f in title)
+    title = {h.page: h.title.split(":")[0].strip() for h in items}
+    added = [f"{{doc}}`{title[f]} </{f}>`" for f in beyond if f in title]
+    version = (f"lunarcap {cite['version']}" + (f" of {cite['date']}" if cite.get("date") else "")
+               if cite else "lunarcap")
     return (
         ":::{admonition} What this book found\n:class: lc-findings\n\n"
+        f"{version}: {{ref}}`how to cite it <{CITE_LABEL}>` (BibTeX, licence); all the "
+        f"book's data in one archive, {{download}}`{ARCHIVE} <generated/{ARCHIVE}>`.\n\n"
         f"- **The paper, reproduced.** Solved again with an independent optimiser, the "
         f"delta-Vs of the paper's best burns (Table B1) agree with the printed ones within "
         f"{F.shown(v('reproduction_report', 'b1_max_dv_diff_percent'), '.2f', ' %')}; "
@@ -88,10 +94,8 @@ def first_screen(values: dict, items: list, beyond: list[str]) -> str:
         f"against one another fail beyond print resolution; among them the Sun's "
         f"gravitational parameter, printed "
         f"{F.shown(rr.get('sun_ratio', F_MISSING), '.0f')} times too small.\n"
-        f"- **What lunarcap adds.** {added}.\n\n"
-        f"How to cite lunarcap, with a BibTeX entry, its licence, version and date: "
-        f"{{ref}}`how to cite <{CITE_LABEL}>`. All the book's data in one archive: "
-        f"{{download}}`{ARCHIVE} <generated/{ARCHIVE}>`.\n:::\n")
+        f"- **What lunarcap adds.** {len(added)} pages beyond the paper: "
+        f"{', '.join(added)}.\n:::\n")
 
 
 def build(output_name: str = "findings", quick: bool = False) -> Page:
@@ -103,9 +107,10 @@ def build(output_name: str = "findings", quick: bool = False) -> Page:
     items = F.headlines(entries, paths.GENERATED, toc_files())
     values = {e.name: F.glued(e.output) for e in entries if e.output.is_file()}
     beyond = next((files for cap, files in toc_parts() if cap == BEYOND_CAPTION), [])
-    landing = first_screen(values, items, beyond)
+    c = F.citation(paths.ROOT / "CITATION.cff")
+    landing = first_screen(values, items, beyond, c)
     by_page = F.by_page_markdown(items, link_prefix="/")
-    cite = F.citation_markdown(F.citation(paths.ROOT / "CITATION.cff"))
+    cite = F.citation_markdown(c)
     for name, text in ((LANDING, landing), (BY_PAGE, by_page), (CITATION, cite)):
         paths.write_text_atomic(paths.GENERATED / name, text)
     archive, n_files = F.write_archive(paths.GENERATED, ARCHIVE)

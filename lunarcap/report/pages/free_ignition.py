@@ -389,4 +389,5 @@ def build(engines=paper_engine_pairs(), dynamics: str = "full",
                   f"from the paper's grid gains {t('min_j_gain_mps', '.4f')} to "
                   f"{t('max_j_gain_mps', '.2f', ' m/s')} per burn in the objective of Eq. (9) "
                   f"({dynamics} dynamics).")
+    page.capture("free", dynamics)
     return page

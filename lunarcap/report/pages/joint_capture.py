@@ -190,4 +190,5 @@ def build(engines=paper_engine_pairs(), dynamics: str = "full",
     page.headline(f"Solving the capture as one problem (*{capture_name('joint')}*) saves at "
                   f"most {page.text('max_total_difference_mps', '.4f', ' m/s')} over solving it "
                   f"one burn at a time (*{capture_name('free')}*; {dynamics} dynamics).")
+    page.capture("joint", dynamics)
     return page

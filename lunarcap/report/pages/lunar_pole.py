@@ -138,4 +138,5 @@ def build(dynamics: str = "full", thrusts_N: list | None = None,
     page.headline(f"The choice of the IAU pole of M-MME2000 moves a burn's finite-burn loss by at "
                   f"most {page.text('max_abs_delta_v_loss_effect_mps', '.3f', ' m/s')} "
                   f"({dynamics} dynamics).")
+    page.capture("fixed", dynamics)
     return page

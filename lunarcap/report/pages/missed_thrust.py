@@ -223,6 +223,7 @@ def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75
                       "ignition_min_after_fault", "burn_duration_min", "delta_v_mps",
                       "verified"])  # the ignition epochs: in the CSV
     _values(page, p, burn, t, late, res.run, max_period_h)
+    page.capture("free_periods", p.dynamics)
     return page
 
 

@@ -359,6 +359,7 @@ def build(engines=((320.0, 200.0), (500.0, 300.0)),
     page.headline(f"The LRO-class engine (320 N / 200 s, *{capture_name('free')}*) burns "
                   f"{t('total_fuel_kg_320N', '.1f', ' kg')} of propellant; going from 150 to "
                   f"320 N at 200 s divides the LOI 1 loss by {t('loss_ratio_150_320', '.2f')}.")
+    page.capture("free", dynamics)
     return page
 
 

@@ -475,4 +475,5 @@ def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
                   f"{t('lro_loi1_ours_min', '.1f', ' min')} on the paper's spacecraft and "
                   f"{t('lro_loi1_scaled_min', '.1f', ' min')} at LRO's launch mass, against "
                   f"LRO's {LRO_LOI_MIN:g} min burn.")
+    page.capture("free", dynamics)
     return page

@@ -193,4 +193,5 @@ def build(engines=paper_engine_pairs(), dynamics: str = "full",
                   f"{t('inertial_j_loi1_150N_mps', '.2f', ' m/s')} (150 N LOI 1, the longest "
                   f"burn, {t('duration_loi1_150N_min', '.1f', ' min')}); thrust opposite the "
                   f"velocity misses the paper's targets ({dynamics} dynamics).")
+    page.capture("free", dynamics)
     return page

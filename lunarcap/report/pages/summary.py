@@ -485,4 +485,5 @@ def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
         + ", which is " + page.values["total_delta_v_loss_listing"]
         + f" more than impulses in the same dynamics; each burn's ΔV is within "
         f"{t('max_abs_b1_diff_percent', '.2f', ' %')} of Table B1's.")
+    page.capture("fixed", dynamics)
     return page

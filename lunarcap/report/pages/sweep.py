@@ -330,4 +330,5 @@ def build(thrust_N: float = paper_engine_pairs()[0][0], isp_s: float = paper_eng
                   f"from the paper's best ({t('paper_best_delta_v_mps', '.3f', ' m/s')} at "
                   f"{t('paper_best_start_min', '.0f')} min); {t('n_verified', '.0f')} of "
                   f"{t('n_cases', '.0f')} solutions pass verification ({dynamics} dynamics).")
+    page.capture("fixed", dynamics)
     return page

@@ -408,4 +408,5 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
                   f"is negative, and at the paper's engines, solved directly, ours differs "
                   f"from Table B1 by at most {t('paper_diff_max', '.2f')} percentage points.")
     page.data.update(direct=direct, result=result, wide=wide, ok=ok, theory=theory, paper=paper)
+    page.capture("free", spec.dynamics)
     return page
