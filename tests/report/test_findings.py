@@ -65,7 +65,7 @@ def test_the_first_screen_states_the_findings_with_their_numbers_and_how_to_cite
     assert md.index("{ref}`how to cite it <how-to-cite>`") < md.index("The paper, reproduced")
     assert "lunarcap 0.1.0 of 2026-11-27" in md
     assert "within 0.21 %" in md and "37 of 37" in md
-    assert "20.4, 5.1 and 3.2 m/s (150 N / 200 s, 300 N / 250 s and 450 N / 300 s)" in md
+    assert "20.35, 5.12 and 3.17 m/s (150 N / 200 s, 300 N / 250 s and 450 N / 300 s)" in md
     assert "14 of 61 checks" in md and "10 times too small" in md
     assert "1 pages beyond the paper: {doc}`Missed thrust </generated/missed_thrust>`" in md
     # a value no build produced says so instead of a number

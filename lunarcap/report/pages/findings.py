@@ -48,7 +48,7 @@ def _losses(summary: dict) -> str:
     return listing({k: summary.get(k, F_MISSING) for k in
                     (f"total_delta_v_loss_mps_{t}N" for t, _ in PAPER_ENGINES)},
                    [(f"total_delta_v_loss_mps_{t}N", f"{t} N / {i} s")
-                    for t, i in PAPER_ENGINES], ".1f", " m/s")
+                    for t, i in PAPER_ENGINES], ".2f", " m/s")
 
 
 def first_screen(values: dict, items: list, beyond: list[str], cite: dict | None = None) -> str:
