@@ -68,6 +68,7 @@ UNIT_SUFFIXES = {
     "_mps2": "m/s²", "_kmps2": "km/s²", "_kmps": "km/s", "_mps": "m/s", "_percent": "%",
     "_pct": "%", "_min": "min", "_deg": "deg", "_kg": "kg", "_km": "km", "_mm": "mm",
     "_m": "m", "_s": "s", "_h": "h", "_N": "N", "_LU": "LU", "_days": "d", "_bytes": "bytes",
+    "_pp": "percentage points",
 }
 
 
@@ -540,7 +541,13 @@ for _k, _l, _d in (
         ("median_sample_cpu_s", "median sample CPU", "Median CPU time of a Monte Carlo "
          "sample."),
         ("optimal_loss_percent", "J loss, ours", "Our verified optimal objective_loss_percent"
-         " at the engine, interpolated in log thrust-to-weight."),
+         " at the engine, the engine solved directly (free ignitions)."),
+        ("interpolated_loss_percent", "J loss, interpolated", "objective_loss_percent read "
+         "off the trade study's curve of the engine's Isp, linear in log thrust-to-weight "
+         "between the grid's optima."),
+        ("interpolation_error_pp", "interpolation error", "interpolated_loss_percent minus "
+         "optimal_loss_percent, percentage points: what reading the curve instead of "
+         "solving the engine is off by."),
         ("perilune_from_ignition_min", "perilune after ignition", "Time from ignition to "
          "the nominal perilune."),
         ("ignition_from_perilune_deg", "ignition from perilune", "True anomaly of the "
