@@ -32,7 +32,9 @@ def test_burn_ratios_robbins_only_where_it_holds():
 def test_prose_values_from_the_table():
     spec = study.StudySpec(100.0, 1000.0, 2, (250.0,), "two-body")
     wide = pd.DataFrame({"status": ["ok", "failed"]})
-    at_paper = pd.DataFrame({"optimal_loss_percent": [2.0, float("nan")],
+    at_paper = pd.DataFrame({"thrust_N": [300.0, 150.0],
+                             "optimal_loss_percent": [2.0, float("nan")],
+                             "interpolation_error_pp": [0.08, float("nan")],
                              "paper_delta_v_loss_percent": [2.5, 1.0],
                              "analytic_loss_percent": [1.8, 1.0]})
     v = ts.prose_values(spec, wide, {"wall_s": 12.5, "computed": 3}, _ok(), at_paper)
@@ -42,6 +44,7 @@ def test_prose_values_from_the_table():
     assert v["n_robbins_valid"] == 1
     assert v["paper_diff_max"] == pytest.approx(0.5)
     assert v["robbins_diff_max"] == pytest.approx(0.2)
+    assert v["interp_error_max_pp"] == pytest.approx(0.08) and v["n_paper_direct"] == 1
     assert v["dur_ratio_max"] == pytest.approx(1.1)
     assert v["start_ratio_min"] == pytest.approx(0.75)
     empty = ts.prose_values(spec, wide.iloc[:0], {"wall_s": 0.0, "computed": 0},
