@@ -188,7 +188,6 @@ def build(engines=paper_engine_pairs(), dynamics: str = "full",
         page.value(name, v)
     _add_checks(page, steer, dynamics)
     page.data["steering"] = steer
-    t = page.text
     cost = page.listing([(f"inertial_j_loi1_{e}N_mps", f"{e} N") for e in (150, 300, 450)],
                         ".2f", " m/s")
     page.headline(f"Holding one optimised inertial direction through LOI 1, the longest burn, "
