@@ -13,6 +13,7 @@ from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS, paper_table_b1
 from lunarcap.physics import constants as C
 from lunarcap.report.labels import label
 from lunarcap.report.pages import trade_study
+from lunarcap.repro import paths
 from lunarcap.runs import study
 
 THRUSTS = (100.0, 316.2, 1000.0)  # StudySpec(100, 1000, 3): log-spaced, 4 digits
@@ -21,8 +22,9 @@ THRUSTS = (100.0, 316.2, 1000.0)  # StudySpec(100, 1000, 3): log-spaced, 4 digit
 @pytest.fixture(scope="module")
 def page(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("trade_study")
-    return trade_study.build(100.0, 1000.0, 3, [250.0], 1, "two-body", "t_trade", True,
-                             out=tmp / "study.csv", timing_dir=tmp / "no_timing")
+    with paths.using_book(tmp / "book"):   # the page's data files go there, not in the book
+        return trade_study.build(100.0, 1000.0, 3, [250.0], 1, "two-body", "t_trade", True,
+                                 out=tmp / "study.csv", timing_dir=tmp / "no_timing")
 
 
 @pytest.mark.slow
@@ -151,9 +153,10 @@ def stub_engine(thrust_N, isp_s, dynamics):
 
 
 def test_a_failed_engine_is_listed_not_hidden(tmp_path):
-    p = trade_study.build(100.0, 400.0, 3, [250.0], 1, "two-body", "t_trade_stub", True,
-                          out=tmp_path / "stub.csv", task=stub_engine, processes=False,
-                          timing_dir=tmp_path, solve=stub_engine)
+    with paths.using_book(tmp_path / "book"):
+        p = trade_study.build(100.0, 400.0, 3, [250.0], 1, "two-body", "t_trade_stub", True,
+                              out=tmp_path / "stub.csv", task=stub_engine, processes=False,
+                              timing_dir=tmp_path, solve=stub_engine)
     assert p.values["n_failed"] == 1
     note = p.notes["failures"]
     assert "Infeasible_Problem_Detected" in note and "| 200 |" in note
@@ -173,9 +176,11 @@ def test_the_paper_engines_are_solved_directly_and_the_interpolation_error_is_me
         solved.append((thrust_N, isp_s))
         return stub_engine(thrust_N, isp_s, dynamics)
 
-    p = trade_study.build(100.0, 1000.0, 3, [250.0], 1, "two-body", "t_trade_direct", True,
-                          out=tmp_path / "stub.csv", task=stub_engine, processes=False,
-                          timing_dir=tmp_path, solve=solve)
+    with paths.using_book(tmp_path / "book"):
+        p = trade_study.build(100.0, 1000.0, 3, [250.0], 1, "two-body", "t_trade_direct",
+                              True, out=tmp_path / "stub.csv", task=stub_engine,
+                              processes=False, timing_dir=tmp_path, solve=solve)
+        assert (tmp_path / "book" / "generated" / "data" / "t_trade_direct_study.csv").is_file()
     assert solved == [(300.0, 250.0)]          # only the paper's engine of this Isp
     df = p.items["paper_engines"].df
     row = df[(df.thrust_N == 300.0) & (df.part == "LOI1")].iloc[0]
