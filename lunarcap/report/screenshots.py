@@ -179,7 +179,8 @@ FIRST_SCREEN_JS = r"""
   const h = window.innerHeight, w = window.innerWidth;
   const inView = (el) => { const r = el.getBoundingClientRect();
     return r.width > 0 && r.height > 0 && r.top >= 0 && r.bottom <= h && r.left < w; };
-  const main = document.querySelector('#main-content') || document.querySelector('main')
+  // the page's own text: the article, not the navigation or the page's table of contents
+  const main = document.querySelector('article.bd-article') || document.querySelector('main')
                || document.body;
   const blocks = [...main.querySelectorAll('p, li, h1, h2, h3, dt, dd, td, th, .admonition-title')]
     .filter(inView).map(e => e.innerText.replace(/\s+/g, ' ').trim()).filter(t => t);
@@ -198,7 +199,8 @@ def first_screen(html: Path, page: str, width: int, height: int, out: Path | Non
 
     Serves ``html`` on 127.0.0.1 (every other host unresolvable), opens ``page`` (a toc
     file, no extension) in headless Chromium and returns the text blocks and the links
-    lying wholly inside the viewport (:data:`FIRST_SCREEN_JS`); with ``out``, also a
+    lying wholly inside the viewport, in the page's article (not the navigation bars or
+    the page's table of contents; :data:`FIRST_SCREEN_JS`); with ``out``, also a
     screenshot of that screen there (PNG). Raises :class:`ChromiumError` if Chromium is
     missing or fails.
     """
