@@ -7,7 +7,19 @@
 #   make lint   - ruff and the import-linter contracts of pyproject.toml
 #   make screenshots - built pages in headless Chromium at 1280/1024 px, offline; fails on overflow
 SHELL := /bin/bash
-PYTHON ?= python3.11
+# CPython 3.12 (the lock's; gmatpy, the GMAT engine of the tests, ships wheels for 3.12 to
+# 3.15 only). PYTHON=... chooses it; otherwise the first of these that runs as 3.12:
+# python3.12 on the PATH (a pyenv shim of another version does not), pyenv's newest 3.12.x
+# ($$PYENV_ROOT or ~/.pyenv), /usr/local/bin and /usr/bin.
+PYTHON_VERSION := 3.12
+ifeq ($(origin PYTHON),undefined)
+PYTHON := $(shell for p in python$(PYTHON_VERSION) \
+    $$(ls -d "$${PYENV_ROOT:-$$HOME/.pyenv}"/versions/$(PYTHON_VERSION).*/bin/python$(PYTHON_VERSION) \
+       2>/dev/null | sort -V -r) \
+    /usr/local/bin/python$(PYTHON_VERSION) /usr/bin/python$(PYTHON_VERSION); do \
+    "$$p" -c 'import sys; sys.exit("%d.%d" % sys.version_info[:2] != "$(PYTHON_VERSION)")' >/dev/null 2>&1 \
+    && { echo "$$p"; break; }; done)
+endif
 VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
@@ -19,7 +31,8 @@ venv: $(STAMP)
 # --no-compile: the bytecode of the ~9,400 modules of the lock (29 s of CPU, in series with
 # the install) is written by Python on first import instead, for the modules used only.
 $(STAMP): environment-lock.txt pyproject.toml
-	@command -v $(PYTHON) >/dev/null || { echo "error: $(PYTHON) not found; lunarcap needs CPython 3.11 (set PYTHON=...)"; exit 1; }
+	@[ -n "$(PYTHON)" ] || { echo "error: no CPython $(PYTHON_VERSION) found (python$(PYTHON_VERSION) on the PATH, pyenv's versions, /usr/bin); install it (e.g. pyenv install $(PYTHON_VERSION)) or set PYTHON=/path/to/python$(PYTHON_VERSION)"; exit 1; }
+	@"$(PYTHON)" -c 'import sys; sys.exit("%d.%d" % sys.version_info[:2] != "$(PYTHON_VERSION)")' 2>/dev/null || { echo "error: PYTHON=$(PYTHON) is not CPython $(PYTHON_VERSION), which the lock pins"; exit 1; }
 	rm -rf $(VENV)
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --require-hashes --no-deps --no-compile -r environment-lock.txt
@@ -46,11 +59,12 @@ lint: $(STAMP)
 	$(VENV)/bin/ruff check lunarcap tests
 	$(VENV)/bin/lint-imports
 
-# The lock pins every package with its hashes for CPython 3.11 on Linux x86_64.
+# The lock pins every package with its hashes for CPython 3.12 on Linux x86_64 (uv keeps
+# the versions already in environment-lock.txt where pyproject.toml still admits them).
 lock:
 	$(PYTHON) -m venv .lockenv && .lockenv/bin/pip install --quiet "uv>=0.4"
 	.lockenv/bin/uv pip compile pyproject.toml --extra test --generate-hashes \
-	    --python-version 3.11 --python-platform x86_64-manylinux_2_28 \
+	    --python-version $(PYTHON_VERSION) --python-platform x86_64-manylinux_2_28 \
 	    --no-header -o environment-lock.txt
 	rm -rf .lockenv
 
