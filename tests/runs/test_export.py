@@ -44,10 +44,11 @@ def _oem_states(path):
     return ccsds.read_oem(path)
 
 
-def test_export_writes_four_files_and_oem_interpolates_within_1_m(exported):
+def test_export_writes_its_files_and_oem_interpolates_within_1_m(exported):
     ex, res = exported
-    assert set(ex.files) == {"oem", "spk", "attitude", "maneuvers"}
-    assert all(ex.sizes_bytes[k] > 500 for k in ex.files)
+    assert set(ex.files) == {"oem", "spk", "attitude", "maneuvers", "gmat_script",
+                             "gmat_gravity", "gmat_moon"}
+    assert all(ex.sizes_bytes[k] > 100 for k in ex.files)
     names = [s["name"] for s in ex.segments]
     assert names == ["approach", "burn 1", "coast 1", "burn 2", "coast 2", "burn 3",
                      "final orbit"]
@@ -153,6 +154,17 @@ def test_every_exported_file_states_the_moons_gm_and_radius(exported, tmp_path):
         assert list(pd.read_csv(ex.files[kind], comment="#").columns) == \
             list(xburns.ATTITUDE_COLUMNS if kind == "attitude" else xburns.MANEUVER_COLUMNS)
     assert ex.reference == lines
+    # the GMAT script, its gravity file (GMAT skips lines starting with C) and Moon kernel
+    script = ex.files["gmat_script"].read_text().splitlines()
+    assert script[:3] == [f"% {c}" for c in lines]
+    cof = ex.files["gmat_gravity"].read_text().splitlines()
+    assert cof[1:4] == [f"C {c}" for c in lines]
+    handle = sp.dafopr(str(ex.files["gmat_moon"]))
+    try:
+        _, moon_comments, _ = sp.dafec(handle, 50, 100)
+    finally:
+        sp.dafcls(handle)
+    assert list(moon_comments[:3]) == lines
     state = ccsds.StateVector(0.0, (1838.2, 0.0, 0.0), (0.0, 1.6, 0.0))
     opm = ccsds.write_opm(tmp_path / "x.opm", state, "probe", "-310001")
     assert opm.read_text().splitlines()[1] == f"COMMENT {first}"

@@ -29,7 +29,10 @@ NOTEBOOK = "notebooks/exchange.ipynb"
 FILE_KINDS = {"oem": "CCSDS OEM 2.0 (KVN): states, one segment per arc",
               "spk": "SPICE SPK (type 9): the same states",
               "attitude": "thrust direction (ICRF), thrust and mass every 1 s of each burn",
-              "maneuvers": "one row per burn: ignition, duration, ΔV and its mean direction"}
+              "maneuvers": "one row per burn: ignition, duration, ΔV and its mean direction",
+              "gmat_script": "GMAT script: each burn, then the whole capture, in GMAT",
+              "gmat_gravity": "the lunar field the script reads (GMAT's COF format)",
+              "gmat_moon": "the Moon's states (SPK) for the script's fixed-pole Moon"}
 
 
 def files_table(export) -> pd.DataFrame:
