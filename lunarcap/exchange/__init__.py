@@ -10,6 +10,8 @@ M-MME2000 is :mod:`lunarcap.physics.frames`'s, once.
 * :mod:`~lunarcap.exchange.spk`: SPK (type 9, Lagrange) writing and reading with SPICE.
 * :mod:`~lunarcap.exchange.burns`: the attitude (thrust direction) and maneuver CSV
   files, and flying them through the propagator.
+* :mod:`~lunarcap.exchange.gmat`: a GMAT script that flies a capture, the gravity file
+  (COF) and Moon kernel it reads, running it with ``gmatpy`` and reading its reports.
 
 This package imports :mod:`lunarcap.physics` only (an import-linter contract): the runs
 hand it re-flown trajectories as arrays, and :mod:`lunarcap.mission.plan` reads OPM

@@ -41,8 +41,10 @@ metres to kilometres (measured by the check reported in the project's issue 25 a
   0.79 deg from it in 2017 and cannot be changed, so the script creates a body of its own
   (a ``Planet`` named :data:`FIXED_POLE_BODY`, whose orientation GMAT takes from the
   script: the ``Moon`` type would impose the IAU lunar model whatever the script says),
-  placed by ``<stem>_moon.bsp``; a field in the Moon's body-fixed frame of date
-  (:attr:`Gravity.frame` ``"luna"``) is carried by GMAT's ``Luna`` itself;
+  placed by ``<stem>_moon.bsp``; about the IAU pole of date (:attr:`Gravity.frame`
+  ``"iau-of-date"``) the body is a ``Moon`` orbiting the Earth, which GMAT orients by the
+  IAU lunar model; a field in the Moon's DE405 principal-axis frame (``"luna"``) is
+  carried by GMAT's ``Luna`` itself;
 * the steering: GMAT's thruster points along a direction fixed in the axes for as long
   as a ``Propagate`` lasts, so a burn is a sequence of segments inside one
   ``BeginFiniteBurn``/``EndFiniteBurn``, each setting the direction
