@@ -12,10 +12,12 @@ free ignition, J2 only, so no third body in GMAT's force model).
 
 import time
 
+import numpy as np
 import pytest
 
 from lunarcap.exchange import gmat
 from lunarcap.mission.plan import load_plan
+from lunarcap.physics.epochs import seconds_from_calendar
 from lunarcap.runs.chain import plan_result
 from lunarcap.runs.gmat import (
     TOL_BURN_POSITION_M,
@@ -78,10 +80,21 @@ def test_each_burn_and_the_final_orbit_flown_in_gmat_agree_with_lunarcap(flown):
 
 
 def test_gmat_writes_its_states_next_to_the_script(flown):
+    from oem import OrbitEphemerisMessage
+
     _, c = flown
     script = c.files["gmat_script"]
-    for suffix in ("_gmat_burns.txt", "_gmat_capture.txt", "_gmat.oem", "_gmat.log"):
+    for suffix in ("_gmat_burns.txt", "_gmat_coasts.txt", "_gmat_capture.txt", "_gmat.oem",
+                   "_gmat.log"):
         assert script.with_name(script.stem + suffix).stat().st_size > 100, suffix
-    text = script.with_name(script.stem + "_gmat.oem").read_text()
-    assert "CCSDS_OEM_VERS" in text and "TIME_SYSTEM          = UTC" in text
-    assert "REF_FRAME            = EME2000" in text
+    path = script.with_name(script.stem + "_gmat.oem")
+    text = path.read_text()
+    assert "TIME_SYSTEM          = UTC" in text and "REF_FRAME            = EME2000" in text
+    # GMAT's OEM, read by a third-party parser, ends on the state of the capture report's
+    # end; its UTC epoch (to the ms) is that TDB epoch by lunarcap's own conversion
+    last = list(list(OrbitEphemerisMessage.open(path).segments)[-1].states)[-1]
+    end = gmat.read_report(script.with_name(script.stem + "_gmat_capture.txt"))[-1]
+    assert end.event == gmat.END
+    assert np.max(np.abs(np.asarray(last.position) - end.r_km)) < 1e-9
+    utc = seconds_from_calendar(last.epoch.isot + " UTC")
+    assert abs(utc - end.epoch_s) < 1e-3
