@@ -188,7 +188,10 @@ def _output_grid(t0_s: float, span: float, t_eval, dense: bool, dense_points: in
     """(output fractions of the arc after its start, whether the start is an output)."""
     if t_eval is not None:
         taus = (np.asarray(t_eval, float) - t0_s) / span
-        if np.any(taus < -1e-12) or np.any(taus > 1 + 1e-12) or np.any(np.diff(taus) <= 0):
+        # an epoch past J2000 carries ~6e-8 s of resolution: the arc's end epoch t0 + span
+        # may round to a tau a few ulps of t0 beyond 1 (8e-12 for a 2 h arc)
+        tol = 1e-12 + 4.0 * float(np.spacing(abs(t0_s))) / abs(span)
+        if np.any(taus < -tol) or np.any(taus > 1 + tol) or np.any(np.diff(taus) <= 0):
             raise InputError("t_eval must be epochs within the arc, in the direction of "
                              "integration")
         taus = np.clip(taus, 0.0, 1.0)

@@ -191,3 +191,17 @@ def test_dense_output_interpolates_the_arc(arrival, fit):
         ra = np.array(el.rv_from_mee(*traj(t)[:6], MU)[0])
         rb = np.array(el.rv_from_mee(*direct[:6], MU)[0])
         assert np.linalg.norm(ra - rb) < 1e-3
+
+
+def test_t_eval_at_an_arc_end_rounded_at_epoch_resolution(arrival):
+    """An epoch past J2000 carries ~6e-8 s: an arc's end epoch t0 + span may lie a few ulps
+    beyond the end (tau 1 + 2.6e-12 for this 2 h arc, the export's final orbit of a state
+    arrival); asked for at such an epoch, the state is the end of the arc."""
+    model = dyn.Model("two-body")
+    t0, span = 540878738.3485222, 7072.076051693657
+    t_end = t0 + span
+    assert (t_end - t0) / span - 1 > 1e-12   # the rounding this test is about
+    x = np.asarray(arrival.state, float)
+    tr = prop.propagate(model, t0, x, None, duration_s=span, t_eval=[t0 + 0.5 * span, t_end])
+    end = prop.propagate(model, t0, x, None, duration_s=span).final
+    np.testing.assert_allclose(tr.x[:, -1], end, rtol=1e-12, atol=1e-12)
