@@ -24,7 +24,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: test book book-quick lock lint bench clean venv screenshots
+.PHONY: test book book-quick lock lint bench clean venv screenshots chromium
 
 venv: $(STAMP)
 
@@ -40,7 +40,19 @@ $(STAMP): environment-lock.txt pyproject.toml
 	$(PY) -m ipykernel install --sys-prefix --name python3 >/dev/null
 	touch $(STAMP)
 
-test: lint
+# Debian's Chromium reads the built book as a reader does (the landing page's first screen
+# in `make test`, every page in `make screenshots`); installed here when missing, as root.
+CHROMIUM := $(shell command -v chromium 2>/dev/null)
+chromium:
+ifeq ($(CHROMIUM),)
+	@if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "installing Debian's chromium (headless browser of the book's screenshot tests)"; \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y -q chromium >/dev/null 2>&1 || \
+	    { apt-get update -q >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -q chromium >/dev/null; }; \
+	else echo "error: chromium not found; install Debian's chromium (sudo apt-get install chromium)"; exit 1; fi
+endif
+
+test: lint chromium
 	$(PY) -m pytest
 
 book: $(STAMP)
@@ -49,7 +61,7 @@ book: $(STAMP)
 book-quick: $(STAMP)
 	$(PY) -m lunarcap.report.build build --quick
 
-screenshots: $(STAMP)
+screenshots: $(STAMP) chromium
 	$(PY) -m lunarcap.report.screenshots
 
 bench: $(STAMP)
