@@ -392,15 +392,14 @@ def cmd_dispersions(args) -> int:
         plan = replace(plan, formulation=args.formulation)
     samples = integer("--samples", args.samples, minimum=1)
     seed = integer("--seed", args.seed, minimum=0)
-    cov = None
-    if args.arrival_cov is not None:
-        cov = disp.read_covariance(args.arrival_cov)
+    covs = {name: disp.read_covariance(getattr(args, name), name)
+            for name in ("arrival_cov", "knowledge_cov", "bplane_cov")
+            if getattr(args, name) is not None}
     model = disp.ErrorModel(**{name: number("--" + name.replace("_", "-"), getattr(args, name),
-                                              "", minimum=0.0)
-                               for name in ("thrust_sigma_pct", "isp_sigma_pct",
-                                            "pointing_sigma_deg", "ignition_sigma_s",
-                                            "arrival_sigma_km", "arrival_sigma_mps")},
-                            arrival_cov=cov)
+                                              "", minimum=0.0) for name in disp.SIGMAS},
+                            **covs)
+    if args.sensitivity:
+        return _dispersion_sensitivity(args, plan, samples, seed, model)
     return run_study(args, disp.STUDY, lambda: disp.run_dispersions(
         plan, samples, seed, model, out=args.out, workers=args.workers,
         scheduler=args.scheduler, progress=not args.no_progress),
@@ -408,6 +407,28 @@ def cmd_dispersions(args) -> int:
          "error_model": model.key() | {"description": model.describe()}, "seed": seed},
         lambda res: {"summary": disp.summarise(res.table.to_dict("records"))},
         plan=plan, model=model)
+
+
+def _dispersion_sensitivity(args, plan, samples: int, seed: int, model) -> int:
+    """``lunarcap dispersions --sensitivity``: each sigma alone at 0.5, 1, 2 times its value."""
+    from lunarcap.runs import dispersion_sensitivity as sens
+    from lunarcap.runs import dispersions as disp
+
+    out, status = _resumable(lambda: sens.run_sensitivity(
+        plan, samples, seed, model, out=args.out, workers=args.workers,
+        scheduler=args.scheduler, progress=not args.no_progress), "samples")
+    if status:
+        return status
+    models, res = out
+    rows = sens.sensitivity_rows(res.table, models)
+    if args.json:
+        print(json.dumps(_jsonable({"plan": plan.to_dict(), "seed": seed,
+                                    "table": str(res.path), "run": res.run,
+                                    "sensitivity": rows, "laws": sens.slopes(rows)}),
+                         indent=2))
+    else:
+        print(sens.format_sensitivity(plan, rows, res))
+    return 0 if all(s in disp.OK_STATUSES for s in res.table.status) else 3
 
 
 def build_parser():

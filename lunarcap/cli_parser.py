@@ -245,7 +245,17 @@ _SIGMAS = (("--thrust-sigma-pct", "%", "thrust, per burn"),
                                            "fixed over a burn"),
            ("--ignition-sigma-s", "s", "ignition epoch, per burn"),
            ("--arrival-sigma-km", "km", "arrival position, per RTN axis"),
-           ("--arrival-sigma-mps", "m/s", "arrival velocity, per RTN axis"))
+           ("--arrival-sigma-mps", "m/s", "arrival velocity, per RTN axis"),
+           ("--knowledge-sigma-km", "km", "orbit-determination position error of the "
+                                          "state each re-plan starts from, per RTN axis"),
+           ("--knowledge-sigma-mps", "m/s", "orbit-determination velocity error of the "
+                                            "state each re-plan starts from, per RTN axis"),
+           ("--gates-magnitude-pct", "%", "Gates proportional magnitude error, per burn"),
+           ("--gates-magnitude-mps", "m/s", "Gates fixed magnitude error, per burn"),
+           ("--gates-pointing-deg", "deg", "Gates proportional pointing error, per axis "
+                                           "and burn"),
+           ("--gates-pointing-mps", "m/s", "Gates fixed pointing error (a transverse "
+                                           "delta-V), per axis and burn"))
 
 
 def _add_dispersions(sub, func) -> None:
@@ -263,6 +273,18 @@ def _add_dispersions(sub, func) -> None:
     p.add_argument("--arrival-cov", default=None, metavar="FILE",
                    help="instead of --arrival-sigma-*: a 6x6 covariance of the arrival state "
                         "in its RTN frame, km and km/s (36 numbers, whitespace or commas)")
+    p.add_argument("--knowledge-cov", default=None, metavar="FILE",
+                   help="instead of --knowledge-sigma-*: a 6x6 covariance of the "
+                        "orbit-determination error at each re-plan, RTN, km and km/s "
+                        "(default none)")
+    p.add_argument("--bplane-cov", default=None, metavar="FILE",
+                   help="a 2x2 (B.R, B.T; km) or 3x3 (and the time of closest approach, s) "
+                        "covariance of the arrival's B-plane target (4 or 9 numbers; default "
+                        "none)")
+    p.add_argument("--sensitivity", action="store_true",
+                   help="instead of one budget: each non-zero sigma alone at 0.5, 1 and 2 "
+                        "times its value (the others 0, the same draws), the mean and the "
+                        "99 %% budget of each")
     p.add_argument("--formulation", choices=["orbit", "song2011"], default=None,
                    help=f"how the re-planned burns meet a period: orbit (the orbit asked, its "
                         f"perilune epoch free) or song2011 (the paper's: at the plan's nominal "
@@ -296,7 +318,9 @@ _LIST_OPTIONS = ("--starts", "--previous-starts", "--start", "--counts", "--frac
                  "--delays-min", "--max-period-h", "--max-days", "--burn", "--workers",
                  "--samples", "--seed", "--thrust-sigma-pct", "--isp-sigma-pct",
                  "--pointing-sigma-deg", "--ignition-sigma-s", "--arrival-sigma-km",
-                 "--arrival-sigma-mps", "--late-min", "--thrust", "--isp", "--mass")
+                 "--arrival-sigma-mps", "--late-min", "--thrust", "--isp", "--mass",
+                 "--knowledge-sigma-km", "--knowledge-sigma-mps", "--gates-magnitude-pct",
+                 "--gates-magnitude-mps", "--gates-pointing-deg", "--gates-pointing-mps")
 
 
 def join_negative_lists(argv: list) -> list:

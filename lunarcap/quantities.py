@@ -277,12 +277,15 @@ _add("inclination_deg", "inclination", "Inclination to the M-MME2000 equator.")
 _add("impulsive_loi1_mps", "LOI 1 impulse", "Two-body impulse of the first burn from which "
      "the plan derives the arrival v∞ (the paper's way of stating its arrival).")
 _add("hemisphere", "hemisphere", "Lunar hemisphere of the arrival perilune.", "string")
-_add("approach_dir", "approach direction", "Unit vector of the approach (M-MME2000).",
-     "array")
+_add("approach_dir", "approach direction", "Unit vector of the approach (M-MME2000; of a "
+     "B-plane arrival, in its frame).", "array")
 _add("frame", "frame", "Reference frame of a state.", "string")
 _add("position_km", "position", "Position vector.", "array")
 _add("velocity_kmps", "velocity", "Velocity vector.", "array")
 _add("opm", "OPM", "CCSDS OPM file of the arrival state.", "string")
+_add("b_r_km", "B·R", "Component along R of the arrival's B-plane miss vector (R = S x T, "
+     "T = S x pole / |S x pole|, S the incoming asymptote).")
+_add("b_t_km", "B·T", "Component along T of the arrival's B-plane miss vector.")
 _add("ephemeris", "ephemeris", "SPK file of the Earth and Sun.", "string")
 _add("lunar_pole", "lunar pole", "Pole fixing M-MME2000.", "string")
 _add("formulation", "formulation", "How the burns are targeted: song2011 (the next "
@@ -398,6 +401,34 @@ for _k, _l, _d, _t in (
          "axis.", "number"),
         ("arrival_cov", "arrival covariance", "Hash of the arrival covariance file (empty "
          "if none).", "string"),
+        ("knowledge_sigma_km", "σ knowledge position", "One-sigma orbit-determination "
+         "position error per RTN axis of the state each re-plan starts from.", "number"),
+        ("knowledge_sigma_mps", "σ knowledge velocity", "One-sigma orbit-determination "
+         "velocity error per RTN axis of the state each re-plan starts from.", "number"),
+        ("knowledge_cov", "knowledge covariance", "Hash of the knowledge covariance file "
+         "(empty if none).", "string"),
+        ("gates_magnitude_pct", "σ Gates magnitude, proportional", "Gates (1963) "
+         "proportional magnitude error, % of the burn's planned delta-V.", "number"),
+        ("gates_magnitude_mps", "σ Gates magnitude, fixed", "Gates (1963) fixed magnitude "
+         "error.", "number"),
+        ("gates_pointing_deg", "σ Gates pointing, proportional", "Gates (1963) proportional "
+         "pointing error (an angle) per transverse axis.", "number"),
+        ("gates_pointing_mps", "σ Gates pointing, fixed", "Gates (1963) fixed pointing error "
+         "(a transverse delta-V) per axis.", "number"),
+        ("bplane_cov", "B-plane covariance", "Hash of the B-plane covariance file (empty if "
+         "none).", "string"),
+        ("arrival_db_km", "arrival B-plane error", "Size of the sample's B-plane miss "
+         "error (B.R, B.T).", "number"),
+        ("arrival_dt_s", "arrival time error", "The sample's error of the time of closest "
+         "approach (later > 0).", "number"),
+        ("knowledge_dr_km", "knowledge position error", "Size of the position error of the "
+         "estimate the burn was re-planned from.", "number"),
+        ("knowledge_dv_mps", "knowledge velocity error", "Size of the velocity error of the "
+         "estimate the burn was re-planned from.", "number"),
+        ("mean_above_nominal_mps", "mean ΔV above nominal", "Mean over the captured samples "
+         "of the total delta-V minus the nominal.", "number"),
+        ("mean_above_nominal_se_mps", "its standard error", "Standard error of "
+         "mean_above_nominal_mps.", "number"),
         ("burns_flown", "burns flown", "Burns flown before the sample ended.", "integer"),
         ("propellant_kg", "propellant", "Propellant of the burns flown.", "number"),
         ("delta_v_above_nominal_mps", "ΔV above nominal", "Total delta-V minus the nominal "
@@ -473,6 +504,11 @@ for _q in (1, 5, 10, 50, 90, 95, 99):
          "delta-V over every sample (a failed one counts as infinite).")
     _add(f"propellant_p{_q}_kg", f"propellant, {_q}th percentile", f"{_q}th percentile of "
          "the propellant over every sample.")
+    _add(f"delta_v_p{_q}_ci_mps", f"ΔV, {_q}th percentile interval", f"Distribution-free "
+         f"confidence interval of delta_v_p{_q}_mps (order statistics).", "array")
+    _add(f"samples_needed_p{_q}", f"samples for the {_q}th percentile", f"Fewest samples "
+         f"whose order statistics bound the {_q}th percentile's interval on both sides.",
+         "integer")
 
 # ------------------------------------------------------------------ the book pages' tables
 for _k, _l, _d in (

@@ -102,8 +102,9 @@ def test_ctrl_c_in_a_study_exits_130_with_one_line(argv, module, func, unit, mon
     (["missed", "song2011-150N", "--fractions", "0.5", "--delays-min", "0", "--late-min", "5"],
      ["cut-off", "late ignition", "recovered", "nominal: burns 1..3 need"]),
     (["dispersions", "song2011-150N", "--samples", "2", "--thrust-sigma-pct", "1"],
-     ["99 % budget above nominal", "inf: too few samples", "correction failed: 0",
-      "table: "]),
+     ["99 % budget: not estimated (2 samples; its distribution-free 95 % interval needs "
+      "368)", "99% | not estimated: its interval needs 368 samples, this run has 2",
+      "mean above nominal (captured samples):", "correction failed: 0", "table: "]),
 ])
 def test_study_text_output_names_each_burn(argv, expect, tmp_path, capsys, monkeypatch):
     """The studies' plain-text report (not --json), two-body: exit 0, every line written.

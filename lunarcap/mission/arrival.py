@@ -26,6 +26,12 @@ velocity at an epoch, in ICRF or M-MME2000, as a navigation team or a CCSDS OPM 
 the plan's dynamics to its next perilune (the first zero of the radial velocity); its
 epoch, altitude, inclination, hemisphere and the two-body v_inf of the perilune state
 replace the reconstruction, and the arrival state is that propagated perilune state.
+
+An arrival may also be a **B-plane target** (:class:`BPlaneArrival`: B.R and B.T in km,
+v_inf, the incoming asymptote and the epoch of closest approach, in ICRF or M-MME2000, as
+a trans-lunar trajectory team hands it over). Its perilune is that of the two-body
+hyperbola it defines (:func:`lunarcap.physics.bplane.perilune_from_bplane`; the B-plane's
+T axis lies along S x z of the named frame, z its pole), at the epoch of closest approach.
 """
 
 
@@ -81,6 +87,61 @@ class StateArrival:
 
 
 @dataclass(frozen=True)
+class BPlaneArrival:
+    """An arrival given as its B-plane target (the ``arrival`` of a plan with ``b_r_km``).
+
+    Attributes
+    ----------
+    epoch : str
+        Calendar epoch of closest approach (the perilune), with its scale.
+    frame : {"ICRF", "M-MME2000"}
+        Axes of ``approach_dir``; the frame's pole is the reference of the T axis.
+    b_r_km, b_t_km : float
+        The miss vector's components along R and T, km.
+    v_inf_kmps : float
+        Hyperbolic excess speed, km/s.
+    approach_dir : tuple of 3 floats
+        The incoming asymptote S (the approach velocity's direction at infinity), unit.
+    """
+
+    epoch: str
+    frame: str
+    b_r_km: float
+    b_t_km: float
+    v_inf_kmps: float
+    approach_dir: tuple
+
+    def perilune_rv(self, lunar_pole: str) -> tuple:
+        """(r km, v km/s) of the perilune in M-MME2000 (InputError if it has none)."""
+        from lunarcap.physics.bplane import perilune_from_bplane
+        from lunarcap.physics.frames import mme_from_icrf
+
+        r, v = perilune_from_bplane(float(self.b_r_km), float(self.b_t_km),
+                                    float(self.v_inf_kmps), self.approach_dir, C.MU_MOON)
+        if self.frame == "ICRF":
+            r, v = mme_from_icrf(r, lunar_pole), mme_from_icrf(v, lunar_pole)
+        return np.asarray(r, float), np.asarray(v, float)
+
+
+def perilune_from_bplane_arrival(b: BPlaneArrival, lunar_pole: str) -> dict:
+    """The perilune numbers of a B-plane arrival (the keys of :func:`perilune_from_state`)."""
+    r, v = b.perilune_rv(lunar_pole)
+    mee = mee_from_rv(r, v, C.MU_MOON)
+    s = np.asarray(b.approach_dir, float)
+    s = s / np.linalg.norm(s)
+    if b.frame == "ICRF":
+        from lunarcap.physics.frames import mme_from_icrf
+
+        s = mme_from_icrf(s, lunar_pole)
+    return {"epoch": b.epoch, "mee": tuple(float(q) for q in np.asarray(mee).ravel()[:6]),
+            "altitude_km": float(np.linalg.norm(r) - C.R_MOON),
+            "inclination_deg": float(np.degrees(inclination(mee[3], mee[4]))),
+            "hemisphere": "north" if r[2] >= 0 else "south",
+            "v_inf_kmps": float(b.v_inf_kmps),
+            "approach_dir": tuple(float(q) for q in s)}
+
+
+@dataclass(frozen=True)
 class ArrivalSpec:
     """Hashable parameters of the arrival reconstruction (see :func:`arrival_state`).
 
@@ -98,6 +159,7 @@ class ArrivalSpec:
     hemisphere: str = "north"
     approach_dir: tuple | None = None
     state: StateArrival | None = None     # a state arrival (the rest derived from it)
+    bplane: BPlaneArrival | None = None   # a B-plane arrival (the rest derived from it)
     perilune_mee: tuple | None = None     # derived: (p, f, g, h, k, L) at ``epoch``
 
     @property

@@ -82,7 +82,11 @@ from pathlib import Path
 import numpy as np
 
 from lunarcap.errors import InputError
-from lunarcap.mission.arrival import ArrivalSpec, perilune_from_state
+from lunarcap.mission.arrival import (
+    ArrivalSpec,
+    perilune_from_bplane_arrival,
+    perilune_from_state,
+)
 from lunarcap.mission.impulsive import ImpulsiveBurn, impulsive_chain, tangential_impulse_mps
 from lunarcap.mission.plan_checks import (  # noqa: F401  (the plan's names, re-exported)
     DYNAMICS,
@@ -256,6 +260,18 @@ class CapturePlan:
             raise err(where, str(exc)) from None
         object.__setattr__(self, "arrival", replace(
             a, epoch=peri["epoch"], perilune_altitude_km=peri["altitude_km"],
+            inclination_deg=peri["inclination_deg"], hemisphere=peri["hemisphere"],
+            v_inf_kmps=peri["v_inf_kmps"], perilune_mee=peri["mee"],
+            approach_dir=peri["approach_dir"]))
+
+    def _derive_bplane_arrival(self) -> None:
+        """Replace the perilune numbers of a B-plane arrival by those of its hyperbola."""
+        try:
+            peri = perilune_from_bplane_arrival(self.arrival.bplane, self.lunar_pole)
+        except InputError as exc:
+            raise err("arrival.b_r_km", str(exc)) from None
+        object.__setattr__(self, "arrival", replace(
+            self.arrival, epoch=peri["epoch"], perilune_altitude_km=peri["altitude_km"],
             inclination_deg=peri["inclination_deg"], hemisphere=peri["hemisphere"],
             v_inf_kmps=peri["v_inf_kmps"], perilune_mee=peri["mee"],
             approach_dir=peri["approach_dir"]))

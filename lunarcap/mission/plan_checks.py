@@ -263,6 +263,8 @@ def validate(plan) -> None:
           num("arrival.impulsive_loi1_mps", plan.impulsive_loi1_mps, "m/s"))
     if plan.arrival.state is not None:
         plan._derive_state_arrival()
+    if plan.arrival.bplane is not None:
+        plan._derive_bplane_arrival()
     s(plan, "arrival", checked_arrival(plan.arrival))
     alt = plan.arrival.perilune_altitude_km
     s(plan, "burns", tuple(checked_burn(i, b, alt) for i, b in enumerate(plan.burns)))

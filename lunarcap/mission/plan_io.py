@@ -23,6 +23,8 @@ START_KEYS = {"epoch", "mee", "mass_kg", "first_coast_min"}
 ARRIVAL_KEYS = {"epoch", "perilune_altitude_km", "inclination_deg", "v_inf_kmps",
                 "impulsive_loi1_mps", "hemisphere", "approach_dir", "mass_kg"}
 STATE_ARRIVAL_KEYS = {"epoch", "frame", "position_km", "velocity_kmps", "mass_kg"}
+BPLANE_ARRIVAL_KEYS = {"epoch", "frame", "b_r_km", "b_t_km", "v_inf_kmps", "approach_dir",
+                       "mass_kg"}
 ENGINE_KEYS = {"thrust_N", "isp_s"}
 BURN_KEYS = {"target", "target_period_h", "target_apolune_altitude_km", "start_min",
              "coast_min", "steering", "start_bounds_min"}
@@ -48,7 +50,8 @@ def plan_fields(d, base_dir=None, default_name: str = "") -> dict:
     if not isinstance(name, str) or not name.strip():
         raise err("name", f"must be a non-empty text, got {name!r}")
     a = d["arrival"]
-    arrival = _state_arrival(a, base_dir)
+    arrival = _bplane_arrival(a) if isinstance(a, dict) and "b_r_km" in a else \
+        _state_arrival(a, base_dir)
     if arrival is None:
         arrival = _perilune_arrival(a)
     e = d["engine"]
@@ -132,6 +135,37 @@ def _perilune_arrival(a):
                        inclination_deg=a["inclination_deg"], mass_kg=a["mass_kg"],
                        v_inf_kmps=a.get("v_inf_kmps"), hemisphere=a.get("hemisphere", "north"),
                        approach_dir=None if approach is None else tuple(approach))
+
+
+def _bplane_arrival(a):
+    """The ``arrival`` of a plan given as its B-plane target (the perilune derived later)."""
+    from lunarcap.mission.arrival import STATE_FRAMES, ArrivalSpec, BPlaneArrival
+
+    keys("arrival", a, BPLANE_ARRIVAL_KEYS, BPLANE_ARRIVAL_KEYS)
+    if not isinstance(a["epoch"], str):
+        raise err("arrival.epoch", f"must be the epoch of closest approach as a text like "
+                                   f"'2017-02-20 03:41:26 TDB', got {a['epoch']!r}")
+    try:
+        seconds_from_calendar(a["epoch"])
+    except InputError as exc:
+        raise err("arrival.epoch", str(exc)) from None
+    if a["frame"] not in STATE_FRAMES:
+        raise err("arrival.frame", f"must be one of {', '.join(STATE_FRAMES)}, got "
+                                   f"{a['frame']!r}")
+    s = a["approach_dir"]
+    if not isinstance(s, (list, tuple)) or len(s) != 3:
+        raise err("arrival.approach_dir", f"must be a list of three numbers (the incoming "
+                                          f"asymptote in {a['frame']}), got {s!r}")
+    s = tuple(num(f"arrival.approach_dir[{j + 1}]", x, "", positive=False)
+              for j, x in enumerate(s))
+    if not any(s):
+        raise err("arrival.approach_dir", "must not be zero")
+    b = BPlaneArrival(a["epoch"], a["frame"],
+                      num("arrival.b_r_km", a["b_r_km"], "km", positive=False),
+                      num("arrival.b_t_km", a["b_t_km"], "km", positive=False),
+                      num("arrival.v_inf_kmps", a["v_inf_kmps"], "km/s"), s)
+    return ArrivalSpec(epoch=b.epoch, perilune_altitude_km=100.0, inclination_deg=90.0,
+                       mass_kg=a["mass_kg"], v_inf_kmps=b.v_inf_kmps, bplane=b)
 
 
 def _state_arrival(a, base_dir):
@@ -250,6 +284,11 @@ def plan_dict(plan) -> dict:
 
 def _arrival_dict(plan) -> dict:
     a = plan.arrival
+    if a.bplane is not None:   # as given (the perilune is derived again on loading)
+        b = a.bplane
+        return {"epoch": b.epoch, "frame": b.frame, "b_r_km": b.b_r_km, "b_t_km": b.b_t_km,
+                "v_inf_kmps": b.v_inf_kmps, "approach_dir": list(b.approach_dir),
+                "mass_kg": a.mass_kg}
     if a.state is not None:   # as given (the perilune is derived again on loading)
         st = a.state
         return ({"opm": st.opm} if st.opm else

@@ -119,6 +119,10 @@ ALPHA_COLOUR, BETA_COLOUR, MASS_COLOUR = "#7b3294", "#e66101", "0.2"
 RTN_COLOURS = {"r": "#d62728", "t": "#2ca02c", "n": "#1f77b4"}
 #: The steering laws of the steering-law page.
 LAW_COLOURS = {"optimal": "#0072b2", "inertial": "#009e73", "antivelocity": "#d55e00"}
+#: The error sources of the dispersions page's sensitivities (one colour and marker each).
+SOURCE_COLOURS = ("#0072b2", "#e69f00", "#009e73", "#d55e00", "#cc79a7", "#56b4e9",
+                  "#000000", "#8c2d04", "#7f7f7f", "#bcbd22", "#9467bd", "#17becf")
+SOURCE_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*", "<", ">", "h", "p")
 
 
 def coast_colour(burn: int) -> str:

@@ -1,7 +1,10 @@
 """Dispersions: the planner's answer from a table of samples.
 
 Percentiles of the delta-V flown and the propellant, the 99 % budget above the nominal
-with a distribution-free confidence interval from order statistics (:func:`quantile_ci`),
+with a distribution-free confidence interval from order statistics (:func:`quantile_ci`;
+a percentile is printed only when the samples bound its interval on both sides,
+:func:`samples_needed`: 368 for the 95 % interval of the 99 % point), the mean above
+the nominal with its standard error,
 the failure probabilities, the convergence of the estimate with the number of samples,
 and the command line's text (:func:`format_summary`). Pure data: no solving.
 """
@@ -40,6 +43,28 @@ def quantile_ci(n: int, q: float, level: float = 0.95) -> tuple:
     return max(lo, 0), min(hi, n + 1)
 
 
+def samples_needed(q: float, level: float = 0.95) -> int:
+    """Fewest samples whose order statistics bound the q-quantile on both sides at ``level``.
+
+    The two-sided interval of :func:`quantile_ci` has a finite upper rank once
+    P(all n samples below x_q) = q^n <= (1 - level)/2, and a lower one once
+    (1 - q)^n < (1 - level)/2: for the 99 % point at 95 %, n = 368 (the one-sided 95 %
+    bound, 0.99^n <= 0.05, needs 299). Found from the closed form, then confirmed on
+    :func:`quantile_ci` itself.
+    """
+    a = (1 - level) / 2
+    n = max(1, math.ceil(math.log(a) / math.log(max(q, 1 - q))) - 1)
+    while not _bounded(n, q, level):
+        n += 1
+    return n
+
+
+def _bounded(n: int, q: float, level: float) -> bool:
+    """True if :func:`quantile_ci` (n, q, level) has both ranks within 1..n."""
+    lo, hi = quantile_ci(n, q, level)
+    return lo >= 1 and hi <= n
+
+
 def summarise(rows, level: float = 0.95) -> dict:
     """The planner's answer from a table's rows (a DataFrame or list of dicts).
 
@@ -67,6 +92,14 @@ def summarise(rows, level: float = 0.95) -> dict:
     for q in PERCENTILES:
         out[f"delta_v_p{q:g}_mps"] = _quantile(dv, q / 100)
         out[f"propellant_p{q:g}_kg"] = _quantile(kg, q / 100)
+        lo, hi = quantile_ci(n, q / 100, level) if n else (0, 1)
+        out[f"delta_v_p{q:g}_ci_mps"] = (dv[lo - 1] if lo >= 1 else -math.inf,
+                                         dv[hi - 1] if hi <= n else math.inf)
+        out[f"samples_needed_p{q:g}"] = samples_needed(q / 100, level)
+    above = ok.total_delta_v_mps.astype(float).to_numpy() - nom
+    out["mean_above_nominal_mps"] = float(above.mean()) if above.size else math.nan
+    out["mean_above_nominal_se_mps"] = (float(above.std(ddof=1) / math.sqrt(above.size))
+                                        if above.size > 1 else math.nan)
     lo, hi = quantile_ci(n, 0.99, level) if n else (0, 1)
     out["budget_p99_above_nominal_mps"] = out["delta_v_p99_mps"] - nom
     out["budget_p99_ci_mps"] = (dv[lo - 1] - nom if lo >= 1 else -math.inf,
@@ -132,24 +165,38 @@ def settled_after(conv, tol_mps: float = 1.0) -> int | None:
 
 def format_summary(plan: CapturePlan, model: ErrorModel, s: dict) -> str:
     """The text of a summary ``s``: the error model, the budget, failures, final orbit."""
-    lo, hi = s["budget_p99_ci_mps"]
+    n = s["samples"]
+    interval = f"{100 * s['ci_level']:g} % interval above"
     lines = [
         f"Dispersions of plan {plan.name} ({plan.engine.thrust_N:g} N / {plan.engine.isp_s:g} "
-        f"s, {plan.dynamics} dynamics): {s['samples']} sample(s), closed-loop re-planning "
+        f"s, {plan.dynamics} dynamics): {n} sample(s), closed-loop re-planning "
         f"after each burn",
         f"  errors: {model.describe()}",
         f"  nominal: {s['nominal_delta_v_mps']:.3f} m/s, {s['nominal_propellant_kg']:.3f} kg "
         f"of propellant",
-        f"  {'percentile':>10} | {'delta-V m/s':>11} {'above nominal':>13} | "
-        f"{'propellant kg':>13}"]
+        f"  mean above nominal (captured samples): {s['mean_above_nominal_mps']:.3f} m/s "
+        f"(standard error {s['mean_above_nominal_se_mps']:.3f} m/s)",
+        f"  {'percentile':>10} | {'delta-V m/s':>11} {'above nominal':>13} "
+        f"{interval:>24} | {'propellant kg':>13}"]
     for q in PERCENTILES:
+        need = s[f"samples_needed_p{q:g}"]
+        if n < need:   # the samples do not bound it: no number, the count it needs
+            lines.append(f"  {q:>9g}% | not estimated: its interval needs {need} samples, "
+                         f"this run has {n}")
+            continue
         d = s[f"delta_v_p{q:g}_mps"]
-        lines.append(f"  {q:>9g}% | {d:11.3f} {d - s['nominal_delta_v_mps']:13.3f} | "
-                     f"{s[f'propellant_p{q:g}_kg']:13.3f}")
-    lines.append(f"  99 % budget above nominal: {s['budget_p99_above_nominal_mps']:.3f} m/s, "
-                 f"{100 * s['ci_level']:g} % interval [{lo:.3f}, {hi:.3f}] m/s "
-                 f"(order statistics, distribution-free"
-                 f"{'; inf: too few samples' if math.isinf(hi) else ''})")
+        lo, hi = (v - s["nominal_delta_v_mps"] for v in s[f"delta_v_p{q:g}_ci_mps"])
+        lines.append(f"  {q:>9g}% | {d:11.3f} {d - s['nominal_delta_v_mps']:13.3f} "
+                     f"{f'[{lo:.3f}, {hi:.3f}]':>24} | {s[f'propellant_p{q:g}_kg']:13.3f}")
+    if n >= s["samples_needed_p99"]:
+        lo, hi = s["budget_p99_ci_mps"]
+        lines.append(f"  99 % budget above nominal: {s['budget_p99_above_nominal_mps']:.3f} "
+                     f"m/s, {100 * s['ci_level']:g} % interval [{lo:.3f}, {hi:.3f}] m/s "
+                     f"(order statistics, distribution-free"
+                     f"{'; inf: a failed sample' if math.isinf(hi) else ''})")
+    else:
+        lines.append(f"  99 % budget: not estimated ({n} samples; its distribution-free "
+                     f"{100 * s['ci_level']:g} % interval needs {s['samples_needed_p99']})")
     lines.append(f"  not captured: {s['p_not_captured']:.4g} (95 % upper bound "
                  f"{s['p_not_captured_upper95']:.3g}); correction failed: "
                  f"{s['p_correction_failed']:.4g} (upper bound "

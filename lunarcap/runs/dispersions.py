@@ -2,25 +2,34 @@
 
 A Monte Carlo of the whole capture, corrected in closed loop. In one **sample**:
 
-1. **Arrival.** The arrival perilune state is dispersed: a position and velocity error in
-   the arrival frame (RTN at the arrival perilune: radial, transverse, normal), isotropic
-   (``arrival_sigma_km``, ``arrival_sigma_mps`` per axis) or from a 6x6 covariance (km,
-   km/s). It is a navigation error: burn 1 is not re-planned for it.
+1. **Arrival.** The arrival perilune state is dispersed: its B-plane target (B.R, B.T
+   and the time of closest approach, from a 2x2 or 3x3 covariance, on the osculating
+   hyperbola of the nominal arrival perilune: :mod:`lunarcap.physics.bplane`), and/or a
+   position and velocity error in the arrival frame (RTN at the arrival perilune:
+   radial, transverse, normal), isotropic (``arrival_sigma_km``, ``arrival_sigma_mps``
+   per axis) or from a 6x6 covariance (km, km/s). Burn 1 is not re-planned for it: it
+   is the trajectory delivered, flown open loop.
 2. **Burn 1** is flown open loop: the nominal optimal steering (the collocated polynomial
    of each mesh interval, :func:`lunarcap.optim.flight.interval_steering`), re-propagated
    from the dispersed state with the burn's own errors: thrust scaled by (1 + dT), Isp by
    (1 + dIsp), the thrust direction tilted by a fixed random rotation in the local RTN
    frame (two angles perpendicular to the burn's mean direction, each of standard
    deviation ``pointing_sigma_deg``), and the ignition late or early by ``dt_ign`` (the
-   steering follows the time since ignition). The engine is cut off on the timer: the
-   burn lasts its planned duration, so a weak engine delivers less delta-V.
+   steering follows the time since ignition); and the Gates errors (proportional and
+   fixed magnitude and pointing, :func:`lunarcap.runs.dispersion_model.gates_errors`).
+   The engine is cut off on the timer: the burn lasts its planned duration, so a weak
+   engine delivers less delta-V.
 3. **Correction.** The orbit reached is classified (open, or an apolune beyond the Moon's
    sphere of influence: *not captured*); the spacecraft coasts to its actual next
    perilune (found by Newton on r.v in the plan's dynamics), and the next burn is
-   re-planned from that state to the plan's target (:meth:`CapturePlan.resumed`, then the
-   burn's optimal-control problem, verified by re-propagation), warm-started from the
-   nominal burn's steering. The paper's formulation keeps the plan's timeline (each coast
-   ends at the plan's nominal perilune); the orbit formulation targets the orbit asked.
+   re-planned to the plan's target from the orbit-determination **estimate** of that
+   state (the true state plus a knowledge error in its RTN frame, per axis or from a
+   6x6 covariance; :func:`lunarcap.runs.dispersion_model.knowledge_error`):
+   :meth:`CapturePlan.resumed`, then the burn's optimal-control problem, verified by
+   re-propagation, warm-started from the nominal burn's steering. The burn is flown from
+   the **true** state: the next coast shows the difference, and the final orbit keeps
+   it. The paper's formulation keeps the plan's timeline (each coast ends at the plan's
+   nominal perilune); the orbit formulation targets the orbit asked.
    A burn of fixed ignition offset ignites at that offset from the perilune actually
    reached; a free one within its nominal window. The re-planned burn is flown with its
    own errors, and so on. Burns are solved one at a time, as the plan is (each burn's
@@ -29,6 +38,11 @@ A Monte Carlo of the whole capture, corrected in closed loop. In one **sample**:
 4. **Final orbit.** After the last burn, the coast to the plan's end is flown and the
    final orbit compared with the target (perilune and apolune radius, inclination: the
    target's own error functions, :meth:`lunarcap.mission.targets.Target.errors`).
+
+**Not modelled**: errors of the dynamics (gravity field, ephemeris, solar pressure), an
+attitude that wanders during a burn, correlations between burns or error sources, the
+estimate's error in mass, thrust or Isp, a knowledge error before burn 1 (its
+re-plan), and a trim burn after the last (its error stays in the final orbit).
 
 A sample that cannot be corrected (the re-plan has no verified solution, a re-plan that
 the plan's rules refuse) or that is not captured is a row with the reason in physical
@@ -72,6 +86,7 @@ from lunarcap.optim.flight import (
 from lunarcap.optim.problem import burn_problem
 from lunarcap.optim.solve import solve_burn_problem
 from lunarcap.physics import constants as C
+from lunarcap.physics.bplane import bplane_from_rv, perilune_from_bplane
 from lunarcap.physics.elements import (
     mean_motion_and_anomaly,
     mee_from_rv,
@@ -85,9 +100,14 @@ from lunarcap.runs.dispersion_model import (  # noqa: F401
     BLOCK,
     MAX_BURNS,
     PER_BURN,
+    SIGMAS,
     ErrorModel,
     arrival_factor,
+    bplane_error,
+    covariance_factor,
     draws,
+    gates_errors,
+    knowledge_error,
     read_covariance,
     realise,
     sample_draws,
@@ -97,6 +117,7 @@ from lunarcap.runs.dispersion_summary import (  # noqa: F401
     convergence,
     format_summary,
     quantile_ci,
+    samples_needed,
     settled_after,
     summarise,
 )
@@ -166,23 +187,50 @@ def nominal_totals(plan: CapturePlan) -> dict:
 
 
 # ====================================================================== one sample
-def _arrival_state(plan: CapturePlan, d_arr) -> tuple:
-    """(epoch, state) of the arrival perilune, dispersed by ``d_arr`` (RTN, km and km/s)."""
-    from lunarcap.runs.chain import perilune_epoch_state
+def displaced(x, d) -> np.ndarray:
+    """The state ``x`` (7,) moved by ``d`` (6,: km, km/s) in its own RTN frame.
 
-    t0, x0 = perilune_epoch_state(plan, 0)
-    if not np.any(d_arr):
-        return t0, np.array(x0, float)
-    r, v = (np.array(a, float) for a in rv_from_mee(*x0[:6], C.MU_MOON))
+    ``x`` itself (the same array) when ``d`` is zero; the true longitude keeps ``x``'s
+    revolution.
+    """
+    if not np.any(d):
+        return x
+    r, v = (np.array(a, float) for a in rv_from_mee(*x[:6], C.MU_MOON))
     ir = r / np.linalg.norm(r)
     i_n = np.cross(r, v)
     i_n /= np.linalg.norm(i_n)
-    it = np.cross(i_n, ir)
-    Q = np.column_stack([ir, it, i_n])
-    mee = mee_from_rv(r + Q @ d_arr[:3], v + Q @ d_arr[3:6], C.MU_MOON)
-    x = np.array([*np.asarray(mee, float).ravel()[:6], x0[6]])
-    x[5] = x0[5] + math.remainder(x[5] - x0[5], 2 * math.pi)  # keep L's revolution
-    return t0, x
+    Q = np.column_stack([ir, np.cross(i_n, ir), i_n])   # RTN axes (Song 2011 Eq. A5)
+    mee = mee_from_rv(r + Q @ d[:3], v + Q @ d[3:6], C.MU_MOON)
+    out = np.array([*np.asarray(mee, float).ravel()[:6], x[6]])
+    out[5] = x[5] + math.remainder(out[5] - x[5], 2 * math.pi)
+    return out
+
+
+def _arrival_state(plan: CapturePlan, d_arr, d_bplane=None) -> tuple:
+    """(epoch, state) of the arrival perilune, dispersed (see :func:`fly_sample`).
+
+    ``d_bplane`` (3,): B.R (km), B.T (km) and the time of closest approach (s) moved on
+    the osculating hyperbola of the nominal arrival perilune (B-plane axes about the
+    M-MME2000 pole, asymptote and v_inf kept), the state taken at the nominal epoch (a
+    perilune ``dt`` later is ``dt`` before it there, flown in the burn's dynamics); then
+    ``d_arr`` (6,: RTN, km and km/s) added.
+    """
+    from lunarcap.runs.chain import perilune_epoch_state
+
+    t0, x0 = perilune_epoch_state(plan, 0)
+    x = np.array(x0, float)
+    if d_bplane is not None and np.any(d_bplane):
+        r, v = (np.array(a, float) for a in rv_from_mee(*x[:6], C.MU_MOON))
+        b = bplane_from_rv(r, v, C.MU_MOON)
+        r1, v1 = perilune_from_bplane(b.b_r_km + d_bplane[0], b.b_t_km + d_bplane[1],
+                                      b.v_inf_kmps, b.s_hat, C.MU_MOON)
+        x1 = np.array([*np.asarray(mee_from_rv(r1, v1, C.MU_MOON), float).ravel()[:6], x[6]])
+        x1[5] = x[5] + math.remainder(x1[5] - x[5], 2 * math.pi)
+        if d_bplane[2]:
+            x1 = coast(nominal(plan)[0].problem.model, State(t0 + float(d_bplane[2]), x1),
+                       t0).end.x
+        x = x1
+    return t0, displaced(x, d_arr)
 
 
 def _replan(plan: CapturePlan, i: int, t_p: float, x_p, nom) -> object:
@@ -273,16 +321,26 @@ def _corrected(plan: CapturePlan, i: int, t_ref: float, x_ref, nom) -> tuple:
                       .split("\n")[0])
 
 
-def _burn_record(i: int, sol, flown: Flown, e: ExecutionErrors, t_ref: float) -> dict:
-    """One flown burn of a sample, as stored in its row's ``burns_json``."""
-    return {"burn": i + 1, "delta_v_mps": flown.delta_v_mps,
-            "planned_delta_v_mps": sol.delta_v_mps,
-            "ignition_min": (flown.start.t_s - t_ref) / 60.0,
-            "duration_min": sol.raw.t1_s / 60.0,
-            "thrust_error_pct": 100 * (e.thrust_factor - 1),
-            "isp_error_pct": 100 * (e.isp_factor - 1),
-            "pointing_error_deg": math.degrees(math.hypot(*e.tilt_rad)),
-            "ignition_error_s": e.ignition_s}
+def _burn_record(i: int, sol, flown: Flown, e: ExecutionErrors, t_ref: float,
+                 d_know) -> dict:
+    """One flown burn of a sample, as stored in its row's ``burns_json``.
+
+    The knowledge error (the estimate less the truth of the state the burn was
+    re-planned from, km and m/s) is written only when it is not zero, so a sample without
+    knowledge errors keeps its record as it was.
+    """
+    rec = {"burn": i + 1, "delta_v_mps": flown.delta_v_mps,
+           "planned_delta_v_mps": sol.delta_v_mps,
+           "ignition_min": (flown.start.t_s - t_ref) / 60.0,
+           "duration_min": sol.raw.t1_s / 60.0,
+           "thrust_error_pct": 100 * (e.thrust_factor - 1),
+           "isp_error_pct": 100 * (e.isp_factor - 1),
+           "pointing_error_deg": math.degrees(math.hypot(*e.tilt_rad)),
+           "ignition_error_s": e.ignition_s}
+    if np.any(d_know):
+        rec["knowledge_dr_km"] = float(np.linalg.norm(d_know[:3]))
+        rec["knowledge_dv_mps"] = float(np.linalg.norm(d_know[3:6])) * 1e3
+    return rec
 
 
 def _final_orbit(sol, flown: Flown) -> dict:
@@ -309,21 +367,29 @@ def fly_sample(plan: CapturePlan, z, model: ErrorModel) -> dict:
     noms = nominal(plan)
     t_start, c_start = time.perf_counter(), time.process_time()
     d_arr, errs = realise(z, model, plan.n_burns)
+    d_b = bplane_error(z, model)
     out = {"status": "ok", "reason": "", "burns_flown": 0, "_t0": t_start, "_c0": c_start,
            "arrival_dr_km": float(np.linalg.norm(d_arr[:3])),
-           "arrival_dv_mps": float(np.linalg.norm(d_arr[3:6])) * 1e3}
+           "arrival_dv_mps": float(np.linalg.norm(d_arr[3:6])) * 1e3,
+           "arrival_db_km": float(np.hypot(d_b[0], d_b[1])), "arrival_dt_s": float(d_b[2])}
     burns = []
-    t_ref, x_ref = _arrival_state(plan, d_arr)
+    t_ref, x_ref = _arrival_state(plan, d_arr, d_b)
     sol = noms[0]
     for i in range(plan.n_burns):
-        if i > 0:
-            sol, why = _corrected(plan, i, t_ref, x_ref, noms[i])
+        d_know = np.zeros(6)
+        if i > 0:   # re-planned from the estimate of the true state (t_ref, x_ref)
+            d_know = knowledge_error(z, model, i)
+            sol, why = _corrected(plan, i, t_ref, displaced(x_ref, d_know), noms[i])
             if sol is None:
                 out["burns_json"] = json.dumps(burns)
                 return _fail(out, "correction failed", why)
-        e = errs[i]
-        flown = fly(BurnPlan.of(sol.raw).with_errors(e), State(t_ref, x_ref))
-        burns.append(_burn_record(i, sol, flown, e, t_ref))
+        try:
+            e = gates_errors(z, model, i, sol.delta_v_mps, errs[i])
+        except InputError as exc:
+            out["burns_json"] = json.dumps(burns)
+            return _fail(out, "not captured", f"burn {i + 1} is not flown: {exc}")
+        flown = fly(BurnPlan.of(sol.raw).with_errors(e), State(t_ref, x_ref))   # the truth
+        burns.append(_burn_record(i, sol, flown, e, t_ref, d_know))
         out["burns_flown"] = i + 1
         out["propellant_kg"] = float(plan.initial_mass_kg - flown.end.mass_kg)
         out["total_delta_v_mps"] = float(sum(b["delta_v_mps"] for b in burns))
@@ -356,10 +422,15 @@ COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "seed", "sample",
            "final_rp_error_km", "final_ra_error_km", "final_inc_error_deg",
            "final_rp_altitude_km", "final_ra_altitude_km", "arrival_dr_km", "arrival_dv_mps",
            "burns_json", "task_wall_s", "task_cpu_s", "worker", "code_version",
-           "completed_utc", "error")
+           "completed_utc", "error",
+           "knowledge_sigma_km", "knowledge_sigma_mps", "knowledge_cov",
+           "gates_magnitude_pct", "gates_magnitude_mps", "gates_pointing_deg",
+           "gates_pointing_mps", "bplane_cov", "arrival_db_km", "arrival_dt_s")
 KEY = ("plan_id", "seed", "sample", "antithetic", "thrust_sigma_pct", "isp_sigma_pct",
        "pointing_sigma_deg", "ignition_sigma_s", "arrival_sigma_km", "arrival_sigma_mps",
-       "arrival_cov")
+       "arrival_cov", "knowledge_sigma_km", "knowledge_sigma_mps", "knowledge_cov",
+       "gates_magnitude_pct", "gates_magnitude_mps", "gates_pointing_deg",
+       "gates_pointing_mps", "bplane_cov")
 
 
 def sample_row(plan: CapturePlan, seed: int, index: int, model: ErrorModel,
@@ -388,7 +459,9 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
                     first: int = 0, task=None):
     """Run (or resume) ``samples`` samples (indices ``first``...) of the capture on Dask.
 
-    ``plan`` may be a list of plans: their samples run as one campaign (one cluster).
+    ``plan`` may be a list of plans, ``model`` a list of error models (a sensitivity,
+    :mod:`lunarcap.runs.dispersion_sensitivity`): their samples run as one campaign (one
+    cluster), plan by plan, model by model.
     Returns a :class:`lunarcap.runs.campaign.CampaignResult` (one row per sample, in
     index order, plan by plan). InputError (a bad count, seed or sigma, a plan with more than
     :data:`MAX_BURNS` burns, an unusable ``out``, an unreachable scheduler) before any
@@ -397,24 +470,26 @@ def run_dispersions(plan: CapturePlan, samples: int, seed: int, model: ErrorMode
     use_cache = position(use_cache)   # None: the switch's current position
     samples, seed = check_samples(samples, seed)
     plans = list(plan) if isinstance(plan, (list, tuple)) else [plan]
-    for p in plans:
+    models = list(model) if isinstance(model, (list, tuple)) else [model]
+    for p, model in ((p, m) for p in plans for m in models):
         if p.n_burns > MAX_BURNS:
             raise InputError(f"plan {p.name} has {p.n_burns} burns; the dispersions study "
                              f"draws errors for at most {MAX_BURNS}")
-        if model.pointing_sigma_deg and any(b.steering != "optimal" for b in p.burns):
-            raise InputError("--pointing-sigma-deg needs every burn's steering optimal (a "
-                             "polynomial per mesh interval to tilt)")
+        for name in ("pointing_sigma_deg", "gates_pointing_deg", "gates_pointing_mps"):
+            if getattr(model, name) and any(b.steering != "optimal" for b in p.burns):
+                raise InputError(f"--{name.replace('_', '-')} needs every burn's steering "
+                                 f"optimal (a polynomial per mesh interval to tilt)")
     workers = check_workers(workers)
     cases = []
-    for p in plans:   # one campaign: one cluster, whose workers build each NLP shape once
+    for p, model in ((p, m) for p in plans for m in models):   # one campaign: one cluster,
         base = {**plan_columns(p), "seed": seed, "antithetic": bool(antithetic),
-                **model.key()}
+                **model.key()}   # whose workers build each NLP shape once
         cases += [(dict(base, sample=k), (p, seed, k, model, bool(antithetic)))
                   for k in range(int(first), int(first) + samples)]
     return STUDY.run(cases, out, task=task, workers=workers, scheduler=scheduler,
                      progress=progress, processes=processes, use_cache=use_cache,
                      describe={"study": "dispersions", "seed": seed, "samples": samples,
-                               "error_model": model.describe()})
+                               "error_model": "; ".join(m.describe() for m in models)})
 
 
 def format_report(result, plan: CapturePlan, model: ErrorModel) -> str:
@@ -426,7 +501,7 @@ def format_report(result, plan: CapturePlan, model: ErrorModel) -> str:
 #: The study, declared once (:class:`lunarcap.runs.shape.Study`).
 STUDY = Study(
     "dispersions", TableFormat(KEY, COLUMNS, text_columns=(
-        "plan", "plan_id", "dynamics", "reason", "arrival_cov", "burns_json"),
-        name="dispersions table"),
+        "plan", "plan_id", "dynamics", "reason", "arrival_cov", "knowledge_cov", "bplane_cov",
+        "burns_json"), name="dispersions table"),
     sample_row, STATUSES, OK_STATUSES, "sample", "dispersions", _MODULES,
     decoders=(("burns_json", "burns", json_list),), rows_key="samples", text=format_report)

@@ -66,7 +66,7 @@ RECORDS = {
                   {"burns": "plan_file_burn"}, "formulation", {"start": "plan_start"}],
     "plan_arrival": ["epoch", "perilune_altitude_km", "inclination_deg", "impulsive_loi1_mps",
                      "v_inf_kmps", "hemisphere", "approach_dir", "mass_kg", "frame",
-                     "position_km", "velocity_kmps", "opm"],
+                     "position_km", "velocity_kmps", "opm", "b_r_km", "b_t_km"],
     "plan_engine": ["thrust_N", "isp_s"],
     "plan_file_burn": [("target", "target"), "target_period_h", "target_apolune_altitude_km",
                        "coast_min", ("start_min", "number or free"), "steering",
@@ -113,11 +113,16 @@ RECORDS = {
                     {"samples": "dispersions_sample"}],
     "error_model": ["thrust_sigma_pct", "isp_sigma_pct", "pointing_sigma_deg",
                     "ignition_sigma_s", "arrival_sigma_km", "arrival_sigma_mps", "arrival_cov",
-                    "description"],
+                    "knowledge_sigma_km", "knowledge_sigma_mps", "knowledge_cov",
+                    "gates_magnitude_pct", "gates_magnitude_mps", "gates_pointing_deg",
+                    "gates_pointing_mps", "bplane_cov", "description"],
     "dispersions_summary": [
         ("samples", "integer"), "captured_and_corrected", "nominal_delta_v_mps",
         "nominal_propellant_kg", *[f"{q}_p{p}_{u}" for p in (50, 90, 95, 99)
                                    for q, u in (("delta_v", "mps"), ("propellant", "kg"))],
+        *[f"{k}_p{p}{u}" for p in (50, 90, 95, 99)
+          for k, u in (("delta_v", "_ci_mps"), ("samples_needed", ""))],
+        "mean_above_nominal_mps", "mean_above_nominal_se_mps",
         "budget_p99_above_nominal_mps", "budget_p99_ci_mps", "budget_p99_ci_ranks",
         "ci_level", "p_not_captured", "p_not_captured_upper95", "p_correction_failed",
         "p_correction_failed_upper95", {"failures": "failed_sample"},
@@ -134,10 +139,15 @@ RECORDS = {
                            "final_ra_error_km", "final_inc_error_deg", "final_rp_altitude_km",
                            "final_ra_altitude_km", "arrival_dr_km", "arrival_dv_mps",
                            "task_wall_s", "task_cpu_s", "worker", "code_version",
-                           "completed_utc", "error", {"burns": "dispersed_burn"}],
+                           "completed_utc", "error", "knowledge_sigma_km",
+                           "knowledge_sigma_mps", "knowledge_cov", "gates_magnitude_pct",
+                           "gates_magnitude_mps", "gates_pointing_deg", "gates_pointing_mps",
+                           "bplane_cov", "arrival_db_km", "arrival_dt_s",
+                           {"burns": "dispersed_burn"}],
     "dispersed_burn": ["burn", "delta_v_mps", "planned_delta_v_mps", "ignition_min",
                        "duration_min", "thrust_error_pct", "isp_error_pct",
-                       "pointing_error_deg", "ignition_error_s"],
+                       "pointing_error_deg", "ignition_error_s", "knowledge_dr_km",
+                       "knowledge_dv_mps"],
 }
 
 #: Records that are arrays of records where they appear.

@@ -204,6 +204,9 @@ BAD = [
     ["--isp-sigma-pct", "abc"], ["--arrival-cov", "/no/such/file"],
     ["--arrival-sigma-km", "1", "--arrival-cov", "{cov}"],
     ["--workers", "0"], ["--out", "/proc/lunarcap-test/t.csv"],
+    ["--knowledge-sigma-km", "-1"], ["--gates-magnitude-pct", "30"],
+    ["--knowledge-sigma-mps", "1", "--knowledge-cov", "{cov}"],
+    ["--bplane-cov", "{cov}"], ["--sensitivity"],
 ]
 
 
