@@ -257,8 +257,6 @@ def test_sensitivity_pointing_is_quadratic_and_thrust_linear_in_the_budget(plan,
 
 @pytest.mark.parametrize("n", [367, 368])
 def test_the_text_report_prints_the_99_point_only_from_368_samples(n):
-    from types import SimpleNamespace
-
     import pandas as pd
 
     rng = np.random.default_rng(n)
@@ -269,9 +267,7 @@ def test_the_text_report_prints_the_99_point_only_from_368_samples(n):
                       "final_rp_error_km": 0.0, "final_ra_error_km": 0.0,
                       "final_inc_error_deg": 0.0})
     s = D.summarise(t)
-    result = SimpleNamespace(run={"computed": n, "reused": 0, "wall_s": 1.0, "scheduler": "x",
-                                  "workers": 1, "cache": "on"}, path="t.csv")
-    text = D.format_summary(load_plan("song2011-150N"), D.ErrorModel(), s, result)
+    text = D.format_summary(load_plan("song2011-150N"), D.ErrorModel(), s)
     lines = {ln.split("|")[0].strip(): ln for ln in text.splitlines() if "|" in ln}
     srt = np.sort(dv) - 870.0
     if n < 368:
