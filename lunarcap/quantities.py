@@ -429,6 +429,8 @@ for _k, _l, _d, _t in (
          "of the total delta-V minus the nominal.", "number"),
         ("mean_above_nominal_se_mps", "its standard error", "Standard error of "
          "mean_above_nominal_mps.", "number"),
+        ("max_above_nominal_mps", "costliest sample above nominal", "Largest total "
+         "delta-V of the samples minus the nominal (infinite if one failed).", "number"),
         ("burns_flown", "burns flown", "Burns flown before the sample ended.", "integer"),
         ("propellant_kg", "propellant", "Propellant of the burns flown.", "number"),
         ("delta_v_above_nominal_mps", "ΔV above nominal", "Total delta-V minus the nominal "

@@ -214,9 +214,9 @@ def sensitivity_table(rows: list) -> pd.DataFrame:
             at = max((r for r in mine if r["source"] == source), key=lambda r: r["sigma"])
             out.append({"engine": engine, "source": SOURCE_LABELS[source],
                         "sigma": f"{at['sigma']:g} {at['unit']}",
-                        "mean_mps": at["mean_above_nominal_mps"],
+                        "mean_above_nominal_mps": at["mean_above_nominal_mps"],
                         "mean_exponent": m["exponent"],
-                        "max_mps": at["max_above_nominal_mps"],
+                        "max_above_nominal_mps": at["max_above_nominal_mps"],
                         "max_exponent": top[source]["exponent"]})
     return pd.DataFrame(out)
 
@@ -300,11 +300,12 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
         "with their values at the largest sigma run. For your own sigma s, scale the "
         "value by (s / sigma)^exponent."),
         columns={"engine": "engine", "source": "error source", "sigma": "sigma",
-                 "mean_mps": "mean above nominal (m/s)", "mean_exponent": "its exponent",
-                 "max_mps": "costliest sample above nominal (m/s)",
+                 "mean_above_nominal_mps": "mean above nominal (m/s)",
+                 "mean_exponent": "its exponent",
+                 "max_above_nominal_mps": "costliest sample above nominal (m/s)",
                  "max_exponent": "its exponent"},
-        floatfmt={"mean_mps": ".4f", "mean_exponent": ".2f", "max_mps": ".3f",
-                  "max_exponent": ".2f"})
+        floatfmt={"mean_above_nominal_mps": ".4f", "mean_exponent": ".2f",
+                  "max_above_nominal_mps": ".3f", "max_exponent": ".2f"})
     _values(page, model, sig, rows, budget, tables, runs, samples, seed, p.dynamics)
     page.value("sensitivity_samples", int(sensitivity_samples))
     page.value("n_sensitivity", int(len(sres.table)))
