@@ -215,10 +215,17 @@ def sensitivity_table(rows: list) -> pd.DataFrame:
             out.append({"engine": engine, "source": SOURCE_LABELS[source],
                         "sigma": f"{at['sigma']:g} {at['unit']}",
                         "mean_above_nominal_mps": at["mean_above_nominal_mps"],
-                        "mean_exponent": m["exponent"],
+                        "mean_exponent": _exponent_text(m["exponent"]),
                         "max_above_nominal_mps": at["max_above_nominal_mps"],
-                        "max_exponent": top[source]["exponent"]})
+                        "max_exponent": _exponent_text(top[source]["exponent"])})
     return pd.DataFrame(out)
+
+
+def _exponent_text(exponent: float) -> str:
+    """A law's exponent, or why there is none (a value <= 0 or a failed sample)."""
+    if math.isfinite(exponent):
+        return f"{exponent:.2f}"
+    return "none (a value <= 0 or a failure)"
 
 
 def failure_rows(tables: dict) -> pd.DataFrame:
@@ -304,8 +311,7 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
                  "mean_exponent": "its exponent",
                  "max_above_nominal_mps": "costliest sample above nominal (m/s)",
                  "max_exponent": "its exponent"},
-        floatfmt={"mean_above_nominal_mps": ".4f", "mean_exponent": ".2f",
-                  "max_above_nominal_mps": ".3f", "max_exponent": ".2f"})
+        floatfmt={"mean_above_nominal_mps": ".4f", "max_above_nominal_mps": ".3f"})
     _values(page, model, sig, rows, budget, tables, runs, samples, seed, p.dynamics)
     page.value("sensitivity_samples", int(sensitivity_samples))
     page.value("n_sensitivity", int(len(sres.table)))
