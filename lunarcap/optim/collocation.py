@@ -100,7 +100,7 @@ def node_epochs(t_start: float, duration: float, frac, d: int) -> np.ndarray:
     return t_start + duration * np.concatenate([[0.0], taus(frac, c)])
 
 
-def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode=None,
+def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode="full",
                         thrust: bool = True):
     """LGR collocation defects of one phase (CasADi expressions).
 
@@ -113,7 +113,7 @@ def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode=Non
     prm : dynamics parameter vector (thrust 0 for a coast)
     n, d : intervals and LGR degree
     S : (7,) state scales (:func:`state_scale`)
-    mode : dynamics mode built into the right-hand side (None: switches read from prm)
+    mode : the forces built into the right-hand side (a preset word or a ForceModel)
     thrust : False for a coast (the right-hand side without its thrust terms)
     """
     c, D = radau_matrices(d)

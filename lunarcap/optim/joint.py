@@ -48,6 +48,7 @@ from lunarcap.optim.problem import END_WINDOW_FRACTION, burn_problem
 from lunarcap.optim.solution import Solution
 from lunarcap.optim.transcription import NLPBuilder, add_leg, dynamics_params
 from lunarcap.optim.verify import verify
+from lunarcap.physics.dynamics import force_model
 from lunarcap.physics.elements import speed_from_mee
 from lunarcap.physics.rocket import rocket_delta_v_mps
 
@@ -120,7 +121,8 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
     for k, kind in enumerate(target_kinds):
         pre = f"leg{k}."
         leg = add_leg(nlp, pre, mesh, kind, x_start, t[k], t[k + 1],
-                      dynamics_params(nlp, pre + "dynamics"), nlp.param(pre + "mesh_burn", nb + 1),
+                      dynamics_params(nlp, pre + "dynamics", mode),
+                      nlp.param(pre + "mesh_burn", nb + 1),
                       nlp.param(pre + "mesh_coast", nc + 1), nlp.param(pre + "target", N_VALUES), S,
                       mode, free_start=True)
         legs.append(leg)
@@ -139,7 +141,7 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
                               -np.inf, np.inf)
     tag = "" if not any(free) else "_free" + "".join("1" if f else "0" for f in free)
     tag += "_period" if period_rows and any(free) else ""
-    name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{mode}{tag}".replace("-", "_")
+    name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{force_model(mode).key}{tag}".replace("-", "_")
     return JointNLP(nlp.compile(J, name, expand=expand), legs)
 
 

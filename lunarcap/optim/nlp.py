@@ -35,7 +35,7 @@ from lunarcap.optim.interrupt import map_in_threads
 from lunarcap.optim.problem import BurnProblem
 from lunarcap.optim.transcription import CompiledNLP, Leg, NLPBuilder, add_leg
 from lunarcap.physics import constants as C
-from lunarcap.physics.dynamics import N_PARAM
+from lunarcap.physics.dynamics import force_model
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.rocket import rocket_delta_v_mps
@@ -69,7 +69,7 @@ def _build(mesh: Mesh, target_kind: str, free_start: bool, steering: str, mode: 
 
     Parameters (by name): ``x_start`` (7, physical: the state at ignition, or at the
     nominal perilune with a free start), ``t_ref`` (its epoch), ``t_end``, ``dynamics``
-    (N_PARAM), ``mesh_burn`` and ``mesh_coast`` (interval fractions), ``target``
+    (the model's ``n_param``), ``mesh_burn`` and ``mesh_coast`` (interval fractions), ``target``
     (:meth:`lunarcap.mission.targets.Target.values` in LU).
 
     With ``free_end`` the coast ends at ``t_end`` plus a variable ``te`` (TU): the
@@ -80,7 +80,7 @@ def _build(mesh: Mesh, target_kind: str, free_start: bool, steering: str, mode: 
     P_x0 = nlp.param("x_start", N_X)
     P_tref = nlp.param("t_ref", 1)
     P_tend = nlp.param("t_end", 1)
-    P_prm = nlp.param("dynamics", N_PARAM)
+    P_prm = nlp.param("dynamics", force_model(mode).n_param)
     P_mb = nlp.param("mesh_burn", nb + 1)
     P_mc = nlp.param("mesh_coast", nc + 1)
     P_tar = nlp.param("target", N_VALUES)
@@ -91,7 +91,7 @@ def _build(mesh: Mesh, target_kind: str, free_start: bool, steering: str, mode: 
     leg = add_leg(nlp, "", mesh, target_kind, P_x0 / S, P_tref, t_end, P_prm, P_mb, P_mc,
                   P_tar, S, mode, free_start, steering)
     name = (f"burn_{nb}_{nc}_{mesh.degree}_{target_kind}{'_free' if free_start else ''}"
-            f"{'_end' if free_end else ''}_{steering}_{mode}").replace("-", "_")
+            f"{'_end' if free_end else ''}_{steering}_{force_model(mode).key}").replace("-", "_")
     return BurnNLP(nlp.compile(leg.dv + leg.v_end, name), leg)
 
 

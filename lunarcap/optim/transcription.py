@@ -34,7 +34,7 @@ from lunarcap.optim.collocation import (
 )
 from lunarcap.optim.interrupt import off_main_thread
 from lunarcap.optim.problem import steering_law_expr
-from lunarcap.physics.dynamics import N_PARAM, P_THRUST, P_VEX
+from lunarcap.physics.dynamics import P_THRUST, P_VEX, force_model
 from lunarcap.physics.elements import speed_from_mee
 
 #: IPOPT settings (MUMPS, exact Hessian). The strict tolerances are on the scaled NLP;
@@ -214,7 +214,7 @@ def add_leg(nlp: NLPBuilder, prefix: str, mesh: Mesh, target_kind: str, x_start,
     mesh_b, mesh_c : interval boundaries of the burn and coast (fractions)
     target_values : (r_target LU, tan^2(i/2))
     S : (7,) state scales
-    mode : dynamics mode built into the right-hand side
+    mode : the forces built into the right-hand side (a preset word or a ForceModel)
     free_start : bool
         Optimise the ignition epoch (variable ``ts``, TU from ``t_ref``).
     steering : {"optimal", "inertial", "antivelocity"}
@@ -291,6 +291,6 @@ def _target_rows(nlp: NLPBuilder, prefix: str, target_kind: str, xf, target_valu
         nlp.constrain(expr, prefix + name, 0.0, np.inf)
 
 
-def dynamics_params(nlp: NLPBuilder, name: str) -> ca.MX:
-    """The dynamics parameter vector of a leg as an NLP parameter (N_PARAM values)."""
-    return nlp.param(name, N_PARAM)
+def dynamics_params(nlp: NLPBuilder, name: str, mode="full") -> ca.MX:
+    """The dynamics parameter vector of a leg as an NLP parameter (the model's ``n_param``)."""
+    return nlp.param(name, force_model(mode).n_param)

@@ -95,7 +95,8 @@ def flight_arcs(solutions, approach_min: float = APPROACH_MIN, t_start_s: float 
     model = first.problem.model
     if model.fit is not None and t_a < model.fit.t0_s:
         model = Model(model.mode, 0.0, model.isp_s,
-                      ChebyshevFit.fit(eph, t_a - 3600.0, fb.t[0] + 3600.0))
+                      ChebyshevFit.fit(eph, t_a - 3600.0, fb.t[0] + 3600.0,
+                                       body_frame=model.fit.body_frame))
     if t_a < fb.t[0]:
         arcs.append(coast_arc("approach", model, State(fb.t[0], fb.x[:N_X, 0]), t_a - fb.t[0]))
     for i, sol in enumerate(solutions):
