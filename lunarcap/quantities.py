@@ -97,7 +97,8 @@ _add("thrust_to_weight", "T/(m₀g₀)",
      "Thrust over the arrival mass times standard gravity (dimensionless).")
 _add("thrust_to_lunar_weight", "T/(m₀g☾)",
      "Thrust over the arrival mass times the Moon's surface gravity (dimensionless).")
-_add("dynamics", "dynamics", "Force model: full (lunar J2, Earth, Sun), j2, or two-body.",
+_add("dynamics", "dynamics", "Force model: full (lunar J2, Earth, Sun), j2, or two-body (the "
+     "paper's), or the forces a plan names, e.g. 'LP165P 20x20 (de405), Earth, Sun'.",
      "string")
 _add("plan", "plan", "Name of the capture plan (or, in JSON, the plan itself).", "string")
 _add("engine", "engine", "Engine as 'thrust N / Isp s'.", "string")

@@ -32,10 +32,11 @@ from functools import lru_cache
 import casadi as ca
 import numpy as np
 
-from lunarcap.errors import SolveError
+from lunarcap.errors import InputError, SolveError
 from lunarcap.mission.plan import CapturePlan
 from lunarcap.mission.targets import N_VALUES
 from lunarcap.optim.collocation import LU, N_X, TU, Mesh, state_scale
+from lunarcap.optim.correction import NLP_DEGREE, nlp_forces
 from lunarcap.optim.flight import BurnPlan
 from lunarcap.optim.guess import Guess
 from lunarcap.optim.nlp import (
@@ -233,6 +234,10 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     SolveError
         If IPOPT fails or a leg fails verification.
     """
+    if nlp_forces(plan.dynamics) is not None:
+        raise InputError(f"dynamics: the all-burns NLP carries gravity fields up to degree "
+                         f"{NLP_DEGREE}; {force_model(plan.dynamics)} is solved burn by burn "
+                         f"(lunarcap plan)")
     kinds = tuple(t.kind for t in plan.targets)
     asked = tuple(bool(f) for f in free_coasts) or (False,) * plan.n_burns
     orbit = tuple(t.free_epoch for t in plan.targets)

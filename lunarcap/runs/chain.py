@@ -269,7 +269,7 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
             "v_end_kmps": s_short.summary()["v_end_kmps"],
             "objective_j_mps": (4 * s_short.raw.objective_kmps - s_long.raw.objective_kmps) / 3
             * 1e3,
-            "m_before_kg": float(x_peri[6]), "dynamics": plan.dynamics,
+            "m_before_kg": float(x_peri[6]), "dynamics": str(plan.dynamics),
             "verification_passed": bool(s_long.verification.passed
                                         and s_short.verification.passed)}
 
