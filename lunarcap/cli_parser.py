@@ -143,6 +143,10 @@ def _add_plan(sub, func) -> None:
     p.add_argument("--spk-id", type=int, default=-310001, metavar="ID",
                    help="NAIF ID of the spacecraft in the exported SPK and OEM (default "
                         "-310001)")
+    p.add_argument("--after-days", type=positive("days"), default=None, metavar="DAYS",
+                   help="also propagate the final orbit DAYS days after the last cut-off in "
+                        "the plan's dynamics: each revolution's lowest and highest altitude "
+                        "and mean inclination (in the JSON under 'after')")
     p.set_defaults(func=func)
 
 

@@ -285,7 +285,35 @@ _add("position_km", "position", "Position vector.", "array")
 _add("velocity_kmps", "velocity", "Velocity vector.", "array")
 _add("opm", "OPM", "CCSDS OPM file of the arrival state.", "string")
 _add("ephemeris", "ephemeris", "SPK file of the Earth and Sun.", "string")
-_add("lunar_pole", "lunar pole", "Pole fixing M-MME2000.", "string")
+_add("lunar_pole", "lunar pole", "Pole fixing M-MME2000: the IAU (2009) pole at J2000, its "
+     "constant terms, or at an epoch ('iau2009@<epoch>', a plan's pole of date).", "string")
+# ------------------------------------------------------------------ after the capture
+_add("after", "after the capture", "The final orbit propagated for some days in the plan's "
+     "dynamics, revolution by revolution (--after-days).", "object")
+_add("after_days", "days after", "How long the final orbit is propagated after the last "
+     "cut-off.")
+_add("after_dynamics", "dynamics after", "Force model the final orbit is propagated in.",
+     "string")
+_add("after_start_epoch", "after from (TDB)", "Start of the propagation after the capture: "
+     "the last cut-off, TDB.", "string")
+_add("after_revolutions", "revolutions", "Whole revolutions of the final orbit within the "
+     "days propagated.", "integer")
+_add("after_min_perilune_altitude_km", "lowest perilune", "Lowest altitude over the days "
+     "propagated (above 1738.2 km).")
+_add("after_max_apolune_altitude_km", "highest apolune", "Highest altitude over the days "
+     "propagated.")
+_add("after_last_perilune_altitude_km", "last perilune", "Lowest altitude of the last whole "
+     "revolution.")
+_add("after_last_apolune_altitude_km", "last apolune", "Highest altitude of the last whole "
+     "revolution.")
+_add("after_inclination_change_deg", "inclination change", "Mean inclination of the last "
+     "whole revolution minus the first's.")
+_add("revolutions", "revolutions", "One record per whole revolution (a turn of the true "
+     "longitude): its lowest and highest points and mean inclination.", "array")
+_add("perilune_epoch", "perilune (TDB)", "Epoch of a revolution's lowest point, TDB.",
+     "string")
+_add("mean_inclination_deg", "mean inclination", "Mean osculating inclination over a "
+     "revolution, to the plan frame's equator.")
 _add("formulation", "formulation", "How the burns are targeted: song2011 (the next "
      "perilune at the plan's epoch) or orbit (the orbit asked, free epoch).", "string")
 _add("target", "target", "Plan file: the orbit a burn is asked for ('circular', or an "

@@ -69,6 +69,8 @@ class Model:
 
     def __post_init__(self):
         self.forces = force_model(self.mode)
+        if not isinstance(self.mode, str):   # a mapping: its (hashable) model
+            self.mode = self.forces
         if not np.isfinite(self.thrust_N) or self.thrust_N < 0:
             raise InputError(f"thrust must be a non-negative number of newtons, "
                              f"got {self.thrust_N}")

@@ -369,6 +369,20 @@ class PlanResult:
                 "totals": self.totals()}
 
 
+def after_capture(res: PlanResult, days: float, dynamics=None):
+    """The final orbit of a solved plan propagated ``days`` from its last cut-off.
+
+    In the plan's dynamics (or ``dynamics``): :func:`lunarcap.physics.evolution.evolve`,
+    from the last burn's verified flight; the :class:`~lunarcap.physics.evolution.Evolution`
+    holds each revolution's perilune, apolune and mean inclination and the sampled states.
+    """
+    from lunarcap.physics.evolution import evolve
+
+    burn = res.burns[-1].solution.flight.burn
+    return evolve(res.plan.dynamics if dynamics is None else dynamics,
+                  res.plan.ephemeris_model(), burn.t[-1], burn.x[:7, -1], days)
+
+
 def _in_cache(fn, *args) -> bool:
     """True if a cached function holds a result for ``args`` (False for a plain function)."""
     check = getattr(fn, "is_cached", None)
