@@ -97,8 +97,7 @@ def _refined(t, y, i):
 
 
 def revolutions(t, x) -> tuple:
-    """Per whole revolution of sampled states: perilune epoch and radius, apolune radius,
-    mean inclination.
+    """Per whole revolution of sampled states: perilune epoch and radius, apolune, inclination.
 
     A revolution is a turn of the true longitude L from its first value; its perilune and
     apolune are its lowest and highest radius (km), its inclination the mean osculating
