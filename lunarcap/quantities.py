@@ -287,6 +287,8 @@ _add("opm", "OPM", "CCSDS OPM file of the arrival state.", "string")
 _add("ephemeris", "ephemeris", "SPK file of the Earth and Sun.", "string")
 _add("lunar_pole", "lunar pole", "Pole fixing M-MME2000: the IAU (2009) pole at J2000, its "
      "constant terms, or at an epoch ('iau2009@<epoch>', a plan's pole of date).", "string")
+_add("impulsive_limit_reason", "no impulsive limit", "Why a burn in a gravity field has no "
+     "impulsive limit (the limit of ever shorter burns does not exist there).", "string")
 # ------------------------------------------------------------------ after the capture
 _add("after", "after the capture", "The final orbit propagated for some days in the plan's "
      "dynamics, revolution by revolution (--after-days).", "object")

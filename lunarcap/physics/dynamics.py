@@ -7,9 +7,12 @@ is TDB seconds past J2000. The perturbing acceleration (Eq. 4) is
     Delta = Delta_J2 (Eq. 7) + Q (a_Earth + a_Sun) (Eq. 6, rotated by Eq. A5) + T/m u (Eq. 8)
 
 and the rates are ``dy/dt = A(y) Delta + b(y)`` (Eq. 2, A2-A4), ``dm/dt = -T/(g0 Isp)``
-(Eq. 3). :func:`mee_rates` is written once over generic operations: it evaluates on
-numpy arrays and builds the CasADi expression that the transcription and the
-propagators share through :func:`rhs_function`.
+(Eq. 3). Which perturbations act is a :class:`~lunarcap.physics.forces.ForceModel`
+(the paper's words ``full``, ``j2``, ``two-body``, or any composition of terms: a
+spherical-harmonic field, J2 about the pole of date, ...); its terms' sum is Delta less the
+thrust. :func:`mee_rates` is written once over generic operations: it evaluates on numpy
+arrays and builds the CasADi expression that the transcription and the propagators share
+through :func:`rhs_function`.
 
 An independent Cartesian formulation (:func:`cartesian_rates`, numpy only, J2 from the
 gradient of the potential) exists to check the MEE equations.

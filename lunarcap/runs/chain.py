@@ -203,6 +203,31 @@ def impulsive_key(plan: CapturePlan) -> CapturePlan:
     return key
 
 
+#: In a gravity field, a shorter burn whose objective (Eq. 9) exceeds a longer one's by
+#: more than this (m/s) shows that the limit of ever shorter burns does not exist (the
+#: objective, unlike the delta-V, is settled to ~0.003 m/s among nearby optima; a finite
+#: burn's loss only falls as it shortens).
+NO_LIMIT_TOL_MPS = 0.01
+
+
+def _no_impulsive_limit(plan: CapturePlan, what: str) -> dict:
+    """The impulsive limit of a burn in a gravity field that has none, and why.
+
+    In a field an impulse may not reach the orbit asked at all: the circle that the field
+    turns into the 100 km circle asked at the coast's end passes below the perilune of the
+    orbit before the burn (measured for LP165P 20x20: 243 m below), where no impulse on
+    that orbit can be; a finite burn reaches it by steering, the shorter the dearer (a 4 s
+    burn 304 m/s, a 2 s burn 364 m/s and not verified, for the 248 m/s of the 10 min
+    burn). So the limit of finite burns does not exist; the burn has no loss.
+    """
+    from lunarcap.physics.forces import force_model
+
+    why = (f"no impulsive limit in {force_model(plan.dynamics)}: the finite-burn limit "
+           f"does not converge ({what[:300]})")
+    return {"burn": plan.n_burns, "delta_v_mps": None, "objective_j_mps": None,
+            "verification_passed": None, "reason": why}
+
+
 @cached(ignore=["verbose"])
 def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     """Impulsive delta-V of the last burn of ``plan`` in the same dynamics and pre-burn orbit.
@@ -243,6 +268,25 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     # delta-V and ~0.003 m/s in J): solve on each side and keep the lower objective.
     centre = -d_long / 120.0  # ignition (min) of a 4 s burn centred on the perilune
     fit = burn_fit(plan, i, eph, t_peri)
+    from lunarcap.optim.correction import nlp_forces
+
+    field = nlp_forces(plan.dynamics) is not None   # only a field may have no limit
+    try:
+        out = _finite_limit(plan, i, x_peri, t_peri, eph, fit, centre, big, progress)
+    except SolveError as exc:
+        if not field:
+            raise
+        return _no_impulsive_limit(plan, str(exc))
+    short, long_ = out["objective_short_mps"], out["objective_long_mps"]
+    if field and short > long_ + NO_LIMIT_TOL_MPS:
+        return _no_impulsive_limit(plan, f"the objective of a {d_short:g} s burn, {short:.3f} "
+                                         f"m/s, exceeds a {d_long:g} s one's, {long_:.3f}")
+    return out
+
+
+def _finite_limit(plan, i, x_peri, t_peri, eph, fit, centre, big, progress) -> dict:
+    """The two finite burns of :func:`_impulsive_limit` and their extrapolation."""
+    d_long, d_short = IMPULSIVE_LIMIT_DURATIONS_S
     sides = []
     for side, bounds, guess in (("before", (-10.0, centre), centre - 0.1),
                                 ("after", (centre, 10.0), centre + 0.1)):
@@ -270,6 +314,8 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
             "objective_j_mps": (4 * s_short.raw.objective_kmps - s_long.raw.objective_kmps) / 3
             * 1e3,
             "m_before_kg": float(x_peri[6]), "dynamics": str(plan.dynamics),
+            "objective_long_mps": s_long.raw.objective_kmps * 1e3,
+            "objective_short_mps": s_short.raw.objective_kmps * 1e3,
             "verification_passed": bool(s_long.verification.passed
                                         and s_short.verification.passed)}
 
@@ -296,6 +342,9 @@ def burn_loss(finite: dict, impulsive: dict) -> dict:
     an optimal burn (an impulse from the same orbit does at least as well).
     """
     dv, imp = finite["delta_v_mps"], impulsive["delta_v_mps"]
+    if imp is None:   # a burn in a field may have no impulsive limit (its reason is kept)
+        return dict.fromkeys(("impulsive_limit_mps", "delta_v_loss_mps", "delta_v_loss_percent",
+                              "objective_loss_mps", "objective_loss_percent"))
     jl = finite["objective_j_mps"] - impulsive["objective_j_mps"]
     return {"impulsive_limit_mps": imp, "delta_v_loss_mps": dv - imp,
             "delta_v_loss_percent": 100.0 * (dv - imp) / imp, "objective_loss_mps": jl,
@@ -323,6 +372,8 @@ class BurnResult:
             row.update(burn_loss(s, self.impulsive))
         row["impulsive_verified"] = (None if self.impulsive is None
                                      else self.impulsive["verification_passed"])
+        if self.impulsive is not None and self.impulsive.get("reason"):
+            row["impulsive_limit_reason"] = self.impulsive["reason"]
         row.update({f"verification_{k}": x for k, x in v.items()})
         return row
 

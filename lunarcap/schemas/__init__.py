@@ -61,6 +61,7 @@ RECORDS = {
     "revolution": ["perilune_epoch", "perilune_altitude_km", "apolune_altitude_km",
                    "mean_inclination_deg"],
     "plan_burn": [*_SUMMARY, "target_orbit", *_LOSSES, "impulsive_verified",
+                  "impulsive_limit_reason",
                   *[f"verification_{k}" for k in _VERIFICATION]],
     "totals": ["total_delta_v_mps", "total_impulsive_limit_mps", "total_delta_v_loss_mps",
                "total_delta_v_loss_percent", "total_fuel_kg", "total_burn_duration_min",
