@@ -251,6 +251,8 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     dict with delta_v_mps (extrapolated), objective_j_mps (likewise), the two finite-limit
     delta-Vs, the impulse's epoch offset (min), end speed (km/s) and the verdicts.
     """
+    from lunarcap.optim.correction import nlp_forces
+
     i = plan.n_burns - 1
     t_peri, x_peri = perilune_epoch_state(plan, i, verbose)
     eph = plan.ephemeris_model()
@@ -268,19 +270,25 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     # delta-V and ~0.003 m/s in J): solve on each side and keep the lower objective.
     centre = -d_long / 120.0  # ignition (min) of a 4 s burn centred on the perilune
     fit = burn_fit(plan, i, eph, t_peri)
-    from lunarcap.optim.correction import nlp_forces
-
     field = nlp_forces(plan.dynamics) is not None   # only a field may have no limit
     try:
         out = _finite_limit(plan, i, x_peri, t_peri, eph, fit, centre, big, progress)
     except SolveError as exc:
         if not field:
             raise
-        return _no_impulsive_limit(plan, str(exc))
-    short, long_ = out["objective_short_mps"], out["objective_long_mps"]
-    if field and short > long_ + NO_LIMIT_TOL_MPS:
-        return _no_impulsive_limit(plan, f"the objective of a {d_short:g} s burn, {short:.3f} "
-                                         f"m/s, exceeds a {d_long:g} s one's, {long_:.3f}")
+        out = _no_impulsive_limit(plan, str(exc))
+    else:
+        short, long_ = out["objective_short_mps"], out["objective_long_mps"]
+        if field and short > long_ + NO_LIMIT_TOL_MPS:
+            out = _no_impulsive_limit(plan, f"the objective of a {d_short:g} s burn, "
+                                            f"{short:.3f} m/s, exceeds a {d_long:g} s one's, "
+                                            f"{long_:.3f}")
+    if verbose and out["delta_v_mps"] is not None:
+        dv4, dv2 = out["delta_v_long_mps"], out["delta_v_short_mps"]
+        _log(f"  -> {out['delta_v_mps']:.3f} m/s ({d_long:g} s: {dv4:.3f}, {d_short:g} s: "
+             f"{dv2:.3f} m/s)")
+    elif verbose:
+        _log(f"  -> {out['reason']}")
     return out
 
 
@@ -303,9 +311,6 @@ def _finite_limit(plan, i, x_peri, t_peri, eph, fit, centre, big, progress) -> d
                          thrust_N=big * d_long / d_short, fit=fit, t_perilune_s=t_peri)
     s_short = solve_burn_problem(prob2, progress=progress(f"{d_short:g} s burn"))
     dv4, dv2 = s_long.delta_v_mps, s_short.delta_v_mps
-    if verbose:
-        _log(f"  -> {(4 * dv2 - dv4) / 3:.3f} m/s ({d_long:g} s: {dv4:.3f}, {d_short:g} s: "
-             f"{dv2:.3f} m/s)")
     return {"burn": i + 1, "delta_v_mps": (4 * dv2 - dv4) / 3,
             "delta_v_long_mps": dv4, "delta_v_short_mps": dv2,
             "burn_long_s": s_long.raw.t1_s, "burn_short_s": s_short.raw.t1_s,

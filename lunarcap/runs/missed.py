@@ -549,14 +549,7 @@ def case_row(plan: CapturePlan, burn: int, fraction: float, delay_min: float,
 def _cases(plan: CapturePlan, burn: int, fractions, delays, late, max_period_h: float,
            nom: dict) -> list:
     """The campaign's (key, args) of every case: cut-offs (fractions major), then late."""
-<<<<<<< HEAD
     base = {**plan_columns(plan), "burn": int(burn)}
-=======
-    from lunarcap.runs.burns import plan_id
-
-    base = {"plan": plan.name, "plan_id": plan_id(plan), "thrust_N": plan.engine.thrust_N,
-            "isp_s": plan.engine.isp_s, "dynamics": str(plan.dynamics), "burn": int(burn)}
->>>>>>> bd18f8f (Solving in a gravity field: the NLP carries the field to 2x2, an outer correction the rest)
     h = float(max_period_h)
     cases = [({**base, "contingency": "cut-off", "fraction": f, "delay_min": d,
                "late_min": 0.0, "max_period_h": h},
