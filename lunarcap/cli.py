@@ -169,14 +169,14 @@ def _print_totals(tot: dict) -> None:
 
 def cmd_plan(args) -> int:
     """Solve and verify every burn of a capture plan; print each burn and the totals."""
-    from lunarcap.runs.chain import PlanResult, plan_result
+    from lunarcap.runs.chain import PlanResult, after_capture, plan_result
 
     plan = _plan_from_args(args)
     if args.export:   # before any solve: a directory that cannot be written is refused
         from lunarcap.runs.export import check_export_dir
 
         check_export_dir(args.export, "--export")
-    done = []
+    done, after = [], None
 
     def on_burn(b):
         done.append(b)
@@ -188,6 +188,8 @@ def cmd_plan(args) -> int:
     try:
         res = plan_result(plan, impulsive=not args.no_impulsive, verbose=not args.quiet,
                           on_burn=on_burn)
+        if args.after_days and res.totals()["all_verified"]:
+            after = after_capture(res, args.after_days)
     finally:
         if args.json:
             partial = PlanResult(plan, done)
@@ -195,9 +197,13 @@ def cmd_plan(args) -> int:
                    "burns": [b.row() | {"target_orbit": plan.burns[i].describe()}
                              for i, b in enumerate(done)],
                    "totals": partial.totals() if done else None}
+            if args.after_days:
+                out["after"] = after.to_dict() if after is not None else None
             print(json.dumps(_jsonable(out), indent=2))
     if not args.json:
         _print_totals(res.totals())
+        if after is not None:
+            _print_after(after)
     if args.export:
         if all(b.solution.verification.passed for b in res.burns):
             _export_plan(res, args)
@@ -205,6 +211,20 @@ def cmd_plan(args) -> int:
             print("lunarcap: error: not exported: a burn failed verification", file=sys.stderr)
             return 3
     return 0 if res.totals()["all_verified"] else 3
+
+
+def _print_after(after) -> None:
+    """The final orbit's evolution (``--after-days``): its extremes and first and last turns."""
+    s = after.summary()
+    print(f"\nAfter the capture: {after.days:g} days in {after.forces} dynamics, "
+          f"{s['after_revolutions']} revolutions")
+    print(f"  lowest perilune {s['after_min_perilune_altitude_km']:.3f} km, highest apolune "
+          f"{s['after_max_apolune_altitude_km']:.3f} km, inclination change "
+          f"{s['after_inclination_change_deg']:+.4f} deg")
+    for label, j in (("first", 0), ("last", -1)):
+        print(f"  {label} revolution: {after.perilune_altitude_km[j]:.3f} x "
+              f"{after.apolune_altitude_km[j]:.3f} km, inclination "
+              f"{after.inclination_deg[j]:.4f} deg")
 
 
 def _export_plan(res, args) -> None:

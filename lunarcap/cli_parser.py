@@ -12,6 +12,7 @@ import re
 import sys
 
 from lunarcap.errors import InputError, integer, number
+from lunarcap.physics.forces import PRESETS
 
 #: What a help text says of an option that overrides the plan's value.
 PLAN_DEFAULT = "default: the plan's"
@@ -88,16 +89,18 @@ def add_plan_options(p: argparse.ArgumentParser, plan_positional: bool) -> None:
                    help=f"specific impulse, s ({dflt.format('200 s')})")
     p.add_argument("--mass", type=positive("kg"), default=None,
                    help=f"mass at the first perilune, kg ({dflt.format('524.895 kg')})")
-    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default=None,
+    p.add_argument("--dynamics", choices=list(PRESETS), default=None,
                    help=f"perturbations: full (J2, Earth, Sun), j2, or two-body "
                         f"({dflt.format('full')})")
     p.add_argument("--hemisphere", choices=["north", "south"], default=None,
                    help=f"lunar hemisphere of the arrival perilune ({dflt.format('north')})")
     p.add_argument("--ephemeris", default=None, metavar="BSP",
                    help=f"SPK file (.bsp) instead of the plan's ({dflt.format('DE405')})")
-    p.add_argument("--lunar-pole", choices=["iau2009-j2000", "iau-constant"], default=None,
-                   help=f"the pole fixing M-MME2000: the IAU (2009) expression at J2000 or "
-                        f"its constant terms only ({dflt.format('iau2009-j2000')})")
+    p.add_argument("--lunar-pole", choices=["iau2009-j2000", "iau-constant", "of-date"],
+                   default=None,
+                   help=f"the pole fixing the plan's frame: the IAU (2009) expression at "
+                        f"J2000, its constant terms only, or at the arrival epoch "
+                        f"({dflt.format('iau2009-j2000')})")
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
@@ -140,6 +143,10 @@ def _add_plan(sub, func) -> None:
     p.add_argument("--spk-id", type=int, default=-310001, metavar="ID",
                    help="NAIF ID of the spacecraft in the exported SPK and OEM (default "
                         "-310001)")
+    p.add_argument("--after-days", type=positive("days"), default=None, metavar="DAYS",
+                   help="also propagate the final orbit DAYS days after the last cut-off in "
+                        "the plan's dynamics: each revolution's lowest and highest altitude "
+                        "and mean inclination (in the JSON under 'after')")
     p.set_defaults(func=func)
 
 
@@ -162,7 +169,7 @@ def _add_solve(sub, func) -> None:
 
 def _add_bench(sub, func) -> None:
     p = sub.add_parser("bench", help="solve and verify all 37 paper cases, print timings")
-    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default=None,
+    p.add_argument("--dynamics", choices=list(PRESETS), default=None,
                    help="dynamics (default: full; with --warm, two-body)")
     p.add_argument("--warm", action="store_true",
                    help="instead: warm verified solves of the dymos peer benchmark's cases")
@@ -195,7 +202,7 @@ def _add_study(sub, func) -> None:
     p.add_argument("--out", default=None, metavar="PATH",
                    help="CSV table, appended as engines finish and resumed on rerun "
                         "(default: .cache/study/engine_trade.csv)")
-    p.add_argument("--dynamics", choices=["full", "j2", "two-body"], default="full",
+    p.add_argument("--dynamics", choices=list(PRESETS), default="full",
                    help="perturbations (default full)")
     p.add_argument("--retry-failed", action="store_true",
                    help="recompute engines that failed in an earlier run")

@@ -97,7 +97,8 @@ _add("thrust_to_weight", "T/(m₀g₀)",
      "Thrust over the arrival mass times standard gravity (dimensionless).")
 _add("thrust_to_lunar_weight", "T/(m₀g☾)",
      "Thrust over the arrival mass times the Moon's surface gravity (dimensionless).")
-_add("dynamics", "dynamics", "Force model: full (lunar J2, Earth, Sun), j2, or two-body.",
+_add("dynamics", "dynamics", "Force model: full (lunar J2, Earth, Sun), j2, or two-body (the "
+     "paper's), or the forces a plan names, e.g. 'LP165P 20x20 (de405), Earth, Sun'.",
      "string")
 _add("plan", "plan", "Name of the capture plan (or, in JSON, the plan itself).", "string")
 _add("engine", "engine", "Engine as 'thrust N / Isp s'.", "string")
@@ -287,7 +288,37 @@ _add("b_r_km", "B·R", "Component along R of the arrival's B-plane miss vector (
      "T = S x pole / |S x pole|, S the incoming asymptote).")
 _add("b_t_km", "B·T", "Component along T of the arrival's B-plane miss vector.")
 _add("ephemeris", "ephemeris", "SPK file of the Earth and Sun.", "string")
-_add("lunar_pole", "lunar pole", "Pole fixing M-MME2000.", "string")
+_add("lunar_pole", "lunar pole", "Pole fixing M-MME2000: the IAU (2009) pole at J2000, its "
+     "constant terms, or at an epoch ('iau2009@<epoch>', a plan's pole of date).", "string")
+_add("impulsive_limit_reason", "no impulsive limit", "Why a burn in a gravity field has no "
+     "impulsive limit (the limit of ever shorter burns does not exist there).", "string")
+# ------------------------------------------------------------------ after the capture
+_add("after", "after the capture", "The final orbit propagated for some days in the plan's "
+     "dynamics, revolution by revolution (--after-days).", "object")
+_add("after_days", "days after", "How long the final orbit is propagated after the last "
+     "cut-off.")
+_add("after_dynamics", "dynamics after", "Force model the final orbit is propagated in.",
+     "string")
+_add("after_start_epoch", "after from (TDB)", "Start of the propagation after the capture: "
+     "the last cut-off, TDB.", "string")
+_add("after_revolutions", "revolutions", "Whole revolutions of the final orbit within the "
+     "days propagated.", "integer")
+_add("after_min_perilune_altitude_km", "lowest perilune", "Lowest altitude over the days "
+     "propagated (above 1738.2 km).")
+_add("after_max_apolune_altitude_km", "highest apolune", "Highest altitude over the days "
+     "propagated.")
+_add("after_last_perilune_altitude_km", "last perilune", "Lowest altitude of the last whole "
+     "revolution.")
+_add("after_last_apolune_altitude_km", "last apolune", "Highest altitude of the last whole "
+     "revolution.")
+_add("after_inclination_change_deg", "inclination change", "Mean inclination of the last "
+     "whole revolution minus the first's.")
+_add("revolutions", "revolutions", "One record per whole revolution (a turn of the true "
+     "longitude): its lowest and highest points and mean inclination.", "array")
+_add("perilune_epoch", "perilune (TDB)", "Epoch of a revolution's lowest point, TDB.",
+     "string")
+_add("mean_inclination_deg", "mean inclination", "Mean osculating inclination over a "
+     "revolution, to the plan frame's equator.")
 _add("formulation", "formulation", "How the burns are targeted: song2011 (the next "
      "perilune at the plan's epoch) or orbit (the orbit asked, free epoch).", "string")
 _add("target", "target", "Plan file: the orbit a burn is asked for ('circular', or an "

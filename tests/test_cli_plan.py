@@ -109,6 +109,31 @@ def test_progress_says_what_is_built_and_counts_burns_out_of_the_plan():
     assert len(meshes) == 12, err   # and one per finite burn
 
 
+def test_after_days_propagates_the_final_orbit(plan_file):
+    # the final 100 km circle (two-body: it stays one) propagated half a day after the last
+    # cut-off: every revolution at 100 km, one per circle period, in the JSON's schema
+    import jsonschema
+
+    from lunarcap.schemas import schemas
+
+    r = _run("plan", str(plan_file), "--json", "--quiet", "--no-impulsive", "--after-days",
+             "0.5")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    jsonschema.validate(d["after"], schemas()["plan"]["properties"]["after"])
+    after = d["after"]
+    assert after["after_days"] == 0.5 and after["after_dynamics"] == "two-body"
+    revs = after["revolutions"]
+    assert len(revs) == after["after_revolutions"] == int(0.5 * 86400 / (117.868 * 60))
+    for rev in revs:
+        assert rev["perilune_altitude_km"] == pytest.approx(100.0, abs=0.01)
+        assert rev["apolune_altitude_km"] == pytest.approx(100.0, abs=0.01)
+        assert rev["mean_inclination_deg"] == pytest.approx(90.0, abs=1e-4)
+    r = _run("plan", str(plan_file), "--quiet", "--after-days", "0.5")
+    assert r.returncode == 0, r.stderr
+    assert "After the capture: 0.5 days in two-body dynamics, 6 revolutions" in r.stdout
+
+
 def test_failed_solve_exits_3_and_keeps_what_was_done(monkeypatch, capsys, plan_file):
     # burn 2 fails: burn 1's row is printed first, then one error line, exit 3
     import lunarcap.runs.chain as chain

@@ -302,8 +302,7 @@ def perilune_from_state(state: StateArrival, mass_kg: float, dynamics: str,
         One line naming the cause: the epoch outside the ephemeris, a state inside the
         Moon, moving away from it, bound to it, a perilune below the surface or too late.
     """
-    from lunarcap.physics.dynamics import Model
-    from lunarcap.physics.ephemeris import ChebyshevFit
+    from lunarcap.physics.dynamics import Model, fit_for
 
     t0 = state.epoch_s
     r, v, t_peri = _approach(state, eph, lunar_pole)
@@ -316,8 +315,7 @@ def perilune_from_state(state: StateArrival, mass_kg: float, dynamics: str,
     if t0 + horizon > b0 - 3600.0:
         raise InputError(f"the approach from {state.epoch} to its perilune leaves the "
                          f"ephemeris {eph.name} (ends {calendar_from_seconds(b0, 0)})")
-    fit = ChebyshevFit.fit(eph, t0 - 3600.0, t0 + horizon + 3600.0) \
-        if dynamics == "full" else None
+    fit = fit_for(dynamics, eph, t0 - 3600.0, t0 + horizon + 3600.0)
     model = Model(dynamics, 0.0, 300.0, fit)
     x0 = np.concatenate([mee_from_rv(r, v, C.MU_MOON), [mass_kg]])
     tp, xp = _flown_perilune(model, t0, x0, horizon, dynamics)

@@ -12,11 +12,28 @@ spacecraft arrives, with which engine, in which dynamics, and which burns captur
       hemisphere: north                   # optional (north | south)
       mass_kg: 524.895
     engine: {thrust_N: 150, isp_s: 200}
-    dynamics: full                        # full | j2 | two-body
+    dynamics: full                        # full | j2 | two-body | a mapping (below)
     burns:                                # any number >= 1, in order
       - {target_period_h: 12.235, start_min: -10}
       - {target_period_h: 3.525, start_min: -6}
       - {target: circular, start_min: -5, coast_min: 117.848}
+
+Dynamics
+--------
+The paper's words: ``full`` (lunar J2, Earth and Sun point masses), ``j2``, ``two-body``,
+with J2 about the z axis of the plan's frame (M-MME2000 of ``lunar_pole``, by default the
+Moon's pole at J2000): the ``song2011-*`` plans. Or the forces named
+(:mod:`lunarcap.physics.forces`)::
+
+    dynamics: {gravity: LP165P, degree: 20, third_bodies: [earth, sun]}
+    dynamics: {gravity: j2, pole: of-date, third_bodies: [earth, sun]}
+
+``gravity`` is ``point``, ``j2`` or a field (packaged ``LP165P``, or a ``.cof`` / PDS SHADR
+file) of ``degree`` and ``order`` in the Moon's body-fixed ``body_frame`` (``de405``
+librations, default, or ``iau2009``); ``pole`` (J2 only, default ``of-date``) is its axis.
+A plan that names its forces this way, or names none (the default is the second line
+above), measures inclinations about the Moon's axis of date: its ``lunar_pole`` defaults
+to ``of-date``, the IAU pole at the arrival epoch (0.79 deg from J2000's in 2017).
 
 Burns
 -----
@@ -361,8 +378,12 @@ class CapturePlan:
         return replace(self, engine=Engine(float(thrust_N), float(isp_s)),
                        name=name or f"{self.name} ({thrust_N:g} N / {isp_s:g} s)")
 
-    def with_dynamics(self, dynamics: str) -> "CapturePlan":
-        """The same plan in other dynamics."""
+    def with_dynamics(self, dynamics) -> "CapturePlan":
+        """The same plan in other dynamics (a word, a ForceModel or a ``dynamics`` mapping).
+
+        The plan's frame (``lunar_pole``) is kept: a J2 design and its field design measure
+        inclinations about the same axis.
+        """
         return replace(self, dynamics=dynamics)
 
     def with_start(self, i: int, start_min) -> "CapturePlan":
@@ -454,8 +475,11 @@ class CapturePlan:
         return replace(self, burns=self.burns[:n])
 
     def with_lunar_pole(self, lunar_pole: str) -> "CapturePlan":
-        """The plan with another lunar pole fixing M-MME2000 (see physics.frames)."""
-        return replace(self, lunar_pole=lunar_pole)
+        """The plan with another lunar pole fixing M-MME2000 (see physics.frames).
+
+        ``"of-date"``: the IAU pole at the arrival epoch (:func:`plan_io.frame_epoch`).
+        """
+        return replace(self, lunar_pole=lunar_pole)   # "of-date" resolved by the checks
 
     def ephemeris_model(self) -> Ephemeris:
         """The plan's ephemeris in its M-MME2000 (its ``ephemeris`` and ``lunar_pole``)."""

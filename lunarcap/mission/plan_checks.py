@@ -24,9 +24,18 @@ from lunarcap.mission.targets import CIRCULAR, PERILUNE, check_inclination
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import period_from_semi_major_axis, semi_major_axis_from_period
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
-from lunarcap.physics.frames import LUNAR_POLES
+from lunarcap.physics.forces import PRESETS, ForceModel, force_model
+from lunarcap.physics.frames import (
+    DEFAULT_LUNAR_POLE,
+    LUNAR_POLES,
+    POLE_OF_DATE_PREFIX,
+    check_lunar_pole,
+    pole_of_date,
+)
 
-DYNAMICS = ("full", "j2", "two-body")
+#: The paper's dynamics by their words (a plan may also name its forces as a mapping:
+#: :mod:`lunarcap.physics.forces`).
+DYNAMICS = PRESETS
 #: How a burn's period or apolune target is met (:mod:`lunarcap.mission.targets`):
 #: ``orbit``, the orbit named, as osculating elements at the first perilune after the burn
 #: (its epoch free); ``song2011``, the paper's Eq. (17): perilune radius, inclination and
@@ -243,6 +252,40 @@ def checked_start(st):
     return replace(st, epoch_s=epoch, state=mee + (mass,), first_coast_s=coast)
 
 
+def checked_dynamics(value):
+    """A plan's dynamics: a preset word as such, else its :class:`ForceModel`.
+
+    The words (``full``, ``j2``, ``two-body``) stay words, so the paper's plans and their
+    cache keys are what they were; a mapping becomes the model it names (PlanError names
+    the key at fault: ``dynamics.degree: ...``).
+    """
+    if isinstance(value, str) and value in PRESETS:
+        return value
+    if isinstance(value, ForceModel) and value.name:
+        return value.name
+    try:
+        model = force_model(value)
+    except InputError as exc:
+        msg = str(exc)
+        raise PlanError(msg if msg.startswith("dynamics") else f"dynamics: {msg}") from None
+    return model.name or model
+
+
+def default_pole(dynamics) -> str:
+    """The lunar pole of a plan that names none: J2000's for the paper's words, else of date.
+
+    A plan whose dynamics are a mapping measures inclinations about the Moon's axis of
+    date (at its arrival epoch): the ``lunar_pole: of-date`` default of new plans.
+    """
+    return DEFAULT_LUNAR_POLE if isinstance(dynamics, str) and dynamics in PRESETS \
+        else "of-date"
+
+
+def frame_epoch(arrival) -> str:
+    """The epoch of a pole of date: the arrival's as given (a state's own epoch)."""
+    return arrival.state.epoch if arrival.state is not None else arrival.epoch
+
+
 # ---------------------------------------------------------------------- the plan
 def validate(plan) -> None:
     """Check a plan, field by field and then as a whole; normalise its numbers to floats.
@@ -251,8 +294,15 @@ def validate(plan) -> None:
     """
     s = object.__setattr__
     choice("formulation", plan.formulation, FORMULATIONS)
-    choice("dynamics", plan.dynamics, DYNAMICS)
-    choice("lunar_pole", plan.lunar_pole, LUNAR_POLES)
+    s(plan, "dynamics", checked_dynamics(plan.dynamics))
+    if plan.lunar_pole == "of-date":
+        s(plan, "lunar_pole", pole_of_date(frame_epoch(plan.arrival)))
+    try:
+        check_lunar_pole(plan.lunar_pole)
+    except ValueError:
+        raise err("lunar_pole", f"must be one of {', '.join(LUNAR_POLES)}, of-date or "
+                                f"'{POLE_OF_DATE_PREFIX}<epoch>', got {plan.lunar_pole!r}"
+                  ) from None
     s(plan, "engine", checked_engine(plan.engine))
     if not plan.burns:
         raise err("burns", "a plan needs at least one burn")

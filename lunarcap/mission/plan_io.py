@@ -12,10 +12,15 @@ from pathlib import Path
 
 from lunarcap.errors import InputError
 from lunarcap.mission.arrival import StateArrival
-from lunarcap.mission.plan_checks import err, keys, num
+from lunarcap.mission.plan_checks import PlanError, default_pole, err, frame_epoch, keys, num
 from lunarcap.mission.targets import CIRCULAR, PERILUNE
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
-from lunarcap.physics.frames import DEFAULT_LUNAR_POLE
+from lunarcap.physics.forces import force_model
+from lunarcap.physics.frames import pole_of_date
+
+#: The dynamics of a plan that names none: the Moon's J2 about its axis of date, the
+#: Earth and the Sun (the paper's words keep the paper's J2000 pole; see the plan docs).
+DEFAULT_DYNAMICS = {"gravity": "j2", "pole": "of-date", "third_bodies": ["earth", "sun"]}
 
 TOP_KEYS = {"name", "description", "arrival", "engine", "dynamics", "burns", "ephemeris",
             "lunar_pole", "start", "formulation"}
@@ -70,13 +75,26 @@ def plan_fields(d, base_dir=None, default_name: str = "") -> dict:
     desc = d.get("description", "")
     if not isinstance(desc, str):
         raise err("description", f"must be a text, got {desc!r}")
+    dyn = _dynamics(d.get("dynamics", DEFAULT_DYNAMICS), base_dir)
+    pole = d.get("lunar_pole", default_pole(dyn))   # "of-date" resolved by the checks
     return dict(name=name.strip(), arrival=arrival, engine=Engine(e["thrust_N"], e["isp_s"]),
                 burns=tuple(_burn(i, b) for i, b in enumerate(burns_in)),
-                dynamics=d.get("dynamics", "full"), ephemeris=eph,
-                lunar_pole=d.get("lunar_pole", DEFAULT_LUNAR_POLE),
+                dynamics=dyn, ephemeris=eph, lunar_pole=pole,
                 impulsive_loi1_mps=a.get("impulsive_loi1_mps"), description=desc.strip(),
                 start=None if d.get("start") is None else _start(d["start"]),
                 formulation=d.get("formulation", "orbit"))
+
+
+def _dynamics(value, base_dir):
+    """A plan's ``dynamics``: a word as written, a mapping as its ForceModel (paths resolved)."""
+    from lunarcap.physics.forces import from_mapping
+
+    if isinstance(value, dict):
+        try:
+            return from_mapping(value, base_dir)
+        except InputError as exc:
+            raise PlanError(str(exc)) from None
+    return value   # a word (checked by the plan)
 
 
 def _burn(i: int, b):
@@ -267,10 +285,14 @@ def plan_dict(plan) -> dict:
         out["description"] = plan.description
     out.update(arrival=_arrival_dict(plan),
                engine={"thrust_N": plan.engine.thrust_N, "isp_s": plan.engine.isp_s},
-               dynamics=plan.dynamics, burns=[_burn_dict(b) for b in plan.burns])
+               dynamics=force_model(plan.dynamics).to_plan(),
+               burns=[_burn_dict(b) for b in plan.burns])
     if plan.ephemeris is not None:
         out["ephemeris"] = plan.ephemeris
-    if plan.lunar_pole != DEFAULT_LUNAR_POLE:
+    default = default_pole(plan.dynamics)
+    if default == "of-date":
+        default = pole_of_date(frame_epoch(plan.arrival))
+    if plan.lunar_pole != default:
         out["lunar_pole"] = plan.lunar_pole
     if plan.formulation != "orbit":
         out["formulation"] = plan.formulation

@@ -100,8 +100,8 @@ def node_epochs(t_start: float, duration: float, frac, d: int) -> np.ndarray:
     return t_start + duration * np.concatenate([[0.0], taus(frac, c)])
 
 
-def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode=None,
-                        thrust: bool = True):
+def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode="full",
+                        thrust: bool = True, accel=None):
     """LGR collocation defects of one phase (CasADi expressions).
 
     Parameters
@@ -113,16 +113,20 @@ def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode=Non
     prm : dynamics parameter vector (thrust 0 for a coast)
     n, d : intervals and LGR degree
     S : (7,) state scales (:func:`state_scale`)
-    mode : dynamics mode built into the right-hand side (None: switches read from prm)
+    mode : the forces built into the right-hand side (a preset word or a ForceModel)
     thrust : False for a coast (the right-hand side without its thrust terms)
+    accel : (3, n*d) or None
+        A further acceleration at each collocation point, RTN km/s^2 (an outer
+        correction: :mod:`lunarcap.optim.correction`).
     """
     c, D = radau_matrices(d)
-    f = rhs_function(mode, thrust)
+    f = rhs_function(mode, thrust, accel is not None)
     tau = ca.horzcat(*[mesh_frac[j] + (mesh_frac[j + 1] - mesh_frac[j]) * c[k]
                        for j in range(n) for k in range(d)])
     tpts = t_start + dur * tau
     Sm = ca.repmat(S, 1, n * d)
-    F = f.map(n * d)(Xall[:, 1:] * Sm, U, tpts, ca.repmat(prm, 1, n * d))
+    args = [Xall[:, 1:] * Sm, U, tpts, ca.repmat(prm, 1, n * d)]
+    F = f.map(n * d)(*args, *([accel] if accel is not None else []))
     Fnd = F / Sm * dur  # d x / d tau
     defects = []
     for j in range(n):

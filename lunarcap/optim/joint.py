@@ -32,10 +32,11 @@ from functools import lru_cache
 import casadi as ca
 import numpy as np
 
-from lunarcap.errors import SolveError
+from lunarcap.errors import InputError, SolveError
 from lunarcap.mission.plan import CapturePlan
 from lunarcap.mission.targets import N_VALUES
 from lunarcap.optim.collocation import LU, N_X, TU, Mesh, state_scale
+from lunarcap.optim.correction import NLP_DEGREE, nlp_forces
 from lunarcap.optim.flight import BurnPlan
 from lunarcap.optim.guess import Guess
 from lunarcap.optim.nlp import (
@@ -48,6 +49,7 @@ from lunarcap.optim.problem import END_WINDOW_FRACTION, burn_problem
 from lunarcap.optim.solution import Solution
 from lunarcap.optim.transcription import NLPBuilder, add_leg, dynamics_params
 from lunarcap.optim.verify import verify
+from lunarcap.physics.dynamics import force_model
 from lunarcap.physics.elements import speed_from_mee
 from lunarcap.physics.rocket import rocket_delta_v_mps
 
@@ -120,7 +122,8 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
     for k, kind in enumerate(target_kinds):
         pre = f"leg{k}."
         leg = add_leg(nlp, pre, mesh, kind, x_start, t[k], t[k + 1],
-                      dynamics_params(nlp, pre + "dynamics"), nlp.param(pre + "mesh_burn", nb + 1),
+                      dynamics_params(nlp, pre + "dynamics", mode),
+                      nlp.param(pre + "mesh_burn", nb + 1),
                       nlp.param(pre + "mesh_coast", nc + 1), nlp.param(pre + "target", N_VALUES), S,
                       mode, free_start=True)
         legs.append(leg)
@@ -139,7 +142,7 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
                               -np.inf, np.inf)
     tag = "" if not any(free) else "_free" + "".join("1" if f else "0" for f in free)
     tag += "_period" if period_rows and any(free) else ""
-    name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{mode}{tag}".replace("-", "_")
+    name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{force_model(mode).key}{tag}".replace("-", "_")
     return JointNLP(nlp.compile(J, name, expand=expand), legs)
 
 
@@ -231,6 +234,10 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     SolveError
         If IPOPT fails or a leg fails verification.
     """
+    if nlp_forces(plan.dynamics) is not None:
+        raise InputError(f"dynamics: the all-burns NLP carries gravity fields up to degree "
+                         f"{NLP_DEGREE}; {force_model(plan.dynamics)} is solved burn by burn "
+                         f"(lunarcap plan)")
     kinds = tuple(t.kind for t in plan.targets)
     asked = tuple(bool(f) for f in free_coasts) or (False,) * plan.n_burns
     orbit = tuple(t.free_epoch for t in plan.targets)

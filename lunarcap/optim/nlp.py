@@ -35,7 +35,7 @@ from lunarcap.optim.interrupt import map_in_threads
 from lunarcap.optim.problem import BurnProblem
 from lunarcap.optim.transcription import CompiledNLP, Leg, NLPBuilder, add_leg
 from lunarcap.physics import constants as C
-from lunarcap.physics.dynamics import N_PARAM
+from lunarcap.physics.dynamics import force_model
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.rocket import rocket_delta_v_mps
@@ -55,32 +55,34 @@ _NLPS: dict = {}
 
 def build_burn_nlp(mesh: Mesh, target_kind: str, free_start: bool = False,
                    steering: str = "optimal", mode: str = "full",
-                   free_end: bool = False) -> BurnNLP:
+                   free_end: bool = False, correction: bool = False) -> BurnNLP:
     """The NLP of one shape, built on first use (once per process; see :func:`_build`)."""
-    shape = (mesh, target_kind, free_start, steering, mode, free_end)
+    shape = (mesh, target_kind, free_start, steering, mode, free_end, correction)
     if shape not in _NLPS:
         _NLPS[shape] = _build(*shape)
     return _NLPS[shape]
 
 
 def _build(mesh: Mesh, target_kind: str, free_start: bool, steering: str, mode: str,
-           free_end: bool) -> BurnNLP:
+           free_end: bool, correction: bool = False) -> BurnNLP:
     """Build (once per mesh shape, target kind, start mode, steering law, dynamics) the NLP.
 
     Parameters (by name): ``x_start`` (7, physical: the state at ignition, or at the
     nominal perilune with a free start), ``t_ref`` (its epoch), ``t_end``, ``dynamics``
-    (N_PARAM), ``mesh_burn`` and ``mesh_coast`` (interval fractions), ``target``
+    (the model's ``n_param``), ``mesh_burn`` and ``mesh_coast`` (interval fractions), ``target``
     (:meth:`lunarcap.mission.targets.Target.values` in LU).
 
     With ``free_end`` the coast ends at ``t_end`` plus a variable ``te`` (TU): the
-    epoch of the perilune where an ellipse target holds is optimised.
+    epoch of the perilune where an ellipse target holds is optimised. With ``correction``
+    the parameters ``accel_pre``, ``accel_burn``, ``accel_coast`` add an acceleration at
+    each collocation point (:mod:`lunarcap.optim.correction`).
     """
     nb, nc = mesh.n_burn, mesh.n_coast
     nlp = NLPBuilder()
     P_x0 = nlp.param("x_start", N_X)
     P_tref = nlp.param("t_ref", 1)
     P_tend = nlp.param("t_end", 1)
-    P_prm = nlp.param("dynamics", N_PARAM)
+    P_prm = nlp.param("dynamics", force_model(mode).n_param)
     P_mb = nlp.param("mesh_burn", nb + 1)
     P_mc = nlp.param("mesh_coast", nc + 1)
     P_tar = nlp.param("target", N_VALUES)
@@ -89,30 +91,37 @@ def _build(mesh: Mesh, target_kind: str, free_start: bool, steering: str, mode: 
     S = ca.vertcat(LU, 1, 1, 1, 1, 1, P_x0[6])
     t_end = P_tend + nlp.var("te", 1) * TU if free_end else P_tend
     leg = add_leg(nlp, "", mesh, target_kind, P_x0 / S, P_tref, t_end, P_prm, P_mb, P_mc,
-                  P_tar, S, mode, free_start, steering)
+                  P_tar, S, mode, free_start, steering, correction)
     name = (f"burn_{nb}_{nc}_{mesh.degree}_{target_kind}{'_free' if free_start else ''}"
-            f"{'_end' if free_end else ''}_{steering}_{mode}").replace("-", "_")
+            f"{'_end' if free_end else ''}_{steering}_{force_model(mode).key}"
+            f"{'_corr' if correction else ''}").replace("-", "_")
     return BurnNLP(nlp.compile(leg.dv + leg.v_end, name), leg)
 
 
 def describe_shape(mesh: Mesh, target_kind: str, free_start: bool = False,
-                   steering: str = "optimal", mode: str = "full", free_end: bool = False) -> str:
+                   steering: str = "optimal", mode: str = "full", free_end: bool = False,
+                   correction: bool = False) -> str:
     """An NLP shape (the arguments of :func:`build_burn_nlp`) in words."""
     return (f"{target_kind} target, {'free' if free_start else 'fixed'} ignition"
             f"{', free perilune epoch' if free_end else ''}"
-            f"{'' if steering == 'optimal' else f', {steering} steering'}, {mode} dynamics, "
+            f"{'' if steering == 'optimal' else f', {steering} steering'}, "
+            f"{force_model(mode)} dynamics{' + corrections' if correction else ''}, "
             f"mesh {mesh.label()}")
 
 
-def is_built(mesh: Mesh, prob: BurnProblem) -> bool:
+def is_built(mesh: Mesh, prob: BurnProblem, mode=None, correction: bool = False) -> bool:
     """True if this process has built the NLP of ``prob``'s shape on ``mesh``."""
-    return shape_of(mesh, prob) in _NLPS
+    return shape_of(mesh, prob, mode, correction) in _NLPS
 
 
-def shape_of(mesh: Mesh, prob: BurnProblem) -> tuple:
-    """The NLP shape of ``prob`` on ``mesh``: the arguments of :func:`build_burn_nlp`."""
-    return (mesh, prob.target.kind, prob.free_start, prob.steering, prob.model.mode,
-            prob.free_end)
+def shape_of(mesh: Mesh, prob: BurnProblem, mode=None, correction: bool = False) -> tuple:
+    """The NLP shape of ``prob`` on ``mesh``: the arguments of :func:`build_burn_nlp`.
+
+    ``mode`` and ``correction``: the forces the NLP carries, if not the problem's, and
+    whether it takes outer corrections (:func:`lunarcap.optim.correction.nlp_shape`).
+    """
+    return (mesh, prob.target.kind, prob.free_start, prob.steering,
+            prob.model.mode if mode is None else mode, prob.free_end, correction)
 
 
 def clear_nlps() -> None:
@@ -154,8 +163,8 @@ def prebuild(shapes, workers: int = 2, progress=None) -> None:
 
 
 def _normal(mesh: Mesh, target_kind: str, free_start: bool = False, steering: str = "optimal",
-            mode: str = "full", free_end: bool = False) -> tuple:
-    return (mesh, target_kind, free_start, steering, mode, free_end)
+            mode: str = "full", free_end: bool = False, correction: bool = False) -> tuple:
+    return (mesh, target_kind, free_start, steering, mode, free_end, correction)
 
 
 @dataclass
@@ -181,6 +190,11 @@ class RawSolution:
     build_s: float
     max_defect: float
     u_inertial: np.ndarray | None = None
+    w: np.ndarray | None = None        # the NLP's solution vector (a warm start)
+    t_pre: np.ndarray | None = None    # epochs of the pre-ignition coast (start + points), s
+    x_pre: np.ndarray | None = None    # (7, N_PRE*d+1), free start only
+    corrections: int = 0               # outer corrections of a field (optim.correction)
+    correction_change: float = 0.0     # their last largest change, km/s^2
 
     @property
     def delta_v_mps(self) -> float:
@@ -258,10 +272,14 @@ def leg_solution(layout, prefix: str, w: np.ndarray, prob: BurnProblem, mesh: Me
         # the perilune where the orbit asked holds: the coast ends there, now fixed
         t_end = prob.t_end_s + float(layout.get(w, prefix + "te")[0]) * TU
         prob = replace(prob, t_end_s=t_end, end_window_s=None)
+    pre = {}
     if prob.free_start:
         # the ignition found; the verified flight starts from x_ref propagated to it
-        t_ign = prob.t_ref_s + float(layout.get(w, prefix + "ts")[0]) * TU
+        ts = float(layout.get(w, prefix + "ts")[0]) * TU
+        t_ign = prob.t_ref_s + ts
         x0 = propagate(prob.model, prob.t_ref_s, prob.x_ref, t_ign).final
+        pre = {"t_pre": node_epochs(prob.t_ref_s, ts, np.linspace(0, 1, N_PRE + 1), d),
+               "x_pre": layout.get(w, prefix + "X0") * S[:, None]}
         prob = replace(prob, x0=x0, t_ign_s=t_ign, start_min=(t_ign - prob.t_perilune_s) / 60.0)
     Xb = layout.get(w, prefix + "Xb") * S[:, None]
     Xc = layout.get(w, prefix + "Xc") * S[:, None]
@@ -273,29 +291,42 @@ def leg_solution(layout, prefix: str, w: np.ndarray, prob: BurnProblem, mesh: Me
         u_in = u_in / np.linalg.norm(u_in)
     return {"prob": prob, "t1_s": t1, "t_burn": tb, "x_burn": Xb, "t_u": tb[1:],
             "u": layout.get(w, prefix + "Ub"), "t_coast": tc,
-            "x_coast": np.column_stack([Xb[:, -1], Xc]), "u_inertial": u_in}
+            "x_coast": np.column_stack([Xb[:, -1], Xc]), "u_inertial": u_in, **pre}
 
 
-def nlp_for(prob: BurnProblem, mesh: Mesh) -> BurnNLP:
-    """The compiled NLP of this burn problem's shape on ``mesh`` (built on first use)."""
-    return build_burn_nlp(*shape_of(mesh, prob))
+def nlp_for(prob: BurnProblem, mesh: Mesh, mode=None, correction: bool = False) -> BurnNLP:
+    """The compiled NLP of this burn problem's shape on ``mesh`` (built on first use).
+
+    ``mode``: the forces the NLP carries (default the problem's); ``correction``: with
+    the parameters of an outer correction (:mod:`lunarcap.optim.correction`).
+    """
+    return build_burn_nlp(*shape_of(mesh, prob, mode, correction))
 
 
-def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
-    """Solve the burn's NLP on one mesh from a guess; no verification here."""
-    nlp = nlp_for(prob, mesh)
+def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess, mode=None, accel: dict | None = None,
+              w0: np.ndarray | None = None, fractions: tuple | None = None) -> RawSolution:
+    """Solve the burn's NLP on one mesh from a guess; no verification here.
+
+    ``mode`` and ``accel`` (the per-phase corrections, ``{"accel_burn": (3, N), ...}``):
+    an NLP carrying other forces than the problem's plus a tabulated acceleration
+    (:mod:`lunarcap.optim.correction`); ``w0`` and ``fractions`` (burn and coast mesh
+    fractions): start from a previous solution of the same NLP.
+    """
+    nlp = nlp_for(prob, mesh, mode, accel is not None)
     lay = nlp.compiled.layout
     # meshes: burn uniform in time, coast equally spaced in the Sundman variable
-    mb = np.linspace(0.0, 1.0, mesh.n_burn + 1)
-    mc = sundman_fractions(guess.coast.t, guess.coast.x, mesh.n_coast)
+    mb, mc = fractions or (np.linspace(0.0, 1.0, mesh.n_burn + 1),
+                           sundman_fractions(guess.coast.t, guess.coast.x, mesh.n_coast))
     S = state_scale(prob.x0[6])
-    w0 = np.zeros(lay.nv)
-    initial_point(lay, "", prob, mesh, guess, w0, mb, mc, S)
+    if w0 is None:
+        w0 = np.zeros(lay.nv)
+        initial_point(lay, "", prob, mesh, guess, w0, mb, mc, S)
     lbx, ubx, lbg, ubg = lay.bounds()
     leg_bounds(lay, "", prob, lbx, ubx, lbg, ubg)
     xs, ts = (prob.x_ref, prob.t_ref_s) if prob.free_start else (prob.x0, prob.t_ign_s)
     pvec = lay.params(x_start=xs, t_ref=ts, t_end=prob.t_end_s, dynamics=prob.model.params(),
-                      mesh_burn=mb, mesh_coast=mc, target=prob.target.values(LU))
+                      mesh_burn=mb, mesh_coast=mc, target=prob.target.values(LU),
+                      **(accel or {}))
     t0 = time.perf_counter()
     res = nlp.compiled.solve(x0=w0, p=pvec, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
     solve_s = time.perf_counter() - t0
@@ -307,5 +338,5 @@ def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
                        objective_kmps=float(res["f"]) * VU, status=stats["return_status"],
                        success=bool(stats["success"]), iterations=int(stats["iter_count"]),
                        solve_s=solve_s, build_s=nlp.compiled.build_s,
-                       max_defect=float(np.max(np.abs(gval[defect]))),
+                       max_defect=float(np.max(np.abs(gval[defect]))), w=w,
                        **leg_solution(lay, "", w, prob, mesh, mb, mc, S))

@@ -22,7 +22,7 @@ from lunarcap.errors import InputError
 from lunarcap.mission.plan import MAX_START_MIN, CapturePlan
 from lunarcap.mission.targets import ELLIPSE, Target
 from lunarcap.physics._ops import ops
-from lunarcap.physics.dynamics import Model
+from lunarcap.physics.dynamics import Model, fit_for
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine
@@ -211,11 +211,14 @@ def burn_epochs(plan: CapturePlan, i: int, t_perilune_s: float | None = None) ->
 
 
 def burn_fit(plan: CapturePlan, i: int, eph, t_perilune_s: float | None = None
-             ) -> ChebyshevFit:
-    """The Earth/Sun ephemeris fit for burn ``i`` (0-based): its orbit and coast, +-6 h."""
+             ) -> ChebyshevFit | None:
+    """The ephemeris fit for burn ``i`` (0-based): its orbit and coast, +-6 h.
+
+    None if the plan's forces read none (:func:`lunarcap.physics.dynamics.fit_for`).
+    """
     t_peri, t_end, window = burn_epochs(plan, i, t_perilune_s)
     late = window[1] if window else 0.0
-    return ChebyshevFit.fit(eph, t_peri - FIT_MARGIN_S, t_end + late + FIT_MARGIN_S)
+    return fit_for(plan.dynamics, eph, t_peri - FIT_MARGIN_S, t_end + late + FIT_MARGIN_S)
 
 
 def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
@@ -261,8 +264,7 @@ def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
     if t_end_s is not None:
         t_end, window = float(t_end_s), None
     model = Model(mode=plan.dynamics, thrust_N=thrust, isp_s=plan.engine.isp_s,
-                  fit=fit or (burn_fit(plan, i, eph, t_peri) if plan.dynamics == "full"
-                              else None))
+                  fit=fit or burn_fit(plan, i, eph, t_peri))
     dv_imp = plan.impulsive()[i].delta_v_mps
     x_perilune = np.asarray(x_perilune, float)
     free = start == "free"

@@ -77,7 +77,8 @@ class Solution:
         tv = orbit_summary(self.end_state, C.MU_MOON)
         return {
             "burn": prob.index, "thrust_N": prob.model.thrust_N, "isp_s": prob.model.isp_s,
-            "dynamics": prob.model.mode, "steering": prob.steering, "target_kind": prob.target.kind,
+            "dynamics": str(prob.model.forces), "steering": prob.steering,
+            "target_kind": prob.target.kind,
             "free_start": prob.free_start, "start_min": prob.start_min,
             "ignition_epoch": calendar_from_seconds(prob.t_ign_s),
             "end_epoch": calendar_from_seconds(prob.t_end_s),

@@ -1,7 +1,8 @@
 """Solve one burn with automatic mesh refinement behind the verification gate.
 
 :func:`solve_burn_problem` tries the meshes of
-:data:`lunarcap.optim.collocation.DEFAULT_MESHES` in turn: build (cached per mesh shape),
+:data:`lunarcap.optim.collocation.DEFAULT_MESHES` in turn (in a gravity field,
+:data:`lunarcap.optim.correction.FIELD_MESHES`): build (cached per mesh shape),
 guess, IPOPT, independent re-propagation. The first solution that converges *and* passes
 verification is returned; otherwise a :class:`~lunarcap.errors.SolveError` carries
 IPOPT's status and the residuals of every attempt. A converged IPOPT status alone is never accepted.
@@ -15,9 +16,9 @@ from dataclasses import replace
 import numpy as np
 
 from lunarcap.errors import SolveError
-from lunarcap.optim.collocation import DEFAULT_MESHES
+from lunarcap.optim.correction import meshes_for, nlp_shape, solve_in_model
 from lunarcap.optim.guess import make_guess
-from lunarcap.optim.nlp import describe_shape, is_built, shape_of, solve_nlp
+from lunarcap.optim.nlp import describe_shape, is_built, shape_of
 from lunarcap.optim.nlp import prebuild as _prebuild_nlps
 from lunarcap.optim.problem import BurnProblem
 from lunarcap.optim.solution import Solution
@@ -25,15 +26,16 @@ from lunarcap.optim.verify import verify
 from lunarcap.physics.elements import period
 
 
-def solve_burn_problem(prob: BurnProblem, meshes=DEFAULT_MESHES, guess=None,
+def solve_burn_problem(prob: BurnProblem, meshes=None, guess=None,
                        progress=None) -> Solution:
     """Optimal finite burn for ``prob``, verified by re-propagation.
 
     Parameters
     ----------
     prob : BurnProblem
-    meshes : sequence of Mesh
-        Meshes tried in order until one passes the gate.
+    meshes : sequence of Mesh, optional
+        Meshes tried in order until one passes the gate (default
+        :func:`lunarcap.optim.correction.meshes_for` the problem's forces).
     guess : Guess or None
         Initial guess (default: :func:`lunarcap.optim.guess.make_guess`).
     progress : callable(str) or None
@@ -45,6 +47,7 @@ def solve_burn_problem(prob: BurnProblem, meshes=DEFAULT_MESHES, guess=None,
         If no mesh gives a converged, verified solution.
     """
     t0 = time.perf_counter()
+    meshes = meshes or meshes_for(prob.model.forces)
     try:
         return _solve_on_meshes(prob, meshes, guess, progress, t0)
     except SolveError as exc:
@@ -65,10 +68,16 @@ def prebuild(shapes, workers: int = 2, progress=None) -> None:
 
     ``shapes``: (target kind, free start, steering, dynamics[, free end]) tuples, one per
     burn; each NLP is built on the first mesh :func:`solve_burn_problem` tries, once per
-    process (here or at the first solve). ``progress(str)``: what is built, how long
-    (:func:`lunarcap.optim.nlp.prebuild`).
+    process (here or at the first solve), carrying what it carries in that dynamics
+    (:func:`lunarcap.optim.correction.nlp_shape`: a field's NLP takes corrections).
+    ``progress(str)``: what is built, how long (:func:`lunarcap.optim.nlp.prebuild`).
     """
-    _prebuild_nlps([(DEFAULT_MESHES[0], *shape) for shape in shapes], workers, progress)
+    out = []
+    for kind, free_start, steering, dynamics, *free_end in shapes:
+        mode, corrected = nlp_shape(dynamics)
+        out.append((meshes_for(dynamics)[0], kind, free_start, steering, mode,
+                    free_end[0] if free_end else False, corrected))
+    _prebuild_nlps(out, workers, progress)
 
 
 def widened(prob: BurnProblem) -> BurnProblem | None:
@@ -99,9 +108,10 @@ def _solve_on_meshes(prob: BurnProblem, meshes, guess, progress, t0: float) -> S
     guess = guess or make_guess(prob)
     attempts = []
     for mesh in meshes:
-        if progress and not is_built(mesh, prob):   # seconds, once per process
-            progress(f"  building the NLP ({describe_shape(*shape_of(mesh, prob))})")
-        raw = solve_nlp(prob, mesh, guess)
+        carried = nlp_shape(prob.model.forces)
+        if progress and not is_built(mesh, prob, *carried):   # seconds, once per process
+            progress(f"  building the NLP ({describe_shape(*shape_of(mesh, prob, *carried))})")
+        raw = solve_in_model(prob, mesh, guess)
         rec = {"mesh": mesh.label(), "ipopt_status": raw.status,
                "iterations": raw.iterations, "nlp_solve_s": raw.solve_s,
                "delta_v_mps": raw.delta_v_mps}
@@ -124,7 +134,7 @@ def _solve_on_meshes(prob: BurnProblem, meshes, guess, progress, t0: float) -> S
     last = attempts[-1]
     start = "free" if prob.free_start else f"{prob.start_min:g} min"
     what = (f"burn {prob.index} ({prob.model.thrust_N:g} N, {prob.model.isp_s:g} s, start "
-            f"{start}, {prob.model.mode} dynamics)")
+            f"{start}, {prob.model.forces} dynamics)")
     detail = "; ".join(
         f"{a['mesh']}: IPOPT {a['ipopt_status']}"
         + (f", verification failed: rp error {a['rp_error_m']:.3g} m, "

@@ -34,7 +34,7 @@ from lunarcap.optim.collocation import (
 )
 from lunarcap.optim.interrupt import off_main_thread
 from lunarcap.optim.problem import steering_law_expr
-from lunarcap.physics.dynamics import N_PARAM, P_THRUST, P_VEX
+from lunarcap.physics.dynamics import P_THRUST, P_VEX, force_model
 from lunarcap.physics.elements import speed_from_mee
 
 #: IPOPT settings (MUMPS, exact Hessian). The strict tolerances are on the scaled NLP;
@@ -196,7 +196,8 @@ class Leg:
 
 def add_leg(nlp: NLPBuilder, prefix: str, mesh: Mesh, target_kind: str, x_start, t_ref,
             t_end, prm, mesh_b, mesh_c, target_values, S, mode: str,
-            free_start: bool = False, steering: str = "optimal") -> Leg:
+            free_start: bool = False, steering: str = "optimal",
+            correction: bool = False) -> Leg:
     """Write one burn leg into ``nlp`` and return its symbols.
 
     Parameters
@@ -214,10 +215,14 @@ def add_leg(nlp: NLPBuilder, prefix: str, mesh: Mesh, target_kind: str, x_start,
     mesh_b, mesh_c : interval boundaries of the burn and coast (fractions)
     target_values : (r_target LU, tan^2(i/2))
     S : (7,) state scales
-    mode : dynamics mode built into the right-hand side
+    mode : the forces built into the right-hand side (a preset word or a ForceModel)
     free_start : bool
         Optimise the ignition epoch (variable ``ts``, TU from ``t_ref``).
     steering : {"optimal", "inertial", "antivelocity"}
+    correction : bool
+        Add parameters ``accel_pre``, ``accel_burn``, ``accel_coast`` (3 x points of each
+        phase, RTN km/s^2): an acceleration added at each collocation point
+        (:mod:`lunarcap.optim.correction`).
 
     Notes
     -----
@@ -245,20 +250,22 @@ def add_leg(nlp: NLPBuilder, prefix: str, mesh: Mesh, target_kind: str, x_start,
     t_burn_end = t_ign + t1_s
     dur_c = t_end - t_burn_end
 
-    def defects(Xall, U, frac, t_start, dur, p, nint, thrust=False):
-        return collocation_defects(Xall, U, frac, t_start, dur, p, nint, d, S, mode, thrust)
+    def defects(Xall, U, frac, t_start, dur, p, nint, phase, thrust=False):
+        accel = nlp.param(n("accel_" + phase), 3, nint * d) if correction else None
+        return collocation_defects(Xall, U, frac, t_start, dur, p, nint, d, S, mode, thrust,
+                                   accel)
 
     if free_start:
         nlp.constrain(V_X0[:, 0] - x_start, n("start"))
         nlp.constrain(defects(V_X0, ca.DM.zeros(3, N_PRE * d), ca.DM(np.linspace(0, 1, N_PRE + 1)),
-                              t_ref, V_ts * TU, prm_coast, N_PRE), n("defect_pre"))
+                              t_ref, V_ts * TU, prm_coast, N_PRE, "pre"), n("defect_pre"))
         nlp.constrain(V_Xb[:, 0] - V_X0[:, -1], n("link_pre"))
     else:
         nlp.constrain(V_Xb[:, 0] - x_start, n("start"))
-    nlp.constrain(defects(V_Xb, V_Ub, mesh_b, t_ign, t1_s, prm, nb, thrust=True),
+    nlp.constrain(defects(V_Xb, V_Ub, mesh_b, t_ign, t1_s, prm, nb, "burn", thrust=True),
                   n("defect_burn"))
     nlp.constrain(defects(ca.horzcat(V_Xb[:, -1], V_Xc), ca.DM.zeros(3, nc * d), mesh_c,
-                          t_burn_end, dur_c, prm_coast, nc), n("defect_coast"))
+                          t_burn_end, dur_c, prm_coast, nc, "coast"), n("defect_coast"))
     _steering_rows(nlp, prefix, steering, V_Ub, V_Xb, V_uin)
     xf = V_Xc[:, -1]
     _target_rows(nlp, prefix, target_kind, xf, target_values)
@@ -291,6 +298,6 @@ def _target_rows(nlp: NLPBuilder, prefix: str, target_kind: str, xf, target_valu
         nlp.constrain(expr, prefix + name, 0.0, np.inf)
 
 
-def dynamics_params(nlp: NLPBuilder, name: str) -> ca.MX:
-    """The dynamics parameter vector of a leg as an NLP parameter (N_PARAM values)."""
-    return nlp.param(name, N_PARAM)
+def dynamics_params(nlp: NLPBuilder, name: str, mode="full") -> ca.MX:
+    """The dynamics parameter vector of a leg as an NLP parameter (the model's ``n_param``)."""
+    return nlp.param(name, force_model(mode).n_param)

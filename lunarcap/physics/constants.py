@@ -80,3 +80,10 @@ MOON_POLE_RA_AMPL_DEG = (-3.8787, -0.1204, 0.0700, -0.0172, 0.0, 0.0072, 0.0, 0.
                          -0.0052, 0.0, 0.0, 0.0043)
 MOON_POLE_DEC_AMPL_DEG = (1.5419, 0.0239, -0.0278, 0.0068, 0.0, -0.0029, 0.0009, 0.0, 0.0,
                           0.0008, 0.0, 0.0, -0.0009)
+#: IAU (2009) prime meridian of the Moon, W = W0 + W1 d + W2 d^2 + sum w_k sin E_k, degrees,
+#: d in days past J2000 TDB (Archinal et al. 2011, Table 2; E_k as above).
+MOON_W_DEG = 38.3213
+MOON_W_RATE_DEG_PER_DAY = 13.17635815
+MOON_W_ACCEL_DEG_PER_DAY2 = -1.4e-12
+MOON_W_AMPL_DEG = (3.5610, 0.1208, -0.0642, 0.0158, 0.0252, -0.0066, -0.0047, -0.0046,
+                   0.0028, 0.0052, 0.0040, 0.0019, -0.0044)

@@ -7,9 +7,12 @@ is TDB seconds past J2000. The perturbing acceleration (Eq. 4) is
     Delta = Delta_J2 (Eq. 7) + Q (a_Earth + a_Sun) (Eq. 6, rotated by Eq. A5) + T/m u (Eq. 8)
 
 and the rates are ``dy/dt = A(y) Delta + b(y)`` (Eq. 2, A2-A4), ``dm/dt = -T/(g0 Isp)``
-(Eq. 3). :func:`mee_rates` is written once over generic operations: it evaluates on
-numpy arrays and builds the CasADi expression that the transcription and the
-propagators share through :func:`rhs_function`.
+(Eq. 3). Which perturbations act is a :class:`~lunarcap.physics.forces.ForceModel`
+(the paper's words ``full``, ``j2``, ``two-body``, or any composition of terms: a
+spherical-harmonic field, J2 about the pole of date, ...); its terms' sum is Delta less the
+thrust. :func:`mee_rates` is written once over generic operations: it evaluates on numpy
+arrays and builds the CasADi expression that the transcription and the propagators share
+through :func:`rhs_function`.
 
 An independent Cartesian formulation (:func:`cartesian_rates`, numpy only, J2 from the
 gradient of the potential) exists to check the MEE equations.
@@ -26,34 +29,37 @@ import numpy as np
 from lunarcap.errors import InputError
 from lunarcap.physics import constants as C
 from lunarcap.physics._ops import ops
-from lunarcap.physics.ephemeris import ChebyshevFit, earth_sun_from_params
-
-#: Layout of the numeric parameter vector of the dynamics Function.
-P_MU, P_R, P_J2, P_MUE, P_MUS, P_THRUST, P_VEX, P_KJ2, P_KE, P_KS = range(10)
-N_BASE = 10
-N_PARAM = N_BASE + 2 + 6 * ChebyshevFit.NCOEF
-
-MODES = {"two-body": (0.0, 0.0, 0.0), "j2": (1.0, 0.0, 0.0), "full": (1.0, 1.0, 1.0)}
+from lunarcap.physics.ephemeris import ChebyshevFit
+from lunarcap.physics.forces import (  # noqa: F401  (re-exported: the parameter slots)
+    P_MU,
+    P_THRUST,
+    P_VEX,
+    PRESETS,
+    ForceModel,
+    force_model,
+    perturbation_rtn,
+)
 
 
 @dataclass
 class Model:
-    """Physical model: central body, perturbations, engine and ephemeris fit.
+    """Physical model: the forces (:mod:`lunarcap.physics.forces`), engine and ephemeris fit.
 
     Parameters
     ----------
-    mode : {"full", "j2", "two-body"}
-        Which perturbations act: lunar J2 and Earth and Sun point masses ("full"),
-        lunar J2 only, or none.
+    mode : "full", "j2", "two-body", a ForceModel, or a plan's ``dynamics`` mapping
+        Which forces act: the paper's words (lunar J2, Earth and Sun point masses; J2
+        only; none), or any composition of terms.
     thrust_N : float
         Engine thrust, N (0 for a coast).
     isp_s : float
         Specific impulse, s.
     fit : ChebyshevFit or None
-        Earth/Sun ephemeris fit; required when mode is "full".
+        Earth/Sun ephemeris fit (with the Moon's orientation when a term turns with it);
+        required when the forces need it (:attr:`ForceModel.needs_fit`).
     """
 
-    mode: str = "full"
+    mode: str | ForceModel = "full"
     thrust_N: float = 0.0
     isp_s: float = 300.0
     fit: ChebyshevFit | None = None
@@ -62,19 +68,22 @@ class Model:
     j2: float = C.J2_MOON
     mu_earth: float = C.MU_EARTH
     mu_sun: float = C.MU_SUN
-    _flags: tuple = field(init=False, repr=False)
+    forces: ForceModel = field(init=False, repr=False)
 
     def __post_init__(self):
-        if self.mode not in MODES:
-            raise InputError(f"dynamics must be one of {sorted(MODES)}, got {self.mode!r}")
+        self.forces = force_model(self.mode)
+        if not isinstance(self.mode, str):   # a mapping: its (hashable) model
+            self.mode = self.forces
         if not np.isfinite(self.thrust_N) or self.thrust_N < 0:
             raise InputError(f"thrust must be a non-negative number of newtons, "
                              f"got {self.thrust_N}")
         if not np.isfinite(self.isp_s) or self.isp_s <= 0:
             raise InputError(f"specific impulse must be positive (s), got {self.isp_s}")
-        if self.mode == "full" and self.fit is None:
-            raise InputError("full dynamics need an ephemeris fit (Model(fit=...))")
-        self._flags = MODES[self.mode]
+        need = self.forces.rotation
+        if self.forces.needs_fit and (self.fit is None or self.fit.body_frame != need):
+            raise InputError(f"{self.forces.label} dynamics need an ephemeris fit"
+                             + (f" with the Moon's {need} orientation" if need else "")
+                             + " (Model(fit=ChebyshevFit.fit(..., body_frame=...)))")
 
     @property
     def exhaust_speed_kmps(self) -> float:
@@ -82,17 +91,28 @@ class Model:
         return C.G0_KMPS2 * self.isp_s
 
     def params(self, thrust_N: float | None = None) -> np.ndarray:
-        """The numeric parameter vector (length N_PARAM) of :func:`rhs_function`."""
+        """The numeric parameter vector (length ``forces.n_param``) of :func:`rhs_function`."""
         T = self.thrust_N if thrust_N is None else thrust_N
-        base = [self.mu, self.radius, self.j2, self.mu_earth, self.mu_sun, T * 1e-3,
-                self.exhaust_speed_kmps * 1e3, *self._flags]
-        if self.fit is not None:
-            eph = self.fit.param_vector()
-        else:  # a dummy window; its values are multiplied by zero flags
-            eph = np.concatenate([[0.0, 1.0], np.zeros(6 * ChebyshevFit.NCOEF)])
-            eph[2] = 1e9  # keep the (unused) third-body distances away from zero
-            eph[2 + 3 * ChebyshevFit.NCOEF] = 1e9
-        return np.concatenate([base, eph])
+        f = self.forces
+        radius, j2 = (f.field.radius_km, f.field.j2) if f.is_field else (self.radius, self.j2)
+        values = {"mu": self.mu, "thrust_kN": T * 1e-3, "vex_mps": self.exhaust_speed_kmps * 1e3,
+                  "radius": radius, "j2": j2, "mu_earth": self.mu_earth, "mu_sun": self.mu_sun}
+        out = [values[name] for name in f.layout if name != "fit"]
+        if f.needs_fit:
+            out = np.concatenate([out, self.fit.param_vector()])
+        return np.asarray(out, float)
+
+
+def fit_for(mode, eph, t0_s: float, t1_s: float) -> ChebyshevFit | None:
+    """The Chebyshev fit the forces of ``mode`` read over [t0_s, t1_s], or None if none.
+
+    Earth and Sun positions, with the Moon's orientation when a term turns with it
+    (:attr:`lunarcap.physics.forces.ForceModel.rotation`), from the ephemeris ``eph``.
+    """
+    forces = force_model(mode)
+    if not forces.needs_fit:
+        return None
+    return ChebyshevFit.fit(eph, t0_s, t1_s, body_frame=forces.rotation)
 
 
 def rtn_from_mee(h, k, L):
@@ -158,7 +178,7 @@ def third_body_rtn(r, rtn, rj, muj):
     return ((kd - kj) * c[0] - kd * r, (kd - kj) * c[1], (kd - kj) * c[2])
 
 
-def mee_rates(x, u, t, prm):
+def mee_rates(x, u, t, prm, forces="full", a_extra=None):
     """Time derivatives of (p, f, g, h, k, L, m): Eqs. (2)-(8), (A2)-(A4).
 
     Parameters
@@ -167,6 +187,11 @@ def mee_rates(x, u, t, prm):
     u : sequence of 3, unit thrust direction (u_r, u_t, u_n)
     t : epoch, TDB seconds past J2000
     prm : parameter vector of :meth:`Model.params`
+    forces : ForceModel or a preset word
+        The perturbing terms (:func:`lunarcap.physics.forces.perturbation_rtn`).
+    a_extra : sequence of 3, optional
+        A further acceleration in RTN, km/s^2, added to the terms' (an outer correction
+        of the optimiser carries a field's higher degrees this way).
 
     Returns
     -------
@@ -174,6 +199,7 @@ def mee_rates(x, u, t, prm):
     """
     p, f, g, h, k, L, m = (x[i] for i in range(7))
     xp = ops(p, f, g, h, k, L, m, t)
+    forces = force_model(forces)
     mu = prm[P_MU]
     cL, sL = xp.cos(L), xp.sin(L)
     q = 1 + f * cL + g * sL
@@ -181,19 +207,17 @@ def mee_rates(x, u, t, prm):
     w = h * sL - k * cL
     sq = xp.sqrt(p / mu)
 
-    # lunar J2, Eq. (7)
-    jr, jt, jn = j2_rtn(p, f, g, h, k, L, mu, prm[P_R], prm[P_J2])
-    # Earth and Sun point masses, Eq. (6), in RTN (Eq. A5)
-    ir, it, i_n = rtn_from_mee(h, k, L)
-    r_earth, r_sun = earth_sun_from_params([prm[N_BASE + i] for i in range(N_PARAM - N_BASE)], t)
-    ae = third_body_rtn(p / q, (ir, it, i_n), r_earth, prm[P_MUE])
-    asun = third_body_rtn(p / q, (ir, it, i_n), r_sun, prm[P_MUS])
-    a3 = [prm[P_KE] * ae[i] + prm[P_KS] * asun[i] for i in range(3)]
+    # the forces' terms (lunar gravity, Earth and Sun point masses: Eqs. 6-7), in RTN
+    pert = perturbation_rtn(forces, (p, f, g, h, k, L), t, prm)
+    if a_extra is not None:
+        pert = tuple(a_extra[i] for i in range(3)) if pert is None else \
+            tuple(pert[i] + a_extra[i] for i in range(3))
     # thrust, Eq. (8): T [kN] / m [kg] = km/s^2
     acc = prm[P_THRUST] / m
-    dr = prm[P_KJ2] * jr + a3[0] + acc * u[0]
-    dt = prm[P_KJ2] * jt + a3[1] + acc * u[1]
-    dn = prm[P_KJ2] * jn + a3[2] + acc * u[2]
+    if pert is None:
+        dr, dt, dn = acc * u[0], acc * u[1], acc * u[2]
+    else:
+        dr, dt, dn = (pert[i] + acc * u[i] for i in range(3))
 
     # Eq. (2) with A (A2), b (A3), q, s^2 (A4)
     pdot = 2 * p / q * sq * dt
@@ -208,36 +232,36 @@ def mee_rates(x, u, t, prm):
 
 
 @lru_cache(maxsize=None)
-def rhs_function(mode: str | None = None, thrust: bool = True) -> ca.Function:
-    """CasADi Function ``f(x[7], u[3], t, prm[N_PARAM]) -> xdot[7]`` from :func:`mee_rates`.
+def rhs_function(mode="full", thrust: bool = True, extra: bool = False) -> ca.Function:
+    """CasADi Function ``f(x[7], u[3], t, prm[n_param]) -> xdot[7]`` from :func:`mee_rates`.
 
-    With ``mode`` ("two-body", "j2", "full") the perturbation switches are built in as
-    constants (the switch entries of ``prm`` are then ignored), so CasADi drops the terms
-    that are switched off: a smaller graph and cheaper derivatives. With ``mode=None``
-    the switches are read from ``prm``. With ``thrust=False`` (a coast) the thrust is built
-    in as zero (``u`` and the thrust entry of ``prm`` are ignored): the same equations
-    without their thrust terms.
+    ``mode``: a preset word or a ForceModel (:func:`lunarcap.physics.forces.force_model`);
+    only its terms enter the graph. With ``thrust=False`` (a coast) the thrust is built in
+    as zero (``u`` and the thrust entry of ``prm`` are ignored): the same equations
+    without their thrust terms. With ``extra`` a fifth input ``a[3]`` (RTN, km/s^2) is
+    added to the perturbation (:func:`mee_rates`'s ``a_extra``).
     """
+    forces = force_model(mode)
+    n = forces.n_param
     x = ca.SX.sym("x", 7)
     u = ca.SX.sym("u", 3)
     t = ca.SX.sym("t")
-    prm = ca.SX.sym("prm", N_PARAM)
-    plist = [prm[i] for i in range(N_PARAM)]
-    if mode is not None:
-        if mode not in MODES:
-            raise InputError(f"dynamics must be one of {sorted(MODES)}, got {mode!r}")
-        plist[P_KJ2], plist[P_KE], plist[P_KS] = (ca.SX(v) for v in MODES[mode])
+    prm = ca.SX.sym("prm", n)
+    a = ca.SX.sym("a", 3)
+    plist = [prm[i] for i in range(n)]
     if not thrust:
         plist[P_THRUST] = ca.SX(0.0)
-    rates = mee_rates([x[i] for i in range(7)], [u[i] for i in range(3)], t, plist)
-    if mode is not None and MODES[mode][1] == 0 and MODES[mode][2] == 0:
+    rates = mee_rates([x[i] for i in range(7)], [u[i] for i in range(3)], t, plist, forces,
+                      [a[i] for i in range(3)] if extra else None)
+    if not forces.third_bodies and not forces.is_field and not extra:
         rates = [ca.simplify(r) for r in rates]
-    name = f"mee_rhs_{mode or 'switchable'}{'' if thrust else '_coast'}".replace("-", "_")
+    name = f"mee_rhs_{forces.key}{'' if thrust else '_coast'}{'_extra' if extra else ''}"
     # Common subexpressions merged (the same operations, computed once: e.g. the
     # orbit-plane basis of rv_from_mee and rtn_from_mee): 16 % fewer instructions per node
     # in full dynamics, so smaller NLP derivatives to build and evaluate.
-    return ca.Function(name, [x, u, t, prm],
-                       [ca.cse(ca.vertcat(*rates))], ["x", "u", "t", "prm"], ["xdot"])
+    ins, names = [x, u, t, prm] + ([a] if extra else []), ["x", "u", "t", "prm"] + (
+        ["a"] if extra else [])
+    return ca.Function(name, ins, [ca.cse(ca.vertcat(*rates))], names, ["xdot"])
 
 
 # ------------------------------------------------------------------ independent check
@@ -245,28 +269,39 @@ def cartesian_rates(t, state, model: Model, u_rtn=(0.0, 0.0, 0.0)):
     """Cartesian equations of motion, written independently of the MEE form (numpy).
 
     ``state = (r km [3], v km/s [3], m kg)``;
-    r'' = -mu r/r^3 + grad(U_J2) + a_Earth + a_Sun + T/m Q^T u.
-    The J2 term is the gradient of U = -mu J2 R^2 / (2 r^3) (3 z^2/r^2 - 1) with z
-    along the M-MME2000 pole.
+    r'' = -mu r/r^3 + grad(U_J2) + grad(U_field) + a_Earth + a_Sun + T/m Q^T u.
+    The J2 term is the gradient of U = -mu J2 R^2 / (2 r^3) (3 z^2/r^2 - 1) with z along
+    its axis (the frame's pole, or the body pole from the fit); a field is evaluated
+    whole (its C20 too) in the body-fixed frame and rotated back.
     """
+    from lunarcap.physics.forces import J2
+    from lunarcap.physics.gravity import sh_acceleration
+
     r = np.asarray(state[:3], float)
     v = np.asarray(state[3:6], float)
     m = state[6]
     mu = model.mu
+    fm = model.forces
     rn = np.linalg.norm(r)
     a = -mu * r / rn ** 3
-    kj2, ke, ks = model._flags
-    if kj2:
-        x, y, z = r
+    axes = model.fit.body_axes(t) if fm.rotation else np.eye(3)
+    if fm.gravity == J2:
+        x, y, z = axes @ r if fm.pole == "of-date" else r
         c = 1.5 * model.j2 * mu * model.radius ** 2 / rn ** 5
         zz = 5 * z * z / rn ** 2
-        a = a + kj2 * c * np.array([x * (zz - 1), y * (zz - 1), z * (zz - 3)])
-    if ke or ks:
+        ab = c * np.array([x * (zz - 1), y * (zz - 1), z * (zz - 3)])
+        a = a + (axes.T @ ab if fm.pole == "of-date" else ab)
+    if fm.is_field:
+        f = fm.field
+        ab = sh_acceleration(*(axes @ r), f.C, f.S, f.radius_km, mu, fm.degree, fm.order)
+        a = a + axes.T @ np.array(ab)
+    if fm.third_bodies:
         re, rs = model.fit(t)
-        re, rs = re.ravel(), rs.ravel()
-        for kflag, rj, muj in ((ke, re, model.mu_earth), (ks, rs, model.mu_sun)):
-            d = rj - r
-            a = a + kflag * muj * (d / np.linalg.norm(d) ** 3 - rj / np.linalg.norm(rj) ** 3)
+        for name, rj, muj in (("earth", re.ravel(), model.mu_earth),
+                              ("sun", rs.ravel(), model.mu_sun)):
+            if name in fm.third_bodies:
+                d = rj - r
+                a = a + muj * (d / np.linalg.norm(d) ** 3 - rj / np.linalg.norm(rj) ** 3)
     mdot = 0.0
     if model.thrust_N > 0:
         ir = r / rn

@@ -5,10 +5,15 @@ The default source is JPL DE405 (Standish 1998) as shipped by the PyPI package
 downloaded. Any SPK kernel (``.bsp``: DE405, DE430, DE440, ...) holding the Sun,
 the Earth-Moon barycentre, the Earth and the Moon may be named instead.
 
+It also gives the Moon's orientation: the DE405 libration angles (the Euler angles of
+the lunar principal-axis frame of DE405, the body-fixed frame GMAT's ``Luna`` uses, read
+from the ``de405`` package whatever SPK gives the positions) or the IAU (2009) rotation
+model (:func:`lunarcap.physics.frames.iau_moon_euler_rad`).
+
 This is the only module that imports jplephem. For the optimiser, :class:`ChebyshevFit`
-fits both vectors over a mission window with Chebyshev series whose evaluation (the
-Clenshaw recurrence) is written over generic operations, so it can be called inside
-CasADi expressions.
+fits both vectors (and, when a force needs it, the three Euler angles of the Moon's
+body-fixed frame) over a mission window with Chebyshev series whose evaluation is
+written over generic operations, so it can be called inside CasADi expressions.
 """
 
 from __future__ import annotations
@@ -22,9 +27,20 @@ import numpy as np
 
 from lunarcap.errors import EphemerisRangeError, InputError
 from lunarcap.physics.epochs import calendar_from_seconds, jd_split_from_seconds, seconds_from_jd
-from lunarcap.physics.frames import DEFAULT_LUNAR_POLE, LUNAR_POLES, icrf_to_mme
+from lunarcap.physics.frames import (
+    DEFAULT_LUNAR_POLE,
+    check_lunar_pole,
+    iau_moon_euler_rad,
+    icrf_to_mme,
+    rotation_313,
+)
 
-__all__ = ["Ephemeris", "ChebyshevFit", "default_ephemeris", "chebyshev_eval"]
+__all__ = ["Ephemeris", "ChebyshevFit", "default_ephemeris", "chebyshev_eval",
+           "BODY_FRAMES"]
+
+#: Sources of the Moon's body-fixed frame: the DE405 libration angles (principal axes) or
+#: the IAU (2009) rotation model (mean Earth / polar axis approximation).
+BODY_FRAMES = ("de405", "iau2009")
 
 _KM_PER_DAY_TO_KMPS = 1.0 / 86400.0
 
@@ -43,9 +59,10 @@ class Ephemeris:
 
     def __init__(self, source: str | os.PathLike | None = None,
                  lunar_pole: str = DEFAULT_LUNAR_POLE):
-        if lunar_pole not in LUNAR_POLES:
-            raise InputError(f"lunar_pole must be one of {', '.join(LUNAR_POLES)}, "
-                             f"got {lunar_pole!r}")
+        try:
+            check_lunar_pole(lunar_pole)
+        except ValueError as exc:
+            raise InputError(f"lunar_pole: {exc}") from None
         self.lunar_pole = lunar_pole
         #: Rotation ICRF -> M-MME2000 of this pole.
         self.rotation = icrf_to_mme(lunar_pole)
@@ -152,6 +169,24 @@ class Ephemeris:
         moon, moon_v, _ = self._icrf(t_s)
         return self.rotation @ moon, self.rotation @ moon_v
 
+    def body_angles(self, t_s, source: str = "de405"):
+        """Euler angles (phi, theta, psi) of the Moon's body-fixed frame, rad, shape (3, N).
+
+        ICRF -> body = R3(psi) R1(theta) R3(phi). ``source`` "de405": the DE405 libration
+        angles (the ``de405`` package, also when this ephemeris is an SPK file: SPK kernels
+        carry no orientation); "iau2009": the IAU (2009) rotation model.
+        """
+        t = np.atleast_1d(np.asarray(t_s, dtype=float))
+        if source == "iau2009":
+            return np.array(iau_moon_euler_rad(t))
+        if source != "de405":
+            raise InputError(f"body frame must be one of {', '.join(BODY_FRAMES)}, "
+                             f"got {source!r}")
+        eph = self if self._kind == "de405" else default_ephemeris()
+        eph.check_epochs(t)
+        whole, frac = np.vectorize(jd_split_from_seconds)(t)
+        return np.asarray(eph._eph.position("librations", whole, frac))
+
     def describe(self) -> dict:
         """Provenance record: name, path, SHA-256 and span."""
         a, b = self.span_s
@@ -204,15 +239,25 @@ def chebyshev_eval(coeffs, tau):
 
 @dataclass(frozen=True)
 class ChebyshevFit:
-    """Chebyshev fit of the Earth and Sun positions (rows x,y,z Earth then x,y,z Sun, km).
+    """Chebyshev fit of the Earth and Sun positions, and optionally the Moon's orientation.
+
+    Rows x, y, z of the Earth then of the Sun (km, the ephemeris's frame); with a
+    ``body_frame``, three more rows: the Euler angles (phi, theta, psi) of the Moon's
+    body-fixed frame (rad, :meth:`Ephemeris.body_angles`), and the rotation ICRF -> frame
+    (``frame_rotation``) that turns them into body axes seen from the plan's frame.
 
     Attributes
     ----------
     t0_s, t1_s : float
         Window, TDB seconds past J2000.
-    coeffs : ndarray, shape (6, ncoef)
+    coeffs : ndarray, shape (6 or 9, ncoef)
     max_error_km : float
         Largest distance between fit and ephemeris on a dense check grid.
+    body_frame : {"de405", "iau2009"} or None
+    frame_rotation : ndarray (3, 3) or None
+        ICRF -> the ephemeris's frame (M-MME2000 of its lunar pole), with ``body_frame``.
+    max_angle_error_rad : float
+        Largest error of the fitted Euler angles on the check grid (0 without them).
     """
 
     t0_s: float
@@ -220,19 +265,27 @@ class ChebyshevFit:
     coeffs: np.ndarray
     max_error_km: float
     source: str
+    body_frame: str | None = None
+    frame_rotation: np.ndarray | None = None
+    max_angle_error_rad: float = 0.0
 
     NCOEF = 10  # fixed so CasADi functions keep one shape for any window (<= 4 days):
     #           10 fit DE405 to its own evaluation noise (6e-5 km) over 4 days (16 no better)
+    #: Tolerance of the fitted Euler angles, rad (1e-9 rad: 2 mm on the lunar surface).
+    TOL_ANGLE_RAD = 1e-9
 
     @classmethod
     def fit(cls, eph: Ephemeris, t0_s: float, t1_s: float, ncoef: int | None = None,
-            tol_km: float = 1e-3) -> "ChebyshevFit":
+            tol_km: float = 1e-3, body_frame: str | None = None) -> "ChebyshevFit":
         """Fit over [t0_s, t1_s] at Chebyshev nodes; check the error on a 4x denser grid.
+
+        ``body_frame`` ("de405" or "iau2009") also fits the Moon's orientation.
 
         Raises
         ------
         InputError
-            If the window is empty or longer than 4 days, or the fit misses ``tol_km``.
+            If the window is empty or longer than 4 days, or the fit misses ``tol_km``
+            (or 1e-9 rad for the angles).
         """
         ncoef = ncoef or cls.NCOEF
         if not t1_s > t0_s:
@@ -243,31 +296,51 @@ class ChebyshevFit:
         nodes = np.cos(np.pi * (np.arange(ncoef) + 0.5) / ncoef)  # Chebyshev-Gauss nodes
         t = 0.5 * (t0_s + t1_s) + 0.5 * (t1_s - t0_s) * nodes
         re, rs = eph.earth_sun(t)
-        vals = np.vstack([re, rs])
+        vals = np.vstack([re, rs] + ([eph.body_angles(t, body_frame)] if body_frame else []))
         coeffs = np.array([np.polynomial.chebyshev.chebfit(nodes, row, ncoef - 1) for row in vals])
         tchk = np.linspace(t0_s, t1_s, 4 * ncoef + 1)
         fit = np.array(chebyshev_eval(coeffs, cls._tau(t0_s, t1_s, tchk)))
         re_c, rs_c = eph.earth_sun(tchk)
         err = max(np.linalg.norm(fit[:3] - re_c, axis=0).max(),
-                  np.linalg.norm(fit[3:] - rs_c, axis=0).max())
+                  np.linalg.norm(fit[3:6] - rs_c, axis=0).max())
         if err > tol_km:
             raise InputError(f"Chebyshev ephemeris fit error {err * 1e3:.3f} m exceeds "
                              f"{tol_km * 1e3:.3f} m; shorten the window")
-        return cls(float(t0_s), float(t1_s), coeffs, float(err), eph.name)
+        err_angle = 0.0
+        if body_frame:
+            err_angle = float(np.abs(fit[6:] - eph.body_angles(tchk, body_frame)).max())
+            if err_angle > cls.TOL_ANGLE_RAD:
+                raise InputError(f"Chebyshev fit of the Moon's orientation misses by "
+                                 f"{err_angle:.2e} rad; shorten the window")
+        return cls(float(t0_s), float(t1_s), coeffs, float(err), eph.name, body_frame,
+                   eph.rotation.copy() if body_frame else None, err_angle)
 
     @staticmethod
     def _tau(t0, t1, t):
         return (2 * t - (t0 + t1)) / (t1 - t0)
 
     def param_vector(self) -> np.ndarray:
-        """[t0, t1, coeffs...]: the numeric parameters a CasADi dynamics function takes."""
-        return np.concatenate([[self.t0_s, self.t1_s], self.coeffs.ravel()])
+        """[t0, t1, coeffs..., (frame rotation)]: the numbers a CasADi dynamics function takes."""
+        parts = [[self.t0_s, self.t1_s], self.coeffs.ravel()]
+        if self.body_frame:
+            parts.append(self.frame_rotation.ravel())
+        return np.concatenate(parts)
+
+    @staticmethod
+    def n_params(body_frame: bool) -> int:
+        """Length of :meth:`param_vector` with or without the Moon's orientation."""
+        n = ChebyshevFit.NCOEF
+        return 2 + (9 * n + 9 if body_frame else 6 * n)
 
     def __call__(self, t_s):
         """Earth and Sun positions (km, M-MME2000) at epochs t_s from the fit, shape (3, N)."""
-        vals = np.array(chebyshev_eval(self.coeffs, self._tau(self.t0_s, self.t1_s,
-                                                              np.asarray(t_s, float))))
+        vals = np.array(chebyshev_eval(self.coeffs[:6], self._tau(self.t0_s, self.t1_s,
+                                                                  np.asarray(t_s, float))))
         return vals[:3], vals[3:]
+
+    def body_axes(self, t_s) -> np.ndarray:
+        """Rows of the Moon's body-fixed axes in the fit's frame at an epoch, (3, 3)."""
+        return np.array(body_axes_from_params(self.param_vector(), float(t_s)), dtype=float)
 
 
 def earth_sun_from_params(prm, t_s):
@@ -281,3 +354,21 @@ def earth_sun_from_params(prm, t_s):
     rows = [[prm[2 + i * n + j] for j in range(n)] for i in range(6)]
     v = chebyshev_eval(rows, tau)
     return v[:3], v[3:]
+
+
+def body_axes_from_params(prm, t_s):
+    """Rows of the Moon's body-fixed axes in the plan's frame from a fit's parameter vector.
+
+    R313(phi, theta, psi) C^T, with the fitted Euler angles and C = ICRF -> frame: row i is
+    body axis i in the frame, so ``x_body = M x_frame``. Generic over numpy/CasADi.
+    """
+    n = ChebyshevFit.NCOEF
+    t0, t1 = prm[0], prm[1]
+    tau = (2 * t_s - (t0 + t1)) / (t1 - t0)
+    phi, theta, psi = chebyshev_eval([[prm[2 + i * n + j] for j in range(n)]
+                                      for i in range(6, 9)], tau)
+    rot = rotation_313(phi, theta, psi)
+    c = [[prm[2 + 9 * n + 3 * i + j] for j in range(3)] for i in range(3)]
+    # (R C^T)[a][b] = sum_k R[a][k] C[b][k]
+    return tuple(tuple(rot[a][0] * c[b][0] + rot[a][1] * c[b][1] + rot[a][2] * c[b][2]
+                       for b in range(3)) for a in range(3))

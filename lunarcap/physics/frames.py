@@ -37,9 +37,55 @@ import numpy as np
 from lunarcap.physics import constants as C
 from lunarcap.physics.constants import MOON_POLE_DEC_DEG, MOON_POLE_RA_DEG
 
-#: The lunar pole choices of :func:`moon_pole_radec_deg` (first: the default).
+#: The lunar pole choices of :func:`moon_pole_radec_deg` (first: the default). Besides
+#: these names, ``"iau2009@<epoch>"`` (:func:`pole_of_date`) names the whole IAU
+#: expression at another epoch: the frame whose z is the Moon's axis of that date.
 LUNAR_POLES = ("iau2009-j2000", "iau-constant")
 DEFAULT_LUNAR_POLE = LUNAR_POLES[0]
+#: Prefix of a pole of date: ``"iau2009@2017-02-20 03:41:26 TDB"``.
+POLE_OF_DATE_PREFIX = "iau2009@"
+
+
+def pole_of_date(epoch: str) -> str:
+    """The lunar pole choice of the IAU (2009) pole at a calendar epoch (TDB or UTC).
+
+    The frame it fixes is inertial, like M-MME2000, with z along the Moon's axis of that
+    date instead of J2000's (0.79 deg apart in 2017). Plans whose dynamics ask for the
+    pole of date measure their inclinations about it (the epoch: their arrival's).
+
+    Examples
+    --------
+    >>> pole_of_date("2017-02-20 03:41:26 TDB")
+    'iau2009@2017-02-20 03:41:26 TDB'
+    """
+    return POLE_OF_DATE_PREFIX + epoch.strip()
+
+
+def check_lunar_pole(pole) -> str:
+    """``pole`` if it names a lunar pole (a :data:`LUNAR_POLES` name or a pole of date).
+
+    Raises
+    ------
+    ValueError
+        Naming the choices (or the epoch that cannot be read).
+    """
+    if isinstance(pole, str) and pole.startswith(POLE_OF_DATE_PREFIX):
+        _pole_epoch_jd(pole)
+        return pole
+    if pole not in LUNAR_POLES:
+        raise ValueError(f"lunar pole must be one of {', '.join(LUNAR_POLES)} or "
+                         f"'{POLE_OF_DATE_PREFIX}<epoch>', got {pole!r}")
+    return pole
+
+
+def _pole_epoch_jd(pole: str) -> float:
+    """Julian date (TDB) of a pole of date ``"iau2009@<epoch>"``."""
+    from lunarcap.physics.epochs import jd_from_seconds, seconds_from_calendar
+
+    try:
+        return jd_from_seconds(seconds_from_calendar(pole[len(POLE_OF_DATE_PREFIX):]))
+    except Exception as exc:  # InputError from the calendar parser
+        raise ValueError(f"lunar pole {pole!r}: {exc}") from None
 
 
 def moon_pole_radec_deg(pole: str = DEFAULT_LUNAR_POLE, jd_tdb: float = C.JD_J2000
@@ -48,9 +94,10 @@ def moon_pole_radec_deg(pole: str = DEFAULT_LUNAR_POLE, jd_tdb: float = C.JD_J20
 
     Parameters
     ----------
-    pole : {"iau2009-j2000", "iau-constant"}
+    pole : {"iau2009-j2000", "iau-constant"} or "iau2009@<epoch>"
         The whole IAU (2009) expression (Archinal et al. 2011, Table 2) or its constant
-        terms only (see the module docstring).
+        terms only (see the module docstring); a pole of date (:func:`pole_of_date`) is
+        the whole expression at its epoch (``jd_tdb`` is then ignored).
     jd_tdb : float
         Epoch of the whole expression, Julian date TDB (M-MME2000: J2000).
 
@@ -63,8 +110,8 @@ def moon_pole_radec_deg(pole: str = DEFAULT_LUNAR_POLE, jd_tdb: float = C.JD_J20
     """
     if pole == "iau-constant":
         return MOON_POLE_RA_DEG, MOON_POLE_DEC_DEG
-    if pole != "iau2009-j2000":
-        raise ValueError(f"lunar pole must be one of {', '.join(LUNAR_POLES)}, got {pole!r}")
+    if check_lunar_pole(pole) != "iau2009-j2000":   # a pole of date: at its own epoch
+        jd_tdb = _pole_epoch_jd(pole)
     d = jd_tdb - C.JD_J2000
     t = d / 36525.0
     e = np.radians(np.asarray(C.MOON_E_PHASE_DEG) + np.asarray(C.MOON_E_RATE_DEG_PER_DAY) * d)
@@ -73,6 +120,55 @@ def moon_pole_radec_deg(pole: str = DEFAULT_LUNAR_POLE, jd_tdb: float = C.JD_J20
     dec = MOON_POLE_DEC_DEG + C.MOON_POLE_DEC_RATE_DEG * t + float(
         np.dot(C.MOON_POLE_DEC_AMPL_DEG, np.cos(e)))
     return ra, dec
+
+
+def iau_moon_euler_rad(t_s):
+    """Euler angles (phi, theta, psi) of the IAU (2009) lunar body-fixed frame, rad.
+
+    The whole expression of Archinal et al. (2011, Table 2) with its E1-E13 terms:
+    phi = alpha0 + 90 deg, theta = 90 deg - delta0, psi = W (the prime meridian), so that
+    ICRF -> body = R3(psi) R1(theta) R3(phi) (:func:`rotation_313`), the convention of the
+    JPL libration angles (:meth:`lunarcap.physics.ephemeris.Ephemeris.librations`). This
+    frame approximates the Moon's mean-Earth/polar-axis frame; a gravity field given in
+    the principal-axis frame differs from it by about 0.02 deg (see the book).
+
+    Parameters
+    ----------
+    t_s : float or ndarray
+        TDB seconds past J2000.
+
+    Returns
+    -------
+    phi, theta, psi : float or ndarray, rad (psi not reduced to one turn)
+    """
+    d = np.asarray(t_s, float) / C.DAY_S
+    t = d / 36525.0
+    e = np.radians(np.multiply.outer(C.MOON_E_RATE_DEG_PER_DAY, d)
+                   + np.reshape(C.MOON_E_PHASE_DEG, (-1,) + (1,) * d.ndim))
+    se, ce = np.sin(e), np.cos(e)
+    ra = MOON_POLE_RA_DEG + C.MOON_POLE_RA_RATE_DEG * t + np.tensordot(
+        C.MOON_POLE_RA_AMPL_DEG, se, axes=1)
+    dec = MOON_POLE_DEC_DEG + C.MOON_POLE_DEC_RATE_DEG * t + np.tensordot(
+        C.MOON_POLE_DEC_AMPL_DEG, ce, axes=1)
+    w = C.MOON_W_DEG + C.MOON_W_RATE_DEG_PER_DAY * d + C.MOON_W_ACCEL_DEG_PER_DAY2 * d * d \
+        + np.tensordot(C.MOON_W_AMPL_DEG, se, axes=1)
+    return np.radians(ra + 90.0), np.radians(90.0 - dec), np.radians(w)
+
+
+def rotation_313(phi, theta, psi):
+    """Rows of R3(psi) R1(theta) R3(phi): the axes of a body frame in the reference frame.
+
+    Generic over numpy and CasADi (nested tuples of scalars): ``x_body = R x_ref``.
+    The third row is the body's pole, (sin theta sin phi, -sin theta cos phi, cos theta).
+    """
+    from lunarcap.physics._ops import ops
+
+    xp = ops(phi, theta, psi)
+    cf, sf, ct, st, cp, sp = (xp.cos(phi), xp.sin(phi), xp.cos(theta), xp.sin(theta),
+                              xp.cos(psi), xp.sin(psi))
+    return ((cp * cf - sp * ct * sf, cp * sf + sp * ct * cf, sp * st),
+            (-sp * cf - cp * ct * sf, -sp * sf + cp * ct * cf, cp * st),
+            (st * sf, -st * cf, ct))
 
 
 def moon_pole_icrf(ra_deg: float = MOON_POLE_RA_DEG, dec_deg: float = MOON_POLE_DEC_DEG

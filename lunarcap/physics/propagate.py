@@ -29,7 +29,7 @@ import casadi as ca
 import numpy as np
 
 from lunarcap.errors import InputError
-from lunarcap.physics.dynamics import N_PARAM, P_THRUST, Model, rhs_function
+from lunarcap.physics.dynamics import P_THRUST, Model, force_model, rhs_function
 from lunarcap.physics.steering import COAST, Steering, constant
 
 #: Default relative tolerance, and absolute tolerance of the scaled states. At 1e-13 a
@@ -125,13 +125,14 @@ class Hermite:
 def _arc_rhs(mode: str, steering: Steering, quadrature: bool):
     """Symbols and the scaled right-hand side dy/dtau of an arc.
 
-    Parameters of the arc: the dynamics parameters (N_PARAM), the start epoch t0 (s),
-    the duration span (s), the scales of p (km) and m (kg), and the steering's numbers.
+    Parameters of the arc: the dynamics parameters (``n_param`` of the model), the start
+    epoch t0 (s), the duration span (s), the scales of p (km) and m (kg), and the
+    steering's numbers.
     """
     n_s = len(steering.params)
     y = ca.SX.sym("y", N_X + (1 if quadrature else 0))
     tau = ca.SX.sym("tau")
-    prm = ca.SX.sym("prm", N_PARAM)
+    prm = ca.SX.sym("prm", force_model(mode).n_param)
     t0, span, sp, sm = ca.SX.sym("t0"), ca.SX.sym("span"), ca.SX.sym("sp"), ca.SX.sym("sm")
     ps = ca.SX.sym("ps", n_s)
     scale = ca.vertcat(sp, 1, 1, 1, 1, 1, sm)

@@ -40,12 +40,12 @@ import numpy as np
 
 from lunarcap.errors import InputError, SolveError, integer, number_list
 from lunarcap.mission.impulsive import capture_total_mps, equal_split_periods_s
-from lunarcap.mission.plan import CapturePlan, PlanError, plan_ephemeris
+from lunarcap.mission.plan import CapturePlan, PlanError
 from lunarcap.mission.targets import CIRCULAR
 from lunarcap.optim.joint import solve_joint
 from lunarcap.physics import constants as C
+from lunarcap.physics.dynamics import fit_for, force_model
 from lunarcap.physics.elements import period_from_semi_major_axis
-from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.repro.cache import cached, code_version, position
 from lunarcap.runs.campaign import TableFormat
@@ -105,7 +105,7 @@ def _fit_for(plan: CapturePlan, n: int, max_period_s: float, max_time_s: float):
     Only full dynamics need one: two-body and J2 use no ephemeris, so neither the span
     check nor a fit applies to them (see :func:`_without_fit`).
     """
-    if plan.dynamics != "full":
+    if not force_model(plan.dynamics).needs_fit:
         return None
     t0 = plan.nominal_perilunes_s[0]
     horizon = min(max_time_s, (n - 1) * max_period_s) + plan.coast_s(plan.n_burns - 1)
@@ -114,8 +114,8 @@ def _fit_for(plan: CapturePlan, n: int, max_period_s: float, max_time_s: float):
         raise InputError(f"the capture may last {horizon / 86400:.2f} days: an ephemeris fit "
                          f"covers at most {MAX_FIT_SPAN_S / 86400 - 0.5:g} days; lower "
                          f"--max-days or --max-period-h")
-    return ChebyshevFit.fit(plan_ephemeris(plan.ephemeris), t0 - FIT_MARGIN_S, t0 + span
-                            - FIT_MARGIN_S)
+    return fit_for(plan.dynamics, plan.ephemeris_model(), t0 - FIT_MARGIN_S,
+                   t0 + span - FIT_MARGIN_S)
 
 
 def _without_fit(sol):
@@ -226,10 +226,10 @@ def _optimum(plan: CapturePlan, guess: CapturePlan, n: int, max_period_s: float,
     optimum's coasts make no valid plan) or RuntimeError (a guess's propagation).
     """
     seq = solve_plan(guess, verbose=verbose)
-    if plan.dynamics != "full":
+    if not force_model(plan.dynamics).needs_fit:
         seq = [_without_fit(sol) for sol in seq]
     lo = circle_period_s(plan.perilune_radius_km) + MIN_PERIOD_MARGIN_S
-    res = solve_joint(guess, seq, plan_ephemeris(plan.ephemeris),
+    res = solve_joint(guess, seq, plan.ephemeris_model(),
                       free_coasts=(True,) * (n - 1) + (False,),
                       coast_bounds_s=(lo, max_period_s), max_time_s=max_time_s, fit=fit)
     return seq, res

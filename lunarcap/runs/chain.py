@@ -203,6 +203,31 @@ def impulsive_key(plan: CapturePlan) -> CapturePlan:
     return key
 
 
+#: In a gravity field, a shorter burn whose objective (Eq. 9) exceeds a longer one's by
+#: more than this (m/s) shows that the limit of ever shorter burns does not exist (the
+#: objective, unlike the delta-V, is settled to ~0.003 m/s among nearby optima; a finite
+#: burn's loss only falls as it shortens).
+NO_LIMIT_TOL_MPS = 0.01
+
+
+def _no_impulsive_limit(plan: CapturePlan, what: str) -> dict:
+    """The impulsive limit of a burn in a gravity field that has none, and why.
+
+    In a field an impulse may not reach the orbit asked at all: the circle that the field
+    turns into the 100 km circle asked at the coast's end passes below the perilune of the
+    orbit before the burn (measured for LP165P 20x20: 243 m below), where no impulse on
+    that orbit can be; a finite burn reaches it by steering, the shorter the dearer (a 4 s
+    burn 304 m/s, a 2 s burn 364 m/s and not verified, for the 248 m/s of the 10 min
+    burn). So the limit of finite burns does not exist; the burn has no loss.
+    """
+    from lunarcap.physics.forces import force_model
+
+    why = (f"no impulsive limit in {force_model(plan.dynamics)}: the finite-burn limit "
+           f"does not converge ({what[:300]})")
+    return {"burn": plan.n_burns, "delta_v_mps": None, "objective_j_mps": None,
+            "verification_passed": None, "reason": why}
+
+
 @cached(ignore=["verbose"])
 def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     """Impulsive delta-V of the last burn of ``plan`` in the same dynamics and pre-burn orbit.
@@ -226,6 +251,8 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     dict with delta_v_mps (extrapolated), objective_j_mps (likewise), the two finite-limit
     delta-Vs, the impulse's epoch offset (min), end speed (km/s) and the verdicts.
     """
+    from lunarcap.optim.correction import nlp_forces
+
     i = plan.n_burns - 1
     t_peri, x_peri = perilune_epoch_state(plan, i, verbose)
     eph = plan.ephemeris_model()
@@ -243,6 +270,31 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     # delta-V and ~0.003 m/s in J): solve on each side and keep the lower objective.
     centre = -d_long / 120.0  # ignition (min) of a 4 s burn centred on the perilune
     fit = burn_fit(plan, i, eph, t_peri)
+    field = nlp_forces(plan.dynamics) is not None   # only a field may have no limit
+    try:
+        out = _finite_limit(plan, i, x_peri, t_peri, eph, fit, centre, big, progress)
+    except SolveError as exc:
+        if not field:
+            raise
+        out = _no_impulsive_limit(plan, str(exc))
+    else:
+        short, long_ = out["objective_short_mps"], out["objective_long_mps"]
+        if field and short > long_ + NO_LIMIT_TOL_MPS:
+            out = _no_impulsive_limit(plan, f"the objective of a {d_short:g} s burn, "
+                                            f"{short:.3f} m/s, exceeds a {d_long:g} s one's, "
+                                            f"{long_:.3f}")
+    if verbose and out["delta_v_mps"] is not None:
+        dv4, dv2 = out["delta_v_long_mps"], out["delta_v_short_mps"]
+        _log(f"  -> {out['delta_v_mps']:.3f} m/s ({d_long:g} s: {dv4:.3f}, {d_short:g} s: "
+             f"{dv2:.3f} m/s)")
+    elif verbose:
+        _log(f"  -> {out['reason']}")
+    return out
+
+
+def _finite_limit(plan, i, x_peri, t_peri, eph, fit, centre, big, progress) -> dict:
+    """The two finite burns of :func:`_impulsive_limit` and their extrapolation."""
+    d_long, d_short = IMPULSIVE_LIMIT_DURATIONS_S
     sides = []
     for side, bounds, guess in (("before", (-10.0, centre), centre - 0.1),
                                 ("after", (centre, 10.0), centre + 0.1)):
@@ -259,9 +311,6 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
                          thrust_N=big * d_long / d_short, fit=fit, t_perilune_s=t_peri)
     s_short = solve_burn_problem(prob2, progress=progress(f"{d_short:g} s burn"))
     dv4, dv2 = s_long.delta_v_mps, s_short.delta_v_mps
-    if verbose:
-        _log(f"  -> {(4 * dv2 - dv4) / 3:.3f} m/s ({d_long:g} s: {dv4:.3f}, {d_short:g} s: "
-             f"{dv2:.3f} m/s)")
     return {"burn": i + 1, "delta_v_mps": (4 * dv2 - dv4) / 3,
             "delta_v_long_mps": dv4, "delta_v_short_mps": dv2,
             "burn_long_s": s_long.raw.t1_s, "burn_short_s": s_short.raw.t1_s,
@@ -269,7 +318,9 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
             "v_end_kmps": s_short.summary()["v_end_kmps"],
             "objective_j_mps": (4 * s_short.raw.objective_kmps - s_long.raw.objective_kmps) / 3
             * 1e3,
-            "m_before_kg": float(x_peri[6]), "dynamics": plan.dynamics,
+            "m_before_kg": float(x_peri[6]), "dynamics": str(plan.dynamics),
+            "objective_long_mps": s_long.raw.objective_kmps * 1e3,
+            "objective_short_mps": s_short.raw.objective_kmps * 1e3,
             "verification_passed": bool(s_long.verification.passed
                                         and s_short.verification.passed)}
 
@@ -296,6 +347,9 @@ def burn_loss(finite: dict, impulsive: dict) -> dict:
     an optimal burn (an impulse from the same orbit does at least as well).
     """
     dv, imp = finite["delta_v_mps"], impulsive["delta_v_mps"]
+    if imp is None:   # a burn in a field may have no impulsive limit (its reason is kept)
+        return dict.fromkeys(("impulsive_limit_mps", "delta_v_loss_mps", "delta_v_loss_percent",
+                              "objective_loss_mps", "objective_loss_percent"))
     jl = finite["objective_j_mps"] - impulsive["objective_j_mps"]
     return {"impulsive_limit_mps": imp, "delta_v_loss_mps": dv - imp,
             "delta_v_loss_percent": 100.0 * (dv - imp) / imp, "objective_loss_mps": jl,
@@ -323,6 +377,8 @@ class BurnResult:
             row.update(burn_loss(s, self.impulsive))
         row["impulsive_verified"] = (None if self.impulsive is None
                                      else self.impulsive["verification_passed"])
+        if self.impulsive is not None and self.impulsive.get("reason"):
+            row["impulsive_limit_reason"] = self.impulsive["reason"]
         row.update({f"verification_{k}": x for k, x in v.items()})
         return row
 
@@ -367,6 +423,20 @@ class PlanResult:
         """JSON-ready: the plan, each burn's row, the totals."""
         return {"plan": self.plan.to_dict(), "burns": [b.row() for b in self.burns],
                 "totals": self.totals()}
+
+
+def after_capture(res: PlanResult, days: float, dynamics=None):
+    """The final orbit of a solved plan propagated ``days`` from its last cut-off.
+
+    In the plan's dynamics (or ``dynamics``): :func:`lunarcap.physics.evolution.evolve`,
+    from the last burn's verified flight; the :class:`~lunarcap.physics.evolution.Evolution`
+    holds each revolution's perilune, apolune and mean inclination and the sampled states.
+    """
+    from lunarcap.physics.evolution import evolve
+
+    burn = res.burns[-1].solution.flight.burn
+    return evolve(res.plan.dynamics if dynamics is None else dynamics,
+                  res.plan.ephemeris_model(), burn.t[-1], burn.x[:7, -1], days)
 
 
 def _in_cache(fn, *args) -> bool:

@@ -50,7 +50,7 @@ from lunarcap.exchange.ccsds import (
 from lunarcap.exchange.spk import DEFAULT_OBJECT_ID, write_spk
 from lunarcap.optim.flight import Arc, BurnPlan, burn_arc, coast_arc
 from lunarcap.physics import constants as C
-from lunarcap.physics.dynamics import MODES, Model, rtn_from_mee
+from lunarcap.physics.dynamics import Model, rtn_from_mee
 from lunarcap.physics.elements import orbit_summary, period_from_semi_major_axis, rv_from_mee
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import leap_second_table
@@ -95,7 +95,8 @@ def flight_arcs(solutions, approach_min: float = APPROACH_MIN, t_start_s: float 
     model = first.problem.model
     if model.fit is not None and t_a < model.fit.t0_s:
         model = Model(model.mode, 0.0, model.isp_s,
-                      ChebyshevFit.fit(eph, t_a - 3600.0, fb.t[0] + 3600.0))
+                      ChebyshevFit.fit(eph, t_a - 3600.0, fb.t[0] + 3600.0,
+                                       body_frame=model.fit.body_frame))
     if t_a < fb.t[0]:
         arcs.append(coast_arc("approach", model, State(fb.t[0], fb.x[:N_X, 0]), t_a - fb.t[0]))
     for i, sol in enumerate(solutions):
@@ -185,21 +186,45 @@ def gmat_burn(sol, arc: Arc, pole: str, segment_s: float = GMAT_SEGMENT_S,
                      mean / np.linalg.norm(mean, axis=0), model.thrust_N, model.isp_s)
 
 
+def gmat_gravity(model: Model, pole: str) -> gmat.Gravity:
+    """The central body's gravity of a model for GMAT (:class:`lunarcap.exchange.gmat.Gravity`).
+
+    The lunar GM of the dynamics always; the paper's J2 (or none) about the pole of the
+    plan's frame, fixed; J2 about the IAU pole of date; or a field to its degree and order
+    (the orders above zeroed) in the Moon's DE405 frame (GMAT's ``Luna``) or the IAU one.
+    """
+    f = model.forces
+    if f.is_field:
+        n = f.degree
+        c, s = f.field.C[:n + 1, :n + 1].copy(), f.field.S[:n + 1, :n + 1].copy()
+        c[:, f.order + 1:], s[:, f.order + 1:] = 0.0, 0.0
+        return gmat.Gravity(model.mu, f.field.radius_km, c, s,
+                            "luna" if f.body_frame == "de405" else "iau-of-date",
+                            source=f"{f.label} ({f.field.name}, Konopliv et al. 2001 for "
+                                   f"LP165P); GM lunarcap's")
+    j2 = model.j2 if f.gravity == "j2" else 0.0
+    g = gmat.Gravity.zonal_j2(
+        model.mu, model.radius, j2, moon_pole_radec_deg(pole),
+        f"lunar point mass{' + J2' if j2 else ''} (Song 2011 Sec. 3.1), pole {pole}")
+    if j2 and f.pole == "of-date":
+        from dataclasses import replace
+
+        g = replace(g, frame="iau-of-date", source=g.source + " (J2 about the pole of date)")
+    return g
+
+
 def gmat_capture(plan, sols, arcs) -> gmat.Capture:
     """The flown capture (its arcs, :func:`flight_arcs`) handed to GMAT (:mod:`exchange.gmat`).
 
-    Its model is the burns': the lunar GM, radius and J2 of the dynamics (J2 about the
-    plan's lunar pole, fixed), and the Earth and the Sun as point masses where the
-    dynamics have them.
+    Its model is the burns' (:func:`gmat_gravity`), and the Earth and the Sun as point
+    masses where the dynamics have them.
     """
     pole = plan.lunar_pole
     model = sols[0].problem.model
-    k_j2, k_earth, k_sun = MODES[model.mode]
-    gravity = gmat.Gravity.zonal_j2(
-        model.mu, model.radius, k_j2 * model.j2, moon_pole_radec_deg(pole),
-        f"lunar point mass{' + J2' if k_j2 else ''} (Song 2011 Sec. 3.1), pole {pole}")
-    third = tuple((name, mu) for name, mu, k in (("Earth", model.mu_earth, k_earth),
-                                                 ("Sun", model.mu_sun, k_sun)) if k)
+    gravity = gmat_gravity(model, pole)
+    third = tuple((name.capitalize(), mu) for name, mu in (("earth", model.mu_earth),
+                                                           ("sun", model.mu_sun))
+                  if name in model.forces.third_bodies)
     burn_arcs = [a for a in arcs if a.thrust_N]
     burns = [gmat_burn(s, a, pole) for s, a in zip(sols, burn_arcs)]
     coasts = [icrf_state(a, a.span[1], pole) for a in burn_arcs]

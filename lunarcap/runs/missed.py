@@ -54,14 +54,14 @@ from dataclasses import replace
 import numpy as np
 
 from lunarcap.errors import InputError, SolveError, number_list
-from lunarcap.mission.plan import CapturePlan, PlanError, plan_ephemeris
+from lunarcap.mission.plan import CapturePlan, PlanError
 from lunarcap.mission.targets import PERILUNE
 from lunarcap.optim.collocation import DEFAULT_MESHES, sundman_fractions
 from lunarcap.optim.flight import cut_off
 from lunarcap.optim.guess import guess_arcs, make_guess
 from lunarcap.optim.joint import solve_joint, warm_start
 from lunarcap.optim.problem import burn_problem
-from lunarcap.physics.dynamics import Model
+from lunarcap.physics.dynamics import Model, force_model
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.propagate import propagate
@@ -117,8 +117,8 @@ def _fit_for(plan: CapturePlan, t0_s: float, span_s: float):
     if span_s + 7 * 3600.0 > MAX_FIT_SPAN_S:
         raise InputError(f"the recovery would span {span_s / 3600:.0f} h, more than the 4 "
                          f"days an ephemeris fit covers: shorten the delay or --max-period-h")
-    return ChebyshevFit.fit(plan_ephemeris(plan.ephemeris), t0_s - 3600.0,
-                            t0_s + span_s + 6 * 3600.0)
+    return ChebyshevFit.fit(plan.ephemeris_model(), t0_s - 3600.0, t0_s + span_s + 6 * 3600.0,
+                            body_frame=force_model(plan.dynamics).rotation)
 
 
 @cached
@@ -292,7 +292,7 @@ def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
     first_coast = first_coast_guess_s(nplan, i, t_r, x_r, window_min, max_period_s, coast)
     rec_plan = _sized(nplan, i).resumed(i, t_r, x_r, first_coast_s=first_coast,
                                         window_min=window_min)
-    eph = plan_ephemeris(nplan.ephemeris)
+    eph = nplan.ephemeris_model()
     est = {}
 
     def solve(mesh):

@@ -35,7 +35,7 @@ def plan_id(plan) -> str:
 def plan_columns(plan) -> dict:
     """The columns that name a plan in a study's table: plan, plan_id, engine, dynamics."""
     return {"plan": plan.name, "plan_id": plan_id(plan), "thrust_N": plan.engine.thrust_N,
-            "isp_s": plan.engine.isp_s, "dynamics": plan.dynamics}
+            "isp_s": plan.engine.isp_s, "dynamics": str(plan.dynamics)}
 
 
 def check_workers(workers) -> int:

@@ -74,6 +74,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.errors import InputError, integer, number_list, positive_number
+from lunarcap.physics.forces import PRESETS
 from lunarcap.physics.losses import schuler_rate_rad_s
 from lunarcap.runs import campaign as _campaign
 from lunarcap.runs.shape import Study, check_workers
@@ -96,7 +97,7 @@ DEFAULT_THRUST_MIN_N = 50.0
 DEFAULT_THRUST_MAX_N = 2000.0
 DEFAULT_POINTS = 30
 DEFAULT_ISP_S = (200.0, 250.0, 300.0)
-DYNAMICS = ("full", "j2", "two-body")
+DYNAMICS = PRESETS
 
 #: Significant digits kept in grid thrusts (so that table keys survive a CSV round trip).
 THRUST_DIGITS = 4

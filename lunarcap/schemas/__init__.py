@@ -53,8 +53,15 @@ RECORDS = {
                 "rp_error_m", "inc_error_deg", "gamma_error_deg", "delta_v_diff_mps",
                 "failures"],
     "plan": [{"plan": "plan_file"}, "complete", {"burns": "plan_burn"},
-             {"totals": "totals"}],
+             {"totals": "totals"}, {"after": "after"}],
+    "after": ["after_days", "after_dynamics", "after_start_epoch", "after_revolutions",
+              "after_min_perilune_altitude_km", "after_max_apolune_altitude_km",
+              "after_last_perilune_altitude_km", "after_last_apolune_altitude_km",
+              "after_inclination_change_deg", {"revolutions": "revolution"}],
+    "revolution": ["perilune_epoch", "perilune_altitude_km", "apolune_altitude_km",
+                   "mean_inclination_deg"],
     "plan_burn": [*_SUMMARY, "target_orbit", *_LOSSES, "impulsive_verified",
+                  "impulsive_limit_reason",
                   *[f"verification_{k}" for k in _VERIFICATION]],
     "totals": ["total_delta_v_mps", "total_impulsive_limit_mps", "total_delta_v_loss_mps",
                "total_delta_v_loss_percent", "total_fuel_kg", "total_burn_duration_min",
@@ -62,8 +69,9 @@ RECORDS = {
                "final_perilune_epoch", "final_orbit_epoch", "time_to_final_orbit_h",
                "all_verified"],
     "plan_file": ["name", "description", {"arrival": "plan_arrival"},
-                  {"engine": "plan_engine"}, "dynamics", "ephemeris", "lunar_pole",
-                  {"burns": "plan_file_burn"}, "formulation", {"start": "plan_start"}],
+                  {"engine": "plan_engine"}, ("dynamics", "string|object"), "ephemeris",
+                  "lunar_pole", {"burns": "plan_file_burn"}, "formulation",
+                  {"start": "plan_start"}],
     "plan_arrival": ["epoch", "perilune_altitude_km", "inclination_deg", "impulsive_loi1_mps",
                      "v_inf_kmps", "hemisphere", "approach_dir", "mass_kg", "frame",
                      "position_km", "velocity_kmps", "opm", "b_r_km", "b_t_km"],
@@ -154,7 +162,7 @@ RECORDS = {
 ARRAYS = {"attempt", "impulsive_burn", "plan_burn", "plan_file_burn", "burns_count",
           "burns_count_burn",
           "missed_case", "recovery_burn", "dispersions_sample", "dispersed_burn",
-          "failed_sample"}
+          "failed_sample", "revolution"}
 
 
 #: What a plan file writes where one JSON type is not enough (see
@@ -175,6 +183,8 @@ def _types(kind: str) -> dict:
         both = {"type": "object", "properties": {k: _leaf(k) for k in _ALTITUDES},
                 "required": _ALTITUDES, "additionalProperties": False}
         return {"anyOf": [{"enum": ["circular", "perilune"]}, both]}
+    if kind == "string|object":   # a plan's dynamics: a word or a mapping of forces
+        return {"type": ["string", "object", "null"]}
     return {"type": [kind, "null"]}
 
 

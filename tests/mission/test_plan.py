@@ -225,7 +225,8 @@ def test_lunar_pole_is_part_of_the_plan_and_validated():
     assert np.degrees(np.arccos(e1 @ e2 / np.linalg.norm(e1) ** 2)) > 1.0  # not the same frame
     d = other.to_dict()
     d["lunar_pole"] = "iau1994"
-    with pytest.raises(PlanError, match="lunar_pole: must be one of iau2009-j2000, iau-constant"):
+    with pytest.raises(PlanError,
+                       match="lunar_pole: must be one of iau2009-j2000, iau-constant, of-date"):
         CapturePlan.from_dict(d)
 
 

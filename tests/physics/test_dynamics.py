@@ -158,7 +158,7 @@ def test_mee_rates_equal_cartesian_equations_of_motion(fit, mode, thrust):
     for x in _random_states(rng, 40):
         t = rng.uniform(fit.t0_s, fit.t1_s)
         u = _unit(rng)
-        ydot = np.array(dyn.mee_rates(list(x), list(u), t, prm), dtype=float)
+        ydot = np.array(dyn.mee_rates(list(x), list(u), t, prm, mode), dtype=float)
         r, v = (np.array(a) for a in el.rv_from_mee(*x[:6], MU))
         s = np.concatenate([r, v, [x[6]]])
         cart = dyn.cartesian_rates(t, s, model, u_rtn=u)
@@ -172,14 +172,14 @@ def test_mee_rates_equal_cartesian_equations_of_motion(fit, mode, thrust):
 
 
 def test_rhs_function_equals_numpy_rates(fit):
-    f = dyn.rhs_function()
+    f = dyn.rhs_function("full")
     model = dyn.Model("full", thrust_N=300.0, isp_s=250.0, fit=fit)
     prm = model.params()
     rng = np.random.default_rng(12)
     for x in _random_states(rng, 50):
         t = rng.uniform(fit.t0_s, fit.t1_s)
         u = _unit(rng)
-        ref = np.array(dyn.mee_rates(list(x), list(u), t, prm), dtype=float)
+        ref = np.array(dyn.mee_rates(list(x), list(u), t, prm, "full"), dtype=float)
         got = np.asarray(f(x, u, t, prm)).ravel()
         # same formulas, different evaluators: round-off only. Rates span O(1e-3) (L) down
         # to O(1e-9); compare each at 1e-12 relative with a floor of 1e-12 of the largest.
@@ -187,7 +187,7 @@ def test_rhs_function_equals_numpy_rates(fit):
 
 
 def test_two_body_coast_conserves_elements_exactly():
-    f = dyn.rhs_function()
+    f = dyn.rhs_function("two-body")
     prm = dyn.Model("two-body").params()
     rng = np.random.default_rng(13)
     for x in _random_states(rng, 50):
@@ -202,7 +202,7 @@ def test_two_body_coast_conserves_elements_exactly():
 @pytest.mark.parametrize("thrust,isp", tuple(paper_engines().items()))
 def test_mass_flow_is_thrust_over_exhaust_speed(thrust, isp):
     # Eq. (3): m' = -T / (g0 Isp), g0 = 9.80665 m/s^2; e.g. 150 N / 200 s -> -0.07648 kg/s
-    f = dyn.rhs_function()
+    f = dyn.rhs_function("two-body")
     prm = dyn.Model("two-body", thrust_N=thrust, isp_s=isp).params()
     x = np.array([4000.0, 0.5, 0.1, 0.3, -0.2, 1.0, 500.0])
     mdot = float(f(x, [0.0, 1.0, 0.0], 0.0, prm)[6])

@@ -146,3 +146,47 @@ def test_bad_fit_windows_and_files_raise_input_error(tmp_path):
     junk.write_bytes(b"not an SPK file" * 100)
     with pytest.raises(InputError):
         ephemeris.Ephemeris(junk)
+
+
+# ---------------------------------------------------------------------- the Moon's orientation
+def _angle_arcsec(a, b):
+    """Angle of the rotation between two sets of axes (rows), arcsec."""
+    d = np.asarray(a) @ np.asarray(b).T
+    return float(np.degrees(np.arccos(np.clip((np.trace(d) - 1) / 2, -1, 1))) * 3600)
+
+
+def test_de405_librations_read_raw():
+    # the libration angles are DE405's own (jplephem's reader, straight from the package)
+    raw = RAW.position("librations", 2451545.0, T_ARRIVAL / 86400.0)
+    got = ephemeris.default_ephemeris().body_angles(T_ARRIVAL, "de405")
+    np.testing.assert_allclose(got[:, 0], raw[:, 0], rtol=0, atol=1e-12)
+
+
+def test_body_frames_are_100_arcsec_apart():
+    # DE405's principal-axis frame and the IAU (2009) model (which approximates the mean-Earth
+    # frame) differ by about 100" over 2017 (measured 92-109": 0.8-1.0 km at 100 km altitude);
+    # a convention error (a sign, theta = dec, W missing) would be degrees
+    from lunarcap.physics.frames import rotation_313
+
+    t = seconds_from_calendar("2017-01-01 00:00:00 TDB") + np.linspace(0, 365 * 86400, 60)
+    eph = ephemeris.default_ephemeris()
+    a, b = eph.body_angles(t, "de405"), eph.body_angles(t, "iau2009")
+    ang = [_angle_arcsec(rotation_313(*a[:, j]), rotation_313(*b[:, j])) for j in range(t.size)]
+    assert 85.0 < min(ang) and max(ang) < 115.0
+
+
+@pytest.mark.parametrize("frame", ["de405", "iau2009"])
+def test_fitted_body_axes_equal_the_angles(mission_fit, frame):
+    # the fit's axes in M-MME2000 = R313(angles) C^T, to the fit's 1e-9 rad; and the IAU
+    # frame's pole is the IAU pole of date (frames.moon_pole_radec_deg)
+    from lunarcap.physics.frames import moon_pole_icrf, moon_pole_radec_deg, rotation_313
+
+    eph = ephemeris.default_ephemeris()
+    fit = ephemeris.ChebyshevFit.fit(eph, mission_fit.t0_s, mission_fit.t1_s, body_frame=frame)
+    C = icrf_to_mme()
+    for t in np.linspace(fit.t0_s, fit.t1_s, 7):
+        want = np.array(rotation_313(*eph.body_angles(t, frame)[:, 0])) @ C.T
+        np.testing.assert_allclose(fit.body_axes(t), want, rtol=0, atol=2e-9)
+        if frame == "iau2009":
+            pole = C @ moon_pole_icrf(*moon_pole_radec_deg(jd_tdb=2451545.0 + t / 86400.0))
+            np.testing.assert_allclose(fit.body_axes(t)[2], pole, rtol=0, atol=2e-9)
