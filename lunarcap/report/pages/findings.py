@@ -16,6 +16,7 @@ from __future__ import annotations
 import pandas as pd
 import yaml
 
+from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.report import findings as F
 from lunarcap.report.page import Page, listing
 from lunarcap.repro import paths
@@ -28,7 +29,7 @@ ARCHIVE = "lunarcap-book-data.zip"
 #: The part of the table of contents whose pages are "what lunarcap adds".
 BEYOND_CAPTION = "Beyond the paper"
 #: The paper's engines, as the landing page names them (thrust N, Isp s).
-PAPER_ENGINES = ((150, 200), (300, 250), (450, 300))
+PAPER_ENGINES = tuple((int(t), int(i)) for t, i in paper_engine_pairs())
 #: The label of the landing page's "How to cite" section (book/index.md).
 CITE_LABEL = "how-to-cite"
 
