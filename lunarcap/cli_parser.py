@@ -146,7 +146,9 @@ def _add_plan(sub, func) -> None:
     p.add_argument("--after-days", type=positive("days"), default=None, metavar="DAYS",
                    help="also propagate the final orbit DAYS days after the last cut-off in "
                         "the plan's dynamics: each revolution's lowest and highest altitude "
-                        "and mean inclination (in the JSON under 'after')")
+                        "and mean inclination (in the JSON under 'after'; with --export the OEM "
+                        "and SPK go on to that day; default none: nothing after the last "
+                        "cut-off)")
     p.set_defaults(func=func)
 
 

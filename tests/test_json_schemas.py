@@ -78,7 +78,7 @@ def test_plan_file_schema_knows_every_key_a_plan_file_takes():
     plan = schemas.load("plan")["properties"]["plan"]["properties"]
     assert set(plan) == plan_io.TOP_KEYS
     assert set(plan["arrival"]["properties"]) == \
-        plan_io.ARRIVAL_KEYS | plan_io.STATE_ARRIVAL_KEYS | {"opm"}
+        plan_io.ARRIVAL_KEYS | plan_io.STATE_ARRIVAL_KEYS | plan_io.BPLANE_ARRIVAL_KEYS | {"opm"}
     assert set(plan["burns"]["items"]["properties"]) == plan_io.BURN_KEYS
     assert set(plan["start"]["properties"]) == plan_io.START_KEYS
 

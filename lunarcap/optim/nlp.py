@@ -134,21 +134,23 @@ def n_built() -> int:
     return len(_NLPS)
 
 
-def prebuild(shapes, workers: int = 2, progress=None) -> None:
-    """Build several NLP shapes at once, in threads (CasADi releases the GIL while it builds).
+def prebuild(shapes, progress=None) -> None:
+    """Build several NLP shapes before the first solve, one after the other.
 
     ``shapes``: iterable of (mesh, target kind, free start, steering, dynamics[, free end])
     tuples, the arguments of :func:`build_burn_nlp`; each is built once per process, here
-    or later. The caller waits so that Ctrl-C acts at once
-    (:func:`lunarcap.optim.interrupt.map_in_threads`). ``progress(str)``: a line before
-    the builds, one per shape built (what, how long) and the total.
+    or later. The builds run off the main thread so that Ctrl-C acts at once
+    (:func:`lunarcap.optim.interrupt.map_in_threads`), but never two at once: creating
+    CasADi's symbolic expressions is not thread-safe (shared reference counts), and two
+    concurrent builds crashed a ``lunarcap plan`` with a segmentation fault (exit -11)
+    once in a full test run. ``progress(str)``: a line before the builds, one per shape
+    built (what, how long) and the total.
     """
     shapes = [s for s in dict.fromkeys(_normal(*s) for s in shapes) if s not in _NLPS]
     if not shapes:
         return
     if progress:
-        progress(f"building {len(shapes)} NLP{'s' * (len(shapes) > 1)} "
-                 f"({min(workers, len(shapes))} at a time, once per process):")
+        progress(f"building {len(shapes)} NLP{'s' * (len(shapes) > 1)} (once per process):")
     t0 = time.perf_counter()
 
     def build(shape):
@@ -157,7 +159,7 @@ def prebuild(shapes, workers: int = 2, progress=None) -> None:
         if progress:
             progress(f"  {describe_shape(*shape)}: {time.perf_counter() - t:.1f} s")
 
-    map_in_threads(build, shapes, workers)
+    map_in_threads(build, shapes, workers=1)
     if progress and len(shapes) > 1:
         progress(f"  NLPs built in {time.perf_counter() - t0:.1f} s")
 

@@ -63,8 +63,8 @@ def solve_burn_problem(prob: BurnProblem, meshes=None, guess=None,
             raise exc from None
 
 
-def prebuild(shapes, workers: int = 2, progress=None) -> None:
-    """Build at once (in threads) the NLPs that solving burns of these shapes starts with.
+def prebuild(shapes, progress=None) -> None:
+    """Build before the first solve the NLPs that solving burns of these shapes starts with.
 
     ``shapes``: (target kind, free start, steering, dynamics[, free end]) tuples, one per
     burn; each NLP is built on the first mesh :func:`solve_burn_problem` tries, once per
@@ -77,7 +77,7 @@ def prebuild(shapes, workers: int = 2, progress=None) -> None:
         mode, corrected = nlp_shape(dynamics)
         out.append((meshes_for(dynamics)[0], kind, free_start, steering, mode,
                     free_end[0] if free_end else False, corrected))
-    _prebuild_nlps(out, workers, progress)
+    _prebuild_nlps(out, progress)
 
 
 def widened(prob: BurnProblem) -> BurnProblem | None:

@@ -255,7 +255,7 @@ def engine_profile(engines=((300.0, 250.0), (420.0, 250.0)), dynamics: str = "fu
     """Where one trade-study engine's time goes (:func:`lunarcap.runs.study.solve_engine`).
 
     Each engine is solved in this process with an empty temporary cache: NLP builds (the
-    first engine builds the study's four shapes), the NLP solves (``solve_nlp``: initial
+    first engine builds the study's four shapes), the NLP solves (``solve_in_model``: initial
     point and IPOPT, of which its Hessian and Jacobian evaluations are shown; the rest is
     MUMPS and IPOPT's own work), and everything else (guesses, verification by
     re-propagation, ephemeris fits, cache I/O).
@@ -265,17 +265,19 @@ def engine_profile(engines=((300.0, 250.0), (420.0, 250.0)), dynamics: str = "fu
     import joblib
 
     import lunarcap.optim.solve as solve_mod
+    from lunarcap.optim.correction import nlp_forces
     from lunarcap.optim.nlp import n_built, nlp_for
     from lunarcap.repro import cache
     from lunarcap.runs.study import solve_engine
 
     acc: dict = {}
-    plain = solve_mod.solve_nlp
+    plain = solve_mod.solve_in_model
 
     def counted(prob, mesh, guess):
         before = n_built()
         t0 = time.perf_counter()
-        nlp = nlp_for(prob, mesh)
+        low = nlp_forces(prob.model.forces)  # the NLP solve_in_model solves
+        nlp = nlp_for(prob, mesh) if low is None else nlp_for(prob, mesh, low, True)
         if n_built() > before:
             acc["build_s"] = acc.get("build_s", 0.0) + time.perf_counter() - t0
         t0 = time.perf_counter()
@@ -294,7 +296,7 @@ def engine_profile(engines=((300.0, 250.0), (420.0, 250.0)), dynamics: str = "fu
         f"{'NLP s':>7} {'hess_l s':>8} {'jac_g s':>7} {'other s':>7}")
     with tempfile.TemporaryDirectory() as tmp:
         cache.memory = joblib.Memory(tmp, verbose=0)
-        solve_mod.solve_nlp = counted
+        solve_mod.solve_in_model = counted
         try:
             for thrust, isp in engines:
                 acc.clear()
@@ -309,7 +311,7 @@ def engine_profile(engines=((300.0, 250.0), (420.0, 250.0)), dynamics: str = "fu
                     f"{acc.get('nlp_hess_l', 0):8.2f} {acc.get('nlp_jac_g', 0):7.2f} "
                     f"{wall - b - ip:7.2f}")
         finally:
-            solve_mod.solve_nlp = plain
+            solve_mod.solve_in_model = plain
             cache.memory = old_memory
     return rows
 
