@@ -42,6 +42,34 @@ def paper_arrival():
     return arrival_state()
 
 
+@pytest.fixture(scope="session")
+def third_burn():
+    """Where the paper's third burn starts: (perilune epoch s, circle epoch s, orbit(height_m)).
+
+    The nominal perilune before it (TDB s), the circle's epoch one printed period
+    (117.848 min) later, and ``orbit(height_m)``: the paper's second capture orbit (3.525
+    h, polar) at that perilune as MEE (7,), placed where the paper's arrival perilune is
+    (its plane and longitude), its perilune ``height_m`` above the 100 km circle, 500 kg.
+    """
+    import numpy as np
+
+    from lunarcap.mission.arrival import arrival_state
+    from lunarcap.physics import constants as C
+    from lunarcap.physics.elements import semi_major_axis_from_period
+
+    periods = paper_scenario().capture_periods_s
+    t0 = T_ARRIVAL_S + sum(periods[:2])
+    x = np.asarray(arrival_state().state, float)
+    a = float(semi_major_axis_from_period(periods[1], C.MU_MOON))
+
+    def orbit(height_m: float = 0.0):
+        rp = C.R_MOON + 100.0 + height_m * 1e-3
+        e, L = 1.0 - rp / a, x[5]
+        return np.array([rp * (1 + e), e * np.cos(L), e * np.sin(L), x[3], x[4], L, 500.0])
+
+    return t0, t0 + 117.848 * 60.0, orbit
+
+
 def _free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))

@@ -19,6 +19,7 @@ import numpy as np
 
 from lunarcap.mission.targets import N_VALUES
 from lunarcap.optim.collocation import (
+    FIELD_PERILUNE_POWER,
     LU,
     N_PRE,
     N_X,
@@ -316,9 +317,12 @@ def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess, mode=None, accel: dic
     """
     nlp = nlp_for(prob, mesh, mode, accel is not None)
     lay = nlp.compiled.layout
-    # meshes: burn uniform in time, coast equally spaced in the Sundman variable
+    # meshes: burn uniform in time, coast equally spaced in the Sundman variable (in a
+    # field carried by corrections, weighted towards the perilune)
+    power = FIELD_PERILUNE_POWER if accel is not None else 0.0
     mb, mc = fractions or (np.linspace(0.0, 1.0, mesh.n_burn + 1),
-                           sundman_fractions(guess.coast.t, guess.coast.x, mesh.n_coast))
+                           sundman_fractions(guess.coast.t, guess.coast.x, mesh.n_coast,
+                                             power))
     S = state_scale(prob.x0[6])
     if w0 is None:
         w0 = np.zeros(lay.nv)

@@ -210,22 +210,64 @@ def impulsive_key(plan: CapturePlan) -> CapturePlan:
 NO_LIMIT_TOL_MPS = 0.01
 
 
-def _no_impulsive_limit(plan: CapturePlan, what: str) -> dict:
-    """The impulsive limit of a burn in a gravity field that has none, and why.
+#: Half-width of the window of the impulse's epoch around the perilune before the burn, min.
+IMPULSE_WINDOW_MIN = 10.0
+#: In a gravity field, a circle asked that the orbit before its burn clears by more than
+#: this (m) is out of reach of every impulse (:func:`lunarcap.mission.reach.
+#: circle_clearance`); below it the finite-burn solves decide. A burn of duration tau and
+#: delta-V dv thrusting at an angle a inward, then outward, ends dv a tau / 4 below the
+#: impulse's point for dv a^2 / 2 more delta-V: a gap g costs about 8 g^2 / (dv tau^2),
+#: for 1 m and the 2 s burn of a 245 m/s circularisation 0.008 m/s, within
+#: NO_LIMIT_TOL_MPS. (In J2 about the frame's pole the paper's circle is cleared by 0.2 m
+#: and its limit holds to the mm/s; in LP165P 8x8 by 25 m, where the rule predicts 4.9 and
+#: 1.2 m/s for the 2 s and 4 s burns and the solves measured their objectives 3.0 m/s
+#: apart; in 20x20 by 218 m, where the 2 s burn failed on every mesh.)
+CIRCLE_GAP_TOL_M = 1.0
+
+
+def _no_impulsive_limit(plan: CapturePlan, why: str, **extra) -> dict:
+    """The impulsive limit of a burn in a gravity field that has none, and ``why``.
 
     In a field an impulse may not reach the orbit asked at all: the circle that the field
     turns into the 100 km circle asked at the coast's end passes below the perilune of the
-    orbit before the burn (measured for LP165P 20x20: 243 m below), where no impulse on
-    that orbit can be; a finite burn reaches it by steering, the shorter the dearer (a 4 s
-    burn 304 m/s, a 2 s burn 364 m/s and not verified, for the 248 m/s of the 10 min
-    burn). So the limit of finite burns does not exist; the burn has no loss.
+    orbit before the burn (LP165P 20x20, the paper's third burn: 218 m below), where no
+    impulse on that orbit can be (:mod:`lunarcap.mission.reach`); a finite burn reaches it
+    by steering partly radially, the shorter the dearer (a 4 s burn 304 m/s, a 2 s burn
+    364 m/s and not verified, for the 248 m/s of the 10 min burn). So the limit of finite
+    burns does not exist; the burn has no loss. ``extra``: entries added to the result.
     """
     from lunarcap.physics.forces import force_model
 
-    why = (f"no impulsive limit in {force_model(plan.dynamics)}: the finite-burn limit "
-           f"does not converge ({what[:300]})")
     return {"burn": plan.n_burns, "delta_v_mps": None, "objective_j_mps": None,
-            "verification_passed": None, "reason": why}
+            "verification_passed": None,
+            "reason": f"no impulsive limit in {force_model(plan.dynamics)}: {why}", **extra}
+
+
+def _unreachable_circle(plan: CapturePlan, i: int, t_peri: float, x_peri, eph, fit
+                        ) -> dict | None:
+    """The result of a circle no impulse reaches (:func:`_no_impulsive_limit`), else None.
+
+    For a circle asked in a gravity field: how far the orbit before the burn passes above
+    the circle flown back to it, within :data:`IMPULSE_WINDOW_MIN` of its perilune
+    (:func:`lunarcap.mission.reach.circle_clearance`, a few coast propagations).
+    """
+    from lunarcap.mission.reach import circle_clearance
+    from lunarcap.optim.correction import nlp_forces
+    from lunarcap.physics.dynamics import Model
+
+    target = plan.targets[i]
+    if not target.circular or nlp_forces(plan.dynamics) is None:
+        return None
+    model = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
+    t_end = burn_problem(plan, i, x_peri, eph, fit=fit, t_perilune_s=t_peri).t_end_s
+    c = circle_clearance(model, target, t_end, t_peri, x_peri, 60.0 * IMPULSE_WINDOW_MIN)
+    if not c.gap_m > CIRCLE_GAP_TOL_M:
+        return None
+    why = (f"the circle asked, flown back to the burn in these forces, lies {c.gap_m:.0f} m "
+           f"below the orbit before the burn where that orbit comes closest to it "
+           f"({c.at_offset_s:+.0f} s from its perilune), so no impulse from that orbit "
+           f"reaches it")
+    return _no_impulsive_limit(plan, why, circle_gap_m=c.gap_m)
 
 
 @cached(ignore=["verbose"])
@@ -259,6 +301,12 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     dv_guess = plan.impulsive()[i].delta_v_mps
     d_long, d_short = IMPULSIVE_LIMIT_DURATIONS_S
     big = x_peri[6] * dv_guess / d_long  # N: m * dV / t
+    fit = burn_fit(plan, i, eph, t_peri)
+    none = _unreachable_circle(plan, i, t_peri, x_peri, eph, fit)
+    if none is not None:   # no impulse reaches the circle: no solve can find a limit
+        if verbose:
+            _log(f"impulsive limit of {_burn_number(i)}: {none['reason']}")
+        return none
     if verbose:
         _log(f"impulsive limit of {_burn_number(i)}: {d_long:g} s burns either side of the "
              f"perilune, then a {d_short:g} s burn, extrapolated to 0 s")
@@ -269,20 +317,21 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     # side of the perilune (a few seconds before and after, differing by ~0.2 m/s in
     # delta-V and ~0.003 m/s in J): solve on each side and keep the lower objective.
     centre = -d_long / 120.0  # ignition (min) of a 4 s burn centred on the perilune
-    fit = burn_fit(plan, i, eph, t_peri)
     field = nlp_forces(plan.dynamics) is not None   # only a field may have no limit
     try:
         out = _finite_limit(plan, i, x_peri, t_peri, eph, fit, centre, big, progress)
     except SolveError as exc:
         if not field:
             raise
-        out = _no_impulsive_limit(plan, str(exc))
+        out = _no_impulsive_limit(plan, f"the finite-burn limit does not converge "
+                                        f"({str(exc)[:300]})")
     else:
         short, long_ = out["objective_short_mps"], out["objective_long_mps"]
         if field and short > long_ + NO_LIMIT_TOL_MPS:
-            out = _no_impulsive_limit(plan, f"the objective of a {d_short:g} s burn, "
+            out = _no_impulsive_limit(plan, f"the finite-burn limit does not converge "
+                                            f"(the objective of a {d_short:g} s burn, "
                                             f"{short:.3f} m/s, exceeds a {d_long:g} s one's, "
-                                            f"{long_:.3f}")
+                                            f"{long_:.3f})")
     if verbose and out["delta_v_mps"] is not None:
         dv4, dv2 = out["delta_v_long_mps"], out["delta_v_short_mps"]
         _log(f"  -> {out['delta_v_mps']:.3f} m/s ({d_long:g} s: {dv4:.3f}, {d_short:g} s: "
@@ -296,8 +345,9 @@ def _finite_limit(plan, i, x_peri, t_peri, eph, fit, centre, big, progress) -> d
     """The two finite burns of :func:`_impulsive_limit` and their extrapolation."""
     d_long, d_short = IMPULSIVE_LIMIT_DURATIONS_S
     sides = []
-    for side, bounds, guess in (("before", (-10.0, centre), centre - 0.1),
-                                ("after", (centre, 10.0), centre + 0.1)):
+    w = IMPULSE_WINDOW_MIN
+    for side, bounds, guess in (("before", (-w, centre), centre - 0.1),
+                                ("after", (centre, w), centre + 0.1)):
         prob = burn_problem(plan, i, x_peri, eph, start_min="free", thrust_N=big,
                             start_bounds_min=bounds, guess_start_min=guess, fit=fit,
                             t_perilune_s=t_peri)
@@ -452,6 +502,7 @@ def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
     ``burns``: 1-based burn numbers (default all). Burns (and impulsive limits) already in
     the disk cache need no NLP and are left out. ``verbose``: say what is built, how long.
     """
+    from lunarcap.optim.correction import nlp_forces
     from lunarcap.optim.solve import prebuild
 
     shapes = []
@@ -461,7 +512,10 @@ def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
         free_end = plan.targets[n - 1].free_epoch
         if not (enabled() and _in_cache(solve_burn, key)):
             shapes.append((kind, b.free_start, b.steering, plan.dynamics, free_end))
-        if impulsive:
+        # a circle in a field: its limit is first checked for reach (no NLP), and its
+        # fixed 2 s burn has the burn's own shape; the rest is built if it is needed
+        circle_in_field = plan.targets[n - 1].circular and nlp_forces(plan.dynamics) is not None
+        if impulsive and not circle_in_field:
             if not (enabled() and _in_cache(_impulsive_limit, impulsive_key(key))):
                 shapes += [(kind, True, "optimal", plan.dynamics, free_end),
                            (kind, False, "optimal", plan.dynamics, free_end)]
