@@ -206,7 +206,7 @@ def cmd_plan(args) -> int:
             _print_after(after)
     if args.export:
         if all(b.solution.verification.passed for b in res.burns):
-            _export_plan(res, args)
+            _export_plan(res, args, after)
         else:
             print("lunarcap: error: not exported: a burn failed verification", file=sys.stderr)
             return 3
@@ -227,11 +227,15 @@ def _print_after(after) -> None:
               f"{after.inclination_deg[j]:.4f} deg")
 
 
-def _export_plan(res, args) -> None:
-    """Write the plan's OEM, SPK, attitude and maneuver files (``--export DIR``)."""
+def _export_plan(res, args, after=None) -> None:
+    """Write the plan's OEM, SPK, attitude and maneuver files (``--export DIR``).
+
+    With ``after`` (``--after-days``), the OEM and the SPK go on to its end.
+    """
     from lunarcap.runs.export import export_plan
 
-    ex = export_plan(res, args.export, time_system=args.time_system, object_id=args.spk_id)
+    ex = export_plan(res, args.export, time_system=args.time_system, object_id=args.spk_id,
+                     after=after)
     out = sys.stderr if args.json else sys.stdout
     print(f"Exported in {ex.seconds:.2f} s ({ex.time_system}, SPK object ID {ex.object_id}; "
           f"OEM interpolation within {ex.max_interpolation_error_m:.2g} m):", file=out)

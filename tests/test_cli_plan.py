@@ -109,11 +109,15 @@ def test_progress_says_what_is_built_and_counts_burns_out_of_the_plan():
     assert len(meshes) == 12, err   # and one per finite burn
 
 
-def test_after_days_propagates_the_final_orbit(plan_file):
+def test_after_days_propagates_the_final_orbit(plan_file, tmp_path):
     # the final 100 km circle (two-body: it stays one) propagated half a day after the last
-    # cut-off: every revolution at 100 km, one per circle period, in the JSON's schema
+    # cut-off: every revolution at 100 km, one per circle period, in the JSON's schema;
+    # exported, the OEM goes on from the final orbit's revolution to the half day's end
     import jsonschema
+    import numpy as np
 
+    from lunarcap.exchange.ccsds import read_oem
+    from lunarcap.physics.constants import R_MOON
     from lunarcap.schemas import schemas
 
     r = _run("plan", str(plan_file), "--json", "--quiet", "--no-impulsive", "--after-days",
@@ -129,9 +133,20 @@ def test_after_days_propagates_the_final_orbit(plan_file):
         assert rev["perilune_altitude_km"] == pytest.approx(100.0, abs=0.01)
         assert rev["apolune_altitude_km"] == pytest.approx(100.0, abs=0.01)
         assert rev["mean_inclination_deg"] == pytest.approx(90.0, abs=1e-4)
-    r = _run("plan", str(plan_file), "--quiet", "--after-days", "0.5")
+    out = tmp_path / "out"
+    r = _run("plan", str(plan_file), "--quiet", "--after-days", "0.5", "--export", str(out))
     assert r.returncode == 0, r.stderr
     assert "After the capture: 0.5 days in two-body dynamics, 6 revolutions" in r.stdout
+    segs = {s.name: s for s in read_oem(out / "two-burn-test.oem")}
+    final, after = segs["final orbit"], segs["after capture"]
+    assert list(segs)[-1] == "after capture"
+    assert after.t_s[0] == final.t_s[-1]                    # the two segments meet
+    assert np.abs(after.r_km[:, 0] - final.r_km[:, -1]).max() < 1e-6
+    cutoff = segs["burn 2"].t_s[-1]
+    assert after.t_s[-1] == pytest.approx(cutoff + 0.5 * 86400, abs=1e-5)
+    assert np.allclose(np.diff(after.t_s[1:-1]), 60.0, atol=1e-5)
+    # Kepler: the circle stays at 100 km all along
+    assert np.abs(np.linalg.norm(after.r_km, axis=0) - R_MOON - 100.0).max() < 1e-3
 
 
 def test_failed_solve_exits_3_and_keeps_what_was_done(monkeypatch, capsys, plan_file):

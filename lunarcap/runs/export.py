@@ -17,6 +17,12 @@ arrival to one revolution of the final orbit:
   thrust direction in segments of :data:`GMAT_SEGMENT_S`, each the mean of the flown
   direction over the segment (Gauss-Legendre, :data:`GMAT_NODES` points).
 
+With the final orbit's evolution (``lunarcap plan --after-days``, an
+:class:`~lunarcap.physics.evolution.Evolution`), the OEM and the SPK gain a last segment,
+``after capture``, from the end of the final orbit's revolution to the end of the
+evolution: its states every :data:`COAST_STEP_S`, taken from the evolution's propagated
+samples (:func:`after_segment`).
+
 The arcs are the solutions' flights (:class:`lunarcap.optim.flight.Flight`), re-flown by
 :class:`lunarcap.optim.flight.Arc`: each burn interval by interval with the steering the
 verification flew, from the same states; each coast from the flown cut-off state, in the
@@ -41,9 +47,11 @@ from lunarcap.errors import InputError
 from lunarcap.exchange import gmat
 from lunarcap.exchange.burns import mean_direction, write_attitude, write_maneuvers
 from lunarcap.exchange.ccsds import (
+    OEM_DEGREE,
     OemSegment,
     StateVector,
     interpolation_error,
+    lagrange_interpolate,
     reference_comments,
     write_oem,
 )
@@ -159,6 +167,36 @@ def icrf_state(arc: Arc, t_s: float, pole: str) -> StateVector:
     x = arc.states(np.array([t_s]))
     r, v = icrf_states(x, pole)
     return StateVector(float(t_s), tuple(r[:, 0]), tuple(v[:, 0]), "ICRF", float(x[MASS, 0]))
+
+
+def after_segment(after, start: StateVector, pole: str, step_s: float = COAST_STEP_S
+                  ) -> tuple:
+    """The evolution after the capture as an OEM segment, and its interpolation error (m).
+
+    ``after``: the :class:`~lunarcap.physics.evolution.Evolution` of the final orbit from
+    its last cut-off; ``start``: the state where the segment starts (the end of the final
+    orbit's segment, so that the two meet), ICRF. Then the evolution's samples every
+    ``step_s`` from its start, after ``start``, and its last: states propagated there (in
+    the evolution's forces), not interpolated. The file's interpolation (Lagrange,
+    :data:`lunarcap.exchange.ccsds.OEM_DEGREE`) is checked at the evolution's samples
+    nearest half-way between these (its samples are 10 s apart).
+    """
+    t, x = after.trajectory.t, after.trajectory.x
+    n = (t - t[0]) / step_s
+    keep = np.flatnonzero((t > start.epoch_s + 1e-6) & (np.abs(n - np.round(n)) < 1e-6))
+    if keep.size == 0 or keep[-1] != t.size - 1:
+        keep = np.append(keep, t.size - 1)
+    r, v = icrf_states(x[:, keep], pole)
+    seg = OemSegment(np.concatenate([[start.epoch_s], t[keep]]),
+                     np.column_stack([start.r_km, r]), np.column_stack([start.v_kmps, v]),
+                     "after capture")
+    mids = np.unique(np.clip(np.searchsorted(t, 0.5 * (t[keep][1:] + t[keep][:-1])),
+                             0, t.size - 1))
+    if not mids.size:
+        return seg, 0.0
+    guess = lagrange_interpolate(seg.t_s, seg.r_km, t[mids], OEM_DEGREE)
+    truth = icrf_states(x[:, mids], pole)[0]
+    return seg, float(np.max(np.linalg.norm(guess - truth, axis=0)) * 1e3)
 
 
 def gmat_burn(sol, arc: Arc, pole: str, segment_s: float = GMAT_SEGMENT_S,
@@ -314,7 +352,7 @@ def check_export_dir(out_dir, what: str = "export directory") -> Path:
 
 def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFAULT_OBJECT_ID,
                 coast_step_s: float = COAST_STEP_S, burn_step_s: float = BURN_STEP_S,
-                approach_min: float = APPROACH_MIN) -> Export:
+                approach_min: float = APPROACH_MIN, after=None) -> Export:
     """Write the OEM, SPK, attitude and maneuver files of a solved plan into ``out_dir``.
 
     Parameters
@@ -324,6 +362,10 @@ def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFA
     time_system : {"TDB", "UTC"}
         Of the epochs written (SPK epochs are always ET, i.e. TDB).
     object_id : the spacecraft's NAIF ID in the SPK and the OEM's OBJECT_ID
+    after : Evolution, optional
+        The final orbit's evolution from the last cut-off
+        (:func:`lunarcap.runs.chain.after_capture`): the files then go on to its end
+        (:func:`after_segment`).
     """
     from lunarcap.mission.plan import CapturePlan
     from lunarcap.runs.chain import plan_result
@@ -347,6 +389,16 @@ def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFA
         report.append({"name": arc.name, "start_s": float(seg.t_s[0]),
                        "stop_s": float(seg.t_s[-1]), "states": int(seg.t_s.size),
                        "interpolation_error_m": err})
+    if after is not None:
+        end = arcs[-1].span[1]
+        if not after.t0_s <= end < after.trajectory.t[-1]:
+            raise InputError(f"plan {plan.name}: the evolution after the capture must start "
+                             f"at its last cut-off and end after its final orbit's revolution")
+        seg, err = after_segment(after, icrf_state(arcs[-1], end, pole), pole, coast_step_s)
+        segs.append(seg)
+        report.append({"name": seg.name, "start_s": float(seg.t_s[0]),
+                       "stop_s": float(seg.t_s[-1]), "states": int(seg.t_s.size),
+                       "interpolation_error_m": err})
     leap = leap_second_table()
     comments = [f"lunarcap plan {plan.name}: {plan.engine.thrust_N:g} N / "
                 f"{plan.engine.isp_s:g} s, {plan.dynamics} dynamics, {plan.n_burns} burn(s), "
@@ -359,6 +411,9 @@ def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFA
                 f"propagated states at mid-steps",
                 f"ICRF axes (lunarcap M-MME2000 rotated with lunar pole {pole}); SPK "
                 f"object ID {object_id}"]
+    if after is not None:
+        comments.append(f"Last segment: the final orbit {after.days:g} days after the last "
+                        f"cut-off, in {after.forces} dynamics")
     if ts == "UTC":
         comments.append(f"UTC from TDB with ERFA and {leap['source']} (expires "
                         f"{leap['expires']}, TAI-UTC {leap['tai_minus_utc_s']:g} s)")
