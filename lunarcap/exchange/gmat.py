@@ -625,6 +625,56 @@ def run_script(script, python: str | None = None, timeout_s: float = 1800.0) -> 
     return log
 
 
+_DEFAULTS = """
+import json, os, sys
+import gmatpy
+
+with gmatpy.native_session() as gmat:
+    thruster = gmat.Construct("ChemicalThruster", "Thruster")
+    craft = gmat.Construct("Spacecraft", "Craft")
+    forces = gmat.Construct("ForceModel", "Forces")
+    luna = gmat.GetObject("Luna")
+    out = {k: obj.GetField(f) for k, obj, f in (
+        ("g0_mps2", thruster, "GravitationalAccel"), ("thrust_frame", thruster, "CoordinateSystem"),
+        ("thrust_axes", thruster, "Axes"), ("date_format", craft, "DateFormat"),
+        ("coordinate_system", craft, "CoordinateSystem"), ("central_body", forces, "CentralBody"),
+        ("luna_mu_km3s2", luna, "Mu"), ("luna_radius_km", luna, "EquatorialRadius"))}
+    out["lunar_field_file"] = os.path.exists(
+        gmat.FileManager.Instance().GetFullPathname("LP165P_FILE"))
+print(json.dumps(out))
+"""
+
+
+def gmat_defaults(python: str | None = None, timeout_s: float = 300.0) -> dict:
+    """GMAT's own defaults of what the exported script sets, read from GMAT (``gmatpy``).
+
+    In a child process, as :func:`run_script`: a new ChemicalThruster's standard gravity
+    (``g0_mps2``, m/s^2) and thrust axes (``thrust_frame``, ``thrust_axes``), a new
+    Spacecraft's epoch format and coordinate system, a new ForceModel's central body,
+    ``Luna``'s GM (km^3/s^2) and radius (km), and whether GMAT has its lunar field file
+    (``lunar_field_file``). Numbers as floats, the rest as GMAT writes them.
+
+    Raises
+    ------
+    GmatError
+        gmatpy missing or failing, or the timeout.
+    """
+    import json
+
+    cmd = [python or sys.executable, "-c", _DEFAULTS]
+    try:
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout_s)
+    except subprocess.TimeoutExpired:
+        raise GmatError(f"GMAT did not report its defaults within {timeout_s:g} s") from None
+    if proc.returncode != 0:
+        why = (proc.stderr.strip().splitlines() or ["no output"])[-1]
+        raise GmatError(f"GMAT could not report its defaults: {why}")
+    out = json.loads(proc.stdout.strip().splitlines()[-1])
+    for k in ("g0_mps2", "luna_mu_km3s2", "luna_radius_km"):
+        out[k] = float(out[k])
+    return out
+
+
 @dataclass(frozen=True)
 class Row:
     """One row of a report written by the script: burn number, event code, GMAT's state."""

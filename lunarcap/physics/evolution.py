@@ -23,7 +23,7 @@ from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model, fit_for, force_model
 from lunarcap.physics.elements import inclination, periapsis_factor
 from lunarcap.physics.epochs import calendar_from_seconds
-from lunarcap.physics.propagate import Trajectory, propagate
+from lunarcap.physics.propagate import RTOL, Trajectory, propagate
 
 #: Longest arc of one ephemeris fit, days (the fit spans it plus 1 h on each side).
 ARC_DAYS = 3.5
@@ -116,7 +116,8 @@ def revolutions(t, x) -> tuple:
     return tuple(np.array(c) for c in zip(*out)) if out else (np.array([]),) * 4
 
 
-def evolve(forces, eph, t0_s: float, x0, days: float, step_s: float = STEP_S) -> Evolution:
+def evolve(forces, eph, t0_s: float, x0, days: float, step_s: float = STEP_S,
+           rtol: float = RTOL) -> Evolution:
     """Propagate ``x0`` (p, f, g, h, k, L, m at ``t0_s``) for ``days`` in ``forces``.
 
     Parameters
@@ -128,6 +129,10 @@ def evolve(forces, eph, t0_s: float, x0, days: float, step_s: float = STEP_S) ->
         TDB s past J2000.
     days : float
         0 < days <= :data:`MAX_DAYS`.
+    rtol : float
+        Relative (and scaled absolute) tolerance of the propagation (default the
+        propagator's, 1e-13). At 1e-10 a 7-day flight of the 100 km polar orbit in LP165P
+        20x20 costs half the CPU and its perilunes move by 3 mm.
 
     Raises
     ------
@@ -145,7 +150,8 @@ def evolve(forces, eph, t0_s: float, x0, days: float, step_s: float = STEP_S) ->
     for a, b in zip(edges[:-1], edges[1:]):
         model = Model(forces, 0.0, 300.0, fit_for(forces, eph, a - 3600.0, b + 3600.0))
         n = max(2, int(np.ceil((b - a) / step_s)))
-        arc = propagate(model, a, x, b, t_eval=a + (b - a) * np.arange(n + 1) / n)
+        arc = propagate(model, a, x, b, t_eval=a + (b - a) * np.arange(n + 1) / n,
+                        rtol=rtol, atol=rtol)
         arcs.append(arc)
         x = arc.final
     traj = Trajectory.join(arcs)

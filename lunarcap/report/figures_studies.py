@@ -25,6 +25,7 @@ from lunarcap.report.figstyle import (
     draw_moon,
     isp_colour,
     label_colour,
+    model_colour,
 )
 
 
@@ -517,4 +518,35 @@ def plot_exported_trajectory(arcs, r_moon_km: float):
         ax.set_xlabel(f"{'xyz'[i]} ICRF (km)")
         ax.set_ylabel(f"{'xyz'[j]} ICRF (km)")
     fig.legend(loc="outside lower center", ncols=4)
+    return fig
+
+
+# =============================================================================== the real Moon
+def plot_evolution(histories: dict):
+    """The final orbit's revolutions over days, one colour per gravity model.
+
+    Parameters
+    ----------
+    histories : {label: {"days", "perilune_km", "apolune_km", "inc_deg"}} in drawing order
+        (the paper's J2 first), one entry per revolution: days since the last cut-off, the
+        lowest and highest altitude of the revolution (km) and its mean inclination (deg)
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Above: perilune (solid) and apolune (dashed) altitudes; below: the inclination.
+    """
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(FIG_WIDTH_IN, 6.0), sharex=True,
+                                 layout="constrained", height_ratios=(3, 2))
+    for k, (label, h) in enumerate(histories.items()):
+        c = model_colour(k)
+        ax.plot(h["days"], h["perilune_km"], "-", color=c, lw=1.4, label=label)
+        ax.plot(h["days"], h["apolune_km"], "--", color=c, lw=1.0)
+        bx.plot(h["days"], h["inc_deg"], "-", color=c, lw=1.4)
+    ax.set_ylabel("altitude (km): perilune —, apolune --")
+    bx.set_ylabel("inclination (deg)")
+    bx.set_xlabel("days after the last cut-off")
+    for a in (ax, bx):
+        a.grid(alpha=0.3)
+    ax.legend(ncols=min(len(histories), 3), loc="best")
     return fig

@@ -48,10 +48,12 @@ from pathlib import Path
 from lunarcap.repro import paths
 
 #: What a cached result depends on: the numerical code (physics, the mission, the
-#: optimiser), the error types, and the module of the cached chain solves. Editing anything
+#: optimiser), the error types, the module of the cached chain solves, and the open-loop
+#: flights (which fly the exported steering segments). Editing anything
 #: else (the CLI's help, the book, a figure, a plan file: a plan's content is part of the
 #: key of each of its solves) keeps every cached solve.
-NUMERICAL_CODE = ("physics/", "mission/", "optim/", "errors.py", "runs/chain.py")
+NUMERICAL_CODE = ("physics/", "mission/", "optim/", "errors.py", "runs/chain.py",
+                  "runs/openloop.py", "runs/export.py")
 
 #: Besides those, the book's stamps hash the presentation code (a figure depends on it).
 PRESENTATION_CODE = ("report/", "paper/", "runs/", "cli.py")

@@ -475,18 +475,20 @@ class PlanResult:
                 "totals": self.totals()}
 
 
-def after_capture(res: PlanResult, days: float, dynamics=None):
+def after_capture(res: PlanResult, days: float, dynamics=None, rtol: float | None = None):
     """The final orbit of a solved plan propagated ``days`` from its last cut-off.
 
     In the plan's dynamics (or ``dynamics``): :func:`lunarcap.physics.evolution.evolve`,
     from the last burn's verified flight; the :class:`~lunarcap.physics.evolution.Evolution`
     holds each revolution's perilune, apolune and mean inclination and the sampled states.
+    ``rtol``: the propagation's tolerance (default the propagator's).
     """
     from lunarcap.physics.evolution import evolve
 
     burn = res.burns[-1].solution.flight.burn
+    kw = {} if rtol is None else {"rtol": rtol}
     return evolve(res.plan.dynamics if dynamics is None else dynamics,
-                  res.plan.ephemeris_model(), burn.t[-1], burn.x[:7, -1], days)
+                  res.plan.ephemeris_model(), burn.t[-1], burn.x[:7, -1], days, **kw)
 
 
 def _in_cache(fn, *args) -> bool:

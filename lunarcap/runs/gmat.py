@@ -29,7 +29,7 @@ import numpy as np
 
 from lunarcap.exchange import gmat
 from lunarcap.physics.elements import mee_from_rv, orbit_summary
-from lunarcap.runs.export import capture_arcs, export_plan, icrf_state
+from lunarcap.runs.export import APPROACH_MIN, capture_arcs, export_plan, icrf_state
 
 #: Gates of a burn flown in GMAT from lunarcap's ignition state, at its cut-off: position
 #: (m) and velocity (m/s).
@@ -167,3 +167,53 @@ def fly_in_gmat(result, out_dir, python: str | None = None) -> GmatComparison:
                              f"and {2 * n + 2}")
     return GmatComparison(result.plan.name, burns, coasts, capture, final, wall,
                           dict(ex.files))
+
+
+#: What :func:`default_costs` changes, each to GMAT's default: the thruster's standard
+#: gravity, the axis of the lunar J2 (GMAT's Moon turns with the Moon), the Moon's GM,
+#: and the thrust direction (one per burn instead of segments).
+DEFAULTS_FLOWN = ("g0", "pole", "gm", "one-direction")
+
+
+def default_costs(result, defaults: dict) -> dict:
+    """What each of GMAT's defaults would cost the capture, flown in lunarcap.
+
+    The capture as the exported script flies it (:func:`lunarcap.runs.openloop.
+    fly_open_loop`: from the arrival, the thrust in 10 s inertial segments) against the
+    same with one setting left at GMAT's default (``defaults``:
+    :func:`lunarcap.exchange.gmat.gmat_defaults`): ``g0`` the thruster's standard gravity;
+    ``pole`` J2 about the Moon's pole of date (IAU; GMAT's ``Luna`` turns with the DE405
+    librations) instead of the plan's fixed pole; ``gm`` GMAT's lunar GM; ``one-direction``
+    one thrust direction per burn. Per change: the first burn's cut-off and the first
+    coast's end (m, mm/s), and the final orbit's perilune and apolune (m) and the end state
+    (m, mm/s), against the flight with the script's settings. lunarcap's flights of that
+    script agree with GMAT's to centimetres (:func:`fly_in_gmat`), so these are GMAT's costs
+    too.
+    """
+    from dataclasses import replace
+
+    from lunarcap.physics.forces import force_model
+    from lunarcap.runs.openloop import CUTOFF, END, apart, fly_open_loop
+
+    app = 60.0 * APPROACH_MIN
+    ref = fly_open_loop(result, hold="inertial", approach_s=app)
+    f = force_model(result.plan.dynamics)
+    of_date = replace(f, pole="of-date", name="") if f.gravity == "j2" else None
+    flights = {"g0": fly_open_loop(result, hold="inertial", approach_s=app,
+                                   g0_mps2=defaults["g0_mps2"]),
+               "gm": fly_open_loop(result, hold="inertial", approach_s=app,
+                                   mu=defaults["luna_mu_km3s2"]),
+               "one-direction": fly_open_loop(result, hold="one-direction", approach_s=app)}
+    if of_date is not None and f.pole == "frame":
+        flights["pole"] = fly_open_loop(result, of_date, hold="inertial", approach_s=app)
+    n = len(result.burns)
+    out = {}
+    for k, fl in flights.items():
+        burn1 = apart(fl, ref, (1, CUTOFF))
+        coast1 = apart(fl, ref, (2, "ignition") if n > 1 else (n, END))
+        end = apart(fl, ref)
+        out[k] = {"burn1_m": burn1["position_diff_m"], "burn1_mmps": burn1["velocity_diff_mmps"],
+                  "coast1_m": coast1["position_diff_m"], "end_m": end["position_diff_m"],
+                  "end_mmps": end["velocity_diff_mmps"], "rp_m": end["rp_diff_m"],
+                  "ra_m": end["ra_diff_m"]}
+    return out

@@ -1,0 +1,400 @@
+"""The "real Moon" page (notebooks/real_moon.ipynb): the capture in the lunar gravity field.
+
+The paper's dynamics are the Moon as a point mass plus J2 (with the Earth and the Sun);
+the Moon's gravity is lumpier. :func:`build` takes the paper's 150 N capture as designed
+(J2, its verified burns) and
+
+* flies it open loop through LP165P (Konopliv et al. 2001) cut to several degrees, its
+  steering held in RTN or in inertial axes, from its arrival or from its first ignition
+  (:func:`lunarcap.runs.openloop.open_loop`): the final orbit and its miss
+  (:func:`miss_table`);
+* designs it again in the field (the same plan, targets and ignitions; the burns and
+  their impulsive limits, :func:`redesign_table`);
+* flies its final orbit for days in each model (:func:`lunarcap.runs.openloop.evolution`):
+  per revolution the lowest and highest altitude and the inclination
+  (:func:`evolution_table`, :func:`histories`, and the figure);
+* and measures how far the field's frame (DE405's principal axes) is from the IAU (2009)
+  body frame over the capture's year (:func:`frames_distance`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from lunarcap.mission.plan import load_plan
+from lunarcap.physics import constants as C
+from lunarcap.physics.elements import rv_from_mee
+from lunarcap.physics.ephemeris import default_ephemeris
+from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
+from lunarcap.physics.forces import force_model
+from lunarcap.physics.frames import rotation_313
+from lunarcap.report.figures import plot_evolution
+from lunarcap.report.page import Page, solver_description
+from lunarcap.runs.chain import plan_result
+from lunarcap.runs.openloop import evolution, open_loop
+
+NOTEBOOK = "notebooks/real_moon.ipynb"
+#: The packaged lunar field and the third bodies every model of the page carries.
+FIELD, THIRD_BODIES = "LP165P", ["earth", "sun"]
+#: The steering holds of the open-loop flights (:mod:`lunarcap.runs.openloop`).
+HOLD_NAMES = {"rtn": "RTN", "inertial": "inertial"}
+#: Tolerance of the days after the capture: 1e-10 moved the perilunes of 7 days in LP165P
+#: 20x20 by 3 mm from 1e-13's, at half the CPU (the 50x50 field: 28 s at 1e-13).
+EVOLUTION_RTOL = 1e-10
+
+
+def field(degree: int) -> dict:
+    """The plan ``dynamics`` of LP165P to ``degree`` x ``degree`` with the Earth and the Sun."""
+    return {"gravity": FIELD, "degree": int(degree), "order": int(degree),
+            "third_bodies": THIRD_BODIES}
+
+
+def model_name(dynamics) -> str:
+    """How the tables name a model: "J2 (the design's)" or "LP165P 20x20"."""
+    f = force_model(dynamics)
+    return f"{f.field.name} {f.degree}x{f.order}" if f.is_field else "J2 (the design's)"
+
+
+def frames_distance(t0_s: float, t1_s: float, n: int = 366,
+                    altitude_km: float = 100.0) -> dict:
+    """How far DE405's lunar principal axes are from the IAU (2009) body frame.
+
+    At ``n`` epochs over [t0_s, t1_s]: the angle of the rotation between the two frames
+    (arcsec) and the distance it moves a point at ``altitude_km`` (km); their least and
+    largest.
+    """
+    t = np.linspace(t0_s, t1_s, n)
+    eph = default_ephemeris()
+    a, b = eph.body_angles(t, "de405"), eph.body_angles(t, "iau2009")
+    ang = np.empty(n)
+    for j in range(n):
+        d = np.asarray(rotation_313(*a[:, j])) @ np.asarray(rotation_313(*b[:, j])).T
+        ang[j] = np.arccos(np.clip((np.trace(d) - 1.0) / 2.0, -1.0, 1.0))
+    km = 2.0 * (C.R_MOON + altitude_km) * np.sin(ang / 2.0)
+    arcsec = np.degrees(ang) * 3600.0
+    return {"min_arcsec": float(arcsec.min()), "max_arcsec": float(arcsec.max()),
+            "min_km": float(km.min()), "max_km": float(km.max())}
+
+
+def miss_row(label: str, ol, start: str) -> dict:
+    """One open-loop flight as a row: model, hold, start, final orbit, miss."""
+    f = ol.final
+    return {"model": label, "hold": HOLD_NAMES[ol.hold], "start": start,
+            "rp_alt_km": f["rp_alt_km"], "ra_alt_km": f["ra_alt_km"],
+            "inc_change_deg": f["inc_deg"] - f["design_inc_deg"], "miss_km": f["miss_km"],
+            "miss_mps": f["miss_mps"]}
+
+
+def miss_table(plan, models, holds=("rtn", "inertial"), approach_s: float = 3600.0,
+               start: str = "arrival") -> pd.DataFrame:
+    """The design flown open loop in each model (rows), each hold: final orbit and miss.
+
+    ``models``: plan ``dynamics`` (None: the design's own); ``start``: "arrival" (the
+    design's state ``approach_s`` before its first ignition) or "first ignition".
+    """
+    app = approach_s if start == "arrival" else 0.0
+    rows = []
+    for dyn in models:
+        label = model_name(plan.dynamics if dyn is None else dyn)
+        for hold in holds:
+            rows.append(miss_row(label, open_loop(plan, dyn, hold, app), start))
+    return pd.DataFrame(rows)
+
+
+def redesign_table(design, redesign) -> pd.DataFrame:
+    """Per burn (and the total): delta-V as designed and re-designed, limits and losses (m/s).
+
+    ``design``, ``redesign``: PlanResults with impulsive limits; a burn with no limit
+    says why in ``no_limit_reason``.
+    """
+    rows = []
+    for k, (a, b) in enumerate(zip(design.table().to_dict("records"),
+                                   redesign.table().to_dict("records")), 1):
+        rows.append({"burn": str(k), "design_delta_v_mps": a["delta_v_mps"],
+                     "design_loss_mps": a["delta_v_loss_mps"],
+                     "redesign_delta_v_mps": b["delta_v_mps"],
+                     "delta_v_change_mps": b["delta_v_mps"] - a["delta_v_mps"],
+                     "redesign_limit_mps": b["impulsive_limit_mps"],
+                     "redesign_loss_mps": b["delta_v_loss_mps"],
+                     "no_limit_reason": _text(b.get("impulsive_limit_reason"))})
+    df = pd.DataFrame(rows)
+    total = {"burn": "total", "no_limit_reason": ""}
+    for c in ("design_delta_v_mps", "design_loss_mps", "redesign_delta_v_mps",
+              "delta_v_change_mps", "redesign_limit_mps", "redesign_loss_mps"):
+        v = pd.to_numeric(df[c])
+        total[c] = float(v.sum()) if v.notna().all() else float("nan")
+    return pd.concat([df, pd.DataFrame([total])], ignore_index=True)
+
+
+def _text(v) -> str:
+    """A table's text cell: the string, or "" for a missing one (None or NaN)."""
+    return v if isinstance(v, str) else ""
+
+
+def histories(evolutions: dict) -> dict:
+    """Per model label: days since the cut-off, perilune and apolune altitude (km), inc (deg)."""
+    out = {}
+    for label, ev in evolutions.items():
+        out[label] = {"days": (ev.perilune_epoch_s - ev.t0_s) / C.DAY_S,
+                      "perilune_km": ev.perilune_altitude_km,
+                      "apolune_km": ev.apolune_altitude_km, "inc_deg": ev.inclination_deg}
+    return out
+
+
+def evolution_table(evolutions: dict) -> pd.DataFrame:
+    """Per model: revolutions, lowest perilune, highest apolune (km), inclination change (deg)."""
+    rows = []
+    for label, ev in evolutions.items():
+        s = ev.summary()
+        rows.append({"model": label, "revolutions": s["after_revolutions"],
+                     "min_perilune_alt_km": s["after_min_perilune_altitude_km"],
+                     "max_apolune_alt_km": s["after_max_apolune_altitude_km"],
+                     "last_perilune_alt_km": s["after_last_perilune_altitude_km"],
+                     "last_apolune_alt_km": s["after_last_apolune_altitude_km"],
+                     "inc_change_deg": s["after_inclination_change_deg"]})
+    return pd.DataFrame(rows)
+
+
+def end_distance_km(a, b) -> float:
+    """Distance (km) between the end states of two open-loop flights (or evolutions)."""
+    xa = a.final_state if hasattr(a, "final_state") else a.end.x
+    xb = b.final_state if hasattr(b, "final_state") else b.end.x
+    ra, rb = (np.array(rv_from_mee(*x[:6], C.MU_MOON)[0], float) for x in (xa, xb))
+    return float(np.linalg.norm(ra - rb))
+
+
+def _shown(v, why: str, spec: str = ".3f") -> str:
+    """A table cell: the number, or why there is none."""
+    return why if v is None or not np.isfinite(v) else format(float(v), spec)
+
+
+def _year(epoch_s: float) -> tuple:
+    """(start, end) of the calendar year of an epoch, TDB s past J2000."""
+    y = int(calendar_from_seconds(epoch_s)[:4])
+    return (seconds_from_calendar(f"{y}-01-01 00:00:00 TDB"),
+            seconds_from_calendar(f"{y + 1}-01-01 00:00:00 TDB"))
+
+
+def build(plan: str = "song2011-150N", degrees=(2, 8, 20, 50), compare_degree: int = 20,
+          design_degree: int | None = 20, after_days: float = 7.0, evolve_degrees=(2, 8, 20, 50),
+          approach_min: float = 60.0, output_name: str = "real_moon", quick: bool = False
+          ) -> Page:
+    """The page (see the module docstring).
+
+    Parameters
+    ----------
+    plan : the design (a packaged plan or a plan file), in its own dynamics (J2)
+    degrees : the field's degrees (x the same order) the design is flown open loop in
+    compare_degree : the field in which both starts of the open loop are compared (one of
+        ``degrees``)
+    design_degree : the field the plan is designed again in (None: not done)
+    after_days : days the final orbit is flown after the last cut-off
+    evolve_degrees : the fields it is flown in (besides the design's J2)
+    approach_min : the open loop from the arrival starts this long before the first
+        ignition, min (where the exported capture starts)
+    output_name, quick : the tables' prefix; recorded in the provenance
+    """
+    p = load_plan(plan)
+    degrees = [int(d) for d in degrees]
+    page = Page(NOTEBOOK, dict(plan=plan, degrees=degrees, compare_degree=compare_degree,
+                               design_degree=design_degree, after_days=after_days,
+                               evolve_degrees=list(evolve_degrees), approach_min=approach_min),
+                output_name, quick, solver=solver_description(), ephemeris=p.ephemeris_model())
+    design = plan_result(p, impulsive=design_degree is not None)
+    app = 60.0 * approach_min
+    _frames(page, design)
+    _misses(page, p, degrees, compare_degree, app)
+    _redesign(page, p, design, design_degree)
+    _evolution(page, p, after_days, evolve_degrees)
+    _headline(page, compare_degree, after_days)
+    return page
+
+
+def _frames(page: Page, design) -> None:
+    t0 = design.burns[0].solution.flight.burn.t[0]
+    d = frames_distance(*_year(t0))
+    page.value("frames_year", calendar_from_seconds(t0)[:4])
+    for k, v in d.items():
+        page.value(f"frames_{k}", v)
+
+
+def _misses(page: Page, p, degrees, compare: int, approach_s: float) -> None:
+    models = [None] + [field(d) for d in degrees]
+    miss = miss_table(p, models, approach_s=approach_s)
+    fmt = {"rp_alt_km": ".3f", "ra_alt_km": ".3f", "inc_change_deg": "+.4f",
+           "miss_km": ".3f", "miss_mps": ".2f"}
+    heads = {"model": "model", "hold": "steering held in", "rp_alt_km": "perilune (km)",
+             "ra_alt_km": "apolune (km)", "inc_change_deg": "Δi (deg)",
+             "miss_km": "miss (km)", "miss_mps": "miss (m/s)", "start": "from"}
+    page.table("miss", miss, caption=(
+        f"The paper's capture as designed in J2 ({p.name}, its verified burns) flown open "
+        f"loop from its arrival ({page.parameters['approach_min']:g} min before the first "
+        "ignition) in the lunar field LP165P cut to each degree and order, with the Earth "
+        "and the Sun: the final orbit's osculating perilune and apolune altitudes and its "
+        "inclination change against the design's, at the epoch where the design's circle "
+        "holds, and the distance (km) and speed difference (m/s) from the design's state "
+        "there. The first rows fly the design in its own model."),
+        columns=heads, floatfmt=fmt,
+        show_columns=["model", "hold", "rp_alt_km", "ra_alt_km", "inc_change_deg",
+                      "miss_km", "miss_mps"])
+    if compare not in degrees:
+        raise ValueError(f"compare_degree {compare} must be one of the degrees {degrees}")
+    c = model_name(field(compare))
+    opens = pd.concat([miss[miss.model == c],
+                       miss_table(p, [field(compare)], start="first ignition")],
+                      ignore_index=True)
+    page.table("opens", opens, caption=(
+        f"Where the loop opens, {c}: flown from the arrival the approach too is in the "
+        "field (the perilune and the first burn's cut-off move), flown from the design's "
+        "state at the first ignition it is not. Final orbit as in the table above."),
+        columns=heads, floatfmt=fmt,
+        show_columns=["start", "hold", "rp_alt_km", "ra_alt_km", "miss_km", "miss_mps"])
+    row = {(r.model, r.hold, r.start): r for r in opens.itertuples()}
+    for hold in ("rtn", "inertial"):
+        h = HOLD_NAMES[hold]
+        for start, key in (("arrival", "arrival"), ("first ignition", "ignition")):
+            r = row[(c, h, start)]
+            page.value(f"miss_{key}_{hold}_km", r.miss_km)
+            page.value(f"rp_{key}_{hold}_km", r.rp_alt_km)
+            page.value(f"ra_{key}_{hold}_km", r.ra_alt_km)
+    j2 = miss[miss.model == model_name(p.dynamics)].set_index("hold").miss_km * 1e3
+    page.value("j2_self_rtn_m", j2[HOLD_NAMES["rtn"]])
+    page.value("j2_self_inertial_m", j2[HOLD_NAMES["inertial"]])
+    page.expect("the design flown open loop (RTN) in its own model ends within 1 m of its "
+                "verified flight", j2[HOLD_NAMES["rtn"]] < 1.0, f"{j2[HOLD_NAMES['rtn']]:.3g} m")
+    page.value("compare_model", c)
+    inertial = miss[miss.hold == HOLD_NAMES["inertial"]].set_index("model").miss_km
+    page.value("share_2x2_percent", 100.0 * inertial.get(model_name(field(2)), np.nan)
+               / inertial[c], why="2x2 not flown")
+    top = max(degrees)
+    if top != compare:
+        a = open_loop(p, field(compare), "inertial", approach_s)
+        b = open_loop(p, field(top), "inertial", approach_s)
+        page.value("top_vs_compare_km", end_distance_km(a, b))
+    else:
+        page.value("top_vs_compare_km", None, why="no deeper field flown")
+    page.value("top_model", model_name(field(top)))
+
+
+def _redesign(page: Page, p, design, degree) -> None:
+    why = page.missing_reason
+    if degree is None:
+        why = f"not designed again in this run ({why})" if not page.quick else why
+    if degree is not None:
+        re_plan = p.with_dynamics(field(degree))
+        redesign = plan_result(re_plan, impulsive=True)
+        df = redesign_table(design, redesign)
+        page.expect("the re-designed capture is verified in its field",
+                    redesign.totals()["all_verified"])
+        reasons = [r for r in df.no_limit_reason if r]
+        page.value("redesign_model", model_name(field(degree)))
+        page.value("no_limit_reason", reasons[0] if reasons else "every burn has a limit")
+        page.value("no_limit_burn", next((b for b, r in zip(df.burn, df.no_limit_reason) if r),
+                                         "none"))
+        gap = [b.impulsive.get("circle_gap_m") for b in redesign.burns
+               if b.impulsive and b.impulsive.get("circle_gap_m") is not None]
+        page.value("circle_gap_m", gap[0] if gap else None, why="every circle in reach")
+    else:
+        df = redesign_table(design, design)
+        for c in ("redesign_delta_v_mps", "delta_v_change_mps", "redesign_limit_mps",
+                  "redesign_loss_mps"):
+            df[c] = np.nan
+        df["no_limit_reason"] = ""
+        for k in ("redesign_model", "no_limit_reason", "no_limit_burn", "circle_gap_m"):
+            page.value(k, None)
+    df["limit_shown"] = [
+        _shown(v, why if degree is None else "none: no impulse reaches the circle"
+               if r else "none: a burn has no limit")
+        for v, r in zip(df.redesign_limit_mps, df.no_limit_reason)]
+    df["loss_shown"] = [_shown(v, why if degree is None else "undefined (no limit)")
+                        for v in df.redesign_loss_mps]
+    for c in ("redesign_delta_v_mps", "delta_v_change_mps"):
+        df[c + "_shown"] = [_shown(v, why, "+.3f" if "change" in c else ".3f") for v in df[c]]
+    df["design_loss_mps"] = pd.to_numeric(df.design_loss_mps)
+    df["design_loss_shown"] = [_shown(v, page.missing_reason) for v in df.design_loss_mps]
+    page.table("redesign", df, caption=(
+        f"The capture designed again in the field (the same plan, targets and ignitions; "
+        f"{page.values['redesign_model'] if degree is not None else 'not in the quick book'}"
+        ") beside the J2 design: each burn's ΔV (m/s) and its finite-burn loss against "
+        "the impulsive limit in the same dynamics (m/s)."),
+        columns={"burn": "burn", "design_delta_v_mps": "ΔV, J2 (m/s)",
+                 "design_loss_shown": "loss, J2 (m/s)",
+                 "redesign_delta_v_mps_shown": "ΔV, field (m/s)",
+                 "delta_v_change_mps_shown": "change (m/s)",
+                 "limit_shown": "impulsive limit, field (m/s)",
+                 "loss_shown": "loss, field (m/s)"},
+        floatfmt={"design_delta_v_mps": ".3f"},
+        show_columns=["burn", "design_delta_v_mps", "design_loss_shown",
+                      "redesign_delta_v_mps_shown", "delta_v_change_mps_shown", "limit_shown",
+                      "loss_shown"])
+    tot = df.iloc[-1]
+    page.value("design_total_mps", tot.design_delta_v_mps)
+    page.value("redesign_total_mps", tot.redesign_delta_v_mps)
+    page.value("redesign_change_mps", tot.delta_v_change_mps)
+    for k in range(len(df) - 1):
+        page.value(f"redesign_loss_{k + 1}_mps", df.redesign_loss_mps.iloc[k],
+                   why=why if degree is None else "no impulsive limit in the field")
+        page.value(f"design_loss_{k + 1}_mps", df.design_loss_mps.iloc[k])
+
+
+def _evolution(page: Page, p, days: float, degrees) -> None:
+    models = [None] + [field(d) for d in degrees]
+    evs = {model_name(p.dynamics if m is None else m): evolution(p, days, m, EVOLUTION_RTOL)
+           for m in models}
+    page.figure("evolution", plot_evolution(histories(evs)), caption=(
+        f"The final orbit of the J2 design flown {days:g} days after its last cut-off in "
+        "each model: each revolution's lowest and highest altitude (km, solid and dashed) "
+        "and its mean inclination (deg, about the plan's frame's pole)."),
+        alt="Perilune, apolune and inclination of the final orbit over days, per gravity "
+            "model")
+    table = evolution_table(evs)
+    page.table("after", table, caption=(
+        f"The final orbit over {days:g} days in each model: revolutions, the lowest perilune "
+        "and highest apolune altitudes (km), those of the last revolution, and the change "
+        "of the mean inclination from the first revolution to the last (deg)."),
+        columns={"model": "model", "revolutions": "revolutions",
+                 "min_perilune_alt_km": "lowest perilune (km)",
+                 "max_apolune_alt_km": "highest apolune (km)",
+                 "last_perilune_alt_km": "last perilune (km)",
+                 "last_apolune_alt_km": "last apolune (km)", "inc_change_deg": "Δi (deg)"},
+        floatfmt={"min_perilune_alt_km": ".2f", "max_apolune_alt_km": ".2f",
+                  "last_perilune_alt_km": ".2f", "last_apolune_alt_km": ".2f",
+                  "inc_change_deg": "+.3f"})
+    t = table.set_index("model")
+    j2 = model_name(p.dynamics)
+    page.value("after_days", days)
+    page.value("after_days_word", f"{days:g} day{'s' * (days != 1)}")
+    page.value("j2_min_perilune_km", t.loc[j2, "min_perilune_alt_km"])
+    page.value("j2_inc_change_deg", t.loc[j2, "inc_change_deg"])
+    deepest = model_name(field(max(degrees))) if degrees else None
+    for key, label in (("deep", deepest), ("compare", page.values.get("compare_model"))):
+        ok = label in t.index
+        page.value(f"{key}_evolved_model", label if ok else None)
+        page.value(f"{key}_min_perilune_km", t.loc[label, "min_perilune_alt_km"] if ok else None,
+                   why="not flown in this run")
+        page.value(f"{key}_inc_change_deg", t.loc[label, "inc_change_deg"] if ok else None,
+                   why="not flown in this run")
+    names = list(evs)
+    if len(names) >= 3:   # the two deepest fields after the days
+        page.value("deepest_apart_km", end_distance_km(evs[names[-2]], evs[names[-1]]))
+        page.value("deepest_pair", f"{names[-2]} and {names[-1]}")
+    else:
+        page.value("deepest_apart_km", None, why="one field flown")
+        page.value("deepest_pair", None, why="one field flown")
+    page.expect("every model flew whole revolutions", bool((table.revolutions > 0).all()))
+
+
+def _headline(page: Page, compare: int, days: float) -> None:
+    t = page.text
+    page.headline(
+        f"Flown open loop through the lunar field LP165P to degree {compare}, the paper's J2 "
+        f"capture ends on a {t('rp_arrival_inertial_km', '.1f')} × "
+        f"{t('ra_arrival_inertial_km', '.1f', ' km')} orbit, "
+        f"{t('miss_arrival_inertial_km', '.1f', ' km')} from its design; re-designed in the "
+        f"field it costs {t('redesign_change_mps', '+.2f', ' m/s')}, and over {days:g} "
+        f"day{'s' * (days != 1)} "
+        f"the field takes the 100 km orbit's perilune down to "
+        f"{t('compare_min_perilune_km', '.1f', ' km')} and turns its plane by "
+        f"{t('compare_inc_change_deg', '.2f', ' deg')} (J2: "
+        f"{t('j2_min_perilune_km', '.1f', ' km')}, {t('j2_inc_change_deg', '.2f', ' deg')}).")
