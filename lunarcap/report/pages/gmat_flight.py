@@ -257,8 +257,8 @@ def build(cases=(("song2011-150N", None),), output_name: str = "gmat_flight",
 def _second_case(page: Page, plans) -> str:
     """The prose of the second case (a plan in a gravity field), or why there is none."""
     if len(plans) < 2:
-        return (f"(One case was flown in this run{' (the quick book)' if page.quick else ''}; "
-                "the full book also flies a capture in the lunar field LP165P 20x20.)")
+        return (f"(One case was flown in this run{', the quick book' if page.quick else ''}; "
+                "the book's full run adds a plan designed in a lunar gravity field.)")
     t = page.text
     return (f"For {t('case2_name')} in {t('case2_forces')} (GMAT's `Luna` carries the field "
             "in its DE405 body frame, as lunarcap does) every burn ends within "
@@ -318,6 +318,7 @@ def _settings(page: Page, plan, c) -> None:
             page.value(f"cost_{name}_{q}", None if cst is None else cst[q],
                        why="the plan's J2 is not about its frame's pole")
     page.value("cost_g0_rp_km", None if "g0" not in costs else costs["g0"]["rp_m"] * 1e-3)
+    page.value("cost_one_direction_burn1_km", costs["one-direction"]["burn1_m"] * 1e-3)
     page.value("inc_icrf_deg", facts["inc_icrf_deg"])
     page.value("inc_deg", facts["inc_deg"])
     page.value("tdb_minus_tai_s", facts["tdb_minus_tai_s"])

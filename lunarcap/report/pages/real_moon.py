@@ -272,9 +272,44 @@ def _misses(page: Page, p, degrees, compare: int, approach_s: float) -> None:
         a = open_loop(p, field(compare), "inertial", approach_s)
         b = open_loop(p, field(top), "inertial", approach_s)
         page.value("top_vs_compare_km", end_distance_km(a, b))
+        page.note("deeper", f"{c} and {model_name(field(top))} end "
+                            f"{page.text('top_vs_compare_km', '.2f', ' km')} apart there.")
     else:
         page.value("top_vs_compare_km", None, why="no deeper field flown")
-    page.value("top_model", model_name(field(top)))
+        page.note("deeper", f"(No field deeper than {c} was flown in this run.)")
+
+
+def no_limit_text(page: Page, redesign) -> str:
+    """Why a burn of the re-design has no impulsive limit (its numbers glued), or that all do.
+
+    For a circle out of reach of every impulse (:mod:`lunarcap.mission.reach`): how far
+    below the orbit before the burn the circle flown back lies, and the row's reason.
+    """
+    burns = [(k, b.impulsive) for k, b in enumerate(redesign.burns, 1)
+             if b.impulsive is not None and b.impulsive.get("reason")]
+    if not burns:
+        return "Every burn of the re-designed capture has an impulsive limit in the field."
+    k, imp = burns[0]
+    gap = imp.get("circle_gap_m")
+    page.value("circle_gap_m", gap, why="the finite-burn limit failed instead")
+    page.value("no_limit_burn", k)
+    text = (f"Burn {k} has no impulsive limit in the field, and so no loss. ")
+    if gap is not None:
+        text += (
+            "Its circle is asked at a fixed epoch, one period after the perilune where the "
+            "burn is made; an impulse changes the velocity but not the position, so it "
+            "reaches the circle only if some circle of the radius and inclination asked, "
+            "flown back from that epoch to the burn, passes through the spacecraft's "
+            "position. In J2 that circle, flown back over its one period, passes within "
+            "centimetres of the perilune of the orbit before the burn (whose perilune is the "
+            "circle's radius): the impulse is tangential there. In the field the circle "
+            f"flown back lies {page.text('circle_gap_m', '.0f', ' m')} below that perilune, "
+            "the lowest point of the orbit before the burn: no impulse from that orbit can "
+            "reach it. A finite burn gets there by thrusting partly inward, and the shorter "
+            "the burn the more that costs, so the limit of ever shorter burns does not "
+            "exist. lunarcap finds this before solving anything (a few propagations of the "
+            "circle backward) and says so: ")
+    return text + f"\n\n> {imp['reason']}"
 
 
 def _redesign(page: Page, p, design, degree) -> None:
@@ -287,22 +322,16 @@ def _redesign(page: Page, p, design, degree) -> None:
         df = redesign_table(design, redesign)
         page.expect("the re-designed capture is verified in its field",
                     redesign.totals()["all_verified"])
-        reasons = [r for r in df.no_limit_reason if r]
         page.value("redesign_model", model_name(field(degree)))
-        page.value("no_limit_reason", reasons[0] if reasons else "every burn has a limit")
-        page.value("no_limit_burn", next((b for b, r in zip(df.burn, df.no_limit_reason) if r),
-                                         "none"))
-        gap = [b.impulsive.get("circle_gap_m") for b in redesign.burns
-               if b.impulsive and b.impulsive.get("circle_gap_m") is not None]
-        page.value("circle_gap_m", gap[0] if gap else None, why="every circle in reach")
+        page.note("no_limit_text", no_limit_text(page, redesign))
     else:
         df = redesign_table(design, design)
         for c in ("redesign_delta_v_mps", "delta_v_change_mps", "redesign_limit_mps",
                   "redesign_loss_mps"):
             df[c] = np.nan
         df["no_limit_reason"] = ""
-        for k in ("redesign_model", "no_limit_reason", "no_limit_burn", "circle_gap_m"):
-            page.value(k, None)
+        page.value("redesign_model", None, why=why)
+        page.note("no_limit_text", f"(The capture was not designed again: {why}.)")
     df["limit_shown"] = [
         _shown(v, why if degree is None else "none: no impulse reaches the circle"
                if r else "none: a burn has no limit")
@@ -343,14 +372,14 @@ def _evolution(page: Page, p, days: float, degrees) -> None:
     evs = {model_name(p.dynamics if m is None else m): evolution(p, days, m, EVOLUTION_RTOL)
            for m in models}
     page.figure("evolution", plot_evolution(histories(evs)), caption=(
-        f"The final orbit of the J2 design flown {days:g} days after its last cut-off in "
+        f"The final orbit of the J2 design flown {_days(days)} after its last cut-off in "
         "each model: each revolution's lowest and highest altitude (km, solid and dashed) "
         "and its mean inclination (deg, about the plan's frame's pole)."),
         alt="Perilune, apolune and inclination of the final orbit over days, per gravity "
             "model")
     table = evolution_table(evs)
     page.table("after", table, caption=(
-        f"The final orbit over {days:g} days in each model: revolutions, the lowest perilune "
+        f"The final orbit over {_days(days)} in each model: revolutions, the lowest perilune "
         "and highest apolune altitudes (km), those of the last revolution, and the change "
         "of the mean inclination from the first revolution to the last (deg)."),
         columns={"model": "model", "revolutions": "revolutions",
@@ -361,28 +390,54 @@ def _evolution(page: Page, p, days: float, degrees) -> None:
         floatfmt={"min_perilune_alt_km": ".2f", "max_apolune_alt_km": ".2f",
                   "last_perilune_alt_km": ".2f", "last_apolune_alt_km": ".2f",
                   "inc_change_deg": "+.3f"})
-    t = table.set_index("model")
-    j2 = model_name(p.dynamics)
     page.value("after_days", days)
-    page.value("after_days_word", f"{days:g} day{'s' * (days != 1)}")
-    page.value("j2_min_perilune_km", t.loc[j2, "min_perilune_alt_km"])
-    page.value("j2_inc_change_deg", t.loc[j2, "inc_change_deg"])
-    deepest = model_name(field(max(degrees))) if degrees else None
-    for key, label in (("deep", deepest), ("compare", page.values.get("compare_model"))):
-        ok = label in t.index
-        page.value(f"{key}_evolved_model", label if ok else None)
-        page.value(f"{key}_min_perilune_km", t.loc[label, "min_perilune_alt_km"] if ok else None,
-                   why="not flown in this run")
-        page.value(f"{key}_inc_change_deg", t.loc[label, "inc_change_deg"] if ok else None,
-                   why="not flown in this run")
-    names = list(evs)
-    if len(names) >= 3:   # the two deepest fields after the days
-        page.value("deepest_apart_km", end_distance_km(evs[names[-2]], evs[names[-1]]))
-        page.value("deepest_pair", f"{names[-2]} and {names[-1]}")
-    else:
-        page.value("deepest_apart_km", None, why="one field flown")
-        page.value("deepest_pair", None, why="one field flown")
+    page.value("after_days_word", _days(days))
+    page.note("after_text", after_text(page, table, model_name(p.dynamics),
+                                      page.values["compare_model"], evs))
     page.expect("every model flew whole revolutions", bool((table.revolutions > 0).all()))
+
+
+def _days(days: float) -> str:
+    return f"{days:g} day{'s' * (days != 1)}"
+
+
+def after_text(page: Page, table: pd.DataFrame, j2: str, compare: str, evs: dict) -> str:
+    """The prose of the days after the capture, from the evolution table (its values glued).
+
+    J2's lowest perilune and inclination change; the compared field's; the other fields'
+    lowest perilunes beside it; how far apart the two deepest end (km).
+    """
+    t = table.set_index("model")
+    v = page.value
+    v("j2_min_perilune_km", t.loc[j2, "min_perilune_alt_km"])
+    v("j2_inc_change_deg", t.loc[j2, "inc_change_deg"])
+    text = (f"In J2 the 100 km polar orbit stays near its circle (lowest perilune "
+            f"{page.text('j2_min_perilune_km', '.2f', ' km')}, inclination change "
+            f"{page.text('j2_inc_change_deg', '+.2f', ' deg')}).")
+    if compare not in t.index:
+        v("compare_min_perilune_km", None, why="the compared field not flown in this run")
+        v("compare_inc_change_deg", None, why="the compared field not flown in this run")
+        return text
+    v("compare_min_perilune_km", t.loc[compare, "min_perilune_alt_km"])
+    v("compare_inc_change_deg", t.loc[compare, "inc_change_deg"])
+    text += (f" In {compare} its perilune comes down to "
+             f"{page.text('compare_min_perilune_km', '.1f', ' km')} and its plane turns by "
+             f"{page.text('compare_inc_change_deg', '+.2f', ' deg')}.")
+    others = [m for m in t.index if m not in (j2, compare)]
+    if others:
+        text += " Cut elsewhere, the field gives " + "; ".join(
+            f"{m}: {t.loc[m, 'min_perilune_alt_km']:.1f} km, "
+            f"{t.loc[m, 'inc_change_deg']:+.2f} deg" for m in others) + "."
+    fields = [m for m in evs if m != j2]
+    if len(fields) >= 2:
+        a, b = fields[-2], fields[-1]
+        v("deepest_apart_km", end_distance_km(evs[a], evs[b]))
+        text += (f" The two deepest, {a} and {b}, end "
+                 f"{page.text('deepest_apart_km', '.1f', ' km')} apart after "
+                 f"{_days(page.values['after_days'])}, their lowest perilunes "
+                 f"{abs(t.loc[a, 'min_perilune_alt_km'] - t.loc[b, 'min_perilune_alt_km']):.2f} "
+                 "km apart.")
+    return text
 
 
 def _headline(page: Page, compare: int, days: float) -> None:
@@ -392,8 +447,7 @@ def _headline(page: Page, compare: int, days: float) -> None:
         f"capture ends on a {t('rp_arrival_inertial_km', '.1f')} × "
         f"{t('ra_arrival_inertial_km', '.1f', ' km')} orbit, "
         f"{t('miss_arrival_inertial_km', '.1f', ' km')} from its design; re-designed in the "
-        f"field it costs {t('redesign_change_mps', '+.2f', ' m/s')}, and over {days:g} "
-        f"day{'s' * (days != 1)} "
+        f"field it costs {t('redesign_change_mps', '+.2f', ' m/s')}, and over {_days(days)} "
         f"the field takes the 100 km orbit's perilune down to "
         f"{t('compare_min_perilune_km', '.1f', ' km')} and turns its plane by "
         f"{t('compare_inc_change_deg', '.2f', ' deg')} (J2: "

@@ -93,9 +93,25 @@ def test_page_on_a_small_case(tmp_path):
     opens = page.items["opens"].df.set_index(["start", "hold"]).miss_km
     assert opens[("first ignition", "RTN")] < opens[("arrival", "RTN")]
     # without a re-design every number it would give says why
-    for k in ("redesign_total_mps", "redesign_change_mps", "circle_gap_m"):
+    for k in ("redesign_total_mps", "redesign_change_mps", "redesign_model"):
         assert is_missing(page.values[k]) and "quick" in page.values[k]
+    assert "not designed again" in page.notes["no_limit_text"]
+    assert "No field deeper than LP165P 2x2" in page.notes["deeper"]
     shown = page.items["redesign"].df
     assert (shown.limit_shown == "not run in the quick book").all()
     assert "not run in the quick book" in page.notes["headline"]
     page.check()
+
+
+def test_no_limit_text_says_why_with_the_gap():
+    from lunarcap.report.page import Page
+
+    why = "no impulsive limit in LP165P 20x20: the circle asked ... lies 218 m below"
+    burns = [SimpleNamespace(impulsive={"reason": None, "delta_v_mps": 353.0}),
+             SimpleNamespace(impulsive={"reason": why, "circle_gap_m": 217.98})]
+    page = Page("nb", {}, "x")
+    text = real_moon.no_limit_text(page, SimpleNamespace(burns=burns))
+    assert text.startswith("Burn 2 has no impulsive limit") and text.endswith(f"> {why}")
+    assert "218 m below that perilune" in text and page.values["circle_gap_m"] == 217.98
+    all_in_reach = SimpleNamespace(burns=burns[:1])
+    assert "Every burn" in real_moon.no_limit_text(Page("nb", {}, "x"), all_in_reach)
