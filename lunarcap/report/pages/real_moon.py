@@ -178,8 +178,8 @@ def _year(epoch_s: float) -> tuple:
 
 def build(plan: str = "song2011-150N", degrees=(2, 8, 20, 50), compare_degree: int = 20,
           design_degree: int | None = 20, after_days: float = 7.0, evolve_degrees=(2, 8, 20, 50),
-          approach_min: float = 60.0, output_name: str = "real_moon", quick: bool = False
-          ) -> Page:
+          approach_min: float = 60.0, output_name: str = "real_moon", quick: bool = False,
+          redesign_limits: bool = True) -> Page:
     """The page (see the module docstring).
 
     Parameters
@@ -193,20 +193,26 @@ def build(plan: str = "song2011-150N", degrees=(2, 8, 20, 50), compare_degree: i
     evolve_degrees : the fields it is flown in (besides the design's J2)
     approach_min : the open loop from the arrival starts this long before the first
         ignition, min (where the exported capture starts)
+    redesign_limits : whether the re-design's impulsive limits (and so its losses) in the
+        field are computed: two finite-burn solves per burn, the larger part of the page's
+        time
     output_name, quick : the tables' prefix; recorded in the provenance
     """
     p = load_plan(plan)
     degrees = [int(d) for d in degrees]
     page = Page(NOTEBOOK, dict(plan=plan, degrees=degrees, compare_degree=compare_degree,
                                design_degree=design_degree, after_days=after_days,
-                               evolve_degrees=list(evolve_degrees), approach_min=approach_min),
+                               evolve_degrees=list(evolve_degrees), approach_min=approach_min,
+                               redesign_limits=redesign_limits),
                 output_name, quick, solver=solver_description(), ephemeris=p.ephemeris_model())
     design = plan_result(p, impulsive=design_degree is not None)
     app = 60.0 * approach_min
     _frames(page, design)
     _misses(page, p, degrees, compare_degree, app)
-    _redesign(page, p, design, design_degree)
+    _redesign(page, p, design, design_degree, redesign_limits)
     _evolution(page, p, after_days, evolve_degrees)
+    page.note("scope", scope_text(page, degrees, evolve_degrees, design_degree,
+                                  redesign_limits, after_days))
     _headline(page, compare_degree, after_days)
     return page
 
@@ -312,18 +318,24 @@ def no_limit_text(page: Page, redesign) -> str:
     return text + f"\n\n> {imp['reason']}"
 
 
-def _redesign(page: Page, p, design, degree) -> None:
+#: Why the re-design's limits and losses are missing when the run did not ask for them.
+NO_LIMITS_REASON = "not computed in this run (`redesign_limits: false`)"
+
+
+def _redesign(page: Page, p, design, degree, limits: bool = True) -> None:
     why = page.missing_reason
     if degree is None:
         why = f"not designed again in this run ({why})" if not page.quick else why
+    no_limit = why if degree is None else NO_LIMITS_REASON
     if degree is not None:
-        re_plan = p.with_dynamics(field(degree))
-        redesign = plan_result(re_plan, impulsive=True)
+        redesign = plan_result(p.with_dynamics(field(degree)), impulsive=limits)
         df = redesign_table(design, redesign)
         page.expect("the re-designed capture is verified in its field",
                     redesign.totals()["all_verified"])
         page.value("redesign_model", model_name(field(degree)))
-        page.note("no_limit_text", no_limit_text(page, redesign))
+        page.note("no_limit_text", no_limit_text(page, redesign) if limits else
+                  "(Whether each burn has an impulsive limit in the field at all is found "
+                  "with the limits.)")
     else:
         df = redesign_table(design, design)
         for c in ("redesign_delta_v_mps", "delta_v_change_mps", "redesign_limit_mps",
@@ -332,21 +344,34 @@ def _redesign(page: Page, p, design, degree) -> None:
         df["no_limit_reason"] = ""
         page.value("redesign_model", None, why=why)
         page.note("no_limit_text", f"(The capture was not designed again: {why}.)")
+    computed = degree is not None and limits
     df["limit_shown"] = [
-        _shown(v, why if degree is None else "none: no impulse reaches the circle"
+        _shown(v, no_limit if not computed else "none: no impulse reaches the circle"
                if r else "none: a burn has no limit")
         for v, r in zip(df.redesign_limit_mps, df.no_limit_reason)]
-    df["loss_shown"] = [_shown(v, why if degree is None else "undefined (no limit)")
+    df["loss_shown"] = [_shown(v, no_limit if not computed else "undefined (no limit)")
                         for v in df.redesign_loss_mps]
     for c in ("redesign_delta_v_mps", "delta_v_change_mps"):
         df[c + "_shown"] = [_shown(v, why, "+.3f" if "change" in c else ".3f") for v in df[c]]
     df["design_loss_mps"] = pd.to_numeric(df.design_loss_mps)
     df["design_loss_shown"] = [_shown(v, page.missing_reason) for v in df.design_loss_mps]
+    _redesign_shown(page, df, page.values["redesign_model"] if degree is not None else why)
+    tot = df.iloc[-1]
+    page.value("design_total_mps", tot.design_delta_v_mps)
+    page.value("redesign_total_mps", tot.redesign_delta_v_mps)
+    page.value("redesign_change_mps", tot.delta_v_change_mps)
+    for k in range(len(df) - 1):
+        page.value(f"redesign_loss_{k + 1}_mps", df.redesign_loss_mps.iloc[k],
+                   why=no_limit if not computed else "no impulsive limit in the field")
+        page.value(f"design_loss_{k + 1}_mps", df.design_loss_mps.iloc[k])
+    page.note("loss_text", loss_text(page, df, computed, no_limit))
+
+
+def _redesign_shown(page: Page, df: pd.DataFrame, model: str) -> None:
     page.table("redesign", df, caption=(
         f"The capture designed again in the field (the same plan, targets and ignitions; "
-        f"{page.values['redesign_model'] if degree is not None else 'not in the quick book'}"
-        ") beside the J2 design: each burn's ΔV (m/s) and its finite-burn loss against "
-        "the impulsive limit in the same dynamics (m/s)."),
+        f"{model}) beside the J2 design: each burn's ΔV (m/s) and its finite-burn loss "
+        "against the impulsive limit in the same dynamics (m/s)."),
         columns={"burn": "burn", "design_delta_v_mps": "ΔV, J2 (m/s)",
                  "design_loss_shown": "loss, J2 (m/s)",
                  "redesign_delta_v_mps_shown": "ΔV, field (m/s)",
@@ -357,14 +382,52 @@ def _redesign(page: Page, p, design, degree) -> None:
         show_columns=["burn", "design_delta_v_mps", "design_loss_shown",
                       "redesign_delta_v_mps_shown", "delta_v_change_mps_shown", "limit_shown",
                       "loss_shown"])
-    tot = df.iloc[-1]
-    page.value("design_total_mps", tot.design_delta_v_mps)
-    page.value("redesign_total_mps", tot.redesign_delta_v_mps)
-    page.value("redesign_change_mps", tot.delta_v_change_mps)
-    for k in range(len(df) - 1):
-        page.value(f"redesign_loss_{k + 1}_mps", df.redesign_loss_mps.iloc[k],
-                   why=why if degree is None else "no impulsive limit in the field")
-        page.value(f"design_loss_{k + 1}_mps", df.design_loss_mps.iloc[k])
+
+
+def loss_text(page: Page, df: pd.DataFrame, computed: bool, why: str) -> str:
+    """The losses of the re-design beside the J2 design's, per burn that has both, or why not.
+
+    ``df``: :func:`redesign_table` (its burns' rows, then the total); ``computed``: the
+    re-design's limits were computed (else ``why`` says why not).
+    """
+    burns = df.iloc[:-1]
+    if not computed:
+        return (f"Its finite-burn losses in the field are {why}; the J2 design's are "
+                + ", ".join(f"{v:.3f}" for v in burns.design_loss_mps) + " m/s.")
+    has = burns[np.isfinite(pd.to_numeric(burns.redesign_loss_mps))]
+    if has.empty:
+        return "No burn of the re-design has a finite-burn loss in the field."
+    pairs = [f"burn {b}: {f:.3f} m/s ({j:.3f} in J2)" for b, f, j in
+             zip(has.burn, has.redesign_loss_mps, has.design_loss_mps)]
+    return "Against their impulsive limits in the field the burns lose " + "; ".join(pairs) + "."
+
+
+def scope_text(page: Page, degrees, evolve_degrees, design_degree, limits: bool,
+               days: float) -> str:
+    """What this run flew and what it left out, with the parameters that add it.
+
+    The book's build keeps the page within its time budget (fields to degree 20, no
+    re-design limits); the deeper fields and the limits are parameters of the notebook.
+    """
+    text = (f"This run ({'the quick book' if page.quick else 'the book'}'s parameters) flies "
+            f"the design in LP165P {_degrees(degrees)}, follows its final orbit {_days(days)} "
+            f"in J2{' and LP165P ' + _degrees(evolve_degrees) if evolve_degrees else ''}, and ")
+    if design_degree is None:
+        text += "does not design it again in the field."
+    else:
+        text += (f"designs it again in {model_name(field(design_degree))}"
+                 + ("" if limits else ", without that design's impulsive limits") + ".")
+    left = []
+    if max(list(degrees) + list(evolve_degrees)) < 50:
+        left.append("`-y \"degrees: [2, 8, 20, 50]\" -y \"evolve_degrees: [2, 8, 20, 50]\"` "
+                    "adds the 50x50 field")
+    if design_degree is not None and not limits:
+        left.append("`-p redesign_limits true` the re-design's limits and losses")
+    if not left:
+        return text
+    return (text + " Deeper fields and the limits cost most of the page's time and are left "
+            "out of the book's build; run the notebook with papermill (as in *Reproduce*): "
+            + "; ".join(left) + ".")
 
 
 def _evolution(page: Page, p, days: float, degrees) -> None:
@@ -395,6 +458,12 @@ def _evolution(page: Page, p, days: float, degrees) -> None:
     page.note("after_text", after_text(page, table, model_name(p.dynamics),
                                       page.values["compare_model"], evs))
     page.expect("every model flew whole revolutions", bool((table.revolutions > 0).all()))
+
+
+def _degrees(degrees) -> str:
+    """Fields as prose lists them: "2x2, 8x8 and 20x20"."""
+    names = [f"{d}x{d}" for d in degrees]
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
 def _days(days: float) -> str:
@@ -447,7 +516,8 @@ def _headline(page: Page, compare: int, days: float) -> None:
         f"capture ends on a {t('rp_arrival_inertial_km', '.1f')} × "
         f"{t('ra_arrival_inertial_km', '.1f', ' km')} orbit, "
         f"{t('miss_arrival_inertial_km', '.1f', ' km')} from its design; re-designed in the "
-        f"field it costs {t('redesign_change_mps', '+.2f', ' m/s')}, and over {_days(days)} "
+        f"field its ΔV changes by {t('redesign_change_mps', '+.2f', ' m/s')}, and over "
+        f"{_days(days)} "
         f"the field takes the 100 km orbit's perilune down to "
         f"{t('compare_min_perilune_km', '.1f', ' km')} and turns its plane by "
         f"{t('compare_inc_change_deg', '.2f', ' deg')} (J2: "

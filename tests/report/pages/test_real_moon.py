@@ -115,3 +115,66 @@ def test_no_limit_text_says_why_with_the_gap():
     assert "218 m below that perilune" in text and page.values["circle_gap_m"] == 217.98
     all_in_reach = SimpleNamespace(burns=burns[:1])
     assert "Every burn" in real_moon.no_limit_text(Page("nb", {}, "x"), all_in_reach)
+
+
+def _losses(field_losses):
+    return pd.DataFrame({"burn": ["1", "2", "3", "total"],
+                         "design_loss_mps": [13.549, 4.016, 2.784, 20.349],
+                         "redesign_loss_mps": list(field_losses) + [np.nan]})
+
+
+def test_loss_text_pairs_only_burns_with_a_loss_and_says_why_without():
+    from lunarcap.report.page import Page
+
+    page = Page("nb", {}, "x")
+    text = real_moon.loss_text(page, _losses([13.59, 4.188, np.nan]), True, "")
+    assert "burn 1: 13.590 m/s (13.549 in J2); burn 2: 4.188 m/s (4.016 in J2)." in text
+    assert "burn 3" not in text
+    none = real_moon.loss_text(page, _losses([np.nan] * 3), False, real_moon.NO_LIMITS_REASON)
+    assert real_moon.NO_LIMITS_REASON in none and "13.549, 4.016, 2.784 m/s" in none
+
+
+def test_scope_text_names_what_the_run_left_out_and_how_to_add_it():
+    from lunarcap.report.page import Page
+
+    book = real_moon.scope_text(Page("nb", {}, "x"), [2, 8, 20], [2, 8, 20], 20, False, 7.0)
+    assert "LP165P 2x2, 8x8 and 20x20, follows its final orbit 7 days in J2 and" in book
+    assert "without that design's impulsive limits" in book
+    assert "evolve_degrees: [2, 8, 20, 50]" in book and "-p redesign_limits true" in book
+    full = real_moon.scope_text(Page("nb", {}, "x"), [2, 8, 20, 50], [2, 50], 20, True, 7.0)
+    assert "left out" not in full and "without" not in full
+    quick = real_moon.scope_text(Page("nb", {}, "x", quick=True), [2], [], None, False, 1.0)
+    assert "quick book" in quick and "does not design it again" in quick
+    assert "redesign_limits" not in quick   # no re-design: no limits to add
+
+
+def test_redesign_without_limits_solves_no_limit_and_says_why(monkeypatch):
+    """The book's re-design asks the chain for its burns only; the limit columns say why."""
+    from lunarcap.report.page import Page
+
+    asked = []
+    rows = [{"delta_v_mps": 366.0, "delta_v_loss_mps": 13.5, "impulsive_limit_mps": 352.5},
+            {"delta_v_mps": 248.0, "delta_v_loss_mps": 2.8, "impulsive_limit_mps": 245.2}]
+    design = _result(rows)
+    field = SimpleNamespace(
+        table=lambda: pd.DataFrame([{"delta_v_mps": 365.9, "delta_v_loss_mps": None,
+                                     "impulsive_limit_mps": None},
+                                    {"delta_v_mps": 247.8, "delta_v_loss_mps": None,
+                                     "impulsive_limit_mps": None}]),
+        totals=lambda: {"all_verified": True})
+
+    def fake(plan, impulsive):
+        asked.append(impulsive)
+        return field
+
+    monkeypatch.setattr(real_moon, "plan_result", fake)
+    plan = SimpleNamespace(with_dynamics=lambda d: d)
+    page = Page("nb", {}, "x")
+    real_moon._redesign(page, plan, design, 20, limits=False)
+    assert asked == [False]
+    df = page.items["redesign"].df
+    assert (df.limit_shown == real_moon.NO_LIMITS_REASON).all()
+    assert (df.loss_shown == real_moon.NO_LIMITS_REASON).all()
+    assert page.values["redesign_total_mps"] == pytest.approx(613.7)
+    assert real_moon.NO_LIMITS_REASON in page.values["redesign_loss_1_mps"]
+    assert real_moon.NO_LIMITS_REASON in page.notes["loss_text"]
