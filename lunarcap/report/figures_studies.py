@@ -528,25 +528,32 @@ def plot_evolution(histories: dict):
     Parameters
     ----------
     histories : {label: {"days", "perilune_km", "apolune_km", "inc_deg"}} in drawing order
-        (the paper's J2 first), one entry per revolution: days since the last cut-off, the
-        lowest and highest altitude of the revolution (km) and its mean inclination (deg)
+        (the paper's J2 first), one entry per revolution: the revolution's place in days
+        since the last cut-off, its lowest and highest altitude (km) and its mean
+        inclination (deg)
 
     Returns
     -------
     matplotlib.figure.Figure
-        Above: perilune (solid) and apolune (dashed) altitudes; below: the inclination.
+        Above: perilune (solid) and apolune (dashed) altitudes; below: the inclination;
+        the models' colours and the two line styles in one legend below the axes.
     """
-    fig, (ax, bx) = plt.subplots(2, 1, figsize=(FIG_WIDTH_IN, 6.0), sharex=True,
+    from matplotlib.lines import Line2D
+
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(FIG_WIDTH_IN, 6.4), sharex=True,
                                  layout="constrained", height_ratios=(3, 2))
+    handles = []
     for k, (label, h) in enumerate(histories.items()):
         c = model_colour(k)
-        ax.plot(h["days"], h["perilune_km"], "-", color=c, lw=1.4, label=label)
-        ax.plot(h["days"], h["apolune_km"], "--", color=c, lw=1.0)
-        bx.plot(h["days"], h["inc_deg"], "-", color=c, lw=1.4)
-    ax.set_ylabel("altitude (km): perilune —, apolune --")
-    bx.set_ylabel("inclination (deg)")
-    bx.set_xlabel("days after the last cut-off")
+        ax.plot(h["days"], h["apolune_km"], "--", color=c, lw=1.2)
+        handles += ax.plot(h["days"], h["perilune_km"], "-", color=c, lw=1.6, label=label)
+        bx.plot(h["days"], h["inc_deg"], "-", color=c, lw=1.6)
+    handles += [Line2D([], [], color="0.3", ls="-", lw=1.6, label="perilune"),
+                Line2D([], [], color="0.3", ls="--", lw=1.2, label="apolune")]
+    ax.set_ylabel("altitude (km)")
+    bx.set_ylabel("mean inclination (deg)")
+    bx.set_xlabel("time after the last cut-off (days)")
     for a in (ax, bx):
         a.grid(alpha=0.3)
-    ax.legend(ncols=min(len(histories), 3), loc="best")
+    fig.legend(handles=handles, loc="outside lower center", ncols=3, frameon=False)
     return fig

@@ -132,11 +132,31 @@ def _text(v) -> str:
     return v if isinstance(v, str) else ""
 
 
+def revolution_days(ev) -> np.ndarray:
+    """Where each revolution of an Evolution lies in days after the cut-off, evenly spaced.
+
+    A revolution is a turn of the true longitude (:func:`lunarcap.physics.evolution.
+    revolutions`); its perilune wanders through the turn as the orbit's argument of
+    perilune turns, so two successive perilunes may lie minutes apart where one crosses
+    the turn's start, and a curve drawn at the perilune epochs shows a step there that the
+    orbit does not make. The revolutions are placed instead at the straight line fitted
+    to their perilune epochs against their number (the mean revolution period).
+    """
+    d = (np.asarray(ev.perilune_epoch_s, float) - ev.t0_s) / C.DAY_S
+    if d.size < 2:
+        return d
+    n = np.arange(d.size)
+    return np.polyval(np.polyfit(n, d, 1), n)
+
+
 def histories(evolutions: dict) -> dict:
-    """Per model label: days since the cut-off, perilune and apolune altitude (km), inc (deg)."""
+    """Per model label, per revolution: its days, perilune and apolune altitude (km), inc (deg).
+
+    The days are :func:`revolution_days`; the inclination is the revolution's mean.
+    """
     out = {}
     for label, ev in evolutions.items():
-        out[label] = {"days": (ev.perilune_epoch_s - ev.t0_s) / C.DAY_S,
+        out[label] = {"days": revolution_days(ev),
                       "perilune_km": ev.perilune_altitude_km,
                       "apolune_km": ev.apolune_altitude_km, "inc_deg": ev.inclination_deg}
     return out
@@ -282,7 +302,7 @@ def _misses(page: Page, p, degrees, compare: int, approach_s: float) -> None:
                             f"{page.text('top_vs_compare_km', '.2f', ' km')} apart there.")
     else:
         page.value("top_vs_compare_km", None, why="no deeper field flown")
-        page.note("deeper", f"(No field deeper than {c} was flown in this run.)")
+        page.note("deeper", f"no field deeper than {c} was flown in this run.")
 
 
 def no_limit_text(page: Page, redesign) -> str:
@@ -355,7 +375,8 @@ def _redesign(page: Page, p, design, degree, limits: bool = True) -> None:
         df[c + "_shown"] = [_shown(v, why, "+.3f" if "change" in c else ".3f") for v in df[c]]
     df["design_loss_mps"] = pd.to_numeric(df.design_loss_mps)
     df["design_loss_shown"] = [_shown(v, page.missing_reason) for v in df.design_loss_mps]
-    _redesign_shown(page, df, page.values["redesign_model"] if degree is not None else why)
+    _redesign_shown(page, df, page.values["redesign_model"] if degree is not None else why,
+                    None if computed or degree is None else no_limit)
     tot = df.iloc[-1]
     page.value("design_total_mps", tot.design_delta_v_mps)
     page.value("redesign_total_mps", tot.redesign_delta_v_mps)
@@ -367,21 +388,24 @@ def _redesign(page: Page, p, design, degree, limits: bool = True) -> None:
     page.note("loss_text", loss_text(page, df, computed, no_limit))
 
 
-def _redesign_shown(page: Page, df: pd.DataFrame, model: str) -> None:
+def _redesign_shown(page: Page, df: pd.DataFrame, model: str, no_limits: str | None
+                    ) -> None:
+    """The re-design's table; ``no_limits``: why its limit and loss columns are left out."""
+    show = ["burn", "design_delta_v_mps", "design_loss_shown", "redesign_delta_v_mps_shown",
+            "delta_v_change_mps_shown"] + ([] if no_limits else ["limit_shown", "loss_shown"])
     page.table("redesign", df, caption=(
         f"The capture designed again in the field (the same plan, targets and ignitions; "
         f"{model}) beside the J2 design: each burn's ΔV (m/s) and its finite-burn loss "
-        "against the impulsive limit in the same dynamics (m/s)."),
+        "against the impulsive limit in the same dynamics (m/s)"
+        + (f"; in the field those limits and losses were {no_limits}." if no_limits
+           else ".")),
         columns={"burn": "burn", "design_delta_v_mps": "ΔV, J2 (m/s)",
                  "design_loss_shown": "loss, J2 (m/s)",
                  "redesign_delta_v_mps_shown": "ΔV, field (m/s)",
                  "delta_v_change_mps_shown": "change (m/s)",
                  "limit_shown": "impulsive limit, field (m/s)",
                  "loss_shown": "loss, field (m/s)"},
-        floatfmt={"design_delta_v_mps": ".3f"},
-        show_columns=["burn", "design_delta_v_mps", "design_loss_shown",
-                      "redesign_delta_v_mps_shown", "delta_v_change_mps_shown", "limit_shown",
-                      "loss_shown"])
+        floatfmt={"design_delta_v_mps": ".3f"}, show_columns=show)
 
 
 def loss_text(page: Page, df: pd.DataFrame, computed: bool, why: str) -> str:
@@ -437,7 +461,8 @@ def _evolution(page: Page, p, days: float, degrees) -> None:
     page.figure("evolution", plot_evolution(histories(evs)), caption=(
         f"The final orbit of the J2 design flown {_days(days)} after its last cut-off in "
         "each model: each revolution's lowest and highest altitude (km, solid and dashed) "
-        "and its mean inclination (deg, about the plan's frame's pole)."),
+        "and its mean inclination (deg, about the plan's frame's pole), the revolutions "
+        "evenly spaced at their mean period."),
         alt="Perilune, apolune and inclination of the final orbit over days, per gravity "
             "model")
     table = evolution_table(evs)

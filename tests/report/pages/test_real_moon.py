@@ -68,7 +68,7 @@ def test_histories_and_evolution_table():
     evs = {"J2": _evolution(100.0, [100.0, 99.0], [101.0, 102.0], [90.0, 90.5], 1838.2),
            "field": _evolution(100.0, [98.0, 95.0], [103.0, 104.0], [90.0, 91.0], 1839.2)}
     h = real_moon.histories(evs)
-    np.testing.assert_allclose(h["J2"]["days"], [0.0, 7000.0 / 86400.0])
+    np.testing.assert_allclose(h["J2"]["days"], [0.0, 7000.0 / 86400.0], atol=1e-12)
     t = real_moon.evolution_table(evs).set_index("model")
     assert t.loc["field", "min_perilune_alt_km"] == 95.0
     assert t.loc["field", "max_apolune_alt_km"] == 104.0
@@ -96,7 +96,7 @@ def test_page_on_a_small_case(tmp_path):
     for k in ("redesign_total_mps", "redesign_change_mps", "redesign_model"):
         assert is_missing(page.values[k]) and "quick" in page.values[k]
     assert "not designed again" in page.notes["no_limit_text"]
-    assert "No field deeper than LP165P 2x2" in page.notes["deeper"]
+    assert "no field deeper than LP165P 2x2" in page.notes["deeper"]
     shown = page.items["redesign"].df
     assert (shown.limit_shown == "not run in the quick book").all()
     assert "not run in the quick book" in page.notes["headline"]
@@ -175,6 +175,40 @@ def test_redesign_without_limits_solves_no_limit_and_says_why(monkeypatch):
     df = page.items["redesign"].df
     assert (df.limit_shown == real_moon.NO_LIMITS_REASON).all()
     assert (df.loss_shown == real_moon.NO_LIMITS_REASON).all()
+    shown = page.items["redesign"]   # the empty columns are left out, the caption says why
+    assert "limit_shown" not in shown.show_columns and "loss_shown" not in shown.show_columns
+    assert real_moon.NO_LIMITS_REASON in shown.caption
     assert page.values["redesign_total_mps"] == pytest.approx(613.7)
     assert real_moon.NO_LIMITS_REASON in page.values["redesign_loss_1_mps"]
     assert real_moon.NO_LIMITS_REASON in page.notes["loss_text"]
+
+
+def test_revolution_days_are_even_where_the_perilune_crosses_a_turn():
+    """Perilunes 0.3 of a period later each turn wrap round to 0.1 minutes after the
+    previous one: the curve would step there; the revolutions are drawn evenly at their
+    mean period instead (the book's 8x8 curve stepped at day 4.2)."""
+    period_s, t0 = 7070.0, 1000.0
+    phase = (0.2 + 0.3 * np.arange(12)) % 1.0
+    ev = SimpleNamespace(t0_s=t0, perilune_epoch_s=t0 + period_s * (np.arange(12) + phase))
+    raw = np.diff(ev.perilune_epoch_s)
+    assert raw.min() < 0.35 * period_s     # the step the raw epochs have
+    d = real_moon.revolution_days(ev)
+    np.testing.assert_allclose(np.diff(d), np.diff(d)[0], rtol=1e-12)
+    assert np.diff(d)[0] * C.DAY_S == pytest.approx(period_s, rel=0.05)
+
+
+def test_evolution_figure_is_legible_with_units():
+    import matplotlib.pyplot as plt
+
+    from lunarcap.report import figures
+
+    evs = {"J2": _evolution(100.0, [100.0, 99.0, 99.5], [101.0, 102.0, 101.5],
+                            [90.0, 90.5, 90.6], 1838.2),
+           "LP165P 20x20": _evolution(100.0, [98.0, 95.0, 93.0], [103.0, 104.0, 106.0],
+                                      [90.0, 91.0, 91.2], 1839.2)}
+    fig = figures.plot_evolution(real_moon.histories(evs))
+    assert figures.legibility_problems(fig) == []
+    labels = [t.get_text() for lg in fig.legends for t in lg.get_texts()]
+    assert labels == ["J2", "LP165P 20x20", "perilune", "apolune"]
+    assert all("(" in a.get_ylabel() for a in fig.axes) and "(" in fig.axes[-1].get_xlabel()
+    plt.close(fig)
