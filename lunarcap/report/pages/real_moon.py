@@ -416,8 +416,11 @@ def loss_text(page: Page, df: pd.DataFrame, computed: bool, why: str) -> str:
     """
     burns = df.iloc[:-1]
     if not computed:
+        j2 = pd.to_numeric(burns.design_loss_mps)
+        if not np.isfinite(j2).all():   # the design's own limits not computed either
+            return f"Its finite-burn losses in the field are {why}."
         return (f"Its finite-burn losses in the field are {why}; the J2 design's are "
-                + ", ".join(f"{v:.3f}" for v in burns.design_loss_mps) + " m/s.")
+                + ", ".join(f"{v:.3f}" for v in j2) + " m/s.")
     has = burns[np.isfinite(pd.to_numeric(burns.redesign_loss_mps))]
     if has.empty:
         return "No burn of the re-design has a finite-burn loss in the field."

@@ -132,6 +132,8 @@ def test_loss_text_pairs_only_burns_with_a_loss_and_says_why_without():
     assert "burn 3" not in text
     none = real_moon.loss_text(page, _losses([np.nan] * 3), False, real_moon.NO_LIMITS_REASON)
     assert real_moon.NO_LIMITS_REASON in none and "13.549, 4.016, 2.784 m/s" in none
+    quick = _losses([np.nan] * 3).assign(design_loss_mps=np.nan)   # no limits in J2 either
+    assert "nan" not in real_moon.loss_text(page, quick, False, "not run in the quick book")
 
 
 def test_scope_text_names_what_the_run_left_out_and_how_to_add_it():
