@@ -18,8 +18,9 @@ import math
 
 import numpy as np
 import pytest
+from plan_family import plan_family, plan_of
 
-from lunarcap.mission.plan import CapturePlan, PlanError
+from lunarcap.mission.plan import PlanError
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.repro.cache import caching
@@ -38,15 +39,6 @@ def osculating(x):
     e = np.linalg.norm(e_vec)
     return (a * (1 - e), a * (1 + e), 2 * math.pi * math.sqrt(a ** 3 / C.MU_MOON),
             math.degrees(math.acos(h[2] / np.linalg.norm(h))))
-
-
-def plan_of(burns, dynamics="two-body", inclination=90.0, formulation="orbit", thrust=120.0,
-            mass=700.0, name="asked"):
-    return CapturePlan.from_dict({
-        "name": name, "formulation": formulation, "dynamics": dynamics,
-        "arrival": {"epoch": "2017-02-20 03:41:26 TDB", "perilune_altitude_km": 100,
-                    "inclination_deg": inclination, "v_inf_kmps": 0.8, "mass_kg": mass},
-        "engine": {"thrust_N": thrust, "isp_s": 220}, "burns": burns})
 
 
 ASKED = [{"target_period_h": 12.235, "start_min": "free"},
@@ -109,41 +101,6 @@ def test_an_inclination_the_approach_cannot_give_is_refused_at_load():
     with pytest.raises(PlanError, match=r"arrival.inclination_deg: 2 deg cannot be reached"):
         plan_of(RETRO, inclination=2.0)
     assert plan_of(RETRO, inclination=3.0).arrival.inclination_deg == 3.0
-
-
-def random_plan(rng, index):
-    """A two-body plan drawn from the ranges an analyst might write (may be refused at load)."""
-    n = int(rng.integers(2, 6))
-    periods = np.sort(rng.uniform(2.5, 14.0, n - 1))[::-1]
-    burns = []
-    for p in periods:
-        if rng.random() < 0.5:
-            burns.append({"target_period_h": float(round(p, 3)), "start_min": "free"})
-        else:   # the apolune of that period's ellipse at 100 km perilune
-            a = (C.MU_MOON * (p * 3600 / (2 * math.pi)) ** 2) ** (1 / 3)
-            burns.append({"target_apolune_altitude_km": float(round(2 * a - 2 * (C.R_MOON + 100)
-                                                                    + 100, 1)),
-                          "start_min": "free"})
-    last = rng.choice(["circular", "ellipse"])
-    burns.append({"target": "circular", "start_min": "free"} if last == "circular" else
-                 {"target": {"perilune_altitude_km": 100,
-                             "apolune_altitude_km": float(round(rng.uniform(150, 600)))},
-                  "start_min": "free"})
-    return plan_of(burns, inclination=float(round(rng.uniform(20, 170), 1)),
-                   thrust=float(round(rng.uniform(100, 600))),
-                   mass=float(round(rng.uniform(400, 1200))), name=f"family-{index}")
-
-
-def plan_family(seed, count):
-    """(accepted plans, refusals) of ``count`` generated plans."""
-    rng = np.random.default_rng(seed)
-    plans, refused = [], []
-    for i in range(count):
-        try:
-            plans.append(random_plan(rng, i))
-        except PlanError as exc:
-            refused.append(str(exc))
-    return plans, refused
 
 
 def test_every_generated_plan_accepted_at_load_solves_and_meets_its_targets():
