@@ -121,6 +121,23 @@ def _fit_for(plan: CapturePlan, t0_s: float, span_s: float):
                             body_frame=force_model(plan.dynamics).rotation)
 
 
+def freed(plan: CapturePlan, i: int) -> CapturePlan:
+    """The plan with every ignition free and the orbit after burn ``i`` (0-based) free.
+
+    The orbit after an intermediate burn is the paper's perilune target (Eq. 17) at the
+    end of a coast the all-burns NLP chooses (:meth:`CapturePlan.with_coasts`), whether
+    the plan asks for it by period or apolune (``formulation: orbit``) or by timing
+    (``song2011``): the recovery re-plans from that burn with this freedom, so the
+    nominal it is measured against has it too. The last burn's target (the final orbit,
+    a circle or an ellipse as asked) is kept.
+    """
+    free_plan = plan.with_starts(["free"] * plan.n_burns)
+    if i + 1 < plan.n_burns and free_plan.targets[i].kind != PERILUNE:
+        free_plan = free_plan.with_coasts([free_plan.coast_s(i) if k == i else None
+                                           for k in range(plan.n_burns)])
+    return free_plan
+
+
 @cached
 def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_PERIOD_H *
             3600.0, version: str = "") -> dict:
@@ -129,13 +146,13 @@ def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_
     Pass ``plan.key()``. Every ignition free; burn n's coast (from the perilune before it
     to the one after) a decision variable between the next orbit's coast and
     ``max_period_s`` + 2 h, the osculating period at that perilune at most
-    ``max_period_s`` (the recovery's bounds). The last burn (a circle) has no orbit to
-    free. Returns ``{"plan": CapturePlan (free ignitions, the optimal coasts),
-    "legs": [Solution]}``.
+    ``max_period_s`` (the recovery's bounds), whatever the plan's formulation
+    (:func:`freed`). The last burn (the final orbit) has no orbit to free. Returns
+    ``{"plan": CapturePlan (free ignitions, the optimal coasts), "legs": [Solution]}``.
     """
-    free_plan = plan.with_starts(["free"] * plan.n_burns)
     i = burn - 1
-    if free_plan.targets[i].kind != PERILUNE:
+    free_plan = freed(plan, i)
+    if free_plan.targets[i].kind != PERILUNE:   # the final orbit: nothing to free
         res = solve_joint(free_plan, solve_plan(free_plan), free_plan.ephemeris_model())
         return {"plan": res.plan, "legs": res.legs}
     starts = [free_plan]
