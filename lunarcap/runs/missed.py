@@ -49,7 +49,6 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import replace
 
 import numpy as np
 
@@ -58,14 +57,11 @@ from lunarcap.mission.plan import CapturePlan, PlanError
 from lunarcap.mission.targets import PERILUNE
 from lunarcap.optim.collocation import DEFAULT_MESHES, sundman_fractions
 from lunarcap.optim.flight import cut_off
-from lunarcap.optim.guess import guess_arcs, make_guess
 from lunarcap.optim.joint import solve_joint, warm_start
-from lunarcap.optim.problem import burn_problem
 from lunarcap.physics.dynamics import Model, force_model
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.propagate import propagate
-from lunarcap.physics.rocket import burn_duration_estimate_s
 from lunarcap.repro.cache import cached, caching, code_version, position
 from lunarcap.runs.burns import MAX_FIT_SPAN_S
 from lunarcap.runs.campaign import TableFormat
@@ -77,6 +73,14 @@ from lunarcap.runs.missed_orbits import (  # noqa: F401  (this module's API too)
     physical_bound,
     soi_radius_km,
     time_to_perilune_after_impulse_s,
+)
+from lunarcap.runs.missed_recovery import (  # noqa: F401  (this module's API too)
+    MIN_FIRST_COAST_S,
+    MIN_MAKE_UP_S,
+    nothing_to_make_up,
+    on_meshes,
+    recover,
+    recovery,
 )
 from lunarcap.runs.shape import Study, check_workers, json_list, plan_columns
 
@@ -92,11 +96,6 @@ from lunarcap.runs.shape import Study, check_workers, json_list, plan_columns
 DEFAULT_MAX_PERIOD_H = 24.0
 #: Window of the make-up burn's ignition after the fault is cleared, min.
 DEFAULT_WINDOW_MIN = (0.0, 30.0)
-#: Shortest coast from the fault's end to the make-up orbit's perilune, s.
-MIN_FIRST_COAST_S = 600.0
-#: Lower bound of the make-up burn's duration, s: about nothing (0.003 m/s at 150 N and
-#: 525 kg), so the optimiser may drop the burn; nonzero so the burn's mesh keeps its size.
-MIN_MAKE_UP_S = 0.01
 #: The contingencies of a case.
 CONTINGENCIES = ("cut-off", "late ignition")
 
@@ -105,7 +104,7 @@ STATUSES = ("recovered", "no recovery", "failed", "error")
 
 #: The study's modules, relative to the package: its tables' and cached cases' code
 #: version is :func:`lunarcap.repro.cache.code_version` of the numerical code and these.
-_MODULES = ("runs/missed.py", "runs/missed_orbits.py")
+_MODULES = ("runs/missed.py", "runs/missed_orbits.py", "runs/missed_recovery.py")
 
 
 # ---------------------------------------------------------------------- the nominal
@@ -155,8 +154,15 @@ def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_
     if free_plan.targets[i].kind != PERILUNE:   # the final orbit: nothing to free
         res = solve_joint(free_plan, solve_plan(free_plan), free_plan.ephemeris_model())
         return {"plan": res.plan, "legs": res.legs}
-    starts = [free_plan]
+    # from the plan's own orbit and from the longest one allowed: the total depends
+    # little on that orbit (two-body: only through the finite burns' losses), and from the
+    # plan's alone IPOPT may stop where it started (family-0 of the missed family, seed
+    # 24: 813.121 m/s on the plan's 17.3 h orbit, 812.999 m/s on the 24 h bound from 12,
+    # 20 or 23.5 h; recoveries found the cheaper one, penalties -0.10 m/s)
+    starts = [free_plan, free_plan.with_coasts([max_period_s if k == i else None
+                                                for k in range(plan.n_burns)])]
     if plan.dynamics != "two-body":
+        starts = starts[:1]
         # also from the two-body optimum's orbit: a long free coast needs its mesh spaced
         # for the orbit it ends on, not for the plan's. The full-dynamics problem has
         # several local optima (from that start alone the 150 N plan's nominal ended on a
@@ -220,113 +226,6 @@ def _remeshed(warm: tuple, coast, mesh) -> tuple:
     return prob, guess, mc
 
 
-def on_meshes(solve, meshes=DEFAULT_MESHES[:2]):
-    """``solve(mesh)`` on each mesh in turn until its solution passes verification.
-
-    A finer mesh is tried only when the coarse one converged but failed verification
-    (a long free coast resolved too coarsely); any other failure is raised at once.
-    """
-    for j, mesh in enumerate(meshes):
-        try:
-            return solve(mesh)
-        except SolveError as exc:
-            if exc.status != "verification failed" or j == len(meshes) - 1:
-                raise
-# ---------------------------------------------------------------------- the recovery
-def _sized(nplan: CapturePlan, i: int) -> CapturePlan:
-    """The plan with burn ``i``'s period between its own and the next orbit's (geometric mean).
-
-    A resumed plan's first burn needs a nonzero impulsive delta-V from the start state to
-    pass the plan's engine checks (its Eq. 19 duration), but the make-up orbit is free in
-    the NLP, so that period only sizes the checks: with the nominal's own period, a
-    cut-off at the planned end (nothing to make up) would be refused.
-    """
-    if nplan.targets[i].kind != PERILUNE or i + 1 >= nplan.n_burns:
-        return nplan
-    period = math.sqrt(nplan.coast_s(i) * nplan.coast_s(i + 1))
-    burn = replace(nplan.burns[i], period_s=period, apolune_altitude_km=None)
-    return replace(nplan, burns=nplan.burns[:i] + (burn,) + nplan.burns[i + 1:])
-
-
-def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
-                        mesh_n_coast: int) -> tuple:
-    """Problems and guesses of a recovery's legs, without solving any (see the module).
-
-    The make-up leg ignites at the window's opening, thrusts opposite the velocity for the
-    duration of :func:`make_up_estimate`'s delta-V (at least 1 s), its lower duration
-    bound :data:`MIN_MAKE_UP_S`; each later leg is the plan's guess (anti-velocity, tuned
-    to reach its perilune on time) from the end of the leg before. Returns (warm list,
-    estimate dict).
-    """
-    x_r = np.array(rec_plan.start.state)
-    lo_min = rec_plan.burns[0].start_bounds_min[0]
-    prob = burn_problem(rec_plan, 0, x_r, eph, fit=fit, guess_start_min=lo_min)
-    est = make_up_estimate(prob.x0, rec_plan.perilune_radius_km, max_period_s)
-    t1 = max(burn_duration_estimate_s(prob.x0[6], est["delta_v_mps"], prob.model.thrust_N,
-                                      prob.model.isp_s), 1.0)
-    span = prob.t_end_s - prob.t_ign_s
-    prob = replace(prob, t1_min_s=MIN_MAKE_UP_S,
-                   t1_max_s=min(max(3 * t1, prob.burn_bounds_s[1]), 0.9 * span))
-    guess = make_guess(prob, t1) if est["delta_v_mps"] > 1.0 else guess_arcs(prob, t1)
-    warm = [(prob, guess, sundman_fractions(guess.coast.t, guess.coast.x, mesh_n_coast))]
-    for k in range(1, rec_plan.n_burns):
-        x_peri = guess.coast.x[:, -1]
-        prob = burn_problem(rec_plan, k, x_peri, eph, fit=fit)
-        guess = make_guess(prob)
-        warm.append((prob, guess, sundman_fractions(guess.coast.t, guess.coast.x,
-                                                    mesh_n_coast)))
-    return warm, est
-
-
-def first_coast_guess_s(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
-                        max_period_s: float, coast: Model) -> float:
-    """The make-up leg's coast (window opening to its perilune) the NLP starts from, s.
-
-    Elliptic target: the two-body time to the perilune after the make-up impulse of
-    :func:`make_up_estimate` at the window's opening (at least past the window and the
-    burn); a circle: the window, twice the Eq. (19) duration and one circle.
-    """
-    t_ig = t_r + 60.0 * window_min[0]
-    x_ig = propagate(coast, t_r, x_r, t_ig).final if t_ig > t_r else np.asarray(x_r, float)
-    est = make_up_estimate(x_ig, nplan.perilune_radius_km, max_period_s)
-    if nplan.burns[i].target == PERILUNE:
-        after = 60.0 * (window_min[1] - window_min[0]) + 2 * est["delta_v_mps"] / (
-            nplan.engine.thrust_N / x_ig[6])
-        t = time_to_perilune_after_impulse_s(x_ig, est["delta_v_mps"], after)
-        t = min(t, max_period_s) if math.isfinite(t) else max_period_s
-        return max(t + t_ig - t_r, 60.0 * window_min[1] + MIN_FIRST_COAST_S)
-    t19 = 2 * est["delta_v_mps"] / (nplan.engine.thrust_N / x_ig[6])
-    return 60.0 * window_min[1] + t19 + nplan.coast_s(i)
-
-
-def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
-            max_period_s: float, fit, coast: Model):
-    """Re-plan the capture from burn ``i`` (0-based) at ``t_r`` from ``x_r`` (see the module).
-
-    Returns the :class:`~lunarcap.optim.joint.JointResult` (verified) and the make-up
-    estimate; raises SolveError (IPOPT or verification) or PlanError (no such plan).
-    """
-    first_coast = first_coast_guess_s(nplan, i, t_r, x_r, window_min, max_period_s, coast)
-    rec_plan = _sized(nplan, i).resumed(i, t_r, x_r, first_coast_s=first_coast,
-                                        window_min=window_min)
-    eph = nplan.ephemeris_model()
-    est = {}
-
-    def solve(mesh):
-        warm, e = recovery_warm_start(rec_plan, eph, fit, max_period_s, mesh.n_coast)
-        est.update(e)
-        if nplan.targets[i].kind != PERILUNE:   # a circle: its coast stays the plan's
-            return solve_joint(rec_plan, None, eph, mesh, fit=fit, warm=warm, expand=True)
-        free = (True,) + (False,) * (rec_plan.n_burns - 1)
-        hi = 60.0 * window_min[1] + max_period_s + 7200.0
-        return solve_joint(rec_plan, None, eph, mesh, free_coasts=free,
-                           coast_bounds_s=(MIN_FIRST_COAST_S, hi), fit=fit,
-                           max_period_s=max_period_s, warm=warm, expand=True)
-    res = on_meshes(solve)
-    est["first_coast_guess_s"] = first_coast
-    return res, est
-
-
 # ---------------------------------------------------------------------- one case
 def _nominal_part(plan: CapturePlan, burn: int, max_period_s: float) -> tuple:
     """The nominal (plan, legs) and the case's nominal columns."""
@@ -344,39 +243,59 @@ def _nominal_part(plan: CapturePlan, burn: int, max_period_s: float) -> tuple:
     return nplan, legs, cols
 
 
-def _solved(out: dict, res, est, burn: int, t_r: float, t_arrival_s: float,
-            partial: float, free: bool) -> dict:
-    """Fill ``out`` with a verified recovery (its JointResult ``res``).
-
-    ``free``: the make-up orbit was free (an ellipse target).
-    """
+def _burn_rows(legs: list, burns: list, burn: int, t_r: float) -> list[dict]:
+    """One row per recovery burn (verified Solutions ``legs``, plan ``burns``), from ``burn``."""
     rows = []
-    for k, s in enumerate(res.legs):
+    for k, (s, b) in enumerate(zip(legs, burns)):
         sm = s.summary()
-        rows.append({"burn": burn + k,
-                     "target_orbit": res.plan.burns[k].describe(),
+        rows.append({"burn": burn + k, "target_orbit": b.describe(),
                      "ignition_epoch": sm["ignition_epoch"],
                      "ignition_min_after_fault": (s.problem.t_ign_s - t_r) / 60.0,
                      "burn_duration_min": sm["burn_duration_min"],
                      "delta_v_mps": sm["delta_v_mps"], "verified": s.verification.passed})
-    rec_dv = sum(r["delta_v_mps"] for r in rows)
+    return rows
+
+
+def _solved(out: dict, res, est, burn: int, t_r: float, t_arrival_s: float,
+            partial: float, free: bool) -> dict:
+    """Fill ``out`` with a verified recovery (its JointResult ``res``).
+
+    ``free``: the make-up orbit was free (an intermediate burn's).
+    """
+    rows = _burn_rows(res.legs, res.plan.burns, burn, t_r)
     period = None
     if free:
         xf = res.legs[0].end_state
         a = xf[0] / (1 - xf[1] ** 2 - xf[2] ** 2)
         period = period_s(a) / 3600.0 if a > 0 else math.inf
         rows[0]["target_orbit"] = f"ellipse, {period:.6g} h (free)"
-    out.update(status="recovered", recovery_delta_v_mps=rec_dv,
-               total_delta_v_mps=partial + rec_dv,
-               penalty_mps=partial + rec_dv - out["nominal_remaining_delta_v_mps"],
-               recovery_burns=rows, make_up_delta_v_mps=rows[0]["delta_v_mps"],
+    _recovered(out, rows, partial, time_to_final_orbit_h(t_arrival_s, res.legs[-1]))
+    out.update(make_up_delta_v_mps=rows[0]["delta_v_mps"],
                make_up_estimate_mps=None if est is None else est["delta_v_mps"],
                make_up_estimate_h=None if est is None else est["first_coast_guess_s"] / 3600,
                first_coast_h=res.plan.coast_s(0) / 3600.0 if free else None,
-               make_up_period_h=period,
-               time_to_final_orbit_h=time_to_final_orbit_h(t_arrival_s, res.legs[-1]),
-               all_verified=all(r["verified"] for r in rows),
-               ipopt_status=res.ipopt_status)
+               make_up_period_h=period, ipopt_status=res.ipopt_status)
+    return out
+
+
+def _recovered(out: dict, rows: list, partial: float, final_h: float) -> None:
+    """The totals of a recovery of burns ``rows`` after a partial burn (m/s) into ``out``."""
+    rec_dv = sum(r["delta_v_mps"] for r in rows)
+    out.update(status="recovered", recovery_delta_v_mps=rec_dv,
+               total_delta_v_mps=partial + rec_dv,
+               penalty_mps=partial + rec_dv - out["nominal_remaining_delta_v_mps"],
+               recovery_burns=rows, time_to_final_orbit_h=final_h,
+               all_verified=all(r["verified"] for r in rows))
+
+
+def _nothing_made_up(out: dict, nplan: CapturePlan, legs: list, i: int, t_r: float,
+                     partial: float) -> dict:
+    """Fill ``out`` for a fault that left nothing to make up: the nominal's later burns."""
+    rows = _burn_rows(legs[i + 1:], nplan.burns[i + 1:], i + 2, t_r)
+    _recovered(out, rows, partial, out["nominal_time_to_final_orbit_h"])
+    out.update(reason="nothing to make up: coasting, the orbit the fault left meets burn "
+                      f"{i + 1}'s target within the verification gate (no make-up burn)",
+               make_up_delta_v_mps=0.0, make_up_estimate_mps=0.0, ipopt_status="")
     return out
 
 
@@ -385,18 +304,35 @@ def _refused(out: dict, status: str, reason: str, ipopt_status: str = "") -> dic
     return out
 
 
-def _attempt(out: dict, solve, burn: int, t_r: float, t_arrival_s: float, partial: float,
-             free) -> dict:
-    """Run ``solve()`` -> (JointResult, estimate) and record its outcome in ``out``."""
+def _attempt(out: dict, nominal_part: tuple, burn: int, t_r: float, x_r, window_min: tuple,
+             max_period_s: float, fit_for, coast: Model, partial: float,
+             later: bool = True) -> dict:
+    """Recover from ``x_r`` at ``t_r`` (:func:`recovery`) and record the outcome in ``out``.
+
+    ``nominal_part``: (nominal plan, its legs). A plan the checks refuse is "no recovery"
+    with their message; a solver's failure is "failed" with IPOPT's status.
+    """
+    nplan, legs = nominal_part
+    i = burn - 1
     try:
-        res, est = solve()
+        how, res, est = recovery(nplan, legs, i, t_r, x_r, window_min, max_period_s,
+                                 fit_for, coast, later)
     except PlanError as exc:
         return _refused(out, "no recovery", f"no plan from this state: {exc}")
     except SolveError as exc:
         return _refused(out, "failed", str(exc).split("\n")[0], exc.status)
     except RuntimeError as exc:  # a guess's propagation failed (e.g. p -> 0)
         return _refused(out, "failed", f"no initial guess: {exc}".split("\n")[0])
-    return _solved(out, res, est, burn, t_r, t_arrival_s, partial, free)
+    if how == "no recovery":
+        return _refused(out, "no recovery", res)
+    if how == "none":
+        return _nothing_made_up(out, nplan, legs, i, t_r, partial)
+    out = _solved(out, res, est, burn, t_r, nplan.nominal_perilunes_s[0], partial,
+                  nplan.targets[i].kind == PERILUNE)
+    if how == "next perilune":
+        out["reason"] = ("make-up burn at the next perilune: no verified recovery with it "
+                         "in the window")
+    return out
 
 
 @cached(ignore=["verbose"])
@@ -423,7 +359,6 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
     nplan, legs, nom_cols = _nominal_part(plan, burn, max_period_s)
     i = burn - 1
     raw = legs[i].raw
-    t_ref = nplan.nominal_perilunes_s
     t_cut_rel = fraction * raw.t1_s
     flown = cut_off(raw, t_cut_rel)
     t_cut, xc = flown.end.t_s, flown.end.x
@@ -435,20 +370,32 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
            **nom_cols, "captured": cut["orbit"] != "escape",
            **{f"cutoff_{k}": v for k, v in cut.items()}}
     t_r = t_cut + delay_s
-    rest = sum(nplan.coast_s(k) for k in range(burn, plan.n_burns))
-    fit = _fit_for(plan, t_cut, delay_s + 60 * window_min[1] + max_period_s + 7200.0 + rest)
-    coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
+    fit_for = _fits(plan, nplan, burn, t_cut, t_r, max_period_s)
+    coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit_for(window_min))
     x_r = propagate(coast, t_cut, xc, t_r).final if delay_s > 0 else xc
     out["recovery_start_e"] = float(math.hypot(x_r[1], x_r[2]))
-    why = physical_bound(plan, i, t_r, x_r, window_min, max_period_s, coast)
-    if why:
-        out = _refused(out, "no recovery", why)
-    else:
-        out = _attempt(out, lambda: recover(nplan, i, t_r, x_r, window_min, max_period_s,
-                                            fit, coast),
-                       burn, t_r, t_ref[0], partial, nplan.targets[i].kind == PERILUNE)
+    out = _attempt(out, (nplan, legs), burn, t_r, x_r, window_min, max_period_s, fit_for,
+                   coast, partial)
     out["wall_s"] = time.perf_counter() - t_start
     return out
+
+
+def _fits(plan: CapturePlan, nplan: CapturePlan, burn: int, t0_s: float, t_r: float,
+          max_period_s: float):
+    """``fit_for(window)``: the ephemeris fit from ``t0_s`` of a recovery from ``t_r``.
+
+    It covers a make-up igniting in ``window`` (min after ``t_r``), its orbit up to
+    ``max_period_s`` (+ 2 h) and the plan's later coasts; one fit per window, reused.
+    """
+    rest = sum(nplan.coast_s(k) for k in range(burn, plan.n_burns))
+    memo = {}
+
+    def fit_for(window):
+        if window not in memo:
+            memo[window] = _fit_for(plan, t0_s, t_r - t0_s + 60 * window[1] + max_period_s
+                                    + 7200.0 + rest)
+        return memo[window]
+    return fit_for
 
 
 @cached(ignore=["verbose"])
@@ -463,12 +410,11 @@ def late_case(plan: CapturePlan, burn: int, late_s: float, max_period_s: float,
     t_start = time.perf_counter()
     nplan, legs, nom_cols = _nominal_part(plan, burn, max_period_s)
     i = burn - 1
-    t_ref = nplan.nominal_perilunes_s
     prob = legs[i].problem
     t_r = prob.t_ign_s + late_s
-    rest = sum(nplan.coast_s(k) for k in range(burn, plan.n_burns))
-    fit = _fit_for(plan, prob.t_ign_s, late_s + max_period_s + 7200.0 + rest)
-    coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
+    window = (0.0, 0.0)
+    fit_for = _fits(plan, nplan, burn, prob.t_ign_s, t_r, max_period_s)
+    coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit_for(window))
     x_r = propagate(coast, prob.t_ign_s, prob.x0, t_r).final if late_s > 0 else prob.x0
     cut = classify(x_r, t_r, plan.ephemeris)
     out = {"contingency": "late ignition", "status": "recovered", "reason": "",
@@ -477,14 +423,8 @@ def late_case(plan: CapturePlan, burn: int, late_s: float, max_period_s: float,
            **nom_cols, "captured": cut["orbit"] != "escape",
            **{f"cutoff_{k}": v for k, v in cut.items()},
            "recovery_start_e": cut["e"]}
-    window = (0.0, 0.0)
-    why = physical_bound(plan, i, t_r, x_r, window, max_period_s, coast)
-    if why:
-        out = _refused(out, "no recovery", why)
-    else:
-        out = _attempt(out, lambda: recover(nplan, i, t_r, x_r, window, max_period_s, fit,
-                                            coast),
-                       burn, t_r, t_ref[0], 0.0, nplan.targets[i].kind == PERILUNE)
+    out = _attempt(out, (nplan, legs), burn, t_r, x_r, window, max_period_s, fit_for, coast,
+                   0.0, later=False)
     out["wall_s"] = time.perf_counter() - t_start
     return out
 

@@ -13,7 +13,6 @@ import math
 import numpy as np
 
 from lunarcap.mission.plan import CapturePlan, plan_ephemeris
-from lunarcap.mission.targets import PERILUNE
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.elements import (
@@ -108,21 +107,23 @@ def physical_bound(plan: CapturePlan, i: int, t_s: float, x, window_min: tuple,
 
     Checked at the opening and the close of the make-up burn's window: the spacecraft
     outside the Moon's sphere of influence at both, or every orbit through its position
-    with the plan's perilune radius longer than ``max_period_s`` at both (an elliptic
-    target only).
+    with the target's perilune radius longer than ``max_period_s`` at both. The latter holds
+    for every kind of burn ``i``'s target: the orbit after an intermediate burn is free up
+    to ``max_period_s``, and the final orbit (a circle or an ellipse as asked, shorter than
+    that) is one of those orbits too.
     """
+    rp = plan.targets[i].radius_km
     ends = []
     for w in sorted(set(window_min)):
         t = t_s + 60.0 * w
         xw = propagate(coast, t_s, x, t).final if t > t_s else np.asarray(x, float)
-        ends.append((w, make_up_estimate(xw, plan.perilune_radius_km, max_period_s),
+        ends.append((w, make_up_estimate(xw, rp, max_period_s),
                      soi_radius_km(t, plan.ephemeris)))
     if all(e["r_km"] > soi for _, e, soi in ends):
         w, e, soi = ends[0]
         return (f"the spacecraft is {e['r_km']:,.0f} km from the Moon when the window "
                 f"opens, outside its sphere of influence ({soi:,.0f} km)")
-    if plan.targets[i].kind == PERILUNE and all(e["min_period_s"] > max_period_s
-                                                for _, e, _ in ends):
+    if all(e["min_period_s"] > max_period_s for _, e, _ in ends):
         e = min((e for _, e, _ in ends), key=lambda e: e["min_period_s"])
         now = orbit_summary(np.asarray(x, float), C.MU_MOON)
         energy = now["v_kmps"] ** 2 / 2 - C.MU_MOON / now["r_km"]
@@ -132,7 +133,7 @@ def physical_bound(plan: CapturePlan, i: int, t_s: float, x, window_min: tuple,
                      f"{period_s(-C.MU_MOON / (2 * energy)) / 3600:.1f} h), so a make-up at a "
                      f"later perilune or a longer --max-period-h could recover it")
         return (f"the spacecraft is {e['r_km']:,.0f} km from the Moon when the make-up burn "
-                f"can ignite: every orbit through there with a {plan.perilune_radius_km:,.0f}"
+                f"can ignite: every orbit through there with a {rp:,.0f}"
                 f" km perilune radius lasts at least {e['min_period_s'] / 3600:.1f} h, more "
                 f"than the {max_period_s / 3600:g} h allowed (--max-period-h){still}")
     return ""

@@ -1,0 +1,313 @@
+"""The recovery after a cut-off or a late ignition: the rest of the capture, re-planned.
+
+Split from :mod:`lunarcap.runs.missed` (which re-exports its names). From the state a
+fault leaves at ``t_r`` (burn n cut off, after the delay; or burn n's late ignition),
+:func:`recovery` answers in one of three ways, in this order:
+
+1. **Nothing to make up** (:func:`nothing_to_make_up`): coasting from that state, the
+   spacecraft meets burn n's target where the nominal met it, within the verification
+   gate's own tolerances (:mod:`lunarcap.optim.verify`: perilune radius 10 m,
+   inclination and flight-path angle 1e-4 deg; apolune 50 m and period 0.5 s for an
+   ellipse as asked; a circle's radii 10 m). The make-up burn vanishes and is **not
+   flown**: the recovery is the nominal's later burns, as verified (a cut-off at the
+   planned end, f = 1, after any delay). Skipping it is the honest answer, not gating a
+   burn of next to nothing with tolerances scaled down to it: the orbit left is checked
+   with the full gate, and a burn that is not needed is no burn (the transcription
+   resolves burns of 0.5 s and more, :data:`lunarcap.mission.plan.MIN_BURN_S`).
+2. **A make-up burn in the window** (:func:`recover`): igniting within ``window_min``
+   after ``t_r`` (a late ignition: exactly then), with burn n's target, then burns n+1,
+   ... with free ignitions, to the same final orbit, re-optimised as one NLP (total
+   delta-V) and verified leg by leg. The orbit after an intermediate burn is free up to
+   ``max_period_s`` (as in the nominal, :func:`lunarcap.runs.missed.freed`); the make-up
+   may still be small (its duration bounded below by :data:`MIN_MAKE_UP_S`, not by
+   Eq. 10).
+3. **The make-up burn at the next perilune** (a cut-off only, when 2 found no verified
+   recovery and the orbit is bound): the same re-plan with the make-up window around the
+   spacecraft's next perilune (:func:`next_perilune_window`). The last burn's target (the
+   final circle or ellipse) passes only through radii between its perilune and apolune:
+   a cut-off of it followed by a delay leaves the spacecraft above them until it comes
+   back to perilune, where the burn is done again.
+
+The NLP starts from guesses, not from a burn-by-burn solve: the make-up burn sized from
+the two-body delta-V actually needed (:func:`make_up_estimate`, or for the final orbit
+the tangential impulse to its energy), each later burn the plan's anti-velocity guess
+chained from the one before.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from lunarcap.errors import SolveError
+from lunarcap.mission.plan import CapturePlan
+from lunarcap.mission.targets import CIRCULAR, PERILUNE
+from lunarcap.optim.collocation import DEFAULT_MESHES, sundman_fractions
+from lunarcap.optim.guess import guess_arcs, make_guess, mean_motion_and_anomaly
+from lunarcap.optim.joint import solve_joint
+from lunarcap.optim.problem import MIN_ORBIT_WINDOW_MIN, burn_problem
+from lunarcap.optim.verify import TOL_ANGLE_DEG, TOL_PERIOD_S, TOL_RA_M, TOL_RP_M
+from lunarcap.physics import constants as C
+from lunarcap.physics.dynamics import Model
+from lunarcap.physics.propagate import propagate
+from lunarcap.physics.rocket import burn_duration_estimate_s
+from lunarcap.runs.missed_orbits import (
+    make_up_estimate,
+    period_s,
+    physical_bound,
+    time_to_perilune_after_impulse_s,
+)
+
+#: Shortest coast from the fault's end to the make-up orbit's perilune, s.
+MIN_FIRST_COAST_S = 600.0
+#: Lower bound of the make-up burn's duration, s: about nothing (0.003 m/s at 150 N and
+#: 525 kg), so the optimiser may drop the burn; nonzero so the burn's mesh keeps its size.
+MIN_MAKE_UP_S = 0.01
+#: Longest half-width of the make-up window around the next perilune, as a fraction of
+#: the orbit's period (as the plan's free ignitions, :data:`lunarcap.mission.plan_checks`).
+MAX_WINDOW_FRACTION = 0.4
+
+
+def on_meshes(solve, meshes=DEFAULT_MESHES):
+    """``solve(mesh)`` on each mesh in turn until its solution passes verification.
+
+    A finer mesh is tried only when the coarse one converged but failed verification
+    (a long free coast resolved too coarsely: in full dynamics the nominal's 24 h orbit
+    passes only on the finest); any other failure is raised at once.
+    """
+    for j, mesh in enumerate(meshes):
+        try:
+            return solve(mesh)
+        except SolveError as exc:
+            if exc.status != "verification failed" or j == len(meshes) - 1:
+                raise
+
+
+# ---------------------------------------------------------------------- 1. nothing to do
+def target_misses(target, x_end, max_period_s: float | None = None) -> list[str]:
+    """How the state ``x_end`` misses ``target``, against the verification gate's tolerances.
+
+    The gate's target part (:class:`lunarcap.optim.verify.Verification`), on a state the
+    fault left rather than a solution: perilune radius, inclination, flight-path angle
+    and perilune branch; an ellipse's apolune and period; a circle's radii; with
+    ``max_period_s`` also the period bound of a free orbit. Empty if none.
+    """
+    err = target.errors(np.asarray(x_end, float)[:6])
+    out = []
+    if not abs(err["rp_error_m"]) < TOL_RP_M:
+        out.append(f"perilune radius off by {err['rp_error_m']:.4g} m")
+    tol_ra = TOL_RA_M if target.kind != CIRCULAR else TOL_RP_M
+    if err["ra_error_m"] is not None and not abs(err["ra_error_m"]) < tol_ra:
+        out.append(f"apolune radius off by {err['ra_error_m']:.4g} m")
+    if err["period_error_s"] is not None and not abs(err["period_error_s"]) < TOL_PERIOD_S:
+        out.append(f"period off by {err['period_error_s']:.4g} s")
+    if not abs(err["inc_error_deg"]) < TOL_ANGLE_DEG:
+        out.append(f"inclination off by {err['inc_error_deg']:.3g} deg")
+    if err["gamma_error_deg"] is not None and not abs(err["gamma_error_deg"]) < TOL_ANGLE_DEG:
+        out.append(f"flight-path angle off by {err['gamma_error_deg']:.3g} deg")
+    if err["branch"] is not None and not err["branch"] >= 0:
+        out.append("the coast ends at an apolune")
+    if max_period_s is not None:
+        x = np.asarray(x_end, float)
+        e2 = x[1] ** 2 + x[2] ** 2
+        a = x[0] / (1 - e2) if e2 < 1 else math.inf
+        if not (math.isfinite(a) and period_s(a) <= max_period_s + TOL_PERIOD_S):
+            out.append("the orbit is longer than the period bound")
+    return out
+
+
+def nothing_to_make_up(legs: list, i: int, t_r: float, x_r, max_period_s: float) -> bool:
+    """True if ``x_r`` at ``t_r``, coasting, meets burn ``i``'s target as the nominal did.
+
+    Flown in the nominal leg's dynamics to the end of its coast (the perilune where its
+    target held) and checked with :func:`target_misses` (the orbit of an intermediate burn
+    also within ``max_period_s``, the bound the nominal had).
+    """
+    prob = legs[i].problem
+    if not t_r < prob.t_end_s:
+        return False
+    x_end = propagate(prob.model, t_r, np.asarray(x_r, float)[:7], prob.t_end_s).final
+    bound = max_period_s if i + 1 < len(legs) else None
+    return not target_misses(prob.target, x_end, bound)
+
+
+# ---------------------------------------------------------------------- 2. the make-up
+def _sized(nplan: CapturePlan, i: int) -> CapturePlan:
+    """The plan with burn ``i``'s period between its own and the next orbit's (geometric mean).
+
+    A resumed plan's first burn needs a nonzero impulsive delta-V from the start state to
+    pass the plan's engine checks (its Eq. 19 duration), but the make-up orbit is free in
+    the NLP, so that period only sizes the checks: with the nominal's own period, a
+    cut-off at the planned end (nothing to make up) would be refused.
+    """
+    if nplan.targets[i].kind != PERILUNE or i + 1 >= nplan.n_burns:
+        return nplan
+    period = math.sqrt(nplan.coast_s(i) * nplan.coast_s(i + 1))
+    burn = replace(nplan.burns[i], period_s=period, apolune_altitude_km=None)
+    return replace(nplan, burns=nplan.burns[:i] + (burn,) + nplan.burns[i + 1:])
+
+
+def _make_up_dv_mps(rec_plan: CapturePlan, x, max_period_s: float) -> float:
+    """Two-body delta-V the make-up burn needs at ``x`` (see :func:`recovery_warm_start`)."""
+    if rec_plan.targets[0].kind == PERILUNE:   # a free orbit: down to the period bound
+        return make_up_estimate(x, rec_plan.perilune_radius_km, max_period_s)["delta_v_mps"]
+    return rec_plan.impulsive()[0].delta_v_mps   # the final orbit's energy
+
+
+def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
+                        mesh_n_coast: int) -> tuple:
+    """Problems and guesses of a recovery's legs, without solving any (see the module).
+
+    The make-up leg ignites at the window's opening, thrusts opposite the velocity for the
+    duration of the two-body delta-V it needs (a free orbit: :func:`make_up_estimate`, to
+    the period bound; the final orbit: the tangential impulse to its energy; at least
+    1 s), its lower duration bound :data:`MIN_MAKE_UP_S`; each later leg is the plan's
+    guess (anti-velocity, tuned to reach its perilune on time) from the end of the leg
+    before. Returns (warm list, estimate dict).
+    """
+    x_r = np.array(rec_plan.start.state)
+    lo_min = rec_plan.burns[0].start_bounds_min[0]
+    prob = burn_problem(rec_plan, 0, x_r, eph, fit=fit, guess_start_min=lo_min)
+    est = {"delta_v_mps": _make_up_dv_mps(rec_plan, prob.x0, max_period_s)}
+    t1 = max(burn_duration_estimate_s(prob.x0[6], est["delta_v_mps"], prob.model.thrust_N,
+                                      prob.model.isp_s), 1.0)
+    span = prob.t_end_s - prob.t_ign_s
+    prob = replace(prob, t1_min_s=MIN_MAKE_UP_S,
+                   t1_max_s=min(max(3 * t1, prob.burn_bounds_s[1]), 0.9 * span))
+    guess = make_guess(prob, t1) if est["delta_v_mps"] > 1.0 else guess_arcs(prob, t1)
+    warm = [(prob, guess, sundman_fractions(guess.coast.t, guess.coast.x, mesh_n_coast))]
+    for k in range(1, rec_plan.n_burns):
+        x_peri = guess.coast.x[:, -1]
+        prob = burn_problem(rec_plan, k, x_peri, eph, fit=fit)
+        guess = make_guess(prob)
+        warm.append((prob, guess, sundman_fractions(guess.coast.t, guess.coast.x,
+                                                    mesh_n_coast)))
+    return warm, est
+
+
+def _nearest_perilune_s(x, t_s: float, mu: float = C.MU_MOON) -> float:
+    """Epoch of the two-body perilune of state ``x`` nearest to ``t_s`` (past or next), s."""
+    n, M = mean_motion_and_anomaly(np.asarray(x, float), mu)
+    return t_s - float(M) / float(n)
+
+
+def first_coast_guess_s(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
+                        max_period_s: float, coast: Model) -> float:
+    """The make-up leg's coast (from ``t_r`` to where its target holds) the NLP starts from, s.
+
+    A free orbit: the two-body time to the perilune after the make-up impulse of
+    :func:`make_up_estimate` at the window's opening (at least past the window and the
+    burn). The final orbit: a circle, the window, twice the Eq. (19) duration and the
+    plan's coast after the circle; an ellipse as asked, one of its periods after the
+    perilune nearest the burn (its perilune is where the burn leaves it), past the burn.
+    """
+    t_ig = t_r + 60.0 * window_min[0]
+    x_ig = propagate(coast, t_r, x_r, t_ig).final if t_ig > t_r else np.asarray(x_r, float)
+    est = make_up_estimate(x_ig, nplan.perilune_radius_km, max_period_s)
+    accel = nplan.engine.thrust_N / x_ig[6]   # m/s^2
+    target = nplan.targets[i]
+    if target.kind == PERILUNE:
+        after = 60.0 * (window_min[1] - window_min[0]) + 2 * est["delta_v_mps"] / accel
+        t = time_to_perilune_after_impulse_s(x_ig, est["delta_v_mps"], after)
+        t = min(t, max_period_s) if math.isfinite(t) else max_period_s
+        return max(t + t_ig - t_r, 60.0 * window_min[1] + MIN_FIRST_COAST_S)
+    dv = nplan.resumed(i, t_ig, x_ig, window_min=(0.0, 0.0), first_coast_s=1e4).impulsive()
+    t19 = 2 * dv[0].delta_v_mps / accel
+    if target.kind == CIRCULAR:
+        return 60.0 * window_min[1] + t19 + nplan.coast_s(i)
+    end_burn = t_ig + t19
+    t = _nearest_perilune_s(x_ig, t_ig + t19 / 2) if np.hypot(x_ig[1], x_ig[2]) < 1 \
+        else end_burn
+    t += target.period_s()
+    while t < end_burn + MIN_FIRST_COAST_S:
+        t += target.period_s()
+    return t - t_r
+
+
+def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
+            max_period_s: float, fit, coast: Model):
+    """Re-plan the capture from burn ``i`` (0-based) at ``t_r`` from ``x_r`` (see the module).
+
+    Returns the :class:`~lunarcap.optim.joint.JointResult` (verified) and the make-up
+    estimate; raises SolveError (IPOPT or verification) or PlanError (no such plan).
+    """
+    first_coast = first_coast_guess_s(nplan, i, t_r, x_r, window_min, max_period_s, coast)
+    rec_plan = _sized(nplan, i).resumed(i, t_r, x_r, first_coast_s=first_coast,
+                                        window_min=window_min)
+    eph = nplan.ephemeris_model()
+    est = {}
+
+    def solve(mesh):
+        warm, e = recovery_warm_start(rec_plan, eph, fit, max_period_s, mesh.n_coast)
+        est.update(e)
+        if nplan.targets[i].kind != PERILUNE:   # the final orbit: its coast the plan's
+            return solve_joint(rec_plan, None, eph, mesh, fit=fit, warm=warm, expand=True)
+        free = (True,) + (False,) * (rec_plan.n_burns - 1)
+        hi = 60.0 * window_min[1] + max_period_s + 7200.0
+        return solve_joint(rec_plan, None, eph, mesh, free_coasts=free,
+                           coast_bounds_s=(MIN_FIRST_COAST_S, hi), fit=fit,
+                           max_period_s=max_period_s, warm=warm, expand=True)
+    res = on_meshes(solve)
+    est["first_coast_guess_s"] = first_coast
+    return res, est
+
+
+# ---------------------------------------------------------------------- 3. next perilune
+def next_perilune_window(x, after_s: float, half_width_s: float) -> tuple | None:
+    """The window (min after the state's epoch) around its next two-body perilune.
+
+    The first perilune later than ``after_s`` of the orbit of ``x``; half-width
+    ``half_width_s``, at most :data:`MAX_WINDOW_FRACTION` of the period and never before
+    ``after_s``. None if the orbit is open.
+    """
+    t = time_to_perilune_after_impulse_s(x, 0.0, after_s)
+    if not math.isfinite(t):
+        return None
+    xx = np.asarray(x, float)
+    a = xx[0] / (1 - xx[1] ** 2 - xx[2] ** 2)
+    w = min(half_width_s, MAX_WINDOW_FRACTION * period_s(a), t - after_s)
+    return ((t - w) / 60.0, (t + w) / 60.0)
+
+
+def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min: tuple,
+             max_period_s: float, fit_for, coast: Model, later: bool = True) -> tuple:
+    """The recovery from ``x_r`` at ``t_r`` (see the module): ``(how, result, estimate)``.
+
+    ``how``: "none" (nothing to make up: ``result`` None), "window" or "next perilune"
+    (``result`` the verified JointResult), or "no recovery" (``result`` the physical
+    reason of :func:`physical_bound` for the window). ``fit_for(window)``: the ephemeris
+    fit of a recovery whose make-up ignites in ``window`` (min after ``t_r``). ``later``:
+    the make-up at the next perilune may be tried (a cut-off, not a late ignition), if
+    that perilune comes within ``max_period_s``. Raises what :func:`recover` raises (the
+    window's failure if the next perilune fails too).
+    """
+    if nothing_to_make_up(legs, i, t_r, x_r, max_period_s):
+        return "none", None, None
+    why = physical_bound(nplan, i, t_r, x_r, window_min, max_period_s, coast)
+    if why:
+        return "no recovery", why, None
+    try:
+        res, est = recover(nplan, i, t_r, x_r, window_min, max_period_s,
+                           fit_for(window_min), coast)
+        return "window", res, est
+    except SolveError as exc:
+        first = exc
+    half = max(60.0 * MIN_ORBIT_WINDOW_MIN, 2.0 * legs[i].raw.t1_s)
+    window = next_perilune_window(x_r, 60.0 * window_min[1], half) if later else None
+    if window is None or 60.0 * window[1] > max_period_s:
+        raise first
+    # resumed where that window opens (a plan's ignition window lies within 2 h of its
+    # epoch): the coast to there is the same coast
+    t_b = t_r + 60.0 * window[0]
+    x_b = propagate(coast, t_r, np.asarray(x_r, float)[:7], t_b).final
+    w_b = (0.0, window[1] - window[0])
+    if physical_bound(nplan, i, t_b, x_b, w_b, max_period_s, coast):
+        raise first
+    try:
+        res, est = recover(nplan, i, t_b, x_b, w_b, max_period_s, fit_for(window), coast)
+    except SolveError:
+        raise first from None
+    est["first_coast_guess_s"] += t_b - t_r
+    return "next perilune", res, est
