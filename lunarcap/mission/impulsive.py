@@ -166,28 +166,35 @@ def impulsive_sequence(thrust_N: float = paper_engine_pairs()[0][0],
 
 
 # ---------------------------------------------------------------------- any number of burns
-def capture_total_mps(rp_km: float, v_inf_kmps: float, mu: float = C.MU_MOON) -> float:
-    """Two-body impulsive delta-V from the hyperbola to the circle at r_p, any number of burns, m/s.
+def capture_total_mps(rp_km: float, v_inf_kmps: float, mu: float = C.MU_MOON,
+                      final_period_s: float | None = None) -> float:
+    """Two-body impulsive delta-V from the hyperbola to the final orbit, any number of burns, m/s.
 
     Through any chain of tangential impulses at the perilune radius r_p, each impulse takes
     the perilune speed from one orbit's vis-viva value to the next one's, so the sum
     telescopes to the first speed minus the last:
 
-        dV_total = sqrt(v_inf^2 + 2 mu / r_p) - sqrt(mu / r_p),
+        dV_total = sqrt(v_inf^2 + 2 mu / r_p) - v_p(final),
 
-    whatever the number of burns and the periods of the intermediate ellipses (for the
-    paper's arrival at 100 km, 852.67 m/s).
+    whatever the number of burns and the periods of the intermediate ellipses. The final
+    orbit is the circle at r_p (``final_period_s`` None; ``v_p = sqrt(mu / r_p)``, for the
+    paper's arrival at 100 km 852.67 m/s) or the ellipse of period ``final_period_s`` with
+    its perilune at r_p (:func:`perilune_speed_kmps`): the same chain as
+    :func:`impulsive_chain`, so the total is the sum of a plan's impulsive burns
+    (:meth:`lunarcap.mission.plan.CapturePlan.impulsive`, ``lunarcap impulsive --plan``).
 
     Parameters
     ----------
     rp_km : perilune radius, km
     v_inf_kmps : hyperbolic excess speed of the arrival, km/s
     mu : gravitational parameter, km^3/s^2
+    final_period_s : period of a final ellipse, s (None: the circle at r_p)
     """
     check_perilune_radius(rp_km)
     if not np.isfinite(v_inf_kmps) or v_inf_kmps <= 0:
         raise InputError(f"v_inf must be positive (km/s), got {v_inf_kmps}")
-    return float((np.sqrt(v_inf_kmps ** 2 + 2 * mu / rp_km) - np.sqrt(mu / rp_km)) * 1e3)
+    return float((np.sqrt(v_inf_kmps ** 2 + 2 * mu / rp_km)
+                  - perilune_speed_kmps(rp_km, final_period_s, mu)) * 1e3)
 
 
 def period_from_perilune_speed_s(rp_km: float, v_kmps: float, mu: float = C.MU_MOON) -> float:
@@ -199,10 +206,12 @@ def period_from_perilune_speed_s(rp_km: float, v_kmps: float, mu: float = C.MU_M
 
 
 def equal_split_periods_s(rp_km: float, v_inf_kmps: float, n_burns: int,
-                          max_period_s: float | None = None, mu: float = C.MU_MOON) -> tuple:
+                          max_period_s: float | None = None, mu: float = C.MU_MOON,
+                          final_period_s: float | None = None) -> tuple:
     """Periods (s) of the n-1 intermediate ellipses that share the impulsive total equally.
 
-    The hyperbola-to-circle total (:func:`capture_total_mps`) is split into ``n_burns``
+    The hyperbola-to-final-orbit total (:func:`capture_total_mps`; the final orbit the
+    circle at r_p, or the ellipse of period ``final_period_s``) is split into ``n_burns``
     equal tangential perilune impulses; if the first ellipse would then be longer than
     ``max_period_s``, the first impulse reaches ``max_period_s`` and the rest of the total
     is split equally among the other burns. A start for the search of the best periods
@@ -213,7 +222,7 @@ def equal_split_periods_s(rp_km: float, v_inf_kmps: float, n_burns: int,
         raise InputError(f"the number of burns must be an integer >= 1, got {n_burns!r}")
     n_burns = int(n_burns)
     v0 = float(np.sqrt(v_inf_kmps ** 2 + 2 * mu / rp_km))
-    vc = float(np.sqrt(mu / rp_km))
+    vc = perilune_speed_kmps(rp_km, final_period_s, mu)
     if n_burns == 1:
         return ()
     share = (v0 - vc) / n_burns
@@ -221,8 +230,9 @@ def equal_split_periods_s(rp_km: float, v_inf_kmps: float, n_burns: int,
     if max_period_s is not None and period_from_perilune_speed_s(rp_km, v1, mu) > max_period_s:
         v1 = perilune_speed_kmps(rp_km, max_period_s, mu)
         if v1 <= vc:
+            final = "circle's" if final_period_s is None else "final orbit's"
             raise InputError(f"a longest period of {max_period_s / 3600:g} h is not longer than "
-                             f"the circle's at r_p = {rp_km:g} km")
+                             f"the {final} at r_p = {rp_km:g} km")
         share = (v1 - vc) / (n_burns - 1)
     if v1 ** 2 >= 2 * mu / rp_km:
         raise InputError(f"an equal share of {share * 1e3:.1f} m/s per burn leaves the "

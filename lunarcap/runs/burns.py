@@ -10,7 +10,7 @@ inclination. Their periods are chosen to minimise the total delta-V of the finit
 2. that plan solved burn by burn, every ignition free (:func:`lunarcap.runs.chain.solve_plan`,
    cached), the warm start of
 3. the all-burns NLP with the N-1 coasts free (:func:`lunarcap.optim.joint.solve_joint`):
-   objective the total delta-V; each period between the circle's (+1 min) and
+   objective the total delta-V; each period between the final orbit's (+1 min) and
    ``max_period_s``, each no longer than the one before, and the end of the last burn at
    most ``max_time_s`` after the arrival perilune. Its optimum is verified leg by leg.
 
@@ -20,10 +20,11 @@ same (verified) pre-burn state at its nominal perilune
 :meth:`lunarcap.mission.plan.CapturePlan.resumed`).
 
 What the impulsive limit predicts: in two-body dynamics, tangential perilune impulses from
-the hyperbola to the circle cost ``sqrt(v_inf^2 + 2 mu/r_p) - sqrt(mu/r_p)`` in total
-whatever N and the periods (:func:`lunarcap.mission.impulsive.capture_total_mps`), so any
-difference between counts is the finite burns' loss (and, in full dynamics, the Earth's
-and Sun's pull on the longer orbits).
+the hyperbola to the final orbit cost ``sqrt(v_inf^2 + 2 mu/r_p) - v_p(final)`` in total
+(``v_p = sqrt(mu/r_p)`` for the circle, the perilune speed of the final ellipse asked
+otherwise) whatever N and the periods (:func:`two_body_total_mps`, the sum of ``lunarcap
+impulsive --plan``'s burns), so any difference between counts is the finite burns' loss
+(and, in full dynamics, the Earth's and Sun's pull on the longer orbits).
 
 A count for which no plan exists is reported as such (``status`` "infeasible" with the
 reason: for example a burn longer than half the orbit around it), and a count whose NLP
@@ -85,17 +86,43 @@ def check_bounds(max_period_s: float, max_time_s: float) -> None:
             raise InputError(f"{name} must be a positive number of {unit}, got {v!r}")
 
 
+def final_period_s(plan: CapturePlan) -> float | None:
+    """Period of the plan's final orbit if it is an ellipse (s); None for the circle."""
+    last = plan.burns[-1]
+    return None if last.target == CIRCULAR else last.period_s
+
+
+def shortest_period_s(plan: CapturePlan) -> float:
+    """Shortest intermediate period: the final orbit's (+ :data:`MIN_PERIOD_MARGIN_S`), s."""
+    final = final_period_s(plan)
+    return (circle_period_s(plan.perilune_radius_km) if final is None else final) + \
+        MIN_PERIOD_MARGIN_S
+
+
+def two_body_total_mps(plan: CapturePlan) -> float:
+    """The two-body impulsive total into the plan's final orbit, any N and periods, m/s.
+
+    :func:`lunarcap.mission.impulsive.capture_total_mps` to the circle or to the final
+    ellipse asked: the sum of ``lunarcap impulsive --plan``'s burns, whatever the count.
+    """
+    return capture_total_mps(plan.perilune_radius_km, plan.arrival.v_inf_kmps,
+                             final_period_s=final_period_s(plan))
+
+
 def count_guess(plan: CapturePlan, n: int, max_period_s: float) -> CapturePlan:
     """The plan in ``n`` burns with the equal-share periods (the search's start).
 
-    Raises PlanError (the count is infeasible: no such plan) or InputError.
+    The periods share the impulsive total into the plan's final orbit (circle or
+    ellipse). Raises PlanError (the count is infeasible: no such plan) or InputError.
     """
-    if n > 1 and max_period_s <= circle_period_s(plan.perilune_radius_km) + MIN_PERIOD_MARGIN_S:
+    final = final_period_s(plan)
+    if n > 1 and max_period_s <= shortest_period_s(plan):
+        what = (f"{circle_period_s(plan.perilune_radius_km) / 3600:.3f} h circle"
+                if final is None else f"{final / 3600:.3f} h final orbit")
         raise PlanError(f"the longest period {max_period_s / 3600:g} h leaves no room for an "
-                        f"ellipse above the {circle_period_s(plan.perilune_radius_km) / 3600:.3f}"
-                        f" h circle")
+                        f"ellipse above the {what}")
     periods = equal_split_periods_s(plan.perilune_radius_km, plan.arrival.v_inf_kmps, n,
-                                    max_period_s)
+                                    max_period_s, final_period_s=final)
     return plan.with_burn_count(periods)
 
 
@@ -184,8 +211,7 @@ def solve_count(plan: CapturePlan, n: int, max_period_s: float, max_time_s: floa
     t_start = time.perf_counter()
     n = int(n)
     out = {"n_burns": n, "status": "ok", "reason": "", "periods_h": [], "burns": [],
-           "total_impulsive_delta_v_two_body_mps": capture_total_mps(plan.perilune_radius_km,
-                                                             plan.arrival.v_inf_kmps),
+           "total_impulsive_delta_v_two_body_mps": two_body_total_mps(plan),
            "ipopt_status": "", "total_ipopt_iterations": None}
     try:
         guess = count_guess(plan, n, max_period_s)
@@ -228,7 +254,7 @@ def _optimum(plan: CapturePlan, guess: CapturePlan, n: int, max_period_s: float,
     seq = solve_plan(guess, verbose=verbose)
     if not force_model(plan.dynamics).needs_fit:
         seq = [_without_fit(sol) for sol in seq]
-    lo = circle_period_s(plan.perilune_radius_km) + MIN_PERIOD_MARGIN_S
+    lo = shortest_period_s(plan)
     res = solve_joint(guess, seq, plan.ephemeris_model(),
                       free_coasts=(True,) * (n - 1) + (False,),
                       coast_bounds_s=(lo, max_period_s), max_time_s=max_time_s, fit=fit)
@@ -413,7 +439,7 @@ def format_rows(result, plan: CapturePlan) -> str:
              if rows else f"Plan {plan.name}: no counts"]
     if rows:
         lines.append(f"two-body impulsive total (any N, any periods): "
-                     f"{capture_total_mps(plan.perilune_radius_km, plan.arrival.v_inf_kmps):.3f}"
+                     f"{two_body_total_mps(plan):.3f}"
                      f" m/s")
     for r in rows:
         n = int(r["n_burns"])

@@ -124,3 +124,31 @@ def test_the_free_period_is_optimised_not_left_at_the_equal_share_start():
     assert abs(r["periods_h"][0] - start_h) > 0.1, (r["periods_h"], start_h)
     assert r["total_delta_v_mps"] < through_start - 0.05, (r["total_delta_v_mps"],
                                                             through_start)
+
+
+def test_the_impulsive_total_is_into_the_final_orbit_asked(capsys):
+    """A plan ending on a 100 x 300 km ellipse: the study's two-body total is the plan's.
+
+    ``lunarcap impulsive --plan`` sums the plan's tangential impulses into the ellipse
+    asked (786.3 m/s for tests/data/orbiter-440N.yaml); into the 100 km circle it would
+    be 41.6 m/s more. The count's burn-by-burn impulsive limits (two-body, the same
+    pre-burn states) add up to it too, so the losses built on it are the ellipse's.
+    """
+    import json
+    from pathlib import Path
+
+    from lunarcap import cli
+    from lunarcap.mission.impulsive import capture_total_mps
+
+    path = Path(__file__).resolve().parents[1] / "data" / "orbiter-440N.yaml"
+    assert cli.main(["impulsive", "--plan", str(path), "--json"]) == 0
+    asked = json.loads(capsys.readouterr().out)["total_impulsive_delta_v_two_body_mps"]
+    plan = load_plan(path).with_dynamics("two-body")
+    circle = capture_total_mps(plan.perilune_radius_km, plan.arrival.v_inf_kmps)
+    assert circle - asked > 40.0    # the two totals a test must tell apart
+    r = count_result(plan, 2, impulsive=True)
+    assert r["status"] == "ok", r["reason"]
+    assert r["total_impulsive_delta_v_two_body_mps"] == pytest.approx(asked, abs=1e-3)
+    assert r["total_impulsive_limit_mps"] == pytest.approx(asked, abs=0.1)
+    loss = r["total_delta_v_loss_mps"]
+    assert loss > 0 and loss == pytest.approx(r["total_delta_v_mps"] - asked, abs=0.1)
