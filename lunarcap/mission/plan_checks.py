@@ -443,14 +443,19 @@ def _check_ephemeris(plan) -> None:
 
 
 def _check_engine_fits(plan) -> None:
-    """Each burn's Eq. (19) duration is resolvable and shorter than half its orbit."""
+    """Each burn's Eq. (19) duration is resolvable and shorter than half its orbit.
+
+    Except the first burn of a plan that starts from a given state (a re-plan after a
+    fault): it may need next to nothing (a cut-off just before the planned end), and its
+    solver bounds its duration (:data:`lunarcap.runs.missed_recovery.MIN_MAKE_UP_S`).
+    """
     t = plan.nominal_perilunes_s
     thrust, mass = plan.engine.thrust_N, plan.initial_mass_kg
     for i, ib in enumerate(plan.impulsive()):
         t19 = ib.eq19_duration_min * 60.0
         coast = t[i + 1] - t[i]
         before = t[i] - t[i - 1] if i else coast
-        if t19 < MIN_BURN_S:
+        if t19 < MIN_BURN_S and not (i == 0 and plan.start is not None):
             raise err("engine.thrust_N",
                       f"{thrust:g} N is too strong: burn {i + 1} ({ib.delta_v_mps:.1f} m/s) "
                       f"would last {t19:.2g} s (Eq. 19), below the {MIN_BURN_S:g} s the "

@@ -12,30 +12,34 @@ Two contingencies of burn n of a plan (``contingency`` in the table):
 
 The **nominal** is the plan's all-burns optimum (:func:`lunarcap.optim.joint.solve_joint`)
 with every ignition free and the orbit after burn n free (its coast a decision variable)
-up to the same longest period ``max_period_h`` the recovery has: the same freedoms, so a
-penalty measures the contingency and not a difference of bounds.
+up to the same longest period ``max_period_h`` the recovery has, whatever the plan's
+formulation (:func:`freed`: an ellipse asked by period or apolune becomes the Eq. 17
+target at a free coast, as the paper's formulation already is): the same freedoms, so a
+penalty measures the contingency and not a difference of bounds. It is solved from the
+plan's own orbit and from the longest allowed, and the cheaper verified optimum kept. The
+last burn's orbit is the final one (a circle or an ellipse as asked): nothing to free.
 
-**Recovery** (one function for both contingencies, :func:`recover`): from the state at
-the end of the delay (cut-off) or at the late ignition, a make-up burn with burn n's
-target, igniting within ``window_min`` after that epoch (late ignition: exactly then),
-whose orbit is free up to ``max_period_h`` (osculating period at its perilune, where its
-target holds; default :data:`DEFAULT_MAX_PERIOD_H`), then burns n+1, ... with the plan's
-periods and free ignitions, to the same final orbit, re-optimised as one NLP (total
-delta-V) and verified leg by leg. The make-up burn may vanish (its duration bounded
-below by :data:`MIN_MAKE_UP_S`, not by Eq. 10): a cut-off already on an orbit inside the
-bounds needs nothing more than the later burns. The NLP starts from guesses, not from a
-burn-by-burn solve: the make-up burn sized from the two-body delta-V actually needed
-(:func:`make_up_estimate`: a tangential impulse bringing the period down to the bound, 0
-if it is already below), each later burn the plan's anti-velocity guess chained from the
-one before.
+**Recovery** (:mod:`lunarcap.runs.missed_recovery`, one function for both
+contingencies): from the state at the end of the delay (cut-off) or at the late ignition,
+either nothing to make up (the orbit left, coasting, meets burn n's target within the
+verification gate: no make-up burn is flown, the recovery is the nominal's later burns;
+a cut-off at the planned end, f = 1), or a make-up burn with burn n's target, igniting
+within ``window_min`` after that epoch (late ignition: exactly then), whose orbit is free
+up to ``max_period_h`` (osculating period at its perilune, where its target holds;
+default :data:`DEFAULT_MAX_PERIOD_H`; the last burn's: the final orbit), then burns n+1,
+... with the nominal's periods and free ignitions, to the same final orbit, re-optimised
+as one NLP (total delta-V) and verified leg by leg. A cut-off whose window gives no
+verified recovery is re-planned with the make-up at the next perilune (the final orbit
+passes only through radii between its perilune and apolune: after a cut-off of the last
+burn and a delay the spacecraft is above them until it comes back); that row's
+``reason`` says so, and its penalty may be negative (the nominal flies each burn in one
+piece, and a burn completed one orbit later loses less).
 
 Before any solve, a recovery that physics forbids is answered as **no recovery**, with
-the reason (:func:`physical_bound`): the spacecraft has left the Moon's sphere of
-influence when the window opens, or every orbit through its position with the plan's
-perilune radius is longer than ``max_period_h`` (an orbit through radius r with perilune
-radius rp has a semi-major axis of at least (r + rp) / 2). A cut-off at the planned end
-(f = 1) is a case like the others: its make-up burn vanishes and the recovery is the
-nominal's later burns.
+the reason (:func:`physical_bound`, for every kind of target): the spacecraft has left
+the Moon's sphere of influence when the window opens, or every orbit through its position
+with the target's perilune radius is longer than ``max_period_h`` (an orbit through
+radius r with perilune radius rp has a semi-major axis of at least (r + rp) / 2).
 
 The **penalty** is measured on one basis: the delta-V from the state before burn n to the
 final orbit, finite burns, same dynamics: (delta-V of the partial burn + the
