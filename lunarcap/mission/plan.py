@@ -212,11 +212,16 @@ class Start:
     first_coast_s : float
         From ``epoch_s`` to the nominal perilune where the first burn's target must hold, s
         (it replaces the first burn's period as the first coast).
+    make_up : bool
+        The first burn is a make-up burn after a fault (:mod:`lunarcap.runs.missed`): its
+        duration is bounded by its solver, not checked against Eq. (19) (it may need next
+        to nothing, and its impulse is tangential where the state is, not at a perilune).
     """
 
     epoch_s: float
     state: tuple
     first_coast_s: float
+    make_up: bool = False
 
     def __post_init__(self):
         object.__setattr__(self, "state", tuple(self.state))   # checked by the plan
@@ -451,14 +456,15 @@ class CapturePlan:
                        name=name or f"{self.name} in {n} burn{'s' * (n > 1)}")
 
     def resumed(self, i: int, epoch_s: float, state, first_coast_s: float | None = None,
-                window_min: tuple = (0.0, 30.0)) -> "CapturePlan":
+                window_min: tuple = (0.0, 30.0), make_up: bool = False) -> "CapturePlan":
         """The capture from burn ``i`` (0-based) on, starting from ``state`` at ``epoch_s``.
 
         Burns i, i+1, ... of this plan; the first ignites within ``window_min`` (min after
         ``epoch_s``, free), the others as in this plan. The first coast ends at
         ``first_coast_s`` after ``epoch_s`` (default: this plan's nominal perilune after
         burn i). The re-plan after a fault (:mod:`lunarcap.runs.missed`) and the impulsive
-        limit of a burn from a given state are such plans.
+        limit of a burn from a given state are such plans. ``make_up``: its first burn is
+        a make-up burn (see :class:`Start`).
         """
         self._index(i)
         t = self.nominal_perilunes_s
@@ -466,7 +472,8 @@ class CapturePlan:
         first = replace(self.burns[i], start_min="free",
                         start_bounds_min=tuple(float(w) for w in window_min))
         return replace(self, burns=(first,) + self.burns[i + 1:], impulsive_loi1_mps=None,
-                       start=Start(float(epoch_s), tuple(np.asarray(state, float)), coast))
+                       start=Start(float(epoch_s), tuple(np.asarray(state, float)), coast,
+                                   bool(make_up)))
 
     def truncated(self, n: int) -> "CapturePlan":
         """The plan's first ``n`` burns (a prefix: what burn n depends on)."""

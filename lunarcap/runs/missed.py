@@ -163,10 +163,14 @@ def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_
     # plan's alone IPOPT may stop where it started (family-0 of the missed family, seed
     # 24: 813.121 m/s on the plan's 17.3 h orbit, 812.999 m/s on the 24 h bound from 12,
     # 20 or 23.5 h; recoveries found the cheaper one, penalties -0.10 m/s)
-    starts = [free_plan, free_plan.with_coasts([max_period_s if k == i else None
-                                                for k in range(plan.n_burns)])]
-    if plan.dynamics != "two-body":
-        starts = starts[:1]
+    starts = [free_plan]
+    if plan.dynamics == "two-body":
+        try:   # (a plan the checks refuse is no start: a next burn too long for its orbit)
+            starts.append(free_plan.with_coasts([max_period_s if k == i else None
+                                                 for k in range(plan.n_burns)]))
+        except PlanError:
+            pass
+    else:
         # also from the two-body optimum's orbit: a long free coast needs its mesh spaced
         # for the orbit it ends on, not for the plan's. The full-dynamics problem has
         # several local optima (from that start alone the 150 N plan's nominal ended on a
@@ -181,7 +185,7 @@ def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_
     for start in starts:
         try:
             res = _nominal_from(start, i, max_period_s)
-        except SolveError as exc:
+        except (SolveError, PlanError) as exc:
             error = exc
             continue
         if best is None or res.total_delta_v_mps < best.total_delta_v_mps:

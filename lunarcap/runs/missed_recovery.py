@@ -213,7 +213,8 @@ def first_coast_guess_s(nplan: CapturePlan, i: int, t_r: float, x_r, window_min:
         t = time_to_perilune_after_impulse_s(x_ig, est["delta_v_mps"], after)
         t = min(t, max_period_s) if math.isfinite(t) else max_period_s
         return max(t + t_ig - t_r, 60.0 * window_min[1] + MIN_FIRST_COAST_S)
-    dv = nplan.resumed(i, t_ig, x_ig, window_min=(0.0, 0.0), first_coast_s=1e4).impulsive()
+    dv = nplan.resumed(i, t_ig, x_ig, window_min=(0.0, 0.0), first_coast_s=1e4,
+                       make_up=True).impulsive()
     t19 = 2 * dv[0].delta_v_mps / accel
     if target.kind == CIRCULAR:
         return 60.0 * window_min[1] + t19 + nplan.coast_s(i)
@@ -235,7 +236,7 @@ def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
     """
     first_coast = first_coast_guess_s(nplan, i, t_r, x_r, window_min, max_period_s, coast)
     rec_plan = _sized(nplan, i).resumed(i, t_r, x_r, first_coast_s=first_coast,
-                                        window_min=window_min)
+                                        window_min=window_min, make_up=True)
     eph = nplan.ephemeris_model()
     est = {}
 
