@@ -444,17 +444,20 @@ def case_result(plan: CapturePlan, burn: int, fraction: float | None = None,
     """One case with checked inputs (InputError) in the CLI's units.
 
     A cut-off (``fraction``, ``delay_min``), or with ``late_min`` a late ignition. Cached
-    as the cache switch says (:func:`lunarcap.repro.cache.caching`).
+    as the cache switch says (:func:`lunarcap.repro.cache.caching`); the cached case is
+    the plan's physics (:meth:`CapturePlan.key`, its name blanked), so its ``reason``
+    names the plan here.
     """
     if late_min is not None:
         check_case(plan, burn, 1.0, late_min, "a late ignition")
-        return late_case(plan.key(), int(burn), float(late_min) * 60.0,
-                         float(max_period_h) * 3600.0, code_version(*_MODULES),
-                         verbose=verbose)
-    check_case(plan, burn, fraction, delay_min)
-    return missed_case(plan.key(), int(burn), float(fraction), float(delay_min) * 60.0,
-                       float(max_period_h) * 3600.0, tuple(float(w) for w in window_min),
-                       code_version(*_MODULES), verbose=verbose)
+        r = late_case(plan.key(), int(burn), float(late_min) * 60.0,
+                      float(max_period_h) * 3600.0, code_version(*_MODULES), verbose=verbose)
+    else:
+        check_case(plan, burn, fraction, delay_min)
+        r = missed_case(plan.key(), int(burn), float(fraction), float(delay_min) * 60.0,
+                        float(max_period_h) * 3600.0, tuple(float(w) for w in window_min),
+                        code_version(*_MODULES), verbose=verbose)
+    return {**r, "reason": r["reason"].replace("plan ''", f"plan {plan.name!r}")}
 
 
 def check_case(plan: CapturePlan, burn, fraction, delay_min, what: str = "a delay") -> None:

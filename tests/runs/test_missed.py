@@ -108,13 +108,19 @@ def test_a_longer_fault_on_a_hyperbola_costs_more(case):
 
 
 def test_late_ignition_costs_nothing_at_0_min_and_more_the_later(plan, monkeypatch):
+    from lunarcap.physics.epochs import seconds_from_calendar
+
     monkeypatch.setenv("LUNARCAP_NO_CACHE", "1")
+    t_nominal = nominal_of(plan, 1, DEFAULT_MAX_PERIOD_H * 3600.0)["legs"][0].problem.t_ign_s
     pens = []
     for late in (0.0, 1.0, 5.0, 10.0):
         r = case_result(plan, 1, late_min=late)
         assert r["contingency"] == "late ignition"
         assert r["status"] == "recovered" and r["all_verified"], r["reason"]
         assert r["recovery_burns"][0]["ignition_min_after_fault"] == pytest.approx(0, abs=1e-6)
+        # the burn ignites ``late`` minutes AFTER the nominal's ignition (epochs to 1 ms)
+        t_ign = seconds_from_calendar(r["recovery_burns"][0]["ignition_epoch"])
+        assert t_ign - t_nominal == pytest.approx(60.0 * late, abs=2e-3), late
         pens.append(r["penalty_mps"])
     assert abs(pens[0]) < 0.05, pens
     assert pens[1] > 0.05 and np.all(np.diff(pens) > 0.05), pens
