@@ -42,7 +42,7 @@ from dataclasses import replace
 import numpy as np
 
 from lunarcap.errors import SolveError
-from lunarcap.mission.plan import CapturePlan
+from lunarcap.mission.plan import MAX_START_MIN, CapturePlan, PlanError
 from lunarcap.mission.targets import CIRCULAR, PERILUNE
 from lunarcap.optim.collocation import DEFAULT_MESHES, sundman_fractions
 from lunarcap.optim.guess import guess_arcs, make_guess, mean_motion_and_anomaly
@@ -282,7 +282,7 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
     fit of a recovery whose make-up ignites in ``window`` (min after ``t_r``). ``later``:
     the make-up at the next perilune may be tried (a cut-off, not a late ignition), if
     that perilune comes within ``max_period_s``. Raises what :func:`recover` raises (the
-    window's failure if the next perilune fails too).
+    window's SolveError or PlanError, if the next perilune fails too).
     """
     if nothing_to_make_up(legs, i, t_r, x_r, max_period_s):
         return "none", None, None
@@ -293,9 +293,11 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
         res, est = recover(nplan, i, t_r, x_r, window_min, max_period_s,
                            fit_for(window_min), coast)
         return "window", res, est
-    except SolveError as exc:
+    except (SolveError, PlanError) as exc:
         first = exc
-    half = max(60.0 * MIN_ORBIT_WINDOW_MIN, 2.0 * legs[i].raw.t1_s)
+    # +-2 burn durations (at least 30 min), within the 2 h a plan's window may span
+    half = min(max(60.0 * MIN_ORBIT_WINDOW_MIN, 2.0 * legs[i].raw.t1_s),
+               30.0 * MAX_START_MIN)
     window = next_perilune_window(x_r, 60.0 * window_min[1], half) if later else None
     if window is None or 60.0 * window[1] > max_period_s:
         raise first
@@ -308,7 +310,7 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
         raise first
     try:
         res, est = recover(nplan, i, t_b, x_b, w_b, max_period_s, fit_for(window), coast)
-    except SolveError:
+    except (SolveError, PlanError):
         raise first from None
     est["first_coast_guess_s"] += t_b - t_r
     return "next perilune", res, est
