@@ -60,6 +60,7 @@ def run_plan(plan, burn: int) -> list[dict]:
 
 
 def main(argv=None) -> int:
+    """Run the family (see the module docstring) and print its pass rate."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--seed", type=int, default=24)
     ap.add_argument("--count", type=int, default=12)
