@@ -67,9 +67,16 @@ def main(argv=None) -> int:
     ap.add_argument("--dynamics", default="two-body")
     ap.add_argument("--burns", default="first", help="first, last or first,last")
     ap.add_argument("--out", default=None, help="JSON lines, one per case")
+    ap.add_argument("--one-per-kind", action="store_true",
+                    help="only the first plan of each formulation and final orbit")
     args = ap.parse_args(argv)
     plans, refused = plan_family(args.seed, args.count, dynamics=args.dynamics,
                                  mass_kg=(400, 2000), formulations=("orbit", "song2011"))
+    if args.one_per_kind:
+        firsts = {}
+        for p in plans:
+            firsts.setdefault((p.formulation, p.targets[-1].kind), p)
+        plans = list(firsts.values())
     print(f"{len(plans)} plans accepted, {len(refused)} refused at load", flush=True)
     out = open(args.out, "w") if args.out else None
     rows = []
