@@ -278,7 +278,7 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
     fit of a recovery whose make-up ignites in ``window`` (min after ``t_r``). ``later``:
     the make-up at the next perilune may be tried (a cut-off, not a late ignition), if
     that perilune comes within ``max_period_s``. Raises what :func:`recover` raises (the
-    window's SolveError or PlanError, if the next perilune fails too).
+    window's SolveError, PlanError or RuntimeError, if the next perilune fails too).
     """
     if nothing_to_make_up(legs, i, t_r, x_r, max_period_s):
         return "none", None, None
@@ -289,7 +289,7 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
         res, est = recover(nplan, i, t_r, x_r, window_min, max_period_s,
                            fit_for(window_min), coast)
         return "window", res, est
-    except (SolveError, PlanError) as exc:
+    except (SolveError, PlanError, RuntimeError) as exc:   # RuntimeError: a guess's coast
         first = exc
     # +-2 burn durations (at least 30 min), within the 2 h a plan's window may span
     half = min(max(60.0 * MIN_ORBIT_WINDOW_MIN, 2.0 * legs[i].raw.t1_s),
@@ -306,7 +306,7 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
         raise first
     try:
         res, est = recover(nplan, i, t_b, x_b, w_b, max_period_s, fit_for(window), coast)
-    except (SolveError, PlanError):
+    except (SolveError, PlanError, RuntimeError):
         raise first from None
     est["first_coast_guess_s"] += t_b - t_r
     return "next perilune", res, est
