@@ -324,7 +324,7 @@ def _attempt(out: dict, nominal_part: tuple, burn: int, t_r: float, x_r, window_
     i = burn - 1
     try:
         how, res, est = recovery(nplan, legs, i, t_r, x_r, window_min, max_period_s,
-                                 fit_for, coast, later)
+                                 fit_for, coast, later, legs[i].delta_v_mps - partial)
     except PlanError as exc:
         return _refused(out, "no recovery", f"no plan from this state: {exc}")
     except SolveError as exc:

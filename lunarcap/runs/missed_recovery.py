@@ -153,7 +153,8 @@ def _make_up_dv_mps(rec_plan: CapturePlan, x, max_period_s: float) -> float:
 
 
 def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
-                        mesh_n_coast: int) -> tuple:
+                        mesh_n_coast: int, nominal: list | None = None,
+                        late: bool = False, dv_mps: float | None = None) -> tuple:
     """Problems and guesses of a recovery's legs, without solving any (see the module).
 
     The make-up leg ignites at the window's opening, thrusts opposite the velocity for the
@@ -161,23 +162,32 @@ def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
     the period bound; the final orbit: the tangential impulse to its energy; at least
     1 s), its lower duration bound :data:`MIN_MAKE_UP_S`; each later leg is the plan's
     guess (anti-velocity, tuned to reach its perilune on time) from the end of the leg
-    before. Returns (warm list, estimate dict).
+    before. With ``nominal`` (the nominal's Solutions of the same burns), each later leg
+    flies the nominal's steering from there instead (:func:`lunarcap.optim.flight.
+    flown_guess`), and so does a ``late`` make-up (the whole burn, ignited late);
+    ``dv_mps``: the make-up's delta-V instead of the estimate's, m/s. Returns (warm list,
+    estimate dict).
     """
     x_r = np.array(rec_plan.start.state)
     lo_min = rec_plan.burns[0].start_bounds_min[0]
     prob = burn_problem(rec_plan, 0, x_r, eph, fit=fit, guess_start_min=lo_min)
-    est = {"delta_v_mps": _make_up_dv_mps(rec_plan, prob.x0, max_period_s)}
+    est = {"delta_v_mps": _make_up_dv_mps(rec_plan, prob.x0, max_period_s)
+           if dv_mps is None else float(dv_mps)}
     t1 = max(burn_duration_estimate_s(prob.x0[6], est["delta_v_mps"], prob.model.thrust_N,
                                       prob.model.isp_s), 1.0)
     span = prob.t_end_s - prob.t_ign_s
     prob = replace(prob, t1_min_s=MIN_MAKE_UP_S,
                    t1_max_s=min(max(3 * t1, prob.burn_bounds_s[1]), 0.9 * span))
-    guess = make_guess(prob, t1) if est["delta_v_mps"] > 1.0 else guess_arcs(prob, t1)
+    if nominal is not None and late:
+        guess = flight.flown_guess(nominal[0].raw, prob)
+    else:
+        guess = make_guess(prob, t1) if est["delta_v_mps"] > 1.0 else guess_arcs(prob, t1)
     warm = [(prob, guess, sundman_fractions(guess.coast.t, guess.coast.x, mesh_n_coast))]
     for k in range(1, rec_plan.n_burns):
         x_peri = guess.coast.x[:, -1]
         prob = burn_problem(rec_plan, k, x_peri, eph, fit=fit)
-        guess = make_guess(prob)
+        guess = make_guess(prob) if nominal is None else flight.flown_guess(nominal[k].raw,
+                                                                            prob)
         warm.append((prob, guess, sundman_fractions(guess.coast.t, guess.coast.x,
                                                     mesh_n_coast)))
     return warm, est
@@ -190,7 +200,8 @@ def _nearest_perilune_s(x, t_s: float, mu: float = C.MU_MOON) -> float:
 
 
 def first_coast_guess_s(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
-                        max_period_s: float, coast: Model) -> float:
+                        max_period_s: float, coast: Model, dv_mps: float | None = None
+                        ) -> float:
     """The make-up leg's coast (from ``t_r`` to where its target holds) the NLP starts from, s.
 
     A free orbit: the two-body time to the perilune after the make-up impulse of
@@ -198,20 +209,21 @@ def first_coast_guess_s(nplan: CapturePlan, i: int, t_r: float, x_r, window_min:
     burn). The final orbit: a circle, the window, twice the Eq. (19) duration and the
     plan's coast after the circle; an ellipse as asked, one of its periods after the
     perilune nearest the burn (its perilune is where the burn leaves it), past the burn.
+    ``dv_mps``: the make-up's delta-V instead of the estimate's, m/s.
     """
     t_ig = t_r + 60.0 * window_min[0]
     x_ig = propagate(coast, t_r, x_r, t_ig).final if t_ig > t_r else np.asarray(x_r, float)
-    est = make_up_estimate(x_ig, nplan.perilune_radius_km, max_period_s)
+    dv = make_up_estimate(x_ig, nplan.perilune_radius_km, max_period_s)["delta_v_mps"] \
+        if dv_mps is None else dv_mps
     accel = nplan.engine.thrust_N / x_ig[6]   # m/s^2
     target = nplan.targets[i]
     if target.kind == PERILUNE:
-        after = 60.0 * (window_min[1] - window_min[0]) + 2 * est["delta_v_mps"] / accel
-        t = time_to_perilune_after_impulse_s(x_ig, est["delta_v_mps"], after)
+        after = 60.0 * (window_min[1] - window_min[0]) + 2 * dv / accel
+        t = time_to_perilune_after_impulse_s(x_ig, dv, after)
         t = min(t, max_period_s) if math.isfinite(t) else max_period_s
         return max(t + t_ig - t_r, 60.0 * window_min[1] + MIN_FIRST_COAST_S)
-    dv = nplan.resumed(i, t_ig, x_ig, window_min=(0.0, 0.0), first_coast_s=1e4,
-                       make_up=True).impulsive()
-    t19 = 2 * dv[0].delta_v_mps / accel
+    t19 = 2 * nplan.resumed(i, t_ig, x_ig, window_min=(0.0, 0.0), first_coast_s=1e4,
+                            make_up=True).impulsive()[0].delta_v_mps / accel
     if target.kind == CIRCULAR:
         return 60.0 * window_min[1] + t19 + nplan.coast_s(i)
     end_burn = t_ig + t19
@@ -224,20 +236,27 @@ def first_coast_guess_s(nplan: CapturePlan, i: int, t_r: float, x_r, window_min:
 
 
 def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
-            max_period_s: float, fit, coast: Model):
+            max_period_s: float, fit, coast: Model, nominal: list | None = None,
+            late: bool = False, dv_mps: float | None = None,
+            first_coast_s: float | None = None):
     """Re-plan the capture from burn ``i`` (0-based) at ``t_r`` from ``x_r`` (see the module).
 
-    Returns the :class:`~lunarcap.optim.joint.JointResult` (verified) and the make-up
-    estimate; raises SolveError (IPOPT or verification) or PlanError (no such plan).
+    ``nominal``, ``late``, ``dv_mps``: the guesses' (:func:`recovery_warm_start`);
+    ``first_coast_s``: the make-up leg's coast the NLP starts from (default
+    :func:`first_coast_guess_s`), s. Returns the
+    :class:`~lunarcap.optim.joint.JointResult` (verified) and the make-up estimate; raises
+    SolveError (IPOPT or verification) or PlanError (no such plan).
     """
-    first_coast = first_coast_guess_s(nplan, i, t_r, x_r, window_min, max_period_s, coast)
+    first_coast = first_coast_s or first_coast_guess_s(nplan, i, t_r, x_r, window_min,
+                                                       max_period_s, coast, dv_mps)
     rec_plan = _sized(nplan, i).resumed(i, t_r, x_r, first_coast_s=first_coast,
                                         window_min=window_min, make_up=True)
     eph = nplan.ephemeris_model()
     est = {}
 
     def solve(mesh):
-        warm, e = recovery_warm_start(rec_plan, eph, fit, max_period_s, mesh.n_coast)
+        warm, e = recovery_warm_start(rec_plan, eph, fit, max_period_s, mesh.n_coast,
+                                      nominal, late, dv_mps)
         est.update(e)
         if nplan.targets[i].kind != PERILUNE:   # the final orbit: its coast the plan's
             return solve_joint(rec_plan, None, eph, mesh, fit=fit, warm=warm, expand=True)
@@ -269,7 +288,8 @@ def next_perilune_window(x, after_s: float, half_width_s: float) -> tuple | None
 
 
 def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min: tuple,
-             max_period_s: float, fit_for, coast: Model, later: bool = True) -> tuple:
+             max_period_s: float, fit_for, coast: Model, later: bool = True,
+             remaining_mps: float | None = None) -> tuple:
     """The recovery from ``x_r`` at ``t_r`` (see the module): ``(how, result, estimate)``.
 
     ``how``: "none" (nothing to make up: ``result`` None), "window" or "next perilune"
@@ -277,7 +297,10 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
     reason of :func:`physical_bound` for the window). ``fit_for(window)``: the ephemeris
     fit of a recovery whose make-up ignites in ``window`` (min after ``t_r``). ``later``:
     the make-up at the next perilune may be tried (a cut-off, not a late ignition), if
-    that perilune comes within ``max_period_s``. Raises what :func:`recover` raises (the
+    that perilune comes within ``max_period_s``. ``remaining_mps``: the delta-V of the
+    nominal burn not flown (m/s; default all of it): when the plan's guesses fail, the
+    recovery starts from the nominal's, a make-up of that delta-V then the nominal's
+    steering of the later burns. Raises what :func:`recover` raises (the
     window's SolveError, PlanError or RuntimeError, if the next perilune fails too).
     """
     if nothing_to_make_up(legs, i, t_r, x_r, max_period_s):
@@ -285,11 +308,26 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
     why = physical_bound(nplan, i, t_r, x_r, window_min, max_period_s, coast)
     if why:
         return "no recovery", why, None
+    remaining = legs[i].delta_v_mps if remaining_mps is None else remaining_mps
+    starts = ((None, None), (legs[i:], remaining))   # the plan's guesses, then the nominal's
+
+    def attempt(t, x, window, fit):
+        error = None
+        # the nominal's: its perilune after burn i, where it is still ahead (a free orbit)
+        coast_s = nplan.nominal_perilunes_s[i + 1] - t
+        if nplan.targets[i].kind != PERILUNE or coast_s < 60.0 * window[1] + MIN_FIRST_COAST_S:
+            coast_s = None
+        for nominal, dv in starts:
+            try:
+                return recover(nplan, i, t, x, window, max_period_s, fit, coast, nominal,
+                               not later, dv, None if nominal is None else coast_s)
+            except (SolveError, PlanError, RuntimeError) as exc:   # RuntimeError: a guess's
+                error = error or exc                                  # coast
+        raise error
+
     try:
-        res, est = recover(nplan, i, t_r, x_r, window_min, max_period_s,
-                           fit_for(window_min), coast)
-        return "window", res, est
-    except (SolveError, PlanError, RuntimeError) as exc:   # RuntimeError: a guess's coast
+        return ("window",) + attempt(t_r, x_r, window_min, fit_for(window_min))
+    except (SolveError, PlanError, RuntimeError) as exc:
         first = exc
     # +-2 burn durations (at least 30 min), within the 2 h a plan's window may span
     half = min(max(60.0 * MIN_ORBIT_WINDOW_MIN, 2.0 * legs[i].raw.t1_s),
@@ -305,7 +343,7 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
     if physical_bound(nplan, i, t_b, x_b, w_b, max_period_s, coast):
         raise first
     try:
-        res, est = recover(nplan, i, t_b, x_b, w_b, max_period_s, fit_for(window), coast)
+        res, est = attempt(t_b, x_b, w_b, fit_for(window))
     except (SolveError, PlanError, RuntimeError):
         raise first from None
     est["first_coast_guess_s"] += t_b - t_r
