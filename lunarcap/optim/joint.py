@@ -196,7 +196,8 @@ def _legs_start(lay, warm: list, mesh: Mesh, fit, S, vectors: tuple, params: dic
 def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 16, 5),
                 free_coasts: tuple = (), coast_bounds_s: tuple | None = None,
                 max_time_s: float | None = None, fit=None, max_period_s: float | None = None,
-                warm: list | None = None, expand: bool = False) -> JointResult:
+                warm: list | None = None, expand: bool = False,
+                min_period_s: float | None = None) -> JointResult:
     """Solve all burns of ``plan`` as one NLP, warm-started from a one-at-a-time chain.
 
     Parameters
@@ -222,6 +223,8 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     max_period_s : float, optional
         With free coasts: the longest osculating period of each free leg's orbit at the
         perilune where its target holds, s (rows ``energy_limit``; default none).
+    min_period_s : float, optional
+        With ``max_period_s``: the shortest such period, s (default none).
     warm : list of (BurnProblem, Guess, coast mesh fractions), optional
         Per leg, instead of ``sequential`` (then None): the problem (its bounds, ignition
         window, dynamics) and the guess the NLP starts from (:func:`warm_start` of a solved
@@ -252,8 +255,9 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     lbx, ubx, lbg, ubg = lay.bounds()
     params = {"x_start": warm[0][0].x_ref, "t_ref": plan.nominal_perilunes_s}
     if any(free):
-        _free_coast_bounds(plan, lay, warm, asked, orbit, (w0, lbx, ubx, ubg),
-                           coast_bounds_s, max_time_s, max_period_s if period_rows else None)
+        _free_coast_bounds(plan, lay, warm, asked, orbit, (w0, lbx, ubx, lbg, ubg),
+                           coast_bounds_s, max_time_s,
+                           (min_period_s, max_period_s) if period_rows else None)
     meshes = _legs_start(lay, warm, mesh, fit, S, (w0, lbx, ubx, lbg, ubg), params)
     t0 = time.perf_counter()
     res = nlp.compiled.solve(x0=w0, p=lay.params(**params), lbx=lbx, ubx=ubx, lbg=lbg,
@@ -277,15 +281,16 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
 
 
 def _free_coast_bounds(plan: CapturePlan, lay, warm: list, asked: tuple, orbit: tuple,
-                       vectors: tuple, coast_bounds_s, max_time_s, max_period_s) -> None:
+                       vectors: tuple, coast_bounds_s, max_time_s, periods_s) -> None:
     """Initial values and bounds of the free coasts, the time limit and the period rows.
 
-    ``vectors``: (w0, lbx, ubx, ubg), written in place. A coast the caller freed takes
-    ``coast_bounds_s``; an ellipse as asked starts from the perilune its warm start reached,
-    within :data:`lunarcap.optim.problem.END_WINDOW_FRACTION` of its period.
-    ``max_period_s`` (or None) bounds the energy of each caller-freed leg's orbit.
+    ``vectors``: (w0, lbx, ubx, lbg, ubg), written in place. A coast the caller freed
+    takes ``coast_bounds_s``; an ellipse as asked starts from the perilune its warm start
+    reached, within :data:`lunarcap.optim.problem.END_WINDOW_FRACTION` of its period.
+    ``periods_s``: (shortest or None, longest) period of each caller-freed leg's orbit,
+    bounds of its energy; or None.
     """
-    w0, lbx, ubx, ubg = vectors
+    w0, lbx, ubx, lbg, ubg = vectors
     lo, hi = coast_bounds_s if coast_bounds_s is not None else (0.0, np.inf)
     free = [k for k in range(plan.n_burns) if asked[k] or orbit[k]]
     for k in free:
@@ -302,12 +307,15 @@ def _free_coast_bounds(plan: CapturePlan, lay, warm: list, asked: tuple, orbit: 
         lay.put(ubx, f"leg{k}.coast", hi_k / TU)
     if max_time_s is not None:
         ubg[lay.rows("time_limit")] = max_time_s / TU
-    if max_period_s is not None:  # E <= -mu / (2 a_max), a_max from Kepler's third law, VU^2
-        a_max = (max_period_s / (2 * np.pi * TU)) ** (2.0 / 3.0)
+    if periods_s is not None:  # E = -mu / (2 a), a from Kepler's third law, VU^2
+        def energy(period_s):
+            return -1.0 / (2 * (period_s / (2 * np.pi * TU)) ** (2.0 / 3.0))
         rows = np.flatnonzero(lay.rows("energy_limit"))   # one per free leg, in order
         for row, k in zip(rows, free):
             if asked[k]:
-                ubg[row] = -1.0 / (2 * a_max)
+                ubg[row] = energy(periods_s[1])
+                if periods_s[0] is not None:
+                    lbg[row] = energy(periods_s[0])
 
 
 def _verified_legs(plan: CapturePlan, lay, w, warm: list, meshes: list, mesh: Mesh, S,

@@ -75,6 +75,7 @@ from lunarcap.runs.missed_orbits import (  # noqa: F401  (this module's API too)
     make_up_estimate,
     period_s,
     physical_bound,
+    shortest_free_period_s,
     soi_radius_km,
     time_to_perilune_after_impulse_s,
 )
@@ -207,6 +208,7 @@ def _nominal_from(free_plan: CapturePlan, i: int, max_period_s: float):
     return on_meshes(meshes=DEFAULT_MESHES, solve=lambda mesh: solve_joint(
         free_plan, None, free_plan.ephemeris_model(), mesh, free_coasts=flags,
         coast_bounds_s=(lo, hi), max_period_s=max_period_s, fit=fit,
+        min_period_s=shortest_free_period_s(free_plan, i),
         warm=[_remeshed(warm_start(s), s.flight.coast, mesh) for s in seq]))
 
 

@@ -12,7 +12,9 @@ import math
 
 import numpy as np
 
-from lunarcap.mission.plan import CapturePlan, plan_ephemeris
+from lunarcap.mission.impulsive import perilune_speed_kmps, period_from_perilune_speed_s
+from lunarcap.mission.plan import MIN_BURN_S, CapturePlan, plan_ephemeris
+from lunarcap.mission.targets import CIRCULAR
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.elements import (
@@ -137,3 +139,23 @@ def physical_bound(plan: CapturePlan, i: int, t_s: float, x, window_min: tuple,
                 f" km perilune radius lasts at least {e['min_period_s'] / 3600:.1f} h, more "
                 f"than the {max_period_s / 3600:g} h allowed (--max-period-h){still}")
     return ""
+
+
+def shortest_free_period_s(plan: CapturePlan, i: int) -> float | None:
+    """Shortest period of the free orbit after burn ``i`` (0-based) that leaves burn i+1 a burn, s.
+
+    At the plan's perilune radius, the perilune speed of the orbit after burn i+1 (its
+    period, or the circle) plus the delta-V that burn needs to last twice the shortest
+    burn the transcription resolves (:data:`lunarcap.mission.plan.MIN_BURN_S`, Eq. 19 at
+    its mass in the plan's impulsive chain): an orbit after burn i equal to the next one
+    would leave a burn of nothing, which no plan may have (family-5 of the seed-24
+    family, 444 N, full dynamics: the nominal's optimum made burn 2 vanish, and the plan
+    checks refused it). None after the last burn.
+    """
+    if i + 1 >= plan.n_burns:
+        return None
+    nxt = plan.burns[i + 1]
+    rp = plan.perilune_radius_km
+    dv_mps = 2 * MIN_BURN_S * plan.engine.thrust_N / plan.impulsive()[i + 1].m_before_kg
+    v = perilune_speed_kmps(rp, None if nxt.target == CIRCULAR else nxt.period_s)
+    return period_from_perilune_speed_s(rp, v + dv_mps * 1e-3)

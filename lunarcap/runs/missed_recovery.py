@@ -60,6 +60,7 @@ from lunarcap.runs.missed_orbits import (
     make_up_estimate,
     period_s,
     physical_bound,
+    shortest_free_period_s,
     time_to_perilune_after_impulse_s,
 )
 
@@ -264,7 +265,8 @@ def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
         hi = 60.0 * window_min[1] + max_period_s + 7200.0
         return solve_joint(rec_plan, None, eph, mesh, free_coasts=free,
                            coast_bounds_s=(MIN_FIRST_COAST_S, hi), fit=fit,
-                           max_period_s=max_period_s, warm=warm, expand=True)
+                           max_period_s=max_period_s, warm=warm, expand=True,
+                           min_period_s=shortest_free_period_s(nplan, i))
     res = on_meshes(solve)
     est["first_coast_guess_s"] = first_coast
     return res, est
