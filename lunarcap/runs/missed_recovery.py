@@ -31,7 +31,11 @@ fault leaves at ``t_r`` (burn n cut off, after the delay; or burn n's late ignit
 The NLP starts from guesses, not from a burn-by-burn solve: the make-up burn sized from
 the two-body delta-V actually needed (:func:`make_up_estimate`, or for the final orbit
 the tangential impulse to its energy), each later burn the plan's anti-velocity guess
-chained from the one before.
+chained from the one before. If IPOPT fails from there, once more from the nominal's: a
+make-up of the delta-V the nominal burn had left, its orbit reaching the nominal's next
+perilune, the later burns flying the nominal's steering. The free orbit after an
+intermediate burn is bounded below too, so that the next burn keeps a burn to do
+(:func:`lunarcap.runs.missed_orbits.shortest_free_period_s`).
 """
 
 from __future__ import annotations
