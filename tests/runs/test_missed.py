@@ -9,7 +9,8 @@
   forces); every penalty >= -0.05 m/s, because the nominal has the recovery's freedoms.
 * A fault on a hyperbola costs more the longer it lasts (a real comparison of two verified
   recoveries, not a status check).
-* Late ignition: 0 min costs nothing; 1, 5, 10 min cost more and more.
+* Late ignition: the burn ignites the given minutes after the nominal's ignition (not
+  before); 0 min costs nothing; 1, 5, 10 min cost more and more.
 """
 
 import math
@@ -20,14 +21,18 @@ import pytest
 from lunarcap.errors import InputError
 from lunarcap.mission.plan import load_plan
 from lunarcap.physics import constants as C
+from lunarcap.physics.dynamics import Model
+from lunarcap.physics.epochs import seconds_from_calendar
 from lunarcap.runs.missed import (
     DEFAULT_MAX_PERIOD_H,
     case_result,
     check_case,
     classify,
+    freed,
     make_up_estimate,
     nominal_of,
 )
+from lunarcap.runs.missed_orbits import physical_bound
 
 pytestmark = pytest.mark.slow
 
@@ -108,8 +113,6 @@ def test_a_longer_fault_on_a_hyperbola_costs_more(case):
 
 
 def test_late_ignition_costs_nothing_at_0_min_and_more_the_later(plan, monkeypatch):
-    from lunarcap.physics.epochs import seconds_from_calendar
-
     monkeypatch.setenv("LUNARCAP_NO_CACHE", "1")
     t_nominal = nominal_of(plan, 1, DEFAULT_MAX_PERIOD_H * 3600.0)["legs"][0].problem.t_ign_s
     pens = []
@@ -149,7 +152,6 @@ def test_make_up_estimate_is_zero_inside_the_bound_and_bounds_the_period():
 
 def test_classify_energy_apolune_and_sphere_of_influence(plan):
     from lunarcap.mission.arrival import arrival_state
-    from lunarcap.physics.epochs import seconds_from_calendar
 
     a = arrival_state(v_inf_kmps=plan.arrival.v_inf_kmps)
     t = seconds_from_calendar(plan.arrival.epoch)
@@ -161,6 +163,30 @@ def test_classify_energy_apolune_and_sphere_of_influence(plan):
     assert c["orbit"] == "captured" and c["ra_km"] < c["soi_radius_km"]
     # Laplace's radius a (mu_Moon/mu_Earth)^(2/5) for a = 363,000-406,000 km
     assert 61_000 < c["soi_radius_km"] < 70_000
+
+
+@pytest.mark.parametrize("name, burn", [
+    ("song2011-150N", 1), ("song2011-150N", 3), ("tests/data/orbiter-440N.yaml", 1),
+    ("tests/data/orbiter-440N.yaml", 2), ("tests/data/orbiter-440N.yaml", 3)])
+def test_the_no_recovery_bound_holds_for_every_target_kind(name, burn):
+    """25,000 km out on a bound orbit, every orbit through there with a 1,838.2 km perilune
+    has a >= (25,000 + 1,838.2) / 2 km semi-major axis, a 38.7 h period: no recovery within
+    24 h, whether burn ``burn``'s target is the paper's perilune (song2011 burn 1), the
+    final circle (song2011 burn 3), a period or apolune target as asked, or the final
+    100 x 300 km ellipse as asked (orbiter-440N); freed, as the nominal has it, too.
+    The bound applied to perilune targets only (as it was) fails the last four."""
+    plan = load_plan(name).with_dynamics("two-body")
+    coast = Model(plan.dynamics, 0.0, plan.engine.isp_s)
+    t = seconds_from_calendar(plan.arrival.epoch)
+    x = np.array([25_000.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1000.0])   # a 25,000 km circle
+    rp = plan.perilune_radius_km
+    hours = 2 * math.pi * math.sqrt(((25_000.0 + rp) / 2) ** 3 / C.MU_MOON) / 3600.0
+    for p in (plan, freed(plan, burn - 1)):
+        why = physical_bound(p, burn - 1, t, x, (0.0, 0.0), 24 * 3600.0, coast)
+        assert "25,000 km from the Moon" in why, (name, burn, p.targets[burn - 1].kind)
+        assert f"lasts at least {hours:.1f} h" in why and "still bound" in why, why
+    # the same state with a 48 h bound: an orbit may reach the target, none refused
+    assert physical_bound(plan, burn - 1, t, x, (0.0, 0.0), 48 * 3600.0, coast) == ""
 
 
 @pytest.mark.parametrize("burn, fraction, delay, match", [
