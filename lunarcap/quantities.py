@@ -68,7 +68,7 @@ UNIT_SUFFIXES = {
     "_mps2": "m/s²", "_kmps2": "km/s²", "_kmps": "km/s", "_mps": "m/s", "_percent": "%",
     "_pct": "%", "_min": "min", "_deg": "deg", "_kg": "kg", "_km": "km", "_mm": "mm",
     "_m": "m", "_s": "s", "_h": "h", "_N": "N", "_LU": "LU", "_days": "d", "_bytes": "bytes",
-    "_pp": "percentage points",
+    "_pp": "percentage points", "_mmps": "mm/s", "_g": "g",
 }
 
 
@@ -313,6 +313,30 @@ _add("after_last_apolune_altitude_km", "last apolune", "Highest altitude of the 
      "revolution.")
 _add("after_inclination_change_deg", "inclination change", "Mean inclination of the last "
      "whole revolution minus the first's.")
+# ------------------------------------------------------------------ a capture flown elsewhere
+_add("position_diff_m", "position difference", "Distance between a flight's position and a "
+     "reference flight's at the same epoch, |r - r_ref| (GMAT's flight against lunarcap's; "
+     "the design flown open loop against the design).")
+_add("velocity_diff_mmps", "velocity difference", "Size of the difference between a flight's "
+     "velocity and a reference flight's at the same epoch, |v - v_ref|.")
+_add("mass_diff_g", "mass difference", "A flight's mass minus a reference flight's at the "
+     "same epoch.")
+_add("final_rp_diff_m", "final r_p difference", "A flight's osculating perilune radius of the "
+     "final orbit minus a reference flight's at the same epoch (GMAT's minus lunarcap's).")
+_add("final_ra_diff_m", "final r_a difference", "A flight's osculating apolune radius of the "
+     "final orbit minus a reference flight's at the same epoch (GMAT's minus lunarcap's).")
+_add("open_loop_miss_km", "miss", "Distance of the design flown open loop (its steering "
+     "replayed in another model) from the design's own state, at the epoch where the "
+     "design's final orbit is asked: position_diff_m there, in km.")
+_add("open_loop_miss_mps", "miss", "Size of the velocity difference of the design flown open "
+     "loop from the design's own state, at the epoch of open_loop_miss_km: "
+     "velocity_diff_mmps there, in m/s.")
+_add("open_loop_inc_change_deg", "Δi, open loop", "Final inclination of the design flown "
+     "open loop minus the design's own final inclination, at the epoch of open_loop_miss_km "
+     "(not the change over days after the capture, after_inclination_change_deg).")
+_add("delta_v_change_mps", "ΔV change", "Delta-V of the capture designed again in the model "
+     "it is flown in minus its delta-V as designed (redesign_delta_v_mps - "
+     "design_delta_v_mps).")
 _add("revolutions", "revolutions", "One record per whole revolution (a turn of the true "
      "longitude): its lowest and highest points and mean inclination.", "array")
 _add("perilune_epoch", "perilune (TDB)", "Epoch of a revolution's lowest point, TDB.",
@@ -676,6 +700,14 @@ PREFIXES = {
               "perilune: {}"),
     "joint_": ("", ", joint", "With every burn of the chain optimised together: {}"),
     "sequential_": ("", ", sequential", "With the burns optimised one after another: {}"),
+    "design_": ("", ", design", "Of the capture as designed in the plan's own dynamics, "
+                "before it is flown or designed again in another model (the real-Moon "
+                "page: the J2 design): {}"),
+    "redesign_": ("", ", re-designed", "Of the capture designed again (the same plan, "
+                  "targets and ignitions) in the model it is flown in (the real-Moon page: "
+                  "the lunar gravity field): {}"),
+    "gmat_": ("", ", GMAT", "As NASA's GMAT flies lunarcap's exported script of the "
+              "capture: {}"),
 }
 
 #: Composition suffixes (after the unit): ``suffix`` -> (label suffix, definition).

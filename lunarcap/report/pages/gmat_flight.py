@@ -77,15 +77,21 @@ def comparison_table(c, label: str) -> pd.DataFrame:
 
 
 def final_table(cases: dict) -> pd.DataFrame:
-    """The final orbit's perilune and apolune altitudes (km), lunarcap's and GMAT's, per case."""
+    """The final orbit's perilune and apolune altitudes (km), lunarcap's and GMAT's, per case.
+
+    Columns: ``final_rp_altitude_km``, ``final_ra_altitude_km`` (lunarcap's), their
+    ``gmat_`` versions, and ``final_rp_diff_m``, ``final_ra_diff_m`` (GMAT's radius minus
+    lunarcap's), glossary names (:mod:`lunarcap.quantities`).
+    """
     rows = []
     for label, c in cases.items():
         for f in c.final_orbit:
             rows.append({"case": label, "at": f["at"],
-                         "rp_alt_km": f["rp_km"] - C.R_MOON, "ra_alt_km": f["ra_km"] - C.R_MOON,
-                         "rp_gmat_alt_km": f["rp_gmat_km"] - C.R_MOON,
-                         "ra_gmat_alt_km": f["ra_gmat_km"] - C.R_MOON,
-                         "rp_diff_m": f["rp_diff_m"], "ra_diff_m": f["ra_diff_m"]})
+                         "final_rp_altitude_km": f["rp_km"] - C.R_MOON,
+                         "final_ra_altitude_km": f["ra_km"] - C.R_MOON,
+                         "gmat_final_rp_altitude_km": f["rp_gmat_km"] - C.R_MOON,
+                         "gmat_final_ra_altitude_km": f["ra_gmat_km"] - C.R_MOON,
+                         "final_rp_diff_m": f["rp_diff_m"], "final_ra_diff_m": f["ra_diff_m"]})
     return pd.DataFrame(rows)
 
 
@@ -237,12 +243,14 @@ def build(cases=(("song2011-150N", None),), output_name: str = "gmat_flight",
         "The final orbit of the whole capture flown open loop, at the last cut-off and one "
         "revolution later: osculating perilune and apolune altitudes, lunarcap's and GMAT's "
         f"(km), and GMAT's minus lunarcap's (m; gate {TOL_FINAL_RADII_M:g} m)."),
-        columns={"case": "case", "at": "at", "rp_alt_km": "perilune (km)",
-                 "ra_alt_km": "apolune (km)", "rp_gmat_alt_km": "GMAT perilune (km)",
-                 "ra_gmat_alt_km": "GMAT apolune (km)", "rp_diff_m": "Δ perilune (m)",
-                 "ra_diff_m": "Δ apolune (m)"},
-        floatfmt={"rp_alt_km": ".4f", "ra_alt_km": ".4f", "rp_gmat_alt_km": ".4f",
-                  "ra_gmat_alt_km": ".4f", "rp_diff_m": "+.3g", "ra_diff_m": "+.3g"})
+        columns={"case": "case", "at": "at", "final_rp_altitude_km": "perilune (km)",
+                 "final_ra_altitude_km": "apolune (km)",
+                 "gmat_final_rp_altitude_km": "GMAT perilune (km)",
+                 "gmat_final_ra_altitude_km": "GMAT apolune (km)",
+                 "final_rp_diff_m": "Δ perilune (m)", "final_ra_diff_m": "Δ apolune (m)"},
+        floatfmt={"final_rp_altitude_km": ".4f", "final_ra_altitude_km": ".4f",
+                  "gmat_final_rp_altitude_km": ".4f", "gmat_final_ra_altitude_km": ".4f",
+                  "final_rp_diff_m": "+.3g", "final_ra_diff_m": "+.3g"})
     page.table("files", pd.concat(files, ignore_index=True), caption=(
         "The files GMAT runs, per case, as `lunarcap plan ... --export DIR` writes them "
         "(download each from its link); GMAT's reports and OEM are written beside them."),

@@ -78,12 +78,17 @@ def frames_distance(t0_s: float, t1_s: float, n: int = 366,
 
 
 def miss_row(label: str, ol, start: str) -> dict:
-    """One open-loop flight as a row: model, hold, start, final orbit, miss."""
+    """One open-loop flight as a row: model, hold, start, final orbit, miss.
+
+    The final orbit's ``final_rp_altitude_km`` and ``final_ra_altitude_km``, its
+    ``open_loop_inc_change_deg`` against the design's, and ``open_loop_miss_km``,
+    ``open_loop_miss_mps`` (glossary names, :mod:`lunarcap.quantities`).
+    """
     f = ol.final
     return {"model": label, "hold": HOLD_NAMES[ol.hold], "start": start,
-            "rp_alt_km": f["rp_alt_km"], "ra_alt_km": f["ra_alt_km"],
-            "inc_change_deg": f["inc_deg"] - f["design_inc_deg"], "miss_km": f["miss_km"],
-            "miss_mps": f["miss_mps"]}
+            "final_rp_altitude_km": f["rp_alt_km"], "final_ra_altitude_km": f["ra_alt_km"],
+            "open_loop_inc_change_deg": f["inc_deg"] - f["design_inc_deg"],
+            "open_loop_miss_km": f["miss_km"], "open_loop_miss_mps": f["miss_mps"]}
 
 
 def miss_table(plan, models, holds=("rtn", "inertial"), approach_s: float = 3600.0,
@@ -106,22 +111,25 @@ def redesign_table(design, redesign) -> pd.DataFrame:
     """Per burn (and the total): delta-V as designed and re-designed, limits and losses (m/s).
 
     ``design``, ``redesign``: PlanResults with impulsive limits; a burn with no limit
-    says why in ``no_limit_reason``.
+    says why in ``no_limit_reason``. The columns are the glossary's quantities with its
+    ``design_`` and ``redesign_`` prefixes (``redesign_impulsive_limit_mps``, ...) and
+    ``delta_v_change_mps``.
     """
     rows = []
     for k, (a, b) in enumerate(zip(design.table().to_dict("records"),
                                    redesign.table().to_dict("records")), 1):
         rows.append({"burn": str(k), "design_delta_v_mps": a["delta_v_mps"],
-                     "design_loss_mps": a["delta_v_loss_mps"],
+                     "design_delta_v_loss_mps": a["delta_v_loss_mps"],
                      "redesign_delta_v_mps": b["delta_v_mps"],
                      "delta_v_change_mps": b["delta_v_mps"] - a["delta_v_mps"],
-                     "redesign_limit_mps": b["impulsive_limit_mps"],
-                     "redesign_loss_mps": b["delta_v_loss_mps"],
+                     "redesign_impulsive_limit_mps": b["impulsive_limit_mps"],
+                     "redesign_delta_v_loss_mps": b["delta_v_loss_mps"],
                      "no_limit_reason": _text(b.get("impulsive_limit_reason"))})
     df = pd.DataFrame(rows)
     total = {"burn": "total", "no_limit_reason": ""}
-    for c in ("design_delta_v_mps", "design_loss_mps", "redesign_delta_v_mps",
-              "delta_v_change_mps", "redesign_limit_mps", "redesign_loss_mps"):
+    for c in ("design_delta_v_mps", "design_delta_v_loss_mps", "redesign_delta_v_mps",
+              "delta_v_change_mps", "redesign_impulsive_limit_mps",
+              "redesign_delta_v_loss_mps"):
         v = pd.to_numeric(df[c])
         total[c] = float(v.sum()) if v.notna().all() else float("nan")
     return pd.concat([df, pd.DataFrame([total])], ignore_index=True)
@@ -167,12 +175,12 @@ def evolution_table(evolutions: dict) -> pd.DataFrame:
     rows = []
     for label, ev in evolutions.items():
         s = ev.summary()
-        rows.append({"model": label, "revolutions": s["after_revolutions"],
-                     "min_perilune_alt_km": s["after_min_perilune_altitude_km"],
-                     "max_apolune_alt_km": s["after_max_apolune_altitude_km"],
-                     "last_perilune_alt_km": s["after_last_perilune_altitude_km"],
-                     "last_apolune_alt_km": s["after_last_apolune_altitude_km"],
-                     "inc_change_deg": s["after_inclination_change_deg"]})
+        rows.append({"model": label, "after_revolutions": s["after_revolutions"],
+                     "after_min_perilune_altitude_km": s["after_min_perilune_altitude_km"],
+                     "after_max_apolune_altitude_km": s["after_max_apolune_altitude_km"],
+                     "after_last_perilune_altitude_km": s["after_last_perilune_altitude_km"],
+                     "after_last_apolune_altitude_km": s["after_last_apolune_altitude_km"],
+                     "after_inclination_change_deg": s["after_inclination_change_deg"]})
     return pd.DataFrame(rows)
 
 
@@ -248,11 +256,13 @@ def _frames(page: Page, design) -> None:
 def _misses(page: Page, p, degrees, compare: int, approach_s: float) -> None:
     models = [None] + [field(d) for d in degrees]
     miss = miss_table(p, models, approach_s=approach_s)
-    fmt = {"rp_alt_km": ".3f", "ra_alt_km": ".3f", "inc_change_deg": "+.4f",
-           "miss_km": ".3f", "miss_mps": ".2f"}
-    heads = {"model": "model", "hold": "steering held in", "rp_alt_km": "perilune (km)",
-             "ra_alt_km": "apolune (km)", "inc_change_deg": "Δi (deg)",
-             "miss_km": "miss (km)", "miss_mps": "miss (m/s)", "start": "from"}
+    fmt = {"final_rp_altitude_km": ".3f", "final_ra_altitude_km": ".3f",
+           "open_loop_inc_change_deg": "+.4f", "open_loop_miss_km": ".3f",
+           "open_loop_miss_mps": ".2f"}
+    heads = {"model": "model", "hold": "steering held in",
+             "final_rp_altitude_km": "perilune (km)", "final_ra_altitude_km": "apolune (km)",
+             "open_loop_inc_change_deg": "Δi (deg)", "open_loop_miss_km": "miss (km)",
+             "open_loop_miss_mps": "miss (m/s)", "start": "from"}
     page.table("miss", miss, caption=(
         f"The paper's capture as designed in J2 ({p.name}, its verified burns) flown open "
         f"loop from its arrival ({page.parameters['approach_min']:g} min before the first "
@@ -262,8 +272,8 @@ def _misses(page: Page, p, degrees, compare: int, approach_s: float) -> None:
         "holds, and the distance (km) and speed difference (m/s) from the design's state "
         "there. The first rows fly the design in its own model."),
         columns=heads, floatfmt=fmt,
-        show_columns=["model", "hold", "rp_alt_km", "ra_alt_km", "inc_change_deg",
-                      "miss_km", "miss_mps"])
+        show_columns=["model", "hold", "final_rp_altitude_km", "final_ra_altitude_km",
+                      "open_loop_inc_change_deg", "open_loop_miss_km", "open_loop_miss_mps"])
     if compare not in degrees:
         raise ValueError(f"compare_degree {compare} must be one of the degrees {degrees}")
     c = model_name(field(compare))
@@ -275,22 +285,23 @@ def _misses(page: Page, p, degrees, compare: int, approach_s: float) -> None:
         "field (the perilune and the first burn's cut-off move), flown from the design's "
         "state at the first ignition it is not. Final orbit as in the table above."),
         columns=heads, floatfmt=fmt,
-        show_columns=["start", "hold", "rp_alt_km", "ra_alt_km", "miss_km", "miss_mps"])
+        show_columns=["start", "hold", "final_rp_altitude_km", "final_ra_altitude_km",
+                      "open_loop_miss_km", "open_loop_miss_mps"])
     row = {(r.model, r.hold, r.start): r for r in opens.itertuples()}
     for hold in ("rtn", "inertial"):
         h = HOLD_NAMES[hold]
         for start, key in (("arrival", "arrival"), ("first ignition", "ignition")):
             r = row[(c, h, start)]
-            page.value(f"miss_{key}_{hold}_km", r.miss_km)
-            page.value(f"rp_{key}_{hold}_km", r.rp_alt_km)
-            page.value(f"ra_{key}_{hold}_km", r.ra_alt_km)
-    j2 = miss[miss.model == model_name(p.dynamics)].set_index("hold").miss_km * 1e3
+            page.value(f"miss_{key}_{hold}_km", r.open_loop_miss_km)
+            page.value(f"rp_{key}_{hold}_km", r.final_rp_altitude_km)
+            page.value(f"ra_{key}_{hold}_km", r.final_ra_altitude_km)
+    j2 = miss[miss.model == model_name(p.dynamics)].set_index("hold").open_loop_miss_km * 1e3
     page.value("j2_self_rtn_m", j2[HOLD_NAMES["rtn"]])
     page.value("j2_self_inertial_m", j2[HOLD_NAMES["inertial"]])
     page.expect("the design flown open loop (RTN) in its own model ends within 1 m of its "
                 "verified flight", j2[HOLD_NAMES["rtn"]] < 1.0, f"{j2[HOLD_NAMES['rtn']]:.3g} m")
     page.value("compare_model", c)
-    inertial = miss[miss.hold == HOLD_NAMES["inertial"]].set_index("model").miss_km
+    inertial = miss[miss.hold == HOLD_NAMES["inertial"]].set_index("model").open_loop_miss_km
     page.value("share_2x2_percent", 100.0 * inertial.get(model_name(field(2)), np.nan)
                / inertial[c], why="2x2 not flown")
     top = max(degrees)
@@ -358,8 +369,8 @@ def _redesign(page: Page, p, design, degree, limits: bool = True) -> None:
                   "with the limits.)")
     else:
         df = redesign_table(design, design)
-        for c in ("redesign_delta_v_mps", "delta_v_change_mps", "redesign_limit_mps",
-                  "redesign_loss_mps"):
+        for c in ("redesign_delta_v_mps", "delta_v_change_mps", "redesign_impulsive_limit_mps",
+                  "redesign_delta_v_loss_mps"):
             df[c] = np.nan
         df["no_limit_reason"] = ""
         page.value("redesign_model", None, why=why)
@@ -368,13 +379,14 @@ def _redesign(page: Page, p, design, degree, limits: bool = True) -> None:
     df["limit_shown"] = [
         _shown(v, no_limit if not computed else "none: no impulse reaches the circle"
                if r else "none: a burn has no limit")
-        for v, r in zip(df.redesign_limit_mps, df.no_limit_reason)]
+        for v, r in zip(df.redesign_impulsive_limit_mps, df.no_limit_reason)]
     df["loss_shown"] = [_shown(v, no_limit if not computed else "undefined (no limit)")
-                        for v in df.redesign_loss_mps]
+                        for v in df.redesign_delta_v_loss_mps]
     for c in ("redesign_delta_v_mps", "delta_v_change_mps"):
         df[c + "_shown"] = [_shown(v, why, "+.3f" if "change" in c else ".3f") for v in df[c]]
-    df["design_loss_mps"] = pd.to_numeric(df.design_loss_mps)
-    df["design_loss_shown"] = [_shown(v, page.missing_reason) for v in df.design_loss_mps]
+    df["design_delta_v_loss_mps"] = pd.to_numeric(df.design_delta_v_loss_mps)
+    df["design_loss_shown"] = [_shown(v, page.missing_reason)
+                               for v in df.design_delta_v_loss_mps]
     _redesign_shown(page, df, page.values["redesign_model"] if degree is not None else why,
                     None if computed or degree is None else no_limit)
     tot = df.iloc[-1]
@@ -382,9 +394,9 @@ def _redesign(page: Page, p, design, degree, limits: bool = True) -> None:
     page.value("redesign_total_mps", tot.redesign_delta_v_mps)
     page.value("redesign_change_mps", tot.delta_v_change_mps)
     for k in range(len(df) - 1):
-        page.value(f"redesign_loss_{k + 1}_mps", df.redesign_loss_mps.iloc[k],
+        page.value(f"redesign_loss_{k + 1}_mps", df.redesign_delta_v_loss_mps.iloc[k],
                    why=no_limit if not computed else "no impulsive limit in the field")
-        page.value(f"design_loss_{k + 1}_mps", df.design_loss_mps.iloc[k])
+        page.value(f"design_loss_{k + 1}_mps", df.design_delta_v_loss_mps.iloc[k])
     page.note("loss_text", loss_text(page, df, computed, no_limit))
 
 
@@ -416,16 +428,16 @@ def loss_text(page: Page, df: pd.DataFrame, computed: bool, why: str) -> str:
     """
     burns = df.iloc[:-1]
     if not computed:
-        j2 = pd.to_numeric(burns.design_loss_mps)
+        j2 = pd.to_numeric(burns.design_delta_v_loss_mps)
         if not np.isfinite(j2).all():   # the design's own limits not computed either
             return f"Its finite-burn losses in the field are {why}."
         return (f"Its finite-burn losses in the field are {why}; the J2 design's are "
                 + ", ".join(f"{v:.3f}" for v in j2) + " m/s.")
-    has = burns[np.isfinite(pd.to_numeric(burns.redesign_loss_mps))]
+    has = burns[np.isfinite(pd.to_numeric(burns.redesign_delta_v_loss_mps))]
     if has.empty:
         return "No burn of the re-design has a finite-burn loss in the field."
     pairs = [f"burn {b}: {f:.3f} m/s ({j:.3f} in J2)" for b, f, j in
-             zip(has.burn, has.redesign_loss_mps, has.design_loss_mps)]
+             zip(has.burn, has.redesign_delta_v_loss_mps, has.design_delta_v_loss_mps)]
     return "Against their impulsive limits in the field the burns lose " + "; ".join(pairs) + "."
 
 
@@ -473,19 +485,20 @@ def _evolution(page: Page, p, days: float, degrees) -> None:
         f"The final orbit over {_days(days)} in each model: revolutions, the lowest perilune "
         "and highest apolune altitudes (km), those of the last revolution, and the change "
         "of the mean inclination from the first revolution to the last (deg)."),
-        columns={"model": "model", "revolutions": "revolutions",
-                 "min_perilune_alt_km": "lowest perilune (km)",
-                 "max_apolune_alt_km": "highest apolune (km)",
-                 "last_perilune_alt_km": "last perilune (km)",
-                 "last_apolune_alt_km": "last apolune (km)", "inc_change_deg": "Δi (deg)"},
-        floatfmt={"min_perilune_alt_km": ".2f", "max_apolune_alt_km": ".2f",
-                  "last_perilune_alt_km": ".2f", "last_apolune_alt_km": ".2f",
-                  "inc_change_deg": "+.3f"})
+        columns={"model": "model", "after_revolutions": "revolutions",
+                 "after_min_perilune_altitude_km": "lowest perilune (km)",
+                 "after_max_apolune_altitude_km": "highest apolune (km)",
+                 "after_last_perilune_altitude_km": "last perilune (km)",
+                 "after_last_apolune_altitude_km": "last apolune (km)",
+                 "after_inclination_change_deg": "Δi (deg)"},
+        floatfmt={"after_min_perilune_altitude_km": ".2f", "after_max_apolune_altitude_km": ".2f",
+                  "after_last_perilune_altitude_km": ".2f", "after_last_apolune_altitude_km": ".2f",
+                  "after_inclination_change_deg": "+.3f"})
     page.value("after_days", days)
     page.value("after_days_word", _days(days))
     page.note("after_text", after_text(page, table, model_name(p.dynamics),
                                       page.values["compare_model"], evs))
-    page.expect("every model flew whole revolutions", bool((table.revolutions > 0).all()))
+    page.expect("every model flew whole revolutions", bool((table.after_revolutions > 0).all()))
 
 
 def _degrees(degrees) -> str:
@@ -506,8 +519,8 @@ def after_text(page: Page, table: pd.DataFrame, j2: str, compare: str, evs: dict
     """
     t = table.set_index("model")
     v = page.value
-    v("j2_min_perilune_km", t.loc[j2, "min_perilune_alt_km"])
-    v("j2_inc_change_deg", t.loc[j2, "inc_change_deg"])
+    v("j2_min_perilune_km", t.loc[j2, "after_min_perilune_altitude_km"])
+    v("j2_inc_change_deg", t.loc[j2, "after_inclination_change_deg"])
     text = (f"In J2 the 100 km polar orbit stays near its circle (lowest perilune "
             f"{page.text('j2_min_perilune_km', '.2f', ' km')}, inclination change "
             f"{page.text('j2_inc_change_deg', '+.2f', ' deg')}).")
@@ -515,25 +528,25 @@ def after_text(page: Page, table: pd.DataFrame, j2: str, compare: str, evs: dict
         v("compare_min_perilune_km", None, why="the compared field not flown in this run")
         v("compare_inc_change_deg", None, why="the compared field not flown in this run")
         return text
-    v("compare_min_perilune_km", t.loc[compare, "min_perilune_alt_km"])
-    v("compare_inc_change_deg", t.loc[compare, "inc_change_deg"])
+    v("compare_min_perilune_km", t.loc[compare, "after_min_perilune_altitude_km"])
+    v("compare_inc_change_deg", t.loc[compare, "after_inclination_change_deg"])
     text += (f" In {compare} its perilune comes down to "
              f"{page.text('compare_min_perilune_km', '.1f', ' km')} and its plane turns by "
              f"{page.text('compare_inc_change_deg', '+.2f', ' deg')}.")
     others = [m for m in t.index if m not in (j2, compare)]
     if others:
         text += " Cut elsewhere, the field gives " + "; ".join(
-            f"{m}: {t.loc[m, 'min_perilune_alt_km']:.1f} km, "
-            f"{t.loc[m, 'inc_change_deg']:+.2f} deg" for m in others) + "."
+            f"{m}: {t.loc[m, 'after_min_perilune_altitude_km']:.1f} km, "
+            f"{t.loc[m, 'after_inclination_change_deg']:+.2f} deg" for m in others) + "."
     fields = [m for m in evs if m != j2]
     if len(fields) >= 2:
         a, b = fields[-2], fields[-1]
         v("deepest_apart_km", end_distance_km(evs[a], evs[b]))
+        lowest = t["after_min_perilune_altitude_km"]
         text += (f" The two deepest, {a} and {b}, end "
                  f"{page.text('deepest_apart_km', '.1f', ' km')} apart after "
                  f"{_days(page.values['after_days'])}, their lowest perilunes "
-                 f"{abs(t.loc[a, 'min_perilune_alt_km'] - t.loc[b, 'min_perilune_alt_km']):.2f} "
-                 "km apart.")
+                 f"{abs(lowest[a] - lowest[b]):.2f} km apart.")
     return text
 
 

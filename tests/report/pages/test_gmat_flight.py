@@ -57,7 +57,7 @@ def test_comparison_comes_from_gmats_report(built):
     assert len(comp) == n + n + (2 * n + 2 - 1)
     assert not comp.filter(like="_diff").isna().any().any()
     final = page.items["final"].df
-    assert (final.rp_diff_m.abs() < 50).all() and (final.ra_diff_m.abs() < 50).all()
+    assert (final.final_rp_diff_m.abs() < 50).all() and (final.final_ra_diff_m.abs() < 50).all()
     page.check()
 
 

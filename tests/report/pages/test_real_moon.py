@@ -53,7 +53,7 @@ def test_redesign_table_sums_and_keeps_the_reason():
     assert tot.design_delta_v_mps == pytest.approx(614.0)
     assert tot.redesign_delta_v_mps == pytest.approx(613.7)
     assert tot.delta_v_change_mps == pytest.approx(-0.3)
-    assert np.isnan(tot.redesign_limit_mps) and np.isnan(tot.redesign_loss_mps)
+    assert np.isnan(tot.redesign_impulsive_limit_mps) and np.isnan(tot.redesign_delta_v_loss_mps)
     assert list(df.no_limit_reason) == ["", why, ""]
 
 
@@ -70,9 +70,9 @@ def test_histories_and_evolution_table():
     h = real_moon.histories(evs)
     np.testing.assert_allclose(h["J2"]["days"], [0.0, 7000.0 / 86400.0], atol=1e-12)
     t = real_moon.evolution_table(evs).set_index("model")
-    assert t.loc["field", "min_perilune_alt_km"] == 95.0
-    assert t.loc["field", "max_apolune_alt_km"] == 104.0
-    assert t.loc["field", "inc_change_deg"] == pytest.approx(1.0)
+    assert t.loc["field", "after_min_perilune_altitude_km"] == 95.0
+    assert t.loc["field", "after_max_apolune_altitude_km"] == 104.0
+    assert t.loc["field", "after_inclination_change_deg"] == pytest.approx(1.0)
     a, b = (np.array(rv_from_mee(*ev.final_state[:6], C.MU_MOON)[0]) for ev in evs.values())
     assert real_moon.end_distance_km(evs["J2"], evs["field"]) == pytest.approx(
         np.linalg.norm(a - b))
@@ -86,11 +86,11 @@ def test_page_on_a_small_case(tmp_path):
                                after_days=0.25, evolve_degrees=[2], quick=True,
                                output_name="real_moon_test")
     miss = page.items["miss"].df
-    own = miss[miss.model == "J2 (the design's)"].set_index("hold").miss_km
+    own = miss[miss.model == "J2 (the design's)"].set_index("hold").open_loop_miss_km
     assert own["RTN"] < 1e-3 and own["inertial"] < 0.01
-    assert (miss[miss.model == "LP165P 2x2"].miss_km > 1.0).all()
+    assert (miss[miss.model == "LP165P 2x2"].open_loop_miss_km > 1.0).all()
     # the open loop from the first ignition misses less than from the arrival
-    opens = page.items["opens"].df.set_index(["start", "hold"]).miss_km
+    opens = page.items["opens"].df.set_index(["start", "hold"]).open_loop_miss_km
     assert opens[("first ignition", "RTN")] < opens[("arrival", "RTN")]
     # without a re-design every number it would give says why
     for k in ("redesign_total_mps", "redesign_change_mps", "redesign_model"):
@@ -119,8 +119,8 @@ def test_no_limit_text_says_why_with_the_gap():
 
 def _losses(field_losses):
     return pd.DataFrame({"burn": ["1", "2", "3", "total"],
-                         "design_loss_mps": [13.549, 4.016, 2.784, 20.349],
-                         "redesign_loss_mps": list(field_losses) + [np.nan]})
+                         "design_delta_v_loss_mps": [13.549, 4.016, 2.784, 20.349],
+                         "redesign_delta_v_loss_mps": list(field_losses) + [np.nan]})
 
 
 def test_loss_text_pairs_only_burns_with_a_loss_and_says_why_without():
@@ -132,7 +132,7 @@ def test_loss_text_pairs_only_burns_with_a_loss_and_says_why_without():
     assert "burn 3" not in text
     none = real_moon.loss_text(page, _losses([np.nan] * 3), False, real_moon.NO_LIMITS_REASON)
     assert real_moon.NO_LIMITS_REASON in none and "13.549, 4.016, 2.784 m/s" in none
-    quick = _losses([np.nan] * 3).assign(design_loss_mps=np.nan)   # no limits in J2 either
+    quick = _losses([np.nan] * 3).assign(design_delta_v_loss_mps=np.nan)   # no limits in J2 either
     assert "nan" not in real_moon.loss_text(page, quick, False, "not run in the quick book")
 
 
