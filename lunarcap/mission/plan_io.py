@@ -155,14 +155,16 @@ def _perilune_arrival(a):
                        approach_dir=None if approach is None else tuple(approach))
 
 
-def _bplane_arrival(a):
-    """The ``arrival`` of a plan given as its B-plane target (the perilune derived later)."""
-    from lunarcap.mission.arrival import STATE_FRAMES, ArrivalSpec, BPlaneArrival
+def _epoch_and_frame(a, epoch_form: str) -> None:
+    """Check an arrival's ``epoch`` (a calendar epoch that exists) and ``frame``.
 
-    keys("arrival", a, BPLANE_ARRIVAL_KEYS, BPLANE_ARRIVAL_KEYS)
+    The frame is one of :data:`lunarcap.mission.arrival.STATE_FRAMES`; ``epoch_form`` says
+    what the epoch must be, in the message.
+    """
+    from lunarcap.mission.arrival import STATE_FRAMES
+
     if not isinstance(a["epoch"], str):
-        raise err("arrival.epoch", f"must be the epoch of closest approach as a text like "
-                                   f"'2017-02-20 03:41:26 TDB', got {a['epoch']!r}")
+        raise err("arrival.epoch", f"must be {epoch_form}, got {a['epoch']!r}")
     try:
         seconds_from_calendar(a["epoch"])
     except InputError as exc:
@@ -170,6 +172,15 @@ def _bplane_arrival(a):
     if a["frame"] not in STATE_FRAMES:
         raise err("arrival.frame", f"must be one of {', '.join(STATE_FRAMES)}, got "
                                    f"{a['frame']!r}")
+
+
+def _bplane_arrival(a):
+    """The ``arrival`` of a plan given as its B-plane target (the perilune derived later)."""
+    from lunarcap.mission.arrival import ArrivalSpec, BPlaneArrival
+
+    keys("arrival", a, BPLANE_ARRIVAL_KEYS, BPLANE_ARRIVAL_KEYS)
+    _epoch_and_frame(a, "the epoch of closest approach as a text like "
+                        "'2017-02-20 03:41:26 TDB'")
     s = a["approach_dir"]
     if not isinstance(s, (list, tuple)) or len(s) != 3:
         raise err("arrival.approach_dir", f"must be a list of three numbers (the incoming "
@@ -231,24 +242,13 @@ def _opm_state(a, base_dir) -> tuple:
 
 def _given_state(a) -> StateArrival:
     """The StateArrival of ``arrival: {epoch, frame, position_km, velocity_kmps, mass_kg}``."""
-    from lunarcap.mission.arrival import STATE_FRAMES
-
     unknown = sorted(set(a) - STATE_ARRIVAL_KEYS)
     if unknown:
         raise err(f"arrival.{unknown[0]}",
                   f"a state arrival takes {', '.join(sorted(STATE_ARRIVAL_KEYS))}; "
                   f"{unknown[0]} belongs to an arrival given by its perilune")
     keys("arrival", a, STATE_ARRIVAL_KEYS, STATE_ARRIVAL_KEYS)
-    if not isinstance(a["epoch"], str):
-        raise err("arrival.epoch", f"must be a text like '2017-02-20 03:11:26 UTC', "
-                                   f"got {a['epoch']!r}")
-    try:
-        seconds_from_calendar(a["epoch"])
-    except InputError as exc:
-        raise err("arrival.epoch", str(exc)) from None
-    if a["frame"] not in STATE_FRAMES:
-        raise err("arrival.frame", f"must be one of {', '.join(STATE_FRAMES)}, got "
-                                   f"{a['frame']!r}")
+    _epoch_and_frame(a, "a text like '2017-02-20 03:11:26 UTC'")
     vecs = []
     for key, unit in (("position_km", "km"), ("velocity_kmps", "km/s")):
         val = a[key]
