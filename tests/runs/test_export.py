@@ -127,11 +127,21 @@ def test_spk_read_through_spice_equals_oem_within_1_m(exported):
     assert worst < 1.0
 
 
+def _daf_comments(path) -> list:
+    """The comment lines of a DAF file (an SPK), as SPICE reads them."""
+    import spiceypy as sp
+
+    handle = sp.dafopr(str(path))
+    try:
+        return list(sp.dafec(handle, 50, 100)[1])
+    finally:
+        sp.dafcls(handle)
+
+
 def test_every_exported_file_states_the_moons_gm_and_radius(exported, tmp_path):
     # issue 24: a tool with the IAU radius 1,737.4 km reads every altitude 0.8 km off;
     # each file says which GM and radius lunarcap's numbers use, at its head
     import pandas as pd
-    import spiceypy as sp
 
     ex, res = exported
     first = "Moon GM 4902.800 km^3/s^2, mean radius 1738.2 km (Song et al. 2011, Sec. 3.1)."
@@ -142,12 +152,7 @@ def test_every_exported_file_states_the_moons_gm_and_radius(exported, tmp_path):
     assert oem[:4] == ["CCSDS_OEM_VERS = 2.0", *[f"COMMENT {c}" for c in lines]]
     created = next(i for i, ln in enumerate(oem) if ln.startswith("CREATION_DATE = "))
     assert all(ln.startswith("COMMENT ") for ln in oem[1:created])   # where CCSDS puts them
-    handle = sp.dafopr(str(ex.files["spk"]))
-    try:
-        _, spk_comments, _ = sp.dafec(handle, 50, 100)
-    finally:
-        sp.dafcls(handle)
-    assert list(spk_comments[:3]) == lines
+    assert _daf_comments(ex.files["spk"])[:3] == lines
     for kind in ("attitude", "maneuvers"):
         text = ex.files[kind].read_text().splitlines()
         assert text[:3] == [f"# {c}" for c in lines], kind
@@ -159,12 +164,7 @@ def test_every_exported_file_states_the_moons_gm_and_radius(exported, tmp_path):
     assert script[:3] == [f"% {c}" for c in lines]
     cof = ex.files["gmat_gravity"].read_text().splitlines()
     assert cof[1:4] == [f"C {c}" for c in lines]
-    handle = sp.dafopr(str(ex.files["gmat_moon"]))
-    try:
-        _, moon_comments, _ = sp.dafec(handle, 50, 100)
-    finally:
-        sp.dafcls(handle)
-    assert list(moon_comments[:3]) == lines
+    assert _daf_comments(ex.files["gmat_moon"])[:3] == lines
     state = ccsds.StateVector(0.0, (1838.2, 0.0, 0.0), (0.0, 1.6, 0.0))
     opm = ccsds.write_opm(tmp_path / "x.opm", state, "probe", "-310001")
     assert opm.read_text().splitlines()[1] == f"COMMENT {first}"
