@@ -73,6 +73,9 @@ MIN_FIRST_COAST_S = 600.0
 #: Lower bound of the make-up burn's duration, s: about nothing (0.003 m/s at 150 N and
 #: 525 kg), so the optimiser may drop the burn; nonzero so the burn's mesh keeps its size.
 MIN_MAKE_UP_S = 0.01
+#: Sizing period of the make-up orbit over the shortest free one (:func:`_sized`): a
+#: little above it, so that the next burn's Eq. (19) duration is not at the edge.
+SHORTEST_PERIOD_MARGIN = 1.001
 #: Longest half-width of the make-up window around the next perilune, as a fraction of
 #: the orbit's period (as the plan's free ignitions, :data:`lunarcap.mission.plan_checks`).
 MAX_WINDOW_FRACTION = 0.4
@@ -141,11 +144,17 @@ def _sized(nplan: CapturePlan, i: int) -> CapturePlan:
     A resumed plan's first burn needs a nonzero impulsive delta-V from the start state to
     pass the plan's engine checks (its Eq. 19 duration), but the make-up orbit is free in
     the NLP, so that period only sizes the checks: with the nominal's own period, a
-    cut-off at the planned end (nothing to make up) would be refused.
+    cut-off at the planned end (nothing to make up) would be refused. Never shorter than
+    :func:`~lunarcap.runs.missed_orbits.shortest_free_period_s` (the bound the NLP puts on
+    that orbit): in full dynamics the nominal's coast after burn ``i`` may be little
+    longer than the next orbit's (family-5 of the seed-24 family, 444 N: the two means
+    sized burn 2 at 0.3 m/s, 0.46 s by Eq. 19, and the checks refused every recovery as
+    "444 N is too strong").
     """
     if nplan.targets[i].kind != PERILUNE or i + 1 >= nplan.n_burns:
         return nplan
-    period = math.sqrt(nplan.coast_s(i) * nplan.coast_s(i + 1))
+    period = max(math.sqrt(nplan.coast_s(i) * nplan.coast_s(i + 1)),
+                 SHORTEST_PERIOD_MARGIN * shortest_free_period_s(nplan, i))
     burn = replace(nplan.burns[i], period_s=period, apolune_altitude_km=None)
     return replace(nplan, burns=nplan.burns[:i] + (burn,) + nplan.burns[i + 1:])
 

@@ -17,9 +17,10 @@ import math
 
 import numpy as np
 import pytest
+from plan_family import plan_family
 
 from lunarcap.errors import InputError
-from lunarcap.mission.plan import load_plan
+from lunarcap.mission.plan import MIN_BURN_S, load_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.epochs import seconds_from_calendar
@@ -32,7 +33,8 @@ from lunarcap.runs.missed import (
     make_up_estimate,
     nominal_of,
 )
-from lunarcap.runs.missed_orbits import physical_bound
+from lunarcap.runs.missed_orbits import physical_bound, shortest_free_period_s
+from lunarcap.runs.missed_recovery import _sized
 
 pytestmark = pytest.mark.slow
 
@@ -217,3 +219,25 @@ def test_a_penalty_that_rounds_to_zero_is_printed_without_a_sign(plan):
                       plan=plan, burn=1)
     line = text.splitlines()[2]
     assert " 728.392       0.000 " in line and "-0.000" not in line, line
+
+
+def test_the_make_up_orbit_is_sized_so_the_next_burn_remains_a_burn():
+    """The recovery's plan sizes the free orbit after burn 1 (only for its checks) between
+    the nominal's and the next one; when the nominal's sits on the NLP's floor (as family-5,
+    444 N, in full dynamics), the mean of the two would leave burn 2 a 0.5 s burn by
+    Eq. (19) and every recovery was refused as "444 N is too strong". Sized at least at
+    that floor, burn 2 lasts >= 2 x 0.5 s less the floor's rounding, and the resumed plan
+    passes the checks. (The geometric mean alone fails it.)"""
+    plans, _ = plan_family(24, 12, dynamics="two-body", mass_kg=(400, 2000),
+                           formulations=("orbit", "song2011"))
+    plan = freed({p.name: p for p in plans}["family-5"], 0)
+    floor = shortest_free_period_s(plan, 0)
+    nplan = plan.with_coasts([floor] + [None] * (plan.n_burns - 1))
+    sized = _sized(nplan, 0)
+    assert sized.impulsive()[1].eq19_duration_min * 60.0 >= 2 * MIN_BURN_S * 0.99
+    # resumed at the arrival perilune (the hyperbola's MEE, equatorial), as a recovery is
+    rp, v_inf = nplan.perilune_radius_km, nplan.arrival.v_inf_kmps
+    e = 1.0 + rp * v_inf ** 2 / C.MU_MOON
+    state = [rp * (1.0 + e), e, 0.0, 0.0, 0.0, 0.0, nplan.initial_mass_kg]
+    sized.resumed(0, nplan.nominal_perilunes_s[0], state, first_coast_s=nplan.coast_s(0),
+                  make_up=True)
