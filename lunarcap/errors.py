@@ -33,12 +33,17 @@ class SolveError(LunarcapError, RuntimeError):
         IPOPT's return status (or ``"verification failed"``).
     details : dict
         Residuals and diagnostics (delta-V difference, terminal errors, mesh).
+    unverified : tuple or None
+        A converged solution that failed verification: (its plan, one solved leg per
+        burn), for a caller that refines from it (:mod:`lunarcap.runs.missed_recovery`).
     """
 
-    def __init__(self, message: str, status: str = "", details: dict | None = None):
+    def __init__(self, message: str, status: str = "", details: dict | None = None,
+                 unverified: tuple | None = None):
         super().__init__(message)
         self.status = status
         self.details = dict(details or {})
+        self.unverified = unverified
 
 
 # ---------------------------------------------------------------------- numbers

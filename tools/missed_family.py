@@ -69,6 +69,7 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=None, help="JSON lines, one per case")
     ap.add_argument("--one-per-kind", action="store_true",
                     help="only the first plan of each formulation and final orbit")
+    ap.add_argument("--only", default=None, help="plan names, comma-separated (default all)")
     args = ap.parse_args(argv)
     plans, refused = plan_family(args.seed, args.count, dynamics=args.dynamics,
                                  mass_kg=(400, 2000), formulations=("orbit", "song2011"))
@@ -77,6 +78,8 @@ def main(argv=None) -> int:
         for p in plans:
             firsts.setdefault((p.formulation, p.targets[-1].kind), p)
         plans = list(firsts.values())
+    if args.only:
+        plans = [p for p in plans if p.name in args.only.split(",")]
     print(f"{len(plans)} plans accepted, {len(refused)} refused at load", flush=True)
     out = open(args.out, "w") if args.out else None
     rows = []

@@ -324,10 +324,12 @@ def _verified_legs(plan: CapturePlan, lay, w, warm: list, meshes: list, mesh: Me
 
     Leg k is the fixed-ignition problem from the previous leg's verified end state at the
     perilune reached ``t_ref[k]``, its coast ending at ``t_ref[k + 1]``. ``run``: (IPOPT
-    stats, solve time s, build time s). SolveError if a leg fails verification.
+    stats, solve time s, build time s). SolveError if a leg fails verification, with the
+    converged solution (``unverified``: the plan and every leg's RawSolution, those after
+    the failed one from the NLP's own state at their perilune).
     """
     stats, solve_s, build_s = run
-    legs, x_peri = [], warm[0][0].x_ref
+    legs, raws, x_peri, failure = [], [], warm[0][0].x_ref, None
     for k, (prob0, guess, _) in enumerate(warm):
         pre = f"leg{k}."
         t_ign = t_ref[k] + float(lay.get(w, pre + "ts")[0]) * TU
@@ -344,11 +346,19 @@ def _verified_legs(plan: CapturePlan, lay, w, warm: list, meshes: list, mesh: Me
                           status=stats["return_status"], success=True,
                           iterations=int(stats["iter_count"]), solve_s=solve_s,
                           build_s=build_s, max_defect=float("nan"), **fixed)
+        raws.append(raw)
+        if failure is not None:   # the rest of the converged solution, unverified
+            x_peri = xf
+            continue
         ver, flight = verify(raw, return_flight=True)
-        if not ver.passed:
-            raise SolveError(f"all-burns NLP{_of(plan)}: leg {k + 1} failed "
-                             "verification: " + "; ".join(ver.failures()),
-                             status="verification failed", details=ver.to_dict())
         legs.append(Solution(raw, ver, flight, [], solve_s, guess.t1_s))
+        if not ver.passed:
+            failure = (f"all-burns NLP{_of(plan)}: leg {k + 1} failed verification: "
+                       + "; ".join(ver.failures()), ver.to_dict())
+            x_peri = xf
+            continue
         x_peri = flight.end_state
+    if failure is not None:
+        raise SolveError(failure[0], status="verification failed", details=failure[1],
+                         unverified=(plan, raws))
     return legs

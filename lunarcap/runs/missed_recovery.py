@@ -33,7 +33,9 @@ the two-body delta-V actually needed (:func:`make_up_estimate`, or for the final
 the tangential impulse to its energy), each later burn the plan's anti-velocity guess
 chained from the one before. If IPOPT fails from there, once more from the nominal's: a
 make-up of the delta-V the nominal burn had left, its orbit reaching the nominal's next
-perilune, the later burns flying the nominal's steering. The free orbit after an
+perilune, the later burns flying the nominal's steering; in full dynamics, last, from the
+same recovery solved in two-body dynamics (:func:`from_two_body`). A solution that
+converged but failed verification is the next mesh's start. The free orbit after an
 intermediate burn is bounded below too, so that the next burn keeps a burn to do
 (:func:`lunarcap.runs.missed_orbits.shortest_free_period_s`).
 """
@@ -86,7 +88,7 @@ MAX_WINDOW_FRACTION = 0.4
 #: of the seed-24 family, two-body: its final burn 5 min late, 34.5 min at 239 N, 112 m/s
 #: more than the nominal's; on Mesh(18, 36, 6) its re-flown end missed by 73 m and 3.5e-4
 #: deg of flight-path angle, on Mesh(36, 36, 6) it passes the gate).
-RECOVERY_MESHES = DEFAULT_MESHES + (Mesh(36, 36, 6),)
+RECOVERY_MESHES = DEFAULT_MESHES + (Mesh(36, 36, 6), Mesh(36, 72, 6))
 
 
 def on_meshes(solve, meshes=RECOVERY_MESHES):
@@ -168,7 +170,8 @@ def _make_up_dv_mps(rec_plan: CapturePlan, x, max_period_s: float) -> float:
 
 def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
                         mesh_n_coast: int, nominal: list | None = None,
-                        late: bool = False, dv_mps: float | None = None) -> tuple:
+                        late: bool = False, dv_mps: float | None = None,
+                        ignition_min: float | None = None) -> tuple:
     """Problems and guesses of a recovery's legs, without solving any (see the module).
 
     The make-up leg ignites at the window's opening, thrusts opposite the velocity for the
@@ -176,14 +179,17 @@ def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
     the period bound; the final orbit: the tangential impulse to its energy; at least
     1 s), its lower duration bound :data:`MIN_MAKE_UP_S`; each later leg is the plan's
     guess (anti-velocity, tuned to reach its perilune on time) from the end of the leg
-    before. With ``nominal`` (the nominal's Solutions of the same burns), each later leg
-    flies the nominal's steering from there instead (:func:`lunarcap.optim.flight.
-    flown_guess`), and so does a ``late`` make-up (the whole burn, ignited late);
-    ``dv_mps``: the make-up's delta-V instead of the estimate's, m/s. Returns (warm list,
-    estimate dict).
+    before. With ``nominal`` (Solutions or RawSolutions of the same burns: the nominal's,
+    or another solve's), each later leg flies that steering from there instead, igniting
+    as it did after its perilune (:func:`lunarcap.optim.flight.flown_guess`), and with
+    ``late`` so does the make-up (a late ignition: the whole burn, ignited late; a
+    recovery solved in two-body dynamics, or one that failed verification);
+    ``dv_mps``: the make-up's delta-V instead of the estimate's, m/s; ``ignition_min``:
+    the make-up's guessed ignition, min after the start (default the window's opening).
+    Returns (warm list, estimate dict).
     """
     x_r = np.array(rec_plan.start.state)
-    lo_min = rec_plan.burns[0].start_bounds_min[0]
+    lo_min = rec_plan.burns[0].start_bounds_min[0] if ignition_min is None else ignition_min
     prob = burn_problem(rec_plan, 0, x_r, eph, fit=fit, guess_start_min=lo_min)
     est = {"delta_v_mps": _make_up_dv_mps(rec_plan, prob.x0, max_period_s)
            if dv_mps is None else float(dv_mps)}
@@ -192,16 +198,21 @@ def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
     span = prob.t_end_s - prob.t_ign_s
     prob = replace(prob, t1_min_s=MIN_MAKE_UP_S,
                    t1_max_s=min(max(3 * t1, prob.burn_bounds_s[1]), 0.9 * span))
-    if nominal is not None and late:
-        guess = flight.flown_guess(nominal[0].raw, prob)
+    raws = None if nominal is None else [getattr(s, "raw", s) for s in nominal]
+    if raws is not None and late:
+        guess = flight.flown_guess(raws[0], prob)
     else:
         guess = make_guess(prob, t1) if est["delta_v_mps"] > 1.0 else guess_arcs(prob, t1)
     warm = [(prob, guess, sundman_fractions(guess.coast.t, guess.coast.x, mesh_n_coast))]
     for k in range(1, rec_plan.n_burns):
         x_peri = guess.coast.x[:, -1]
-        prob = burn_problem(rec_plan, k, x_peri, eph, fit=fit)
-        guess = make_guess(prob) if nominal is None else flight.flown_guess(nominal[k].raw,
-                                                                            prob)
+        if raws is None:
+            prob = burn_problem(rec_plan, k, x_peri, eph, fit=fit)
+            guess = make_guess(prob)
+        else:
+            prob = burn_problem(rec_plan, k, x_peri, eph, fit=fit,
+                                guess_start_min=raws[k].prob.start_min)
+            guess = flight.flown_guess(raws[k], prob)
         warm.append((prob, guess, sundman_fractions(guess.coast.t, guess.coast.x,
                                                     mesh_n_coast)))
     return warm, est
@@ -252,12 +263,17 @@ def first_coast_guess_s(nplan: CapturePlan, i: int, t_r: float, x_r, window_min:
 def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
             max_period_s: float, fit, coast: Model, nominal: list | None = None,
             late: bool = False, dv_mps: float | None = None,
-            first_coast_s: float | None = None):
+            first_coast_s: float | None = None, ignition_min: float | None = None):
     """Re-plan the capture from burn ``i`` (0-based) at ``t_r`` from ``x_r`` (see the module).
 
-    ``nominal``, ``late``, ``dv_mps``: the guesses' (:func:`recovery_warm_start`);
+    ``nominal``, ``late``, ``dv_mps``, ``ignition_min``: the guesses'
+    (:func:`recovery_warm_start`);
     ``first_coast_s``: the make-up leg's coast the NLP starts from (default
-    :func:`first_coast_guess_s`), s. Returns the
+    :func:`first_coast_guess_s`), s. A solution that converged on a mesh but failed
+    verification is the next mesh's start (its flight: the coasts' mesh spaced for the
+    orbits it found, not the guess's; family-0 of the seed-24 family, full dynamics, cut
+    off half-way, 30 min: from the nominal's start leg 2 missed by 4.7 km on every mesh,
+    each started from the same guess). Returns the
     :class:`~lunarcap.optim.joint.JointResult` (verified) and the make-up estimate; raises
     SolveError (IPOPT or verification) or PlanError (no such plan).
     """
@@ -267,22 +283,77 @@ def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
                                         window_min=window_min, make_up=True)
     eph = nplan.ephemeris_model()
     est = {}
+    last = []   # the last converged solution that failed verification
 
     def solve(mesh):
-        warm, e = recovery_warm_start(rec_plan, eph, fit, max_period_s, mesh.n_coast,
-                                      nominal, late, dv_mps)
-        est.update(e)
-        if nplan.targets[i].kind != PERILUNE:   # the final orbit: its coast the plan's
-            return solve_joint(rec_plan, None, eph, mesh, fit=fit, warm=warm, expand=True)
-        free = (True,) + (False,) * (rec_plan.n_burns - 1)
-        hi = 60.0 * window_min[1] + max_period_s + 7200.0
-        return solve_joint(rec_plan, None, eph, mesh, free_coasts=free,
-                           coast_bounds_s=(MIN_FIRST_COAST_S, hi), fit=fit,
-                           max_period_s=max_period_s, warm=warm, expand=True,
-                           min_period_s=shortest_free_period_s(nplan, i))
+        if last:   # the next mesh starts from its flight (its coasts Sundman-spaced)
+            p, raws = last[-1]
+            plan = _sized(nplan, i).resumed(i, t_r, x_r, first_coast_s=p.coast_s(0),
+                                            window_min=window_min, make_up=True)
+            warm, _ = recovery_warm_start(plan, eph, fit, max_period_s, mesh.n_coast, raws,
+                                          True, raws[0].delta_v_mps,
+                                          (raws[0].prob.t_ign_s - t_r) / 60.0)
+        else:   # (the make-up's estimate is this first start's)
+            plan = rec_plan
+            warm, e = recovery_warm_start(plan, eph, fit, max_period_s, mesh.n_coast,
+                                          nominal, late, dv_mps, ignition_min)
+            est.update(e)
+        try:
+            return _solve_recovery(plan, nplan.targets[i].kind, i, nplan, eph, mesh, fit,
+                                   warm, window_min, max_period_s)
+        except SolveError as exc:
+            if exc.unverified is not None:
+                last.append(exc.unverified)
+            raise
     res = on_meshes(solve)
     est["first_coast_guess_s"] = first_coast
     return res, est
+
+
+def from_two_body(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
+                  max_period_s: float, fit, coast: Model, starts: tuple,
+                  late: bool = False) -> tuple:
+    """:func:`recover` in the plan's dynamics, started from the same recovery in two-body.
+
+    The last start, when the plan's guesses and the nominal's both fail in full dynamics
+    (a continuation in the forces, as :func:`lunarcap.runs.missed.nominal` starts from the
+    two-body optimum): the same state re-planned without the Earth, the Sun and J2, then
+    every leg of that recovery (the make-up's ignition, delta-V and steering, its coast,
+    the later burns' steering) flown in the plan's dynamics as the guess. Family-0 of the
+    seed-24 family (537 N, 538 kg, full dynamics): a 1 min late ignition of burn 1 ended
+    in IPOPT's Restoration_Failed from the plan's guesses and on a 1,087 m/s local
+    optimum (which failed verification) from the nominal's. ``starts``: the
+    (nominal, its delta-V, its first coast) the two-body recovery starts from, in turn
+    (:func:`recovery`'s); ``late``: a late ignition. Returns what :func:`recover`
+    returns; raises what it raises (the first two-body solve's error if none converged).
+    """
+    two, error = nplan.with_dynamics("two-body"), None
+    for nominal, dv, first_coast_s in starts:
+        try:
+            res2, _ = recover(two, i, t_r, x_r, window_min, max_period_s, fit,
+                              replace(coast, mode="two-body"), nominal, late, dv,
+                              first_coast_s)
+            break
+        except (SolveError, PlanError, RuntimeError) as exc:
+            error = error or exc
+    else:
+        raise error
+    ign_min = (res2.legs[0].problem.t_ign_s - t_r) / 60.0
+    return recover(nplan, i, t_r, x_r, window_min, max_period_s, fit, coast, res2.legs,
+                   True, res2.legs[0].delta_v_mps, res2.plan.coast_s(0), ign_min)
+
+
+def _solve_recovery(rec_plan: CapturePlan, kind: str, i: int, nplan: CapturePlan, eph, mesh,
+                    fit, warm: list, window_min: tuple, max_period_s: float):
+    """The all-burns NLP of a recovery (:func:`recover`) on ``mesh`` from ``warm``."""
+    if kind != PERILUNE:   # the final orbit: its coast the plan's
+        return solve_joint(rec_plan, None, eph, mesh, fit=fit, warm=warm, expand=True)
+    free = (True,) + (False,) * (rec_plan.n_burns - 1)
+    hi = 60.0 * window_min[1] + max_period_s + 7200.0
+    return solve_joint(rec_plan, None, eph, mesh, free_coasts=free,
+                       coast_bounds_s=(MIN_FIRST_COAST_S, hi), fit=fit,
+                       max_period_s=max_period_s, warm=warm, expand=True,
+                       min_period_s=shortest_free_period_s(nplan, i))
 
 
 # ---------------------------------------------------------------------- 3. next perilune
@@ -332,12 +403,20 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
         coast_s = nplan.nominal_perilunes_s[i + 1] - t
         if nplan.targets[i].kind != PERILUNE or coast_s < 60.0 * window[1] + MIN_FIRST_COAST_S:
             coast_s = None
-        for nominal, dv in starts:
+        tries = tuple((nominal, dv, None if nominal is None else coast_s)
+                      for nominal, dv in starts)
+        for nominal, dv, first_coast_s in tries:
             try:
                 return recover(nplan, i, t, x, window, max_period_s, fit, coast, nominal,
-                               not later, dv, None if nominal is None else coast_s)
+                               not later, dv, first_coast_s)
             except (SolveError, PlanError, RuntimeError) as exc:   # RuntimeError: a guess's
                 error = error or exc                                  # coast
+        if nplan.dynamics != "two-body":
+            try:
+                return from_two_body(nplan, i, t, x, window, max_period_s, fit, coast,
+                                     tries, not later)
+            except (SolveError, PlanError, RuntimeError):
+                pass
         raise error
 
     try:

@@ -91,3 +91,32 @@ def test_joint_nlp_composes_any_number_of_legs(plan):
     r = solve_plan_jointly(two)
     assert len(r.joint.legs) == 2 and all(leg.verification.passed for leg in r.joint.legs)
     assert r.total_delta_v_mps <= r.sequential_total_delta_v_mps + 1e-3
+
+
+def test_a_joint_optimum_that_fails_verification_comes_with_the_error(plan, monkeypatch):
+    """A converged all-burns optimum whose leg 1 fails the gate is raised with the solution
+    (the missed-thrust recovery starts the next mesh from it): one leg per burn, the same
+    optimum the gate accepts otherwise (each leg's delta-V within 1 mm/s)."""
+    import dataclasses
+
+    import lunarcap.optim.joint as joint
+    from lunarcap.errors import SolveError
+    from lunarcap.runs.chain import solve_plan
+
+    seq = solve_plan(plan)
+    ok = joint.solve_joint(plan, seq, None)
+    real = joint.verify
+
+    def failing_leg_1(raw, return_flight=False):
+        ver, flight = real(raw, return_flight=True)
+        if raw.prob.index == 1:
+            ver = dataclasses.replace(ver, passed=False)
+        return (ver, flight) if return_flight else ver
+    monkeypatch.setattr(joint, "verify", failing_leg_1)
+    with pytest.raises(SolveError) as info:
+        joint.solve_joint(plan, seq, None)
+    assert info.value.status == "verification failed"
+    unverified_plan, raws = info.value.unverified
+    assert unverified_plan.n_burns == len(raws) == len(ok.legs) == 3
+    for raw, leg in zip(raws, ok.legs):
+        assert raw.delta_v_mps == pytest.approx(leg.delta_v_mps, abs=1e-3)

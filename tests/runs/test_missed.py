@@ -24,6 +24,7 @@ from lunarcap.mission.plan import MIN_BURN_S, load_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.epochs import seconds_from_calendar
+from lunarcap.physics.propagate import propagate
 from lunarcap.runs.missed import (
     DEFAULT_MAX_PERIOD_H,
     case_result,
@@ -241,3 +242,39 @@ def test_the_make_up_orbit_is_sized_so_the_next_burn_remains_a_burn():
     state = [rp * (1.0 + e), e, 0.0, 0.0, 0.0, 0.0, nplan.initial_mass_kg]
     sized.resumed(0, nplan.nominal_perilunes_s[0], state, first_coast_s=nplan.coast_s(0),
                   make_up=True)
+
+
+def test_a_recovery_that_fails_verification_restarts_from_its_own_flight(plan, monkeypatch):
+    """A recovery that converged on one mesh but failed verification starts the next mesh
+    from its flight, not from the first guess again: made to fail once, a 1 min late
+    ignition of burn 1 starts its next mesh with that solution's make-up duration and
+    ignition, and ends on the same optimum (total within 1 mm/s)."""
+    import lunarcap.runs.missed_recovery as rec
+    from lunarcap.errors import SolveError
+    from lunarcap.runs.missed import _fits
+
+    monkeypatch.setenv("LUNARCAP_NO_CACHE", "1")
+    max_s = DEFAULT_MAX_PERIOD_H * 3600.0
+    nom = nominal_of(plan, 1, max_s)
+    nplan, legs = nom["plan"], nom["legs"]
+    t_ign = legs[0].problem.t_ign_s
+    t_r = t_ign + 60.0
+    fit = _fits(plan, nplan, 1, t_ign, t_r, max_s)((0.0, 0.0))
+    coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
+    x_r = propagate(coast, t_ign, legs[0].problem.x0, t_r).final
+    args = (nplan, 0, t_r, x_r, (0.0, 0.0), max_s, fit, coast)
+    res, _ = rec.recover(*args)
+    real, starts = rec._solve_recovery, []
+
+    def failing_once(rec_plan, kind, i, np_, eph, mesh, fit, warm, *rest):
+        starts.append(warm[0])
+        if len(starts) == 1:
+            raise SolveError("made to fail", "verification failed",
+                             unverified=(res.plan, [leg.raw for leg in res.legs]))
+        return real(rec_plan, kind, i, np_, eph, mesh, fit, warm, *rest)
+    monkeypatch.setattr(rec, "_solve_recovery", failing_once)
+    again, _ = rec.recover(*args)
+    prob, guess, _ = starts[1]
+    assert guess.t1_s == pytest.approx(res.legs[0].raw.t1_s, rel=1e-9)
+    assert prob.t_ign_s == pytest.approx(res.legs[0].problem.t_ign_s, abs=1e-3)
+    assert again.total_delta_v_mps == pytest.approx(res.total_delta_v_mps, abs=1e-3)
