@@ -342,6 +342,8 @@ def _attempt(out: dict, nominal_part: tuple, burn: int, t_r: float, x_r, window_
     if how == "next perilune":
         out["reason"] = ("make-up burn at the next perilune: no verified recovery with it "
                          "in the window")
+    if est and est.get("doubtful"):
+        out["reason"] = "; ".join(r for r in (out["reason"], est["doubtful"]) if r)
     return out
 
 

@@ -445,7 +445,17 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
             if len(found) == 1 and nplan.dynamics == "two-body":
                 return found[0]
         if found:   # the cheapest verified
-            return min(found, key=lambda r: r[0].total_delta_v_mps)
+            res, est = min(found, key=lambda r: r[0].total_delta_v_mps)
+            two = [e["two_body_delta_v_mps"] for _, e in found if "two_body_delta_v_mps" in e]
+            if two:
+                est["two_body_delta_v_mps"] = two[0]
+            if two and not _plausible(res, est):
+                est["doubtful"] = (
+                    f"verified, but a local optimum: the recovery's burns need "
+                    f"{res.total_delta_v_mps:.1f} m/s, the same recovery in two-body "
+                    f"dynamics {est['two_body_delta_v_mps']:.1f} m/s; no start found a "
+                    f"cheaper one, so the penalty is an upper bound")
+            return res, est
         raise error if error is not None else two_body_error
 
     try:
