@@ -99,6 +99,18 @@ MAX_WINDOW_FRACTION = 0.4
 RECOVERY_MESHES = DEFAULT_MESHES + (Mesh(36, 36, 6), Mesh(36, 72, 6))
 
 
+def recovery_meshes(nplan: CapturePlan) -> tuple:
+    """The meshes a recovery of ``nplan`` tries (:data:`RECOVERY_MESHES`).
+
+    Beyond two-body dynamics, from the second: with the Earth, the Sun and J2 the
+    coarsest mesh's recoveries mostly fail verification, and each failure costs that
+    mesh's NLP build in every worker (the book's grid, 150 N, full dynamics: 3 of its 6
+    solved cases failed on 8x16 LGR-5 and passed on 12x24; starting there, the same
+    penalties to 0.1 mm/s, and the study's CPU 72 -> 60 s on 2 workers).
+    """
+    return RECOVERY_MESHES if nplan.dynamics == "two-body" else RECOVERY_MESHES[1:]
+
+
 def on_meshes(solve, meshes=RECOVERY_MESHES):
     """``solve(mesh)`` on each mesh in turn until its solution passes verification.
 
@@ -313,7 +325,7 @@ def recover(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple,
             if exc.unverified is not None:
                 last.append(exc.unverified)
             raise
-    res = on_meshes(solve)
+    res = on_meshes(solve, recovery_meshes(nplan))
     est["first_coast_guess_s"] = first_coast
     return res, est
 
