@@ -420,8 +420,13 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
     that perilune comes within ``max_period_s``. ``remaining_mps``: the delta-V of the
     nominal burn not flown (m/s; default all of it): when the plan's guesses fail, the
     recovery starts from the nominal's, a make-up of that delta-V then the nominal's
-    steering of the later burns. Raises what :func:`recover` raises (the
-    window's SolveError, PlanError or RuntimeError, if the next perilune fails too).
+    steering of the later burns; when both fail and the nominal's perilune after burn n is
+    still ahead, the plan's guesses again with the make-up orbit's coast ending there
+    (family-5 of the seed-24 family, 444 N, burn 1 ignited 5 min late: the make-up
+    estimate's 24 h orbit was infeasible from either start, in two-body and full dynamics;
+    from the nominal's 12 h coast it is recovered, +0.25 m/s). Raises what
+    :func:`recover` raises (the window's SolveError, PlanError or RuntimeError, if the next
+    perilune fails too).
     """
     if nothing_to_make_up(legs, i, t_r, x_r, max_period_s):
         return "none", None, None
@@ -439,6 +444,8 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
             coast_s = None
         tries = tuple((nominal, dv, None if nominal is None else coast_s)
                       for nominal, dv in starts)
+        if coast_s is not None:   # last, the plan's guesses on the nominal's coast
+            tries += ((None, None, coast_s),)
         found = []   # verified recoveries, when the first is not plausible
         if nplan.dynamics != "two-body":   # first from the two-body recovery
             try:

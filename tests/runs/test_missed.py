@@ -317,5 +317,42 @@ def test_full_dynamics_keeps_the_continuation_only_if_it_is_the_two_body_optimum
         monkeypatch.setattr(rec, "from_two_body", from_two_body)
         how, res, est = rec.recovery(*args)
         assert how == "window" and res.total_delta_v_mps == kept
-        assert len(calls) == (0 if kept == continued else 2)   # the plan's, the nominal's
+        # the plan's, the nominal's, the plan's on the nominal's coast
+        assert len(calls) == (0 if kept == continued else 3)
         assert ("local optimum" in est.get("doubtful", "")) == doubtful, est
+
+
+def test_when_both_starts_fail_the_plans_guesses_start_on_the_nominals_coast(monkeypatch):
+    """A recovery whose make-up orbit from the plan's guesses (the make-up estimate's, up
+    to the longest period allowed) and from the nominal's flight both fail is started once
+    more: the plan's guesses with the make-up orbit's coast ending at the nominal's
+    perilune after the burn (family-5 of the seed-24 family, 444 N, burn 1 ignited 5 min
+    late: infeasible from the 24 h estimate and from the nominal, recovered from the 12 h
+    nominal coast). The solver stands in for IPOPT: only the order of the starts is under
+    test; dropping the third start fails it."""
+    from types import SimpleNamespace
+
+    import lunarcap.runs.missed_recovery as rec
+    from lunarcap.errors import SolveError
+
+    plan = load_plan("song2011-150N").with_dynamics("two-body")
+    monkeypatch.setattr(rec, "nothing_to_make_up", lambda *a: False)
+    monkeypatch.setattr(rec, "physical_bound", lambda *a: "")
+    leg = SimpleNamespace(delta_v_mps=300.0, raw=SimpleNamespace(t1_s=600.0))
+    t_r, window = 60.0, (0.0, 30.0)
+    calls = []
+
+    def recover(*a, **k):
+        calls.append((a[8], a[11]))
+        if len(calls) < 3:
+            raise SolveError("all-burns NLP: IPOPT Infeasible_Problem_Detected",
+                             "Infeasible_Problem_Detected")
+        return SimpleNamespace(total_delta_v_mps=800.0), {"first_coast_guess_s": a[11]}
+    monkeypatch.setattr(rec, "recover", recover)
+    how, res, est = rec.recovery(plan, [leg] * 3, 0, t_r, None, window, 86400.0,
+                                 lambda w: None, None, later=False)
+    coast_s = plan.nominal_perilunes_s[1] - t_r
+    assert how == "window" and res.total_delta_v_mps == 800.0
+    assert calls[0] == (None, None)             # the plan's guesses, the estimate's coast
+    assert calls[1][0] is not None and calls[1][1] == pytest.approx(coast_s)   # nominal's
+    assert calls[2] == (None, pytest.approx(coast_s))   # the plan's on the nominal's coast
