@@ -455,7 +455,9 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
                     return found[0]
             except (SolveError, PlanError, RuntimeError) as exc:
                 two_body_error = exc
-        for nominal, dv, first_coast_s in tries:
+        for k, (nominal, dv, first_coast_s) in enumerate(tries):
+            if k == 2 and found:   # the third start only where the others found none
+                break
             try:
                 found.append(recover(nplan, i, t, x, window, max_period_s, fit, coast,
                                      nominal, not later, dv, first_coast_s))
