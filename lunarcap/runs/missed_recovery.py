@@ -33,9 +33,12 @@ the two-body delta-V actually needed (:func:`make_up_estimate`, or for the final
 the tangential impulse to its energy), each later burn the plan's anti-velocity guess
 chained from the one before. If IPOPT fails from there, once more from the nominal's: a
 make-up of the delta-V the nominal burn had left, its orbit reaching the nominal's next
-perilune, the later burns flying the nominal's steering. In full dynamics the first start
-is the same recovery solved in two-body dynamics (:func:`from_two_body`). A solution that
-converged but failed verification is the next mesh's start. The free orbit after an
+perilune, the later burns flying the nominal's steering. If neither finds a verified
+recovery, the plan's guesses again with the make-up orbit's coast ending at the nominal's
+next perilune. In full dynamics the first start is the same recovery solved in two-body
+dynamics (:func:`from_two_body`), and the meshes begin at the second
+(:func:`recovery_meshes`). A solution that converged but failed verification is the next
+mesh's start. The free orbit after an
 intermediate burn is bounded below too, so that the next burn keeps a burn to do
 (:func:`lunarcap.runs.missed_orbits.shortest_free_period_s`).
 """
