@@ -283,11 +283,11 @@ def test_a_recovery_that_fails_verification_restarts_from_its_own_flight(plan, m
 def test_full_dynamics_keeps_the_continuation_only_if_it_is_the_two_body_optimum(
         monkeypatch):
     """In full dynamics a recovery starts from the same recovery in two-body dynamics. Its
-    result is taken as found when it costs at most 2 % more than that two-body recovery
-    (the Earth's and the Sun's effect, 0.2-1.2 % where measured); beyond, the plan's and the
+    result is taken as found when it costs at most 3 % more than that two-body recovery
+    (the Earth's and the Sun's effect, 0.2-2.5 % where measured); beyond, the plan's and the
     nominal's starts are solved too and the cheapest verified recovery is kept, its reason
     saying it is a local optimum (a penalty that is an upper bound) if it is still more
-    than 2 % above the two-body recovery. (The solvers here stand in for IPOPT: only the
+    than 3 % above the two-body recovery. (The solvers here stand in for IPOPT: only the
     choice is under test.)"""
     from types import SimpleNamespace
 
