@@ -322,6 +322,69 @@ def test_full_dynamics_keeps_the_continuation_only_if_it_is_the_two_body_optimum
         assert ("local optimum" in est.get("doubtful", "")) == doubtful, est
 
 
+def test_full_dynamics_failure_reports_the_verified_two_body_recovery(monkeypatch):
+    """Where the same recovery in two-body dynamics was verified but no start in full
+    dynamics was, the failure says what the two-body recovery costs (the reader's estimate
+    of the answer); and a full-dynamics recovery found only from another start, far above
+    that two-body one, is labelled a local optimum even though the continuation itself
+    failed (family-0 of the seed-24 family, 537 N, burn 1 cut off after a quarter, 30 min:
+    913.7 m/s in two-body dynamics). The solver stands in for IPOPT."""
+    from types import SimpleNamespace
+
+    import lunarcap.runs.missed_recovery as rec
+    from lunarcap.errors import SolveError
+
+    plan = load_plan("song2011-150N")
+    assert plan.dynamics == "full"
+    monkeypatch.setattr(rec, "nothing_to_make_up", lambda *a: False)
+    monkeypatch.setattr(rec, "physical_bound", lambda *a: "")
+    leg = SimpleNamespace(delta_v_mps=300.0, raw=SimpleNamespace(t1_s=600.0))
+    two = SimpleNamespace(total_delta_v_mps=913.7, plan=SimpleNamespace(coast_s=lambda k: 3e4),
+                          legs=[SimpleNamespace(delta_v_mps=458.8,
+                                                problem=SimpleNamespace(t_ign_s=600.0))])
+    coast = Model("two-body", 0.0, plan.engine.isp_s, None)   # (read by no stand-in)
+    args = (plan, [leg] * 3, 0, 0.0, None, (0.0, 30.0), 86400.0, lambda w: None, coast)
+    for direct in (None, 1583.7):
+        def recover(nplan, *a, direct=direct, **k):
+            if nplan.dynamics == "two-body":
+                return two, {}
+            if direct is None or a[7] is two.legs:   # every start, or the continuation
+                raise SolveError("all-burns NLP: IPOPT Maximum_Iterations_Exceeded",
+                                 "Maximum_Iterations_Exceeded")
+            return SimpleNamespace(total_delta_v_mps=direct), {"first_coast_guess_s": 0.0}
+        monkeypatch.setattr(rec, "recover", recover)
+        if direct is None:
+            with pytest.raises(SolveError) as info:
+                rec.recovery(*args, later=False)
+            assert info.value.status == "Maximum_Iterations_Exceeded"
+            assert "two-body dynamics was solved and verified: 913.7 m/s" in str(info.value)
+        else:
+            how, res, est = rec.recovery(*args, later=False)
+            assert res.total_delta_v_mps == direct
+            assert "local optimum" in est.get("doubtful", "") and "913.7" in est["doubtful"]
+
+
+def test_a_recovery_cheaper_than_the_nominal_says_so(monkeypatch):
+    """A recovered row whose penalty is below -0.05 m/s says the nominal is not the
+    cheapest capture from the burn's ignition and that the penalty is a lower bound
+    (family-3 of the seed-24 family, 194 N, full dynamics: -1.5 to -2.2 m/s); one within
+    the solver's tolerance, or positive, carries no such reason. (The recovery stands in.)"""
+    from types import SimpleNamespace
+
+    import lunarcap.runs.missed as M
+
+    plan, leg = load_plan("song2011-150N"), SimpleNamespace(delta_v_mps=300.0)
+    for penalty, said in ((-2.2, True), (-0.01, False), (3.0, False)):
+        monkeypatch.setattr(M, "recovery", lambda *a, **k: ("window", object(), None))
+        monkeypatch.setattr(M, "_solved", lambda out, *a, p=penalty: {
+            **out, "status": "recovered", "reason": "", "penalty_mps": p})
+        out = M._attempt({"reason": ""}, (plan, [leg] * 3), 1, 0.0, None, (0.0, 30.0),
+                         86400.0, None, None, 0.0)
+        assert ("cheaper than the nominal" in out["reason"]) == said, (penalty, out)
+        if said:
+            assert out["reason"].startswith("2.20 m/s cheaper") and "burn 1's" in out["reason"]
+
+
 def test_when_both_starts_fail_the_plans_guesses_start_on_the_nominals_coast(monkeypatch):
     """A recovery whose make-up orbit from the plan's guesses (the make-up estimate's, up
     to the longest period allowed) and from the nominal's flight both fail is started once
