@@ -71,6 +71,7 @@ from lunarcap.runs.burns import MAX_FIT_SPAN_S
 from lunarcap.runs.campaign import TableFormat
 from lunarcap.runs.chain import solve_plan, time_to_final_orbit_h
 from lunarcap.runs.missed_orbits import (  # noqa: F401  (this module's API too)
+    after_free_orbit,
     classify,
     make_up_estimate,
     period_s,
@@ -212,7 +213,20 @@ def _nominal_from(free_plan: CapturePlan, i: int, max_period_s: float):
         free_plan, None, free_plan.ephemeris_model(), mesh, free_coasts=flags,
         coast_bounds_s=(lo, hi), max_period_s=max_period_s, fit=fit,
         min_period_s=shortest_free_period_s(free_plan, i),
-        warm=[_remeshed(warm_start(s), s.flight.coast, mesh) for s in seq]))
+        warm=[_remeshed(_widened(warm_start(s), k, free_plan, i, max_period_s),
+                        s.flight.coast, mesh) for k, s in enumerate(seq)]))
+
+
+def _widened(warm: tuple, k: int, free_plan: CapturePlan, i: int, max_period_s: float) -> tuple:
+    """Leg ``k``'s warm start; burn i + 1's with room for any orbit after burn ``i``.
+
+    The recovery's bound (:func:`lunarcap.runs.missed_orbits.after_free_orbit`), so that
+    the nominal keeps the same freedom.
+    """
+    if k != i + 1:
+        return warm
+    prob, guess, mc = warm
+    return after_free_orbit(prob, free_plan, i, max_period_s), guess, mc
 
 
 #: In-process memo of nominals: (plan key, burn, max period s) -> :func:`nominal`'s dict.

@@ -9,6 +9,7 @@ with its reason (:func:`physical_bound`).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -26,6 +27,7 @@ from lunarcap.physics.elements import (
     semi_major_axis_from_period,
 )
 from lunarcap.physics.propagate import propagate
+from lunarcap.physics.rocket import burn_duration_estimate_s
 
 
 def classify(x, t_s: float, ephemeris: str | None = None) -> dict:
@@ -159,3 +161,28 @@ def shortest_free_period_s(plan: CapturePlan, i: int) -> float | None:
     dv_mps = 2 * MIN_BURN_S * plan.engine.thrust_N / plan.impulsive()[i + 1].m_before_kg
     v = perilune_speed_kmps(rp, None if nxt.target == CIRCULAR else nxt.period_s)
     return period_from_perilune_speed_s(rp, v + dv_mps * 1e-3)
+
+
+def after_free_orbit(prob, plan: CapturePlan, i: int, max_period_s: float):
+    """Burn ``i`` + 1's problem with room for any free orbit after burn ``i`` (0-based).
+
+    A burn's duration is bounded by 3 x Eq. (19) of the delta-V its plan gives it
+    (:attr:`lunarcap.optim.problem.BurnProblem.burn_bounds_s`); after a free orbit that
+    delta-V is the plan's guess of that orbit, not the orbit the NLP chooses. The bound is
+    raised to 3 x Eq. (19) of the delta-V from the longest orbit allowed (``max_period_s``,
+    at the plan's perilune radius) to the orbit after burn i + 1, from ``prob``'s mass, and
+    kept within 0.9 of its ignition-to-end span as the default is. Family-0 of the seed-24
+    family (537 N, 538 kg), burn 1 cut off after a quarter, 30 min: sized by the make-up's
+    guessed orbit, burn 2 was held to 27.4 s and in two-body dynamics ended on that bound
+    (913.7 m/s); in full dynamics the bound, 26.8 s, left that recovery infeasible.
+    """
+    nxt = plan.burns[i + 1]
+    rp = plan.perilune_radius_km
+    dv_mps = 1e3 * (perilune_speed_kmps(rp, max_period_s)
+                    - perilune_speed_kmps(rp, None if nxt.target == CIRCULAR else nxt.period_s))
+    longest = 3.0 * burn_duration_estimate_s(prob.x0[6], abs(dv_mps), plan.engine.thrust_N,
+                                             plan.engine.isp_s)
+    hi = min(longest, 0.9 * (prob.t_end_s - prob.t_ign_s))
+    if not hi > prob.burn_bounds_s[1]:
+        return prob
+    return replace(prob, t1_max_s=hi)

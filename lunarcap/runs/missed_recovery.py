@@ -66,6 +66,7 @@ from lunarcap.physics.propagate import propagate
 from lunarcap.physics.rocket import burn_duration_estimate_s
 from lunarcap.physics.state import State
 from lunarcap.runs.missed_orbits import (
+    after_free_orbit,
     make_up_estimate,
     period_s,
     physical_bound,
@@ -233,13 +234,11 @@ def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
     warm = [(prob, guess, sundman_fractions(guess.coast.t, guess.coast.x, mesh_n_coast))]
     for k in range(1, rec_plan.n_burns):
         x_peri = guess.coast.x[:, -1]
-        if raws is None:
-            prob = burn_problem(rec_plan, k, x_peri, eph, fit=fit)
-            guess = make_guess(prob)
-        else:
-            prob = burn_problem(rec_plan, k, x_peri, eph, fit=fit,
-                                guess_start_min=raws[k].prob.start_min)
-            guess = flight.flown_guess(raws[k], prob)
+        prob = burn_problem(rec_plan, k, x_peri, eph, fit=fit, guess_start_min=None
+                            if raws is None else raws[k].prob.start_min)
+        if k == 1 and rec_plan.targets[0].kind == PERILUNE:   # after the free make-up orbit
+            prob = after_free_orbit(prob, rec_plan, 0, max_period_s)
+        guess = make_guess(prob) if raws is None else flight.flown_guess(raws[k], prob)
         warm.append((prob, guess, sundman_fractions(guess.coast.t, guess.coast.x,
                                                     mesh_n_coast)))
     return warm, est
@@ -407,10 +406,7 @@ def _with_two_body(exc: Exception, two_body_mps: float | None) -> Exception:
 
     No start converged to a verified recovery in the plan's dynamics, but the same
     recovery without the Earth, the Sun and J2 was solved and verified: its delta-V is the
-    reader's estimate of the answer (family-0 of the seed-24 family, 537 N, burn 1 cut off
-    after a quarter, 30 min: 913.7 m/s in two-body dynamics; in full dynamics every start
-    ended at IPOPT's iteration limit or a later burn IPOPT made to reverse its thrust, which
-    no mesh resolves).
+    reader's estimate of the answer.
     """
     if two_body_mps is None or not isinstance(exc, SolveError):
         return exc

@@ -280,6 +280,62 @@ def test_a_recovery_that_fails_verification_restarts_from_its_own_flight(plan, m
     assert again.total_delta_v_mps == pytest.approx(res.total_delta_v_mps, abs=1e-3)
 
 
+def test_the_burn_after_a_free_make_up_orbit_may_last_what_the_longest_orbit_needs(plan):
+    """The make-up orbit is free up to the longest period, so the next burn's duration
+    bound (3 x Eq. 19 of its plan's delta-V) is sized for the delta-V from that longest
+    orbit to the next one, not for the make-up's guessed orbit. (Held to its guessed
+    orbit's 27.4 s, family-0's burn 2, 537 N, after a quarter of burn 1 and 30 min, ended
+    on that bound at 913.7 m/s in two-body dynamics and was infeasible in full; free, it
+    costs 816.6 m/s.)"""
+    import lunarcap.runs.missed_recovery as rec
+    from lunarcap.mission.impulsive import perilune_speed_kmps
+    from lunarcap.physics.rocket import burn_duration_estimate_s
+    from lunarcap.runs.missed import _fits
+
+    max_s = DEFAULT_MAX_PERIOD_H * 3600.0
+    nom = nominal_of(plan, 1, max_s)
+    nplan, legs = nom["plan"], nom["legs"]
+    t_ign = legs[0].problem.t_ign_s
+    t_r = t_ign + 1800.0
+    fit = _fits(plan, nplan, 1, t_ign, t_r, max_s)((0.0, 30.0))
+    x_r = propagate(Model(plan.dynamics, 0.0, plan.engine.isp_s, fit), t_ign,
+                    legs[0].problem.x0, t_r).final
+    rec_plan = _sized(nplan, 0).resumed(0, t_r, x_r, make_up=True)
+    warm, _ = rec.recovery_warm_start(rec_plan, nplan.ephemeris_model(), fit, max_s, 16)
+    prob = warm[1][0]
+    rp = nplan.perilune_radius_km
+    dv = 1e3 * (perilune_speed_kmps(rp, max_s) - perilune_speed_kmps(rp, nplan.coast_s(1)))
+    need_s = burn_duration_estimate_s(prob.x0[6], dv, plan.engine.thrust_N, plan.engine.isp_s)
+    assert prob.burn_bounds_s[1] == pytest.approx(3.0 * need_s, rel=1e-9)
+    assert prob.burn_bounds_s[1] > 2.0 * warm[1][1].t1_s   # far above the guessed burn
+
+
+def test_the_nominal_gives_that_burn_the_same_room(plan, monkeypatch):
+    """The nominal's burn after its free orbit has the recovery's duration bound (the same
+    freedoms: a penalty compares like with like). The all-burns solve stands in."""
+    import lunarcap.runs.missed as M
+    from lunarcap.errors import SolveError
+    from lunarcap.mission.impulsive import perilune_speed_kmps
+    from lunarcap.physics.rocket import burn_duration_estimate_s
+
+    max_s = DEFAULT_MAX_PERIOD_H * 3600.0
+    seen = []
+
+    def stand_in(*a, warm=None, **k):
+        seen.append(warm)
+        raise SolveError("stand-in", "stand-in")
+    monkeypatch.setattr(M, "solve_joint", stand_in)
+    free_plan = freed(plan, 0)
+    with pytest.raises(SolveError):
+        M._nominal_from(free_plan, 0, max_s)
+    prob = seen[0][1][0]
+    rp = plan.perilune_radius_km
+    dv = 1e3 * (perilune_speed_kmps(rp, max_s) - perilune_speed_kmps(rp, plan.coast_s(1)))
+    need_s = burn_duration_estimate_s(prob.x0[6], dv, plan.engine.thrust_N, plan.engine.isp_s)
+    assert prob.burn_bounds_s[1] == pytest.approx(3.0 * need_s, rel=1e-9)
+    assert seen[0][0][0].t1_max_s is None and seen[0][2][0].t1_max_s is None   # the others
+
+
 def test_full_dynamics_keeps_the_continuation_only_if_it_is_the_two_body_optimum(
         monkeypatch):
     """In full dynamics a recovery starts from the same recovery in two-body dynamics. Its
@@ -327,8 +383,7 @@ def test_full_dynamics_failure_reports_the_verified_two_body_recovery(monkeypatc
     dynamics was, the failure says what the two-body recovery costs (the reader's estimate
     of the answer); and a full-dynamics recovery found only from another start, far above
     that two-body one, is labelled a local optimum even though the continuation itself
-    failed (family-0 of the seed-24 family, 537 N, burn 1 cut off after a quarter, 30 min:
-    913.7 m/s in two-body dynamics). The solver stands in for IPOPT."""
+    failed. The solver stands in for IPOPT."""
     from types import SimpleNamespace
 
     import lunarcap.runs.missed_recovery as rec
