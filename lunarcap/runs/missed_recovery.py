@@ -349,7 +349,8 @@ def from_two_body(nplan: CapturePlan, i: int, t_r: float, x_r, window_min: tuple
     seed-24 family (537 N, 538 kg, full dynamics), burn 1 cut off after a quarter, no
     delay: from the plan's guesses a verified local optimum 63.2 m/s above the nominal
     (in two-body dynamics the same case costs nothing); from the two-body recovery
-    +2.65 m/s, in 14 s of solves; a 1 min late ignition ended in IPOPT's
+    +2.65 m/s, in 14 s of solves (+0.80 m/s since the next burn's bound was widened,
+    :func:`~lunarcap.runs.missed_orbits.after_free_orbit`); a 1 min late ignition ended in IPOPT's
     Restoration_Failed from the plan's guesses and failed verification from the
     nominal's. ``starts``: the
     (nominal, its delta-V, its first coast) the two-body recovery starts from, in turn
