@@ -244,6 +244,24 @@ def test_the_make_up_orbit_is_sized_so_the_next_burn_remains_a_burn():
                   make_up=True)
 
 
+def _coasted_from_ignition(plan, after_s: float, window_min: tuple) -> tuple:
+    """Burn 1 never lit: the nominal's state ``after_s`` past its ignition, coasting.
+
+    Returns (nominal plan, its legs, epoch s, state, the recovery's fit for ``window_min``,
+    the coast's Model).
+    """
+    from lunarcap.runs.missed import _fits
+
+    max_s = DEFAULT_MAX_PERIOD_H * 3600.0
+    nom = nominal_of(plan, 1, max_s)
+    nplan, legs = nom["plan"], nom["legs"]
+    t_ign = legs[0].problem.t_ign_s
+    t_r = t_ign + after_s
+    fit = _fits(plan, nplan, 1, t_ign, t_r, max_s)(window_min)
+    coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
+    return nplan, legs, t_r, propagate(coast, t_ign, legs[0].problem.x0, t_r).final, fit, coast
+
+
 def test_a_recovery_that_fails_verification_restarts_from_its_own_flight(plan, monkeypatch):
     """A recovery that converged on one mesh but failed verification starts the next mesh
     from its flight, not from the first guess again: made to fail once, a 1 min late
@@ -251,17 +269,10 @@ def test_a_recovery_that_fails_verification_restarts_from_its_own_flight(plan, m
     ignition, and ends on the same optimum (total within 1 mm/s)."""
     import lunarcap.runs.missed_recovery as rec
     from lunarcap.errors import SolveError
-    from lunarcap.runs.missed import _fits
 
     monkeypatch.setenv("LUNARCAP_NO_CACHE", "1")
     max_s = DEFAULT_MAX_PERIOD_H * 3600.0
-    nom = nominal_of(plan, 1, max_s)
-    nplan, legs = nom["plan"], nom["legs"]
-    t_ign = legs[0].problem.t_ign_s
-    t_r = t_ign + 60.0
-    fit = _fits(plan, nplan, 1, t_ign, t_r, max_s)((0.0, 0.0))
-    coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
-    x_r = propagate(coast, t_ign, legs[0].problem.x0, t_r).final
+    nplan, legs, t_r, x_r, fit, coast = _coasted_from_ignition(plan, 60.0, (0.0, 0.0))
     args = (nplan, 0, t_r, x_r, (0.0, 0.0), max_s, fit, coast)
     res, _ = rec.recover(*args)
     real, starts = rec._solve_recovery, []
@@ -290,16 +301,9 @@ def test_the_burn_after_a_free_make_up_orbit_may_last_what_the_longest_orbit_nee
     import lunarcap.runs.missed_recovery as rec
     from lunarcap.mission.impulsive import perilune_speed_kmps
     from lunarcap.physics.rocket import burn_duration_estimate_s
-    from lunarcap.runs.missed import _fits
 
     max_s = DEFAULT_MAX_PERIOD_H * 3600.0
-    nom = nominal_of(plan, 1, max_s)
-    nplan, legs = nom["plan"], nom["legs"]
-    t_ign = legs[0].problem.t_ign_s
-    t_r = t_ign + 1800.0
-    fit = _fits(plan, nplan, 1, t_ign, t_r, max_s)((0.0, 30.0))
-    x_r = propagate(Model(plan.dynamics, 0.0, plan.engine.isp_s, fit), t_ign,
-                    legs[0].problem.x0, t_r).final
+    nplan, _, t_r, x_r, fit, _ = _coasted_from_ignition(plan, 1800.0, (0.0, 30.0))
     rec_plan = _sized(nplan, 0).resumed(0, t_r, x_r, make_up=True)
     warm, _ = rec.recovery_warm_start(rec_plan, nplan.ephemeris_model(), fit, max_s, 16)
     prob = warm[1][0]
