@@ -380,6 +380,8 @@ def test_full_dynamics_keeps_the_continuation_only_if_it_is_the_two_body_optimum
         # the plan's, the nominal's (the third start only where both find nothing)
         assert len(calls) == (0 if kept == continued else 2)
         assert ("local optimum" in est.get("doubtful", "")) == doubtful, est
+        if doubtful:   # by how much: 760 against 700 m/s
+            assert "m/s, 8.6 % more than" in est["doubtful"] and "700.0 m/s" in est["doubtful"]
 
 
 def test_full_dynamics_failure_reports_the_verified_two_body_recovery(monkeypatch):
