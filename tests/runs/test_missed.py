@@ -480,3 +480,39 @@ def test_when_both_starts_fail_the_plans_guesses_start_on_the_nominals_coast(mon
     assert calls[0] == (None, None)             # the plan's guesses, the estimate's coast
     assert calls[1][0] is not None and calls[1][1] == pytest.approx(coast_s)   # nominal's
     assert calls[2] == (None, pytest.approx(coast_s))   # the plan's on the nominal's coast
+
+
+def test_the_last_burns_nominal_goes_to_a_finer_mesh_when_verification_fails(plan, monkeypatch):
+    """The nominal of the last burn (the final orbit: nothing to free) is solved on each
+    mesh in turn until one passes verification, as every other nominal (family-2 of the
+    seed-24 family in full dynamics failed verification on the first mesh alone, and every
+    case of its last burn was an error). Another failure is raised at once. The one-at-a-time
+    chain and the all-burns solve stand in; the warm start is the chain's, remeshed."""
+    from types import SimpleNamespace
+
+    import lunarcap.runs.missed as M
+    from lunarcap.errors import SolveError
+    from lunarcap.optim.collocation import DEFAULT_MESHES
+    from lunarcap.repro.cache import caching
+
+    seq = M.solve_plan(freed(plan, plan.n_burns - 1))
+    monkeypatch.setattr(M, "solve_plan", lambda p: seq)
+    for failures, status, meshes_tried in ((1, "verification failed", 2),
+                                           (1, "Infeasible_Problem_Detected", 1)):
+        tried = []
+
+        def stand_in(p, sequential, eph, mesh, warm=None, **k):
+            tried.append(mesh)
+            assert sequential is None and len(warm) == plan.n_burns
+            assert all(len(mc) == mesh.n_coast + 1 for _, _, mc in warm)
+            if len(tried) <= failures:
+                raise SolveError("stand-in", status)
+            return SimpleNamespace(plan=p, legs=seq)
+        monkeypatch.setattr(M, "solve_joint", stand_in)
+        with caching(False):
+            if status == "verification failed":
+                assert M.nominal(plan, plan.n_burns)["legs"] is seq
+            else:
+                with pytest.raises(SolveError):
+                    M.nominal(plan, plan.n_burns)
+        assert tried == list(DEFAULT_MESHES[:meshes_tried])
