@@ -203,16 +203,25 @@ def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_
 def _final_orbit_nominal(free_plan: CapturePlan):
     """:func:`nominal` of the last burn: the all-burns optimum of the plan's own orbits.
 
-    On each mesh of :data:`~lunarcap.optim.collocation.DEFAULT_MESHES` until one passes
-    verification, as every other nominal (family-2 of the seed-24 family, 141 N, four
-    burns, full dynamics: on the first mesh alone leg 2 missed the flight-path angle by
-    3.3e-4 deg, and every case of its last burn was an error).
+    On each mesh until one passes verification, as every other nominal (family-2 of the
+    seed-24 family, 141 N, four burns, full dynamics: on the first mesh alone leg 2 missed
+    the flight-path angle by 3.3e-4 deg, and every case of its last burn was an error).
     """
-    seq = solve_plan(free_plan)
+    return _joint_on_meshes(free_plan, solve_plan(free_plan))
+
+
+def _joint_on_meshes(free_plan: CapturePlan, seq: list, widen=None, **bounds):
+    """The all-burns NLP of ``free_plan`` from the chain ``seq``, mesh after mesh.
+
+    Each mesh of :data:`~lunarcap.optim.collocation.DEFAULT_MESHES` until one passes
+    verification. ``widen(warm, k)``: leg ``k``'s warm start as the NLP should have it (default as
+    solved); ``bounds``: :func:`~lunarcap.optim.joint.solve_joint`'s free coasts and bounds.
+    """
     eph = free_plan.ephemeris_model()
     return on_meshes(meshes=DEFAULT_MESHES, solve=lambda mesh: solve_joint(
-        free_plan, None, eph, mesh,
-        warm=[_remeshed(warm_start(s), s.flight.coast, mesh) for s in seq]))
+        free_plan, None, eph, mesh, **bounds,
+        warm=[_remeshed(warm_start(s) if widen is None else widen(warm_start(s), k),
+                        s.flight.coast, mesh) for k, s in enumerate(seq)]))
 
 
 def _nominal_from(free_plan: CapturePlan, i: int, max_period_s: float):
@@ -224,12 +233,9 @@ def _nominal_from(free_plan: CapturePlan, i: int, max_period_s: float):
     span = (t[-1] - t[0]) - free_plan.coast_s(i) + hi
     lo = free_plan.coast_s(i + 1) if i + 1 < free_plan.n_burns else MIN_FIRST_COAST_S
     fit = _fit_for(free_plan, t[0], span)
-    return on_meshes(meshes=DEFAULT_MESHES, solve=lambda mesh: solve_joint(
-        free_plan, None, free_plan.ephemeris_model(), mesh, free_coasts=flags,
-        coast_bounds_s=(lo, hi), max_period_s=max_period_s, fit=fit,
-        min_period_s=shortest_free_period_s(free_plan, i),
-        warm=[_remeshed(_widened(warm_start(s), k, free_plan, i, max_period_s),
-                        s.flight.coast, mesh) for k, s in enumerate(seq)]))
+    return _joint_on_meshes(free_plan, seq, lambda w, k: _widened(w, k, free_plan, i, max_period_s),
+                      free_coasts=flags, coast_bounds_s=(lo, hi), max_period_s=max_period_s,
+                      fit=fit, min_period_s=shortest_free_period_s(free_plan, i))
 
 
 def _widened(warm: tuple, k: int, free_plan: CapturePlan, i: int, max_period_s: float) -> tuple:
