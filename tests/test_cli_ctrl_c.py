@@ -137,8 +137,9 @@ def test_ctrl_c_while_the_nlps_are_built_acts_within_1_s(tmp_path):
     # 6-13 s to act; the builds now run in threads the command does not wait for
     proc = Command(["plan", "song2011-150N", "--no-cache"], tmp_path)
     _wait_for(proc, lambda: any(ln.startswith("building ") for ln in proc.err))
-    time.sleep(1.0)  # into the builds (the first takes several seconds)
-    assert not any(ln.startswith("  ") for ln in proc.err), proc.err  # none built yet
+    time.sleep(0.3)  # into the builds (4 of them, 1-5 s each by the machine's load)
+    built = sum(ln.startswith("  ") for ln in proc.err)
+    assert built < 4, proc.err  # some still being built
     t0 = time.monotonic()
     code, out, err, left = _interrupt(proc)
     acted_s = time.monotonic() - t0
