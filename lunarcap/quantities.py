@@ -766,7 +766,8 @@ CAPTURES = {
               "coast ending at the nominal perilune (Eq. 17): the packaged song2011-* plans."),
     "free": ("free ignitions",
              "The same three burns and orbits, every ignition time optimised (within two "
-             "Eq. (19) durations of the perilune), one burn after the other."),
+             "Eq. (19) durations of the perilune, and at least 30 min, in full dynamics), "
+             "one burn after the other."),
     "joint": ("free ignitions, jointly optimised",
               "The same three burns and orbits with free ignitions, all in one optimisation "
               "whose objective is their total delta-V."),

@@ -57,7 +57,8 @@ after it lasts ``coast_min`` (default one period of the circle).
 
 Optional keys per burn: ``steering`` (optimal | inertial | antivelocity) and
 ``start_bounds_min: [lo, hi]`` (the window of a free ignition; default +-2 Eq. (19)
-durations around perilune, within +-120 min and half the orbit before the burn).
+durations around perilune, at least +-30 min for an ellipse as asked and in any dynamics
+beyond a point Moon, within +-120 min and 0.4 of the orbit before the burn).
 
 Arrival from a state
 --------------------

@@ -24,6 +24,7 @@ from lunarcap.mission.targets import ELLIPSE, Target
 from lunarcap.physics._ops import ops
 from lunarcap.physics.dynamics import Model, fit_for
 from lunarcap.physics.ephemeris import ChebyshevFit
+from lunarcap.physics.forces import POINT, force_model
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine
 from lunarcap.physics.steering import law, law_direction
@@ -176,13 +177,23 @@ def anti_velocity_u(x) -> np.ndarray:
     return law("antivelocity")(x)
 
 
-#: Least half-width of a free ignition window for an ellipse as asked, min. A short burn
-#: (Eq. 19: 25 s) that must also undo what the lunar J2, the Earth and the Sun do to the
-#: next perilune (5 km of perilune radius and 0.06 deg of inclination over a 12 h orbit
-#: of 10,500 km apolune) cannot from +-2 Eq. (19) durations around perilune: the
-#: perilune radius moves only with burns away from the perilune (IPOPT: Maximum_Iterations_
-#: Exceeded on every mesh; with +-30 min: solved, ignition 11.8 min after perilune).
+#: Least half-width of a free ignition window for an ellipse as asked, and for every burn
+#: in perturbed dynamics, min. A short burn (Eq. 19: 25 s) that must also undo what the
+#: lunar J2, the Earth and the Sun do to the next perilune (5 km of perilune radius and
+#: 0.06 deg of inclination over a 12 h orbit of 10,500 km apolune) cannot from +-2 Eq. (19)
+#: durations around perilune: the perilune radius moves only with burns away from the
+#: perilune (IPOPT: Maximum_Iterations_Exceeded on every mesh; with +-30 min: solved,
+#: ignition 11.8 min after perilune). The same with the paper's perilune targets (Eq. 17):
+#: family-1 of the seed-24 missed family (266 N, 1,005 kg, full dynamics), burn 2 into
+#: 10.69 h (two-body 14.4 m/s, window +-1.5 min) was infeasible on every mesh; with +-20
+#: min it ignites 17.6 min after perilune, 25.58 m/s, and the plan solves burn by burn.
 MIN_ORBIT_WINDOW_MIN = 30.0
+
+
+def perturbed(dynamics) -> bool:
+    """Whether a plan's ``dynamics`` move an orbit's perilune (any force beyond a point Moon)."""
+    fm = force_model(dynamics)
+    return fm.gravity != POINT or bool(fm.third_bodies)
 
 #: A target of free epoch (an ellipse as asked) holds at the perilune within this fraction
 #: of its period of the perilune the plan predicts: one perilune, whatever the shift.
@@ -243,7 +254,8 @@ def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
         Overrides the plan's thrust (the impulsive-limit solves use a huge one).
     start_bounds_min : (lo, hi), optional
         Window of a free ignition, min (default: the plan's, else +-2 Eq. (19) durations,
-        within +-120 min and 0.4 of the orbit before the burn).
+        at least +-:data:`MIN_ORBIT_WINDOW_MIN` for an ellipse as asked and in perturbed
+        dynamics, within +-120 min and 0.4 of the orbit before the burn).
     fit : ChebyshevFit, optional
         Reuse a fit (default :func:`burn_fit`).
     guess_start_min : float, optional
@@ -275,7 +287,7 @@ def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
         if bounds is None:
             lim = MAX_START_MIN if i == 0 else min(MAX_START_MIN, 0.4 * (t[i] - t[i - 1]) / 60)
             half = 2.0 * t19
-            if plan.targets[i].free_epoch:
+            if plan.targets[i].free_epoch or perturbed(plan.dynamics):
                 half = max(half, MIN_ORBIT_WINDOW_MIN)
             bounds = (max(-half, -lim), min(half, lim))
         if not bounds[0] <= guess_min <= bounds[1]:

@@ -140,3 +140,25 @@ def test_a_small_burn_that_must_also_turn_the_plane_is_not_bounded_by_its_impuls
     assert abs(period_s - 12.182 * 3600) < 1.0
     # more than three times the two-body impulse: what the old bound cut off
     assert sol.verification.delta_v_mps > 3 * prob.dv_impulsive_mps
+
+
+def test_a_small_burn_in_full_dynamics_may_ignite_well_away_from_perilune():
+    # Family-1 of the seed-24 missed family (266 N, 1,005 kg, the paper's Eq. 17 targets,
+    # full dynamics): burn 2, 11.934 -> 10.69 h, is 14.4 m/s in two-body (Eq. 19: 0.8 min).
+    # The Earth moves the next perilune, which only a burn away from perilune undoes:
+    # within +-2 Eq. (19) durations IPOPT found it infeasible on every mesh.
+    from lunarcap.physics.rocket import burn_duration_estimate_s
+    from lunarcap.runs.chain import labelled, reuse_earlier_burns, solve_burn
+    plans, _ = plan_family(24, 12, dynamics="full", mass_kg=(400, 2000),
+                           formulations=("orbit", "song2011"))
+    plan = {p.name: p for p in plans}["family-1"]
+    with caching(False), reuse_earlier_burns(), labelled(plan):
+        sol = solve_burn(plan.key(2))
+    assert sol.verification.passed
+    x_end = sol.end_state
+    r_end = np.linalg.norm(rv_from_mee(*x_end[:6], C.MU_MOON)[0])
+    rp, _, _, _ = osculating(x_end)
+    assert abs(r_end - (C.R_MOON + 100.0)) < 0.01 and abs(r_end - rp) < 1e-3   # km
+    t19_s = burn_duration_estimate_s(sol.problem.x_ref[6], sol.problem.dv_impulsive_mps,
+                                     plan.engine.thrust_N, plan.engine.isp_s)
+    assert abs(sol.problem.start_min) > 2.0 * t19_s / 60.0   # beyond the old window
