@@ -5,8 +5,8 @@ From a seeded family of generated plans (tests/plan_family.py: 2-5 burns, 100-60
 paper's (Eq. 17 targets, ending on a circle), orbits as asked ending on a circle, orbits
 as asked ending on an ellipse. Burn 1 is cut off after 0.25, 0.5, 0.9 and 1.0 of its
 duration with 0 and 30 min to clear the fault, and ignited 1 and 5 min late; the last
-burn (whose target is the final orbit) is cut off at its end and half-way with 30 min to
-clear the fault.
+burn (whose target is the final orbit) is cut off at its end, and half-way with 0 and 30
+min to clear the fault.
 
 * Every case is answered: recovered and verified, or "no recovery" with its reason.
 * A recovery has the nominal's freedoms: its penalty is >= -0.05 m/s. A make-up at the
@@ -18,6 +18,10 @@ clear the fault.
   the last burn, whose target is the final orbit, nothing is left to re-plan (the
   recovery has no burn).
 * A late ignition: the recovered burn ignites the given minutes after the nominal's.
+* A make-up of the final orbit from a radius that orbit never has is also tried at the
+  next perilune: half of the last burn flown at once from there, and half one orbit later
+  (two burns at perilune lose less than one), is the cheaper; from within its radii the
+  burn resumed at once costs nothing.
 
 tools/missed_family.py runs a bigger family (and full dynamics) outside the tests.
 """
@@ -33,7 +37,7 @@ pytestmark = pytest.mark.slow
 
 CUT_OFFS = [(f, d) for f in (0.25, 0.5, 0.9, 1.0) for d in (0.0, 30.0)]
 LATE_MIN = (1.0, 5.0)
-LAST_BURN_CUT_OFFS = [(1.0, 0.0), (0.5, 30.0)]
+LAST_BURN_CUT_OFFS = [(1.0, 0.0), (0.5, 0.0), (0.5, 30.0)]
 MAX_PERIOD_S = DEFAULT_MAX_PERIOD_H * 3600.0
 
 
@@ -112,3 +116,20 @@ def test_a_late_ignition_ignites_that_many_minutes_after_the_nominal(plans, case
             assert r["status"] == "recovered", (p.name, m, r["reason"])
             t_ign = seconds_from_calendar(r["recovery_burns"][0]["ignition_epoch"])
             assert t_ign - t_nominal == pytest.approx(60.0 * m, abs=2e-3), (p.name, m)
+
+
+def test_a_make_up_of_the_final_orbit_from_outside_its_radii_waits_if_that_is_cheaper(
+        plans, cases):
+    off = 0
+    for p in plans:
+        r = cases[(p.name, p.n_burns, 0.5, 0.0, None)]
+        t = p.targets[-1]
+        ra_km = t.radius_km if t.circular else t.apolune_radius_km
+        if t.radius_km - 1.0 <= r["cutoff_r_km"] <= ra_km + 1.0:   # the burn resumed
+            assert abs(r["penalty_mps"]) < 0.05, (p.name, r["penalty_mps"], r["reason"])
+            continue
+        off += 1
+        assert r["reason"].startswith("make-up burn at the next perilune: its recovery"), \
+            (p.name, r["reason"])
+        assert r["penalty_mps"] < -0.05, (p.name, r["penalty_mps"])   # split: less loss
+    assert off, "no plan's half-way cut-off lies outside its final orbit's radii"
