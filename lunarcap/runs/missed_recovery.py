@@ -533,7 +533,7 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
     # epoch): the coast to there is the same coast
     t_b = t_r + 60.0 * window[0]
     x_b = propagate(coast, t_r, np.asarray(x_r, float)[:7], t_b).final
-    w_b = (0.0, window[1] - window[0])
+    w_b = from_opening(window)
     if physical_bound(nplan, i, t_b, x_b, w_b, max_period_s, coast):
         return _found_or_raise(found, first)
     try:
@@ -546,6 +546,16 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
         est["window_delta_v_mps"] = found[1].total_delta_v_mps
     est["first_coast_guess_s"] += t_b - t_r
     return "next perilune", res, est
+
+
+def from_opening(window: tuple) -> tuple:
+    """A window (min) counted from its opening, at most the 2 h a plan's window may span.
+
+    (Two half-widths of 60 min make 120.00000000000003 min, which the plan's checks refuse:
+    the last burn of family-2 of the seed-24 family, a quarter and 30 min, stayed in the
+    window at +829 m/s; at the next perilune it costs -0.33 m/s.)
+    """
+    return (0.0, min(window[1] - window[0], MAX_START_MIN))
 
 
 def _found_or_raise(found, first):

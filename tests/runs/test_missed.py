@@ -543,3 +543,15 @@ def test_a_full_dynamics_nominal_also_starts_halfway_to_the_two_body_optimum(mon
         nom = M.nominal(full, 1, longest_s)
     assert [c for d, c in tried if d != "two-body"] == pytest.approx([own_s, longest_s, mid_s])
     assert nom["plan"].coast_s(0) == pytest.approx(mid_s)
+
+
+def test_a_next_perilune_window_two_hours_wide_is_one_the_plan_accepts(plan):
+    # family-2 of the seed-24 family, full dynamics: the last burn cut off after a
+    # quarter, 30 min; +-60 min about the next perilune spanned 120.00000000000003 min
+    from lunarcap.runs.chain import perilune_state
+    from lunarcap.runs.missed_recovery import from_opening
+    window = from_opening((255.63283667469997, 375.6328366747))
+    assert window[0] == 0.0 and window[1] == pytest.approx(120.0, abs=1e-9)
+    t = plan.nominal_perilunes_s[1]
+    resumed = plan.resumed(1, t, perilune_state(plan, 1), window_min=window, make_up=True)
+    assert resumed.burns[0].start_bounds_min == window
