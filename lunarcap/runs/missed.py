@@ -31,8 +31,8 @@ default :data:`DEFAULT_MAX_PERIOD_H`; the last burn's: the final orbit), then bu
 as one NLP (total delta-V) and verified leg by leg. A cut-off whose window gives no
 verified recovery is re-planned with the make-up at the next perilune (the final orbit
 passes only through radii between its perilune and apolune: after a cut-off of the last
-burn and a delay the spacecraft is above them until it comes back); a make-up of the
-final orbit from outside its radii is tried there even when the window gives one, and the
+burn and a delay the spacecraft is above them until it comes back); a make-up whose
+penalty in the window exceeds the nominal burn's own delta-V is tried there too, and the
 cheaper kept (family-4 of the seed-24 family, 201 N, full dynamics, a quarter of the last
 burn and 30 min: +828.7 m/s in the window, +0.36 m/s at the next perilune, 6.6 h later).
 That row's ``reason`` says so, and its penalty may be negative (the nominal flies each
@@ -410,8 +410,8 @@ def _attempt(out: dict, nominal_part: tuple, burn: int, t_r: float, x_r, window_
         out["reason"] = (f"make-up burn at the next perilune: its recovery burns need "
                          f"{est['window_delta_v_mps'] - res.total_delta_v_mps:.1f} m/s less "
                          f"than the verified recovery with it in the window "
-                         f"({est['window_delta_v_mps']:.1f} m/s), which must reach the final "
-                         f"orbit from outside its radii")
+                         f"({est['window_delta_v_mps']:.1f} m/s, a penalty above the "
+                         f"nominal burn's own delta-V)")
     elif how == "next perilune":
         out["reason"] = ("make-up burn at the next perilune: no verified recovery with it "
                          "in the window")

@@ -61,7 +61,7 @@ from lunarcap.optim.joint import solve_joint
 from lunarcap.optim.problem import MIN_ORBIT_WINDOW_MIN, burn_problem
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model
-from lunarcap.physics.elements import mean_motion_and_anomaly, periapsis_factor
+from lunarcap.physics.elements import mean_motion_and_anomaly
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.rocket import burn_duration_estimate_s
 from lunarcap.physics.state import State
@@ -447,8 +447,8 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
     fit of a recovery whose make-up ignites in ``window`` (min after ``t_r``). ``later``:
     the make-up at the next perilune may be tried (a cut-off, not a late ignition), if
     that perilune comes within ``max_period_s``: when the window gives no verified
-    recovery, and for the final orbit made up from outside its radii
-    (:func:`off_final_orbit`) also when it does, the cheaper kept (then the estimate's
+    recovery, and when the window's costs more than the nominal burn itself
+    (:func:`dearer_than_the_burn`), the cheaper kept (then the estimate's
     ``window_delta_v_mps``: the window's recovery burns, m/s). ``remaining_mps``: the delta-V of the
     nominal burn not flown (m/s; default all of it): when the plan's guesses fail, the
     recovery starts from the nominal's, a make-up of that delta-V then the nominal's
@@ -521,7 +521,7 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
         found = ("window",) + attempt(t_r, x_r, window_min, fit_for(window_min))
     except (SolveError, PlanError, RuntimeError) as exc:
         first = exc
-    if found is not None and not (later and off_final_orbit(nplan, i, x_r)):
+    if found is not None and not (later and dearer_than_the_burn(found[1], legs, i, remaining)):
         return found
     # +-2 burn durations (at least 30 min), within the 2 h a plan's window may span
     half = min(max(60.0 * MIN_ORBIT_WINDOW_MIN, 2.0 * legs[i].raw.t1_s),
@@ -565,24 +565,16 @@ def _found_or_raise(found, first):
     return found
 
 
-#: Distance outside the final orbit's radii from which its make-up is also tried at the
-#: next perilune, km (:func:`off_final_orbit`).
-OFF_ORBIT_KM = 1.0
+def dearer_than_the_burn(res, legs: list, i: int, remaining_mps: float) -> bool:
+    """Whether a recovery's penalty exceeds the nominal burn's own delta-V (m/s).
 
-
-def off_final_orbit(nplan: CapturePlan, i: int, x) -> bool:
-    """Whether burn ``i`` makes up the final orbit from a radius the final orbit never has.
-
-    The final orbit passes only through radii between its perilune and apolune (a circle:
-    its radius); from elsewhere one make-up burn must also move the spacecraft there while
-    it thrusts. Family-2 and family-4 of the seed-24 family (full dynamics), the last burn
-    cut off after a quarter and 30 min: verified make-ups in the window cost 829 m/s more
-    than the nominal.
+    A make-up that costs more than flying the whole burn again is made where the orbit
+    does not suit it, and the next perilune is tried as well. Family-2 and family-4 of
+    the seed-24 family (full dynamics), the last burn cut off after a quarter, 30 min: the
+    spacecraft is above the final circle, and the make-up in the window costs 829 m/s
+    more than the nominal, at the next perilune -0.33 and +0.36 m/s. The 440 N user plan,
+    burn 1 cut off at 0.9, 720 min: +666 m/s in the window, 1.7 h before a perilune.
+    ``remaining_mps``: the delta-V of the nominal burn not flown.
     """
-    target = nplan.targets[i]
-    if target.kind == PERILUNE:
-        return False
-    xx = np.asarray(x, float)
-    r_km = xx[0] / (1.0 + periapsis_factor(xx[1], xx[2], xx[5]))
-    ra_km = target.radius_km if target.circular else target.apolune_radius_km
-    return not target.radius_km - OFF_ORBIT_KM <= r_km <= ra_km + OFF_ORBIT_KM
+    later = sum(s.delta_v_mps for s in legs[i + 1:])
+    return res.total_delta_v_mps - remaining_mps - later > legs[i].delta_v_mps

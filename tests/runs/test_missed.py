@@ -555,3 +555,20 @@ def test_a_next_perilune_window_two_hours_wide_is_one_the_plan_accepts(plan):
     t = plan.nominal_perilunes_s[1]
     resumed = plan.resumed(1, t, perilune_state(plan, 1), window_min=window, make_up=True)
     assert resumed.burns[0].start_bounds_min == window
+
+
+def test_a_make_up_dearer_than_the_burn_itself_is_also_tried_at_the_next_perilune():
+    # family-4 of the seed-24 family (201 N, 1,685 kg, two burns, full dynamics): the last
+    # burn cut off after a quarter, 30 min to clear the fault. The spacecraft is then above
+    # the final circle; the verified make-up in the window costs +828.7 m/s, more than the
+    # burn itself. Finished one orbit later the burn costs what the nominal's did, give or
+    # take the finite-burn losses of splitting it (a few m/s).
+    from lunarcap.repro.cache import caching
+    family, _ = plan_family(24, 12, dynamics="full", mass_kg=(400, 2000),
+                            formulations=("orbit", "song2011"))
+    plan = {p.name: p for p in family}["family-4"]
+    with caching(False):
+        r = case_result(plan, 2, 0.25, 30.0)
+    assert r["status"] == "recovered" and r["all_verified"]
+    assert r["reason"].startswith("make-up burn at the next perilune: its recovery burns")
+    assert abs(r["penalty_mps"]) < 5.0, r["penalty_mps"]
