@@ -171,13 +171,9 @@ def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_
     # plan's alone IPOPT may stop where it started (family-0 of the missed family, seed
     # 24: 813.121 m/s on the plan's 17.3 h orbit, 812.999 m/s on the 24 h bound from 12,
     # 20 or 23.5 h; recoveries found the cheaper one, penalties -0.10 m/s)
-    starts = [free_plan]
-    if plan.dynamics == "two-body":
-        try:   # (a plan the checks refuse is no start: a next burn too long for its orbit)
-            starts.append(free_plan.with_coasts([max_period_s if k == i else None
-                                                 for k in range(plan.n_burns)]))
-        except PlanError:
-            pass
+    starts, middle = [free_plan], None
+    if plan.dynamics == "two-body":   # (a plan the checks refuse is no start)
+        starts.append(_coasted(free_plan, i, max_period_s))
     else:
         # also from the two-body optimum's orbit: a long free coast needs its mesh spaced
         # for the orbit it ends on, not for the plan's. The full-dynamics problem has
@@ -186,30 +182,44 @@ def nominal(plan: CapturePlan, burn: int = 1, max_period_s: float = DEFAULT_MAX_
         # bounds allow): every start is solved and the cheapest verified optimum kept,
         # each on every mesh up to the finest (the plan's start passed verification only
         # there: 869.96 m/s, a 23.8 h orbit, gamma off by 2e-4 deg on the coarser ones).
-        # And from halfway between the two (geometric mean): family-2 of the seed-24 family
-        # (141 N, 1,145 kg, four burns) from 10.73 h and 24.0 h stopped at 949.64 m/s on a
-        # 10.01 h orbit, and 9 of its 20 missed cases were cheaper than that nominal (a 5
-        # min late ignition by 7.64 m/s, on a 16.5 h orbit); from 16.05 h: 942.07 m/s.
         two = nominal(plan.with_dynamics("two-body"), burn, max_period_s, version)["plan"]
-        own = free_plan.coast_s(i)
-        for coast_s in (two.coast_s(i), math.sqrt(own * two.coast_s(i))):
-            try:
-                starts.append(free_plan.with_coasts([coast_s if k == i else None
-                                                     for k in range(plan.n_burns)]))
-            except PlanError:
-                pass
-    best, error = None, None
+        starts.append(_coasted(free_plan, i, two.coast_s(i)))
+        middle = _coasted(free_plan, i, math.sqrt(free_plan.coast_s(i) * two.coast_s(i)))
+    found, error = _solved_from([s for s in starts if s is not None], i, max_period_s)
+    # And from halfway between the two (geometric mean), where they end on different
+    # orbits (or one fails): family-2 of the seed-24 family (141 N, 1,145 kg, four burns)
+    # from 10.73 h stopped at 949.64 m/s on a 10.01 h orbit and from 24.0 h failed
+    # verification, and 9 of its 20 missed cases were cheaper than that nominal (a 5 min
+    # late ignition by 7.64 m/s, on a 16.5 h orbit); from 16.05 h: 942.07 m/s. (The 150 N
+    # paper plan's two end on 23.8 h orbits: the middle start, 909.44 m/s, is not solved.)
+    periods = [r.plan.coast_s(i) for r in found]
+    if middle is not None and (len(periods) < 2 or abs(periods[0] / periods[1] - 1) > 0.01):
+        more, error = _solved_from([middle], i, max_period_s, error)
+        found += more
+    if not found:
+        raise error
+    best = min(found, key=lambda r: r.total_delta_v_mps)
+    return {"plan": best.plan, "legs": best.legs}
+
+
+def _coasted(free_plan: CapturePlan, i: int, coast_s: float) -> CapturePlan | None:
+    """``free_plan`` with the coast after burn ``i`` (0-based) ``coast_s`` (s); None if refused."""
+    try:
+        return free_plan.with_coasts([coast_s if k == i else None
+                                      for k in range(free_plan.n_burns)])
+    except PlanError:
+        return None
+
+
+def _solved_from(starts: list, i: int, max_period_s: float, error=None) -> tuple:
+    """(the verified :func:`_nominal_from` of each start, the last error or ``error``)."""
+    found = []
     for start in starts:
         try:
-            res = _nominal_from(start, i, max_period_s)
+            found.append(_nominal_from(start, i, max_period_s))
         except (SolveError, PlanError) as exc:
             error = exc
-            continue
-        if best is None or res.total_delta_v_mps < best.total_delta_v_mps:
-            best = res
-    if best is None:
-        raise error
-    return {"plan": best.plan, "legs": best.legs}
+    return found, error
 
 
 def _final_orbit_nominal(free_plan: CapturePlan):

@@ -519,10 +519,12 @@ def test_the_last_burns_nominal_goes_to_a_finer_mesh_when_verification_fails(pla
 
 
 def test_a_full_dynamics_nominal_also_starts_halfway_to_the_two_body_optimum(monkeypatch):
-    """In full dynamics the nominal is solved from the plan's orbit after the burn, from
-    the two-body optimum's and from their geometric mean, and the cheapest kept (family-2
-    of the seed-24 family: 949.64 m/s from the first two, 942.07 from the third). The
-    all-burns solve stands in, cheapest from the middle start."""
+    """In full dynamics the nominal is solved from the plan's orbit after the burn and from
+    the two-body optimum's, and, where those two end on different orbits, from their
+    geometric mean; the cheapest kept (family-2 of the seed-24 family: 949.64 m/s from the
+    first, 942.07 from the third). The all-burns solve stands in, cheapest from the middle
+    start; in the second run every start ends on the same orbit."""
+    from dataclasses import replace
     from types import SimpleNamespace
 
     import lunarcap.runs.missed as M
@@ -531,18 +533,24 @@ def test_a_full_dynamics_nominal_also_starts_halfway_to_the_two_body_optimum(mon
     full = load_plan("song2011-150N")
     own_s, longest_s = full.coast_s(0), DEFAULT_MAX_PERIOD_H * 3600.0
     mid_s = math.sqrt(own_s * longest_s)
-    tried = []
+    for same_end in (False, True):
+        tried = []
 
-    def stand_in(start, i, max_period_s):
-        c = start.coast_s(i)
-        tried.append((start.dynamics, c))
-        cost = -c if start.dynamics == "two-body" else abs(c - mid_s)   # two-body: 24 h
-        return SimpleNamespace(plan=start, legs=[], total_delta_v_mps=cost)
-    monkeypatch.setattr(M, "_nominal_from", stand_in)
-    with caching(False):
-        nom = M.nominal(full, 1, longest_s)
-    assert [c for d, c in tried if d != "two-body"] == pytest.approx([own_s, longest_s, mid_s])
-    assert nom["plan"].coast_s(0) == pytest.approx(mid_s)
+        def stand_in(start, i, max_period_s):
+            c = start.coast_s(i)
+            tried.append((start.dynamics, c))
+            cost = -c if start.dynamics == "two-body" else abs(c - mid_s)   # two-body: 24 h
+            end = replace(start, name="ended") if not same_end else M._coasted(start, i, 8e4)
+            return SimpleNamespace(plan=end, legs=[], total_delta_v_mps=cost)
+        monkeypatch.setattr(M, "_nominal_from", stand_in)
+        with caching(False):
+            nom = M.nominal(full, 1, longest_s)
+        starts = [c for d, c in tried if d != "two-body"]
+        if same_end:   # (the two-body optimum then ends on 8e4 s too)
+            assert starts == pytest.approx([own_s, 8e4])
+        else:
+            assert starts == pytest.approx([own_s, longest_s, mid_s])
+            assert nom["plan"].coast_s(0) == pytest.approx(mid_s)
 
 
 def test_a_next_perilune_window_two_hours_wide_is_one_the_plan_accepts(plan):
