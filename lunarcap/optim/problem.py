@@ -24,7 +24,7 @@ from lunarcap.mission.targets import ELLIPSE, Target
 from lunarcap.physics._ops import ops
 from lunarcap.physics.dynamics import Model, fit_for
 from lunarcap.physics.ephemeris import ChebyshevFit
-from lunarcap.physics.forces import POINT, force_model
+from lunarcap.physics.forces import force_model
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.rocket import burn_duration_estimate_s, check_engine
 from lunarcap.physics.steering import law, law_direction
@@ -189,12 +189,6 @@ def anti_velocity_u(x) -> np.ndarray:
 #: min it ignites 17.6 min after perilune, 25.58 m/s, and the plan solves burn by burn.
 MIN_ORBIT_WINDOW_MIN = 30.0
 
-
-def perturbed(dynamics) -> bool:
-    """Whether a plan's ``dynamics`` move an orbit's perilune (any force beyond a point Moon)."""
-    fm = force_model(dynamics)
-    return fm.gravity != POINT or bool(fm.third_bodies)
-
 #: A target of free epoch (an ellipse as asked) holds at the perilune within this fraction
 #: of its period of the perilune the plan predicts: one perilune, whatever the shift.
 END_WINDOW_FRACTION = 0.2
@@ -287,7 +281,7 @@ def burn_problem(plan: CapturePlan, i: int, x_perilune, eph, start_min=None,
         if bounds is None:
             lim = MAX_START_MIN if i == 0 else min(MAX_START_MIN, 0.4 * (t[i] - t[i - 1]) / 60)
             half = 2.0 * t19
-            if plan.targets[i].free_epoch or perturbed(plan.dynamics):
+            if plan.targets[i].free_epoch or force_model(plan.dynamics).perturbed:
                 half = max(half, MIN_ORBIT_WINDOW_MIN)
             bounds = (max(-half, -lim), min(half, lim))
         if not bounds[0] <= guess_min <= bounds[1]:

@@ -122,6 +122,11 @@ class ForceModel:
         """True for a spherical-harmonic field."""
         return self.gravity not in (POINT, J2)
 
+    @property
+    def perturbed(self) -> bool:
+        """True if any force acts beyond a point Moon (an orbit's perilune then moves)."""
+        return self.gravity != POINT or bool(self.third_bodies)
+
     @cached_property
     def field(self) -> GravityField:
         """The gravity field (a field model only)."""
