@@ -65,13 +65,13 @@ test: lint chromium
 	$(PY) -m pytest
 
 book: $(STAMP)
-	$(PY) -m lunarcap.report.build build
+	$(PY) -m lunarcap.bookbuild.build build
 
 book-quick: $(STAMP)
-	$(PY) -m lunarcap.report.build build --quick
+	$(PY) -m lunarcap.bookbuild.build build --quick
 
 screenshots: $(STAMP) chromium
-	$(PY) -m lunarcap.report.screenshots
+	$(PY) -m lunarcap.bookbuild.screenshots
 
 bench: $(STAMP)
 	$(PY) -m lunarcap bench

@@ -35,7 +35,7 @@ class SolveError(LunarcapError, RuntimeError):
         Residuals and diagnostics (delta-V difference, terminal errors, mesh).
     unverified : tuple or None
         A converged solution that failed verification: (its plan, one solved leg per
-        burn), for a caller that refines from it (:mod:`lunarcap.runs.missed_recovery`).
+        burn), for a caller that refines from it (:mod:`lunarcap.studies.missed.recovery`).
     """
 
     def __init__(self, message: str, status: str = "", details: dict | None = None,

@@ -242,7 +242,7 @@ _add("final_perilune_epoch", "final perilune (TDB)", "First perilune on the fina
 _add("final_orbit_epoch", "final orbit reached (TDB)", "End of the last burn, TDB.", "string")
 _add("time_to_final_orbit_h", "time to final orbit",
      "From the arrival perilune to the end of the last burn "
-     "(lunarcap.runs.chain.time_to_final_orbit_h).")
+     "(lunarcap.capture.chain.time_to_final_orbit_h).")
 _add("complete", "complete", "True if every burn of the plan was solved.", "boolean")
 _add("totals", "totals", "Totals over the plan's burns.", "object")
 _add("burns", "burns", "One record per burn.", "array")

@@ -2,7 +2,7 @@
 
 Shared by the tests that must hold on any plan the load-time checks accept, not only on
 the paper's: the solver's (tests/optim/test_targets_as_asked.py) and the missed-thrust
-study's (tests/runs/test_missed_family.py; tools/missed_family.py runs a bigger family).
+study's (tests/studies/test_missed_family.py; tools/missed_family.py runs a bigger family).
 """
 
 import math

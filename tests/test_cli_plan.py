@@ -151,7 +151,7 @@ def test_after_days_propagates_the_final_orbit(plan_file, tmp_path):
 
 def test_failed_solve_exits_3_and_keeps_what_was_done(monkeypatch, capsys, plan_file):
     # burn 2 fails: burn 1's row is printed first, then one error line, exit 3
-    import lunarcap.runs.chain as chain
+    import lunarcap.capture.chain as chain
     real = chain.solve_burn
 
     def fail_second(key, verbose=False):

@@ -55,7 +55,7 @@ CASES = [
 
 @pytest.mark.parametrize("args", CASES, ids=[" ".join(c[2:] or c[1:]) for c in CASES])
 def test_bad_study_input_is_one_line_and_exit_2(args, bad_dir, capsys, monkeypatch):
-    from lunarcap.runs import campaign
+    from lunarcap.studies import campaign
 
     monkeypatch.setattr(campaign, "dask_client",
                         lambda *a, **k: pytest.fail("a cluster was started"))
@@ -77,9 +77,10 @@ def test_study_out_in_an_unwritable_directory_subprocess(bad_dir):
 
 
 @pytest.mark.parametrize("argv, module, func, unit", [
-    (["study", "--points", "2"], "lunarcap.runs.study", "run_study", "engines"),
-    (["burns", "song2011-150N", "--counts", "1"], "lunarcap.runs.burns", "run_burns", "counts"),
-    (["missed", "song2011-150N"], "lunarcap.runs.missed", "run_missed", "cases"),
+    (["study", "--points", "2"], "lunarcap.studies.engine_trade.trade", "run_study", "engines"),
+    (["burns", "song2011-150N", "--counts", "1"], "lunarcap.studies.burn_count.counts",
+     "run_burns", "counts"),
+    (["missed", "song2011-150N"], "lunarcap.studies.missed.cases", "run_missed", "cases"),
 ])
 def test_ctrl_c_in_a_study_exits_130_with_one_line(argv, module, func, unit, monkeypatch,
                                                      capsys):

@@ -26,7 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from plan_family import plan_family  # noqa: E402
 
 from lunarcap.repro.cache import caching  # noqa: E402
-from lunarcap.runs.missed import case_result  # noqa: E402
+from lunarcap.studies.missed.cases import case_result  # noqa: E402
 
 FRACTIONS = (0.25, 0.5, 0.9, 1.0)
 DELAYS_MIN = (0.0, 30.0)

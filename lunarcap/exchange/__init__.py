@@ -8,7 +8,7 @@ M-MME2000 is :mod:`lunarcap.physics.frames`'s, once.
 * :mod:`~lunarcap.exchange.ccsds`: OPM reading (an arrival state), OPM and OEM writing,
   OEM reading, and the OEM's own Lagrange interpolation.
 * :mod:`~lunarcap.exchange.spk`: SPK (type 9, Lagrange) writing and reading with SPICE.
-* :mod:`~lunarcap.exchange.burns`: the attitude (thrust direction) and maneuver CSV
+* :mod:`~lunarcap.exchange.burn_files`: the attitude (thrust direction) and maneuver CSV
   files, and flying them through the propagator.
 * :mod:`~lunarcap.exchange.gmat`: a GMAT script that flies a capture, the gravity file
   (COF) and Moon kernel it reads, running it with ``gmatpy`` and reading its reports.

@@ -24,7 +24,7 @@ makes GMAT fly lunarcap's dynamics, and the files it reads:
 
 The settings GMAT would otherwise choose for itself, each of which moves the result by
 metres to kilometres (measured by the check reported in the project's issue 25 and with
-``tests/runs/test_gmat.py``):
+``tests/capture/test_gmat.py``):
 
 * the thruster's g0 (``GravitationalAccel``; GMAT's default is 9.81 m/s^2, lunarcap's the
   standard 9.80665 m/s^2, :data:`lunarcap.physics.constants.G0_MPS2`), its thrust

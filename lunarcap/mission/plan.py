@@ -214,7 +214,7 @@ class Start:
         From ``epoch_s`` to the nominal perilune where the first burn's target must hold, s
         (it replaces the first burn's period as the first coast).
     make_up : bool
-        The first burn is a make-up burn after a fault (:mod:`lunarcap.runs.missed`): its
+        The first burn is a make-up burn after a fault (:mod:`lunarcap.studies.missed.cases`): its
         duration is bounded by its solver, not checked against Eq. (19) (it may need next
         to nothing, and its impulse is tangential where the state is, not at a perilune).
     """
@@ -463,7 +463,7 @@ class CapturePlan:
         Burns i, i+1, ... of this plan; the first ignites within ``window_min`` (min after
         ``epoch_s``, free), the others as in this plan. The first coast ends at
         ``first_coast_s`` after ``epoch_s`` (default: this plan's nominal perilune after
-        burn i). The re-plan after a fault (:mod:`lunarcap.runs.missed`) and the impulsive
+        burn i). The re-plan after a fault (:mod:`lunarcap.studies.missed.cases`) and the impulsive
         limit of a burn from a given state are such plans. ``make_up``: its first burn is
         a make-up burn (see :class:`Start`).
         """

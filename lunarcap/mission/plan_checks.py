@@ -451,7 +451,7 @@ def _check_engine_fits(plan) -> None:
     the state is rather than at a perilune, sizes no Eq. (19) duration (1 min after a
     late ignition of a circularisation 31 min before perilune, 942 m/s for the 565 m/s
     the burn needs); its solver bounds its duration
-    (:data:`lunarcap.runs.missed_recovery.MIN_MAKE_UP_S`, 0.9 of its coast).
+    (:data:`lunarcap.studies.missed.recovery.MIN_MAKE_UP_S`, 0.9 of its coast).
     """
     t = plan.nominal_perilunes_s
     thrust, mass = plan.engine.thrust_N, plan.initial_mass_kg

@@ -3,7 +3,7 @@
 :mod:`lunarcap.optim.verify` gates a solution re-flown from its initial state: the end of
 its coast against the collocation's (position, speed, objective) and the target on the
 re-flown state. The target part is written here once, so that a state reached otherwise
-(a fault's orbit, coasting, :mod:`lunarcap.runs.missed_recovery`) is held to the same
+(a fault's orbit, coasting, :mod:`lunarcap.studies.missed.recovery`) is held to the same
 tolerances: |r_p - target| < 10 m, |i - target| < 1e-4 deg, |gamma| < 1e-4 deg and the
 perilune branch; an ellipse as asked also its apolune within 50 m and its period within
 0.5 s; a circle its radii within 10 m.

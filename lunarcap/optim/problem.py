@@ -98,7 +98,7 @@ class BurnProblem:
     t1_max_s: float | None = None
     end_window_s: tuple | None = None
     #: Lower bound of the burn duration, s (None: Eq. 10's, min(1 s, half of Eq. 19));
-    #: 0-ish lets a make-up burn vanish (lunarcap.runs.missed).
+    #: 0-ish lets a make-up burn vanish (lunarcap.studies.missed.cases).
     t1_min_s: float | None = None
 
     def __post_init__(self):

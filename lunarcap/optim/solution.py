@@ -71,7 +71,7 @@ class Solution:
         (vis-viva,
         tangential at perilune) from which Eq. (19) estimates ``eq19_duration_min``; the
         impulsive limit in the same dynamics, and the loss against it, are computed by
-        :mod:`lunarcap.runs.chain`.
+        :mod:`lunarcap.capture.chain`.
         """
         prob, raw = self.problem, self.raw
         tv = orbit_summary(self.end_state, C.MU_MOON)

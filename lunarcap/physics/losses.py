@@ -37,7 +37,7 @@ constant acceleration in a fixed inertial direction, centred on an apse, for
 along the velocity, gravity component :math:`-\omega_s^2 y`), the work done by the thrust
 falls short of the impulse's by :math:`\omega_s^2 v t_b^2 \Delta V / 24`, which at the
 speed :math:`v` is the velocity loss above.
-``tests/runs/test_study.py::test_robbins_is_the_leading_order_loss_of_a_fixed_direction_burn``
+``tests/studies/test_study.py::test_robbins_is_the_leading_order_loss_of_a_fixed_direction_burn``
 checks this against a numerical integration (planar two-body, a circular orbit and the
 12 h ellipse's perilune, :math:`\omega_s t_b` = 0.1 and 0.3). The optimal burns of
 :mod:`lunarcap.optim.nlp` steer the thrust and choose the ignition time (and their

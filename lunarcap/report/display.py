@@ -11,7 +11,7 @@ and "Book figure N" (``numfig_format`` in ``book/_config.yml``), so that no numb
 ours reads like one of the paper's. A table or figure that regenerates one of the
 paper's (``paper="Table 1"``, ``"Fig. 2"``...) carries the paper's number instead,
 "Song et al. (2011) Table 1", at the head of its caption, and no book number: it gets no
-label and the class ``lc-paper``, whose items :mod:`lunarcap.report.sphinx_ext` keeps
+label and the class ``lc-paper``, whose items :mod:`lunarcap.bookbuild.sphinx_ext` keeps
 Sphinx from numbering.
 """
 
@@ -26,7 +26,7 @@ from lunarcap.repro import paths
 
 #: How the book names the paper's own tables and figures ("Song et al. (2011) Table 1").
 PAPER_CITATION = "Song et al. (2011)"
-#: Class of the paper's tables and figures, which lunarcap.report.sphinx_ext leaves unnumbered.
+#: Class of the paper's tables and figures, which lunarcap.bookbuild.sphinx_ext leaves unnumbered.
 PAPER_CLASS = "lc-paper"
 #: The one wording of a verification's outcome on every page (never yes/no or True/False).
 PASSED, FAILED = "passed", "failed"

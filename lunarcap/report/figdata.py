@@ -433,7 +433,7 @@ def capture_geometry(solutions, arrival, hyperbola_hours: float = 3.0,
     Parameters
     ----------
     solutions : list of Solution
-        A plan's burns in order (:func:`lunarcap.runs.chain.solve_plan`).
+        A plan's burns in order (:func:`lunarcap.capture.chain.solve_plan`).
     arrival : lunarcap.mission.arrival.Arrival
         The arrival perilune state; defines the drawing plane.
     hyperbola_hours : float

@@ -35,7 +35,7 @@ def plot_sweep_dv(sweep, printed=None, printed_label: str = "paper"):
 
     Parameters
     ----------
-    sweep : DataFrame from :func:`lunarcap.runs.sweeps.sweep_table` (``start_min``,
+    sweep : DataFrame from :func:`lunarcap.studies.sweeps.sweep_table` (``start_min``,
         ``delta_v_mps``, ``best``, ``eq19_duration_min``; ``attrs["impulsive_delta_v_mps"]``)
     printed : DataFrame of the paper's rows (``start_min``, ``delta_v_mps``), optional
     printed_label : legend text of the paper's rows
@@ -182,7 +182,7 @@ def plot_summary_loss(chains: dict):
 
     Parameters
     ----------
-    chains : {engine label: DataFrame} from :func:`lunarcap.runs.sweeps.sequence_table`
+    chains : {engine label: DataFrame} from :func:`lunarcap.studies.sweeps.sequence_table`
         (``loi``, ``paper_delta_v_mps``, ``paper_impulsive_delta_v_mps``,
         ``loss_vs_paper_impulse_mps``,
         ``delta_v_loss_mps``), one bar group per LOI, one panel per engine.
@@ -313,7 +313,7 @@ def plot_steering_penalty(steer, engines: list, laws=("inertial", "antivelocity"
 
     Parameters
     ----------
-    steer : DataFrame of :func:`lunarcap.runs.sweeps.steering_table` rows of every engine
+    steer : DataFrame of :func:`lunarcap.studies.sweeps.steering_table` rows of every engine
         (``engine``, ``loi``, ``steering``, ``delta_v_penalty_mps``,
         ``objective_penalty_mps``, ``rp_miss_km``)
     engines : engine labels (the ``engine`` column), one column of panels each, in order

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from lunarcap.report import display as _display
 from lunarcap.report.labels import labels as _labels
 
-#: Head of the glued text of a missing value: :mod:`lunarcap.report.sphinx_ext` prints the
+#: Head of the glued text of a missing value: :mod:`lunarcap.bookbuild.sphinx_ext` prints the
 #: reason that follows it wherever the prose pastes the value, whatever the number format
 #: (``{glue:text}`x:.2f``` of a missing ``x`` reads "— (not run in the quick book)").
 MISSING_PREFIX = "lunarcap-missing:"
@@ -225,7 +225,7 @@ class Page:
         the cache directory): the copy is ``data/<output_name>_<name>`` (default: the
         file's name) and the MyST ``{download}`` link to it is returned, for a caption or
         the prose. The book's archive of all its data includes it
-        (:func:`lunarcap.report.findings.write_archive`).
+        (:func:`lunarcap.report.landing.write_archive`).
         """
         import shutil
         from pathlib import Path
@@ -269,7 +269,7 @@ class Page:
         """The page's finding in one or two sentences with its numbers (MyST Markdown).
 
         Glued as ``headline``; the findings page and the landing page quote it with a link
-        to this page (:mod:`lunarcap.report.findings`).
+        to this page (:mod:`lunarcap.report.landing`).
         """
         self.notes["headline"] = markdown
 

@@ -1,7 +1,7 @@
 """Tables of the reproduction report: every number Song 2011 prints beside ours.
 
 Pure functions of DataFrames and dicts the page (:mod:`lunarcap.report.pages.reproduction_report`)
-computes with :mod:`lunarcap.runs.sweeps` and :mod:`lunarcap.runs.chain`; nothing here
+computes with :mod:`lunarcap.studies.sweeps` and :mod:`lunarcap.capture.chain`; nothing here
 solves or integrates.
 """
 
@@ -39,7 +39,7 @@ def paper_tables_long(sweeps: dict, impulsive_dv_mps=None):
     Parameters
     ----------
     sweeps : dict
-        ``{(thrust_N, loi): DataFrame}`` from :func:`lunarcap.runs.sweeps.sweep_table` with the
+        ``{(thrust_N, loi): DataFrame}`` from :func:`lunarcap.studies.sweeps.sweep_table` with the
         paper's ignition offsets (columns ``paper_*`` beside ours; ``attrs`` ``thrust_N``,
         ``isp_s``).
     impulsive_dv_mps : sequence of 3 floats, optional

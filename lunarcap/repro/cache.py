@@ -19,7 +19,7 @@ line). Inside the block nothing is read from or written to the cache, by any cac
 function at any depth (a burn's earlier burns included). The switch is per thread (a
 :class:`contextvars.ContextVar`); work shipped to another process or thread receives the
 position explicitly (:func:`enabled` at submission, ``caching(...)`` in the task: see
-:func:`lunarcap.runs.campaign.guarded`). Outside any block the switch stands where the
+:func:`lunarcap.studies.campaign.guarded`). Outside any block the switch stands where the
 environment puts it: ``LUNARCAP_NO_CACHE=1`` for a whole process (the test suite, the book's
 executed notebooks); lunarcap itself never edits the environment.
 
@@ -52,11 +52,11 @@ from lunarcap.repro import paths
 #: flights (which fly the exported steering segments). Editing anything
 #: else (the CLI's help, the book, a figure, a plan file: a plan's content is part of the
 #: key of each of its solves) keeps every cached solve.
-NUMERICAL_CODE = ("physics/", "mission/", "optim/", "errors.py", "runs/chain.py",
-                  "runs/openloop.py", "runs/export.py")
+NUMERICAL_CODE = ("physics/", "mission/", "optim/", "errors.py", "capture/chain.py",
+                  "capture/openloop.py", "capture/export.py")
 
 #: Besides those, the book's stamps hash the presentation code (a figure depends on it).
-PRESENTATION_CODE = ("report/", "paper/", "runs/", "cli.py")
+PRESENTATION_CODE = ("report/", "bookbuild/", "paper/", "studies/", "capture/", "cli/")
 
 _PACKAGE_DIR = Path(__file__).resolve().parents[1]
 
@@ -134,7 +134,7 @@ def code_version(*also: str, include_presentation: bool = False) -> str:
     Parameters
     ----------
     *also : str
-        Further source files or folders, relative to the package (``"runs/missed.py"``):
+        Further source files or folders, relative to the package (``"studies/missed/cases.py"``):
         a study's table depends on its own module too, not only on :data:`NUMERICAL_CODE`.
     include_presentation : bool
         Also hash :data:`PRESENTATION_CODE` (the book uses this for its stamps, since a

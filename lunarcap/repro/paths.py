@@ -10,7 +10,7 @@ Layout::
 
     <ROOT>/
         notebooks/            source notebooks (committed without outputs)
-            manifest.yml      what the book executes (see :mod:`lunarcap.report.build`)
+            manifest.yml      what the book executes (see :mod:`lunarcap.bookbuild.build`)
         book/                 jupyter-book sources (_config.yml, _toc.yml, *.md)
             generated/        executed notebooks <name>.ipynb and their stamps
                 tables/       CSV files

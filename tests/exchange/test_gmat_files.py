@@ -1,6 +1,6 @@
 """Tests of lunarcap.exchange.gmat without GMAT: epochs, the COF gravity file, the script.
 
-The run in GMAT itself, against lunarcap's flight, is tests/runs/test_gmat.py.
+The run in GMAT itself, against lunarcap's flight, is tests/capture/test_gmat.py.
 """
 
 import math

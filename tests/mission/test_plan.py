@@ -1,6 +1,6 @@
 """Tests of lunarcap.mission.plan: capture plans as data, their derived numbers and validation.
 
-No optimisation here: the solves of plans are in tests/runs/test_plans.py.
+No optimisation here: the solves of plans are in tests/capture/test_plans.py.
 """
 
 import copy

@@ -8,6 +8,7 @@ run in `make test`.
 import numpy as np
 import pytest
 
+from lunarcap.capture.chain import arrival_for, impulsive_limit
 from lunarcap.errors import SolveError
 from lunarcap.mission.plan import load_plan, paper_plan, plan_ephemeris
 from lunarcap.optim.collocation import Mesh
@@ -19,7 +20,6 @@ from lunarcap.optim.verify import mesh_convergence, verify
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import mee_from_rv
 from lunarcap.repro.cache import caching
-from lunarcap.runs.chain import arrival_for, impulsive_limit
 
 pytestmark = pytest.mark.slow
 

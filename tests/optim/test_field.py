@@ -13,12 +13,12 @@ from dataclasses import replace
 
 import pytest
 
+from lunarcap.capture.chain import plan_result
 from lunarcap.mission.plan import CapturePlan, load_plan
 from lunarcap.optim.correction import TOL_KMPS2
 from lunarcap.optim.verify import TOL_PERIOD_S, TOL_RA_M, verify
 from lunarcap.physics.dynamics import Model, fit_for
 from lunarcap.repro.cache import caching
-from lunarcap.runs.chain import plan_result
 
 pytestmark = pytest.mark.slow
 

@@ -19,6 +19,7 @@ import math
 import numpy as np
 import pytest
 
+from lunarcap.capture.chain import arrival_for
 from lunarcap.mission.plan import load_plan, plan_ephemeris
 from lunarcap.optim.flight import (
     BurnPlan,
@@ -35,7 +36,6 @@ from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.elements import mean_motion_and_anomaly, rv_from_mee
 from lunarcap.physics.state import State
-from lunarcap.runs.chain import arrival_for
 
 pytestmark = pytest.mark.slow
 

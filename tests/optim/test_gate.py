@@ -9,6 +9,7 @@ fail. Then real solutions: a perturbed control and an apolune end are refused.
 import numpy as np
 import pytest
 
+from lunarcap.capture.chain import arrival_for
 from lunarcap.mission.plan import load_plan, plan_ephemeris
 from lunarcap.mission.targets import CONDITIONS, PERILUNE
 from lunarcap.optim import verify as V
@@ -16,7 +17,6 @@ from lunarcap.optim.collocation import Mesh
 from lunarcap.optim.guess import make_guess
 from lunarcap.optim.nlp import build_burn_nlp, solve_nlp
 from lunarcap.optim.problem import burn_problem
-from lunarcap.runs.chain import arrival_for
 
 
 def _passing(circular=False):

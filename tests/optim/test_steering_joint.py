@@ -9,12 +9,12 @@ notebooks/free_ignition.ipynb, steering_laws.ipynb and joint_capture.ipynb.
 
 import pytest
 
+from lunarcap.capture.chain import arrival_for
+from lunarcap.capture.joint_plan import solve_plan_jointly
 from lunarcap.mission.plan import CapturePlan, load_plan, plan_ephemeris
 from lunarcap.optim.problem import burn_problem
 from lunarcap.optim.solve import solve_burn_problem
 from lunarcap.paper.printed import PAPER_STARTS_MIN
-from lunarcap.runs.chain import arrival_for
-from lunarcap.runs.joint import solve_plan_jointly
 
 pytestmark = pytest.mark.slow
 
@@ -100,8 +100,8 @@ def test_a_joint_optimum_that_fails_verification_comes_with_the_error(plan, monk
     import dataclasses
 
     import lunarcap.optim.joint as joint
+    from lunarcap.capture.chain import solve_plan
     from lunarcap.errors import SolveError
-    from lunarcap.runs.chain import solve_plan
 
     seq = solve_plan(plan)
     ok = joint.solve_joint(plan, seq, None)

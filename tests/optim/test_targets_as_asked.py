@@ -20,11 +20,11 @@ import numpy as np
 import pytest
 from plan_family import plan_family, plan_of
 
+from lunarcap.capture.chain import solve_plan
 from lunarcap.mission.plan import PlanError
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.repro.cache import caching
-from lunarcap.runs.chain import solve_plan
 
 pytestmark = pytest.mark.slow
 
@@ -147,8 +147,8 @@ def test_a_small_burn_in_full_dynamics_may_ignite_well_away_from_perilune():
     # full dynamics): burn 2, 11.934 -> 10.69 h, is 14.4 m/s in two-body (Eq. 19: 0.8 min).
     # The Earth moves the next perilune, which only a burn away from perilune undoes:
     # within +-2 Eq. (19) durations IPOPT found it infeasible on every mesh.
+    from lunarcap.capture.chain import labelled, reuse_earlier_burns, solve_burn
     from lunarcap.physics.rocket import burn_duration_estimate_s
-    from lunarcap.runs.chain import labelled, reuse_earlier_burns, solve_burn
     plans, _ = plan_family(24, 12, dynamics="full", mass_kg=(400, 2000),
                            formulations=("orbit", "song2011"))
     plan = {p.name: p for p in plans}["family-1"]

@@ -153,7 +153,7 @@ def test_show_table_and_figure_write_files(tmp_path, monkeypatch):
 def test_paper_tables_and_figures_carry_the_papers_number_and_no_book_number(tmp_path,
                                                                             monkeypatch):
     # one that regenerates the paper's has the paper's number at the head of its caption,
-    # no label and the class that lunarcap.report.sphinx_ext keeps from being numbered
+    # no label and the class that lunarcap.bookbuild.sphinx_ext keeps from being numbered
     # (the quick book's test_caption_numbers_never_read_like_the_papers checks the HTML)
     gen = tmp_path / "generated"
     monkeypatch.setattr(paths, "GENERATED", gen)
@@ -169,7 +169,7 @@ def test_paper_tables_and_figures_carry_the_papers_number_and_no_book_number(tmp
                              paper="Fig. 1")
     assert "\n\n**Song et al. (2011) Fig. 1.** Geometry. " in md and ":name:" not in md
     assert "\n:figclass: lc-paper\n" in md
-    from lunarcap.report import sphinx_ext
+    from lunarcap.bookbuild import sphinx_ext
 
     assert sphinx_ext.PAPER_CLASS == display.PAPER_CLASS == "lc-paper"
 
@@ -199,8 +199,8 @@ def test_orbit_plane_basis_is_right_handed_and_follows_the_pole():
 @pytest.fixture(scope="module")
 def capture():
     """The paper's 150 N plan (-10, -6, -5 min): solved once, then from the disk cache."""
+    from lunarcap.capture.chain import arrival_for, solve_plan
     from lunarcap.mission.plan import load_plan
-    from lunarcap.runs.chain import arrival_for, solve_plan
 
     plan = load_plan("song2011-150N")
     sols = solve_plan(plan)

@@ -9,8 +9,9 @@ import zipfile
 import nbformat
 import pytest
 
-from lunarcap.report import bookcheck, findings
-from lunarcap.report.manifest import Entry
+from lunarcap.bookbuild import bookcheck
+from lunarcap.bookbuild.manifest import Entry
+from lunarcap.report import landing as findings
 from lunarcap.report.page import Page
 from lunarcap.report.pages import findings as findings_page
 from lunarcap.repro import paths

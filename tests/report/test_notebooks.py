@@ -1,6 +1,6 @@
 """Notebooks are tested by running them: a quick build of the whole book, then checks.
 
-The build (``python -m lunarcap.report.build build --quick``) writes into the real, git-ignored
+The build (``python -m lunarcap.bookbuild.build build --quick``) writes into the real, git-ignored
 ``book/generated`` and ``book/_build``. The source-notebook lint tests at the end are
 fast and not marked.
 """
@@ -17,7 +17,7 @@ import nbformat
 import pandas as pd
 import pytest
 
-from lunarcap.report import build as book
+from lunarcap.bookbuild import build as book
 from lunarcap.repro import paths
 
 ENTRIES = book.load_manifest()
@@ -34,7 +34,7 @@ def _full_book_files():
 def quick_build():
     """The quick book, built in ``book/_build/quick``; the tests below read it there."""
     before = _full_book_files()
-    run = subprocess.run([sys.executable, "-m", "lunarcap.report.build", "build", "--quick"],
+    run = subprocess.run([sys.executable, "-m", "lunarcap.bookbuild.build", "build", "--quick"],
                          cwd=paths.ROOT, capture_output=True, text=True, timeout=1800)
     assert run.returncode == 0, run.stdout + run.stderr
     touched = before ^ _full_book_files()
@@ -362,8 +362,8 @@ def test_caption_numbers_never_read_like_the_papers(quick_build):
 def test_no_built_page_says_nan(quick_build):
     # a value a quick run leaves out is printed as its reason ("— (not run in the quick
     # book)"), never "nan" (the landing page read "lose 20.35, nan and nan m/s"); the
-    # build itself refuses such a page, for the full book too (report/bookcheck.py)
-    from lunarcap.report.bookcheck import check_pages
+    # build itself refuses such a page, for the full book too (bookbuild/bookcheck.py)
+    from lunarcap.bookbuild.bookcheck import check_pages
 
     assert check_pages(paths.HTML, book.toc_files()) == {}
     assert "not run in the quick book" in (paths.HTML / "index.html").read_text(
@@ -380,7 +380,7 @@ def test_the_landing_pages_first_screen_states_a_finding_and_how_to_cite(quick_b
     # the first screen held the title, a paragraph citing the paper and "The problem".
     import shutil
 
-    from lunarcap.report import screenshots
+    from lunarcap.bookbuild import screenshots
 
     if shutil.which("chromium") is None:
         pytest.fail("this test reads the landing page in headless Chromium, which is not "
@@ -398,7 +398,7 @@ def test_the_landing_pages_first_screen_states_a_finding_and_how_to_cite(quick_b
 
 @pytest.mark.notebooks
 def test_the_findings_page_lists_every_page_with_its_finding(quick_build):
-    from lunarcap.report import findings
+    from lunarcap.report import landing as findings
 
     pages = [e for e in ENTRIES if e.name != "findings"]   # the page that lists them
     items = findings.headlines(pages, paths.GENERATED, book.toc_files())
@@ -412,7 +412,7 @@ def test_the_findings_page_lists_every_page_with_its_finding(quick_build):
 
 @pytest.mark.notebooks
 def test_rerun_with_nothing_changed_executes_nothing(quick_build):
-    run = subprocess.run([sys.executable, "-m", "lunarcap.report.build", "build", "--quick",
+    run = subprocess.run([sys.executable, "-m", "lunarcap.bookbuild.build", "build", "--quick",
                           "--no-build"], cwd=paths.ROOT, capture_output=True, text=True,
                          timeout=600)
     assert run.returncode == 0, run.stdout + run.stderr

@@ -24,8 +24,8 @@ from pathlib import Path
 
 import pytest
 
-from lunarcap.report import findings as F
-from lunarcap.report.manifest import load_manifest
+from lunarcap.bookbuild.manifest import load_manifest
+from lunarcap.report import landing as F
 from lunarcap.repro import paths
 
 README = paths.ROOT / "README.md"

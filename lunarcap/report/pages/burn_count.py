@@ -1,10 +1,10 @@
 """The number-of-burns page (notebooks/burn_count.ipynb): how many capture burns to plan.
 
 For each plan, the capture from its arrival to its final orbit in N = 1, 2, ... burns,
-the intermediate periods optimised (:mod:`lunarcap.runs.burns`, run on Dask and resumed
-from the table ``<cache>/study/<output_name>.csv``). :func:`build` shows one row per plan
-and count, one row per burn, and the figure: total loss and time to the final orbit
-against N, one line per plan.
+the intermediate periods optimised (:mod:`lunarcap.studies.burn_count.counts`, run on Dask and
+resumed from the table ``<cache>/study/<output_name>.csv``). :func:`build` shows one row per
+plan and count, one row per burn, and the figure: total loss and time to the final orbit against
+N, one line per plan.
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ from lunarcap.quantities import capture_name
 from lunarcap.report import figures
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
-from lunarcap.runs import burns
-from lunarcap.runs.shape import plan_id
+from lunarcap.studies.burn_count import counts as burns
+from lunarcap.studies.study import plan_id
 
 NOTEBOOK = "notebooks/burn_count.ipynb"
 
@@ -80,7 +80,7 @@ def reading(table: pd.DataFrame) -> str:
 
 
 #: How finely the impulsive limit's delta-V is resolved along its flat objective, m/s
-#: (:func:`lunarcap.runs.chain._impulsive_limit`: near-equal optima a few seconds apart
+#: (:func:`lunarcap.capture.chain._impulsive_limit`: near-equal optima a few seconds apart
 #: differ by ~0.2 m/s in delta-V and ~0.003 m/s in the objective).
 IMPULSIVE_DV_RESOLUTION_MPS = 0.2
 

@@ -1,7 +1,7 @@
 """The capture-plan page (notebooks/capture_plan.ipynb): any plan, solved, verified, drawn.
 
 A capture plan (:mod:`lunarcap.mission.plan`: arrival, engine, dynamics, burns) is solved
-burn by burn with :func:`lunarcap.runs.chain.plan_result`, each burn beside its impulsive
+burn by burn with :func:`lunarcap.capture.chain.plan_result`, each burn beside its impulsive
 limit in the same dynamics from the same pre-burn orbit (the loss is the difference).
 :func:`build` shows the plan (its YAML and a table of its burns and targets), one row per
 burn (three tables shown; the first CSV has every column of each burn's row), the totals,
@@ -21,6 +21,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import pandas as pd
 
+from lunarcap.capture.chain import arrival_for, plan_result
 from lunarcap.mission.plan import PLAN_DIR, CapturePlan, load_plan, paper_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import period_from_semi_major_axis, semi_major_axis_from_period
@@ -30,7 +31,6 @@ from lunarcap.report import figdata, figures
 from lunarcap.report.display import verdict
 from lunarcap.report.labels import period_text
 from lunarcap.report.page import Page, solver_description
-from lunarcap.runs.chain import arrival_for, plan_result
 
 NOTEBOOK = "notebooks/capture_plan.ipynb"
 
@@ -361,7 +361,7 @@ def negative_loss_note(burns: pd.DataFrame) -> str:
         "objective as the finite burn (ΔV plus the perilune speed it leaves, Eq. 9), "
         "which is nearly flat along the epoch of the impulse: optima a few seconds "
         "apart trade ~0.1–0.2 m/s of ΔV against the perilune speed, so the ΔV loss of a "
-        "short burn is uncertain by that much (`lunarcap.runs.chain.impulsive_limit`); "
+        "short burn is uncertain by that much (`lunarcap.capture.chain.impulsive_limit`); "
         "the loss in the objective and the chain's total are the well-conditioned "
         "numbers.")
 

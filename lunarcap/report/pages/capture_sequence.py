@@ -2,7 +2,7 @@
 
 One complete capture with finite burns: the paper's plan for one engine, its burns
 igniting at given offsets (:func:`lunarcap.mission.plan.paper_plan`), solved in order
-(:func:`lunarcap.runs.chain.solve_plan`) and drawn from the verified solutions: the whole
+(:func:`lunarcap.capture.chain.solve_plan`) and drawn from the verified solutions: the whole
 capture (Fig. 2), the burn arcs (Fig. 3), the thrust angles and mass of burn 1 (Fig. 4)
 and its thrust-acceleration and velocity vectors (Fig. 5). The data of the figures come
 from :mod:`lunarcap.report.figdata`, the drawing from :mod:`lunarcap.report.figures`.
@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from lunarcap.capture import chain
 from lunarcap.mission.plan import paper_plan
 from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.paper import audit
@@ -23,7 +24,6 @@ from lunarcap.report import figdata, figures
 from lunarcap.report.figstyle import colour_name
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
-from lunarcap.runs import chain
 
 NOTEBOOK = "notebooks/capture_sequence.ipynb"
 

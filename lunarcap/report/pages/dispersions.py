@@ -1,14 +1,15 @@
 """The dispersions page (notebooks/dispersions.ipynb): the delta-V budget under errors.
 
-For each plan (the paper's three engines), :func:`lunarcap.runs.dispersions.run_dispersions`
-flies ``samples`` captures with execution, arrival and knowledge errors, re-planned after
-every burn (run on Dask, resumed from ``<cache>/study/<output_name>.csv``), under an
+For each plan (the paper's three engines),
+:func:`lunarcap.studies.dispersions.samples.run_dispersions` flies ``samples`` captures with
+execution, arrival and knowledge errors, re-planned after every burn (run on Dask, resumed from
+``<cache>/study/<output_name>.csv``), under an
 *example* error model whose values are assumptions (:data:`DEFAULT_SIGMAS`, the page's
 assumptions table). :func:`build` shows the example budget (the mean above the nominal
 and the largest sample; a percentile only where the samples bound its interval, else how
 many samples it needs), a CDF per engine, and the **sensitivities**: each error source
 alone at ``sensitivity_factors`` times its example sigma, the others 0, on the same draws
-(:mod:`lunarcap.runs.dispersion_sensitivity`), one figure per engine and a table of the
+(:mod:`lunarcap.studies.dispersions.sensitivity`), one figure per engine and a table of the
 laws, so a reader scales the budget to their own sigmas.
 """
 
@@ -29,8 +30,8 @@ from lunarcap.report.figstyle import (
 )
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
-from lunarcap.runs import dispersions as disp
-from lunarcap.runs.shape import plan_id
+from lunarcap.studies.dispersions import samples as disp
+from lunarcap.studies.study import plan_id
 
 NOTEBOOK = "notebooks/dispersions.ipynb"
 
@@ -203,7 +204,7 @@ def plot_sensitivity(rows: list, engine: str):
 
 def sensitivity_table(rows: list) -> pd.DataFrame:
     """One row per engine and source: the law of the mean and of the costliest sample."""
-    from lunarcap.runs.dispersion_sensitivity import slopes
+    from lunarcap.studies.dispersions.sensitivity import slopes
 
     out = []
     for engine in dict.fromkeys(r["engine"] for r in rows):
@@ -254,7 +255,7 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
     """
     from dataclasses import replace
 
-    from lunarcap.runs import dispersion_sensitivity as sens
+    from lunarcap.studies.dispersions import sensitivity as sens
 
     sig = dict(DEFAULT_SIGMAS, **(sigmas or {}))
     model = disp.ErrorModel(**sig)

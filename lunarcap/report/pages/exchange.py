@@ -1,6 +1,6 @@
 """The "Hand the plan to other tools" page (notebooks/exchange.ipynb).
 
-:func:`build` solves a plan (cached), exports it with :func:`lunarcap.runs.export.export_plan`
+:func:`build` solves a plan (cached), exports it with :func:`lunarcap.capture.export.export_plan`
 into ``book/generated/export/<output_name>/`` and reads the files back: the OEM with
 lunarcap's reader for the picture, the SPK through SPICE against the OEM, the OEM in UTC
 against the OEM in TDB. Its tables list the files (size) and the OEM's segments (states,
@@ -12,16 +12,16 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from lunarcap.capture.chain import plan_result
+from lunarcap.capture.export import export_plan
 from lunarcap.exchange import ccsds, spk
-from lunarcap.exchange.burns import read_maneuvers
+from lunarcap.exchange.burn_files import read_maneuvers
 from lunarcap.mission.plan import load_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.epochs import calendar_from_seconds, leap_second_table
 from lunarcap.report.figures import plot_exported_trajectory
 from lunarcap.report.page import Page
 from lunarcap.repro import paths
-from lunarcap.runs.chain import plan_result
-from lunarcap.runs.export import export_plan
 
 NOTEBOOK = "notebooks/exchange.ipynb"
 

@@ -1,7 +1,7 @@
 """The findings page (notebooks/findings.ipynb) and the landing page's first screen.
 
 Run after every other page of the book (manifest ``depends_on: ["*"]``), :func:`build`
-reads what each executed page glued (:mod:`lunarcap.report.findings`): its finding
+reads what each executed page glued (:mod:`lunarcap.report.landing`): its finding
 (``headline``) for the list of every page's finding, in the order of the table of
 contents, and the numbers of a few pages for the landing page's first screen
 (:func:`first_screen`): the paper reproduced within x %, the finite-burn losses of the
@@ -17,7 +17,7 @@ import pandas as pd
 import yaml
 
 from lunarcap.mission.scenario import paper_engine_pairs
-from lunarcap.report import findings as F
+from lunarcap.report import landing as F
 from lunarcap.report.page import Page, listing
 from lunarcap.repro import paths
 
@@ -59,13 +59,13 @@ def first_screen(values: dict, items: list, beyond: list[str], cite: dict | None
     ----------
     values : dict
         ``{entry name: glued values}`` of the executed pages
-        (:func:`lunarcap.report.findings.glued`).
-    items : list of :class:`lunarcap.report.findings.Headline`
+        (:func:`lunarcap.report.landing.glued`).
+    items : list of :class:`lunarcap.report.landing.Headline`
         Every page's finding (for the titles of the pages listed).
     beyond : list of str
         The toc files of the "Beyond the paper" part.
     cite : dict, optional
-        :func:`lunarcap.report.findings.citation` (the version and date named first).
+        :func:`lunarcap.report.landing.citation` (the version and date named first).
     """
     def v(page, name):
         return values.get(page, {}).get(name, F_MISSING)
@@ -101,7 +101,7 @@ def first_screen(values: dict, items: list, beyond: list[str], cite: dict | None
 
 def build(output_name: str = "findings", quick: bool = False) -> Page:
     """The findings page (see the module docstring); writes the landing page's includes."""
-    from lunarcap.report.manifest import load_manifest, toc_files
+    from lunarcap.bookbuild.manifest import load_manifest, toc_files
 
     entries = [e for e in load_manifest(check_notebooks=False) if e.name != output_name]
     page = Page(NOTEBOOK, {}, output_name, quick)

@@ -3,8 +3,8 @@
 For each engine, each burn of the paper's plan is solved with its ignition time free (an
 NLP variable), starting from the free-ignition chain's previous orbit, and set beside
 the best of the paper's grid of offsets replayed on that same orbit
-(:func:`lunarcap.runs.sweeps.free_vs_grid_table`); the whole chains are compared
-(:func:`lunarcap.runs.sweeps.sequence_table`); and the paper's rule of thumb, ignition
+(:func:`lunarcap.studies.sweeps.free_vs_grid_table`); the whole chains are compared
+(:func:`lunarcap.studies.sweeps.sequence_table`); and the paper's rule of thumb, ignition
 half the Eq. (19) duration before the perilune, is solved on the same orbits and priced
 against the optimum. The notes the prose needs (which grid point cost most, where the
 free optimum spends more delta-V, what the chain gains) are written from the data.
@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from lunarcap.capture.chain import paper_case
 from lunarcap.mission.plan import paper_plan
 from lunarcap.mission.scenario import paper_engine_pairs, paper_engines
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_IMPULSIVE_DV_MPS, PAPER_STARTS_MIN
@@ -22,8 +23,7 @@ from lunarcap.quantities import capture_name
 from lunarcap.report import figures
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
-from lunarcap.runs import sweeps
-from lunarcap.runs.chain import paper_case
+from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/free_ignition.ipynb"
 

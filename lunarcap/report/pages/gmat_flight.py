@@ -1,13 +1,14 @@
 """The "Flown in GMAT" page (notebooks/gmat_flight.ipynb): lunarcap's capture in NASA's GMAT.
 
 :func:`build` exports each case's verified capture with its GMAT script
-(:func:`lunarcap.runs.gmat.fly_in_gmat`, into ``book/generated/export/<output_name>_<k>/``,
-so the book serves the files), runs the script in GMAT (the ``gmatpy`` wheel, in a child
-process) and tabulates GMAT's states against lunarcap's (:func:`comparison_table`,
+(:func:`lunarcap.capture.gmat_flight.fly_in_gmat`, into
+``book/generated/export/<output_name>_<k>/``, so the book serves the files), runs the script in
+GMAT (the ``gmatpy`` wheel, in a child process) and tabulates GMAT's states against lunarcap's
+(:func:`comparison_table`,
 :func:`final_table`). It reads GMAT's own defaults from GMAT
 (:func:`lunarcap.exchange.gmat.gmat_defaults`) and lists what the exported script sets
 instead, with what each default costs the first case's capture, flown in lunarcap
-(:func:`lunarcap.runs.gmat.default_costs`; :func:`settings_table`).
+(:func:`lunarcap.capture.gmat_flight.default_costs`; :func:`settings_table`).
 """
 
 from __future__ import annotations
@@ -18,16 +19,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from lunarcap.exchange import gmat
-from lunarcap.mission.plan import load_plan
-from lunarcap.physics import constants as C
-from lunarcap.physics.epochs import calendar_from_seconds, leap_second_table, seconds_from_calendar
-from lunarcap.physics.forces import force_model
-from lunarcap.report.page import Page
-from lunarcap.repro import paths
-from lunarcap.runs.chain import plan_result
-from lunarcap.runs.export import capture_arcs
-from lunarcap.runs.gmat import (
+from lunarcap.capture.chain import plan_result
+from lunarcap.capture.export import capture_arcs
+from lunarcap.capture.gmat_flight import (
     TOL_BURN_POSITION_M,
     TOL_BURN_SPEED_MPS,
     TOL_FINAL_RADII_M,
@@ -35,6 +29,13 @@ from lunarcap.runs.gmat import (
     fly_in_gmat,
     lunarcap_events,
 )
+from lunarcap.exchange import gmat
+from lunarcap.mission.plan import load_plan
+from lunarcap.physics import constants as C
+from lunarcap.physics.epochs import calendar_from_seconds, leap_second_table, seconds_from_calendar
+from lunarcap.physics.forces import force_model
+from lunarcap.report.page import Page
+from lunarcap.repro import paths
 
 NOTEBOOK = "notebooks/gmat_flight.ipynb"
 #: How the comparison table names GMAT's events (its reports' codes).
@@ -49,7 +50,7 @@ def case_label(plan) -> str:
 def comparison_table(c, label: str) -> pd.DataFrame:
     """GMAT against lunarcap for one case: per burn, per coast, the whole capture.
 
-    ``c``: a :class:`lunarcap.runs.gmat.GmatComparison`. One row per burn flown from
+    ``c``: a :class:`lunarcap.capture.gmat_flight.GmatComparison`. One row per burn flown from
     lunarcap's ignition state (at its cut-off), per coast flown from lunarcap's cut-off
     (at its end), and per event of the whole capture flown open loop from the arrival:
     GMAT's position (m), velocity (mm/s) and mass (g) minus lunarcap's.
@@ -147,7 +148,7 @@ def settings_table(script: str, defaults: dict, costs: dict, facts: dict) -> pd.
 
     ``script``: the script's text; ``defaults``: GMAT's
     (:func:`lunarcap.exchange.gmat.gmat_defaults`); ``costs``:
-    :func:`lunarcap.runs.gmat.default_costs`; ``facts``: ``tdb_minus_tai_s``, ``mjd_days``
+    :func:`lunarcap.capture.gmat_flight.default_costs`; ``facts``: ``tdb_minus_tai_s``, ``mjd_days``
     (the usual MJD against GMAT's), ``inc_icrf_deg`` and ``inc_deg`` (an orbit's
     inclination to the ICRF and to the lunar equator), ``segments`` (thrust-direction
     segments in the script), ``propagates`` (its Propagate commands).

@@ -2,8 +2,8 @@
 
 For each engine, the paper's plan with every ignition free is solved burn by burn (each
 burn minimising its own J, Eq. 9) and as one NLP whose objective is the total delta-V
-(:func:`lunarcap.runs.joint.solve_plan_jointly`, through the cached
-:func:`lunarcap.runs.joint.chain_summary` and :func:`lunarcap.runs.sweeps.chain_table`).
+(:func:`lunarcap.capture.joint_plan.solve_plan_jointly`, through the cached
+:func:`lunarcap.capture.joint_plan.chain_summary` and :func:`lunarcap.studies.sweeps.chain_table`).
 :func:`build` sets the two side by side per burn and in total.
 """
 
@@ -13,12 +13,13 @@ import inspect
 
 import pandas as pd
 
+from lunarcap.capture import joint_plan as joint
 from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.quantities import capture_name
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page
-from lunarcap.runs import joint, sweeps
+from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/joint_capture.ipynb"
 

@@ -15,13 +15,13 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from lunarcap.capture.chain import impulsive_limit, solve_plan
 from lunarcap.mission.plan import paper_plan
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_ENGINES, paper_table_b1
 from lunarcap.physics import frames
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page
-from lunarcap.runs.chain import impulsive_limit, solve_plan
 
 NOTEBOOK = "notebooks/lunar_pole.ipynb"
 NEW, OLD = frames.LUNAR_POLES

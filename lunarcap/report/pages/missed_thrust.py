@@ -2,7 +2,7 @@
 
 The engine stops after a fraction of burn n of the plan, or burn n ignites late; the rest
 of the capture is re-planned and re-optimised to the same final orbit
-(:mod:`lunarcap.runs.missed`, run on Dask and resumed from
+(:mod:`lunarcap.studies.missed.cases`, run on Dask and resumed from
 ``<cache>/study/<output_name>.csv``). :func:`build` shows the penalty map (fraction ×
 delay), the table of every cut-off, the late ignitions and the recoveries' burns.
 """
@@ -17,7 +17,7 @@ from lunarcap.quantities import capture_name
 from lunarcap.report import figures
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
-from lunarcap.runs import missed
+from lunarcap.studies.missed import cases as missed
 
 NOTEBOOK = "notebooks/missed_thrust.ipynb"
 

@@ -4,7 +4,7 @@ Song et al. (2011, Sec. 3.1) chose their three engines after those of LRO (about
 Isp 200 s) and SELENE (about 500 N, Isp 300 s), which they did not analyse. :func:`build`
 flies the paper's capture plan (:func:`lunarcap.mission.plan.paper_plan`, the paper's
 spacecraft and orbits) with those engines and with the paper's own, every ignition free
-by default (:func:`lunarcap.runs.sweeps.sequence_table`).
+by default (:func:`lunarcap.studies.sweeps.sequence_table`).
 
 Two impulsive references, named wherever a loss is shown:
 
@@ -12,8 +12,8 @@ Two impulsive references, named wherever a loss is shown:
   B1: 353.272, 254.034, 245.363 m/s), the reference of the paper's Tables 1-5;
 * **vs ours** (``model_loss``): against our impulsive limit of the same burn, one
   impulse in the same dynamics from the same pre-burn orbit
-  (:func:`lunarcap.runs.chain.impulsive_limit`, as :func:`lunarcap.runs.chain.plan_result`),
-  measured by the objective of Eq. (9) (:func:`lunarcap.runs.chain.burn_loss`: delta-V
+  (:func:`lunarcap.capture.chain.impulsive_limit`, as :func:`lunarcap.capture.chain.plan_result`),
+  measured by the objective of Eq. (9) (:func:`lunarcap.capture.chain.burn_loss`: delta-V
   plus the speed left at the next perilune), as on the trade-study page; the plain
   delta-V difference ("ΔV above ours") is in the CSV.
 
@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from lunarcap.capture import chain
 from lunarcap.mission.plan import paper_plan
 from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
@@ -34,7 +35,7 @@ from lunarcap.quantities import capture_name
 from lunarcap.report import figures
 from lunarcap.report.display import verdict
 from lunarcap.report.page import Page, solver_description
-from lunarcap.runs import chain, sweeps
+from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/other_engines.ipynb"
 
@@ -87,7 +88,7 @@ def engine_rows(engines, engine_names, paper_engines):
 def burns_frame(seqs: dict, rows, model_loss: bool) -> pd.DataFrame:
     """One row per burn of the cited engines (not the paper's), with engine and origin.
 
-    ``seqs`` maps an engine label to its :func:`lunarcap.runs.sweeps.sequence_table`;
+    ``seqs`` maps an engine label to its :func:`lunarcap.studies.sweeps.sequence_table`;
     ``rows`` are :func:`engine_rows`; verified becomes "passed" / "failed".
     """
     burns = pd.concat([seqs[lab].assign(engine=lab, origin=o, thrust_N=t, isp_s=i)
@@ -269,7 +270,7 @@ def _add_checks(page: Page, totals: pd.DataFrame, seqs: dict, results: dict, row
                     all(res.totals()["all_verified"] for res in results.values()))
         page.expect("every loss vs ours is positive, burn by burn",
                     all(bool((s.objective_loss_mps > 0).all()) for s in seqs.values()))
-        # the plan's own result (runs.chain.plan_result) gives the same losses vs ours
+        # the plan's own result (capture.chain.plan_result) gives the same losses vs ours
         diff = max(abs(res.totals()["total_delta_v_loss_mps"]
                        - float(totals[totals.engine == lab].total_delta_v_loss_mps.iloc[0]))
                    for lab, res in results.items())
@@ -429,7 +430,7 @@ def loss_note(totals: pd.DataFrame, seqs: dict, rows, model_loss: bool, dynamics
     return (
         "**Which impulsive reference.** These losses, and those drawn in the figure, are "
         f"measured against {REF_OURS}, in {dynamics} dynamics "
-        "(`lunarcap.runs.chain.impulsive_limit`): the finite-burn loss of our model against "
+        "(`lunarcap.capture.chain.impulsive_limit`): the finite-burn loss of our model against "
         "our model. The paper measures its losses against its printed impulsive ΔVs "
         f"(Table B1: {', '.join(f'{x:.3f}' for x in PAPER_IMPULSIVE_DV_MPS)} m/s), the "
         f"'vs paper' columns above. {compare}: " + "; ".join(parts) + ". The impulse is the "

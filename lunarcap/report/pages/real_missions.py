@@ -4,7 +4,7 @@ The published figures of four captures (Chang'e-1, LRO, SELENE, KPLO) are data h
 (:data:`PUBLISHED`, each row with the keys of its sources in :data:`SOURCES`), as are the
 numbers taken from them for the comparisons. :func:`build` solves (or fetches) our
 free-ignition capture chains for the LRO- and SELENE-class engines of the paper's Sec. 3.1
-through the paper's plan (:func:`lunarcap.runs.sweeps.sequence_table`), flies our delta-Vs
+through the paper's plan (:func:`lunarcap.studies.sweeps.sequence_table`), flies our delta-Vs
 at the missions' masses and thrusts with Eq. (19), and sets KPLO's design beside the
 paper's capture.
 """
@@ -16,6 +16,7 @@ import re
 import numpy as np
 import pandas as pd
 
+from lunarcap.capture.chain import arrival_for
 from lunarcap.mission.plan import paper_plan
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
@@ -23,8 +24,7 @@ from lunarcap.physics.elements import orbit_summary
 from lunarcap.physics.rocket import burn_duration_estimate_s, rocket_mass_after
 from lunarcap.quantities import capture_name
 from lunarcap.report.page import Page
-from lunarcap.runs.chain import arrival_for
-from lunarcap.runs.sweeps import sequence_table
+from lunarcap.studies.sweeps import sequence_table
 
 NOTEBOOK = "notebooks/real_missions.ipynb"
 

@@ -6,11 +6,11 @@ the Moon's gravity is lumpier. :func:`build` takes the paper's 150 N capture as 
 
 * flies it open loop through LP165P (Konopliv et al. 2001) cut to several degrees, its
   steering held in RTN or in inertial axes, from its arrival or from its first ignition
-  (:func:`lunarcap.runs.openloop.open_loop`): the final orbit and its miss
+  (:func:`lunarcap.capture.openloop.open_loop`): the final orbit and its miss
   (:func:`miss_table`);
 * designs it again in the field (the same plan, targets and ignitions; the burns and
   their impulsive limits, :func:`redesign_table`);
-* flies its final orbit for days in each model (:func:`lunarcap.runs.openloop.evolution`):
+* flies its final orbit for days in each model (:func:`lunarcap.capture.openloop.evolution`):
   per revolution the lowest and highest altitude and the inclination
   (:func:`evolution_table`, :func:`histories`, and the figure);
 * and measures how far the field's frame (DE405's principal axes) is from the IAU (2009)
@@ -22,6 +22,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from lunarcap.capture.chain import plan_result
+from lunarcap.capture.openloop import evolution, open_loop
 from lunarcap.mission.plan import load_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import rv_from_mee
@@ -31,13 +33,11 @@ from lunarcap.physics.forces import force_model
 from lunarcap.physics.frames import rotation_313
 from lunarcap.report.figures import plot_evolution
 from lunarcap.report.page import Page, solver_description
-from lunarcap.runs.chain import plan_result
-from lunarcap.runs.openloop import evolution, open_loop
 
 NOTEBOOK = "notebooks/real_moon.ipynb"
 #: The packaged lunar field and the third bodies every model of the page carries.
 FIELD, THIRD_BODIES = "LP165P", ["earth", "sun"]
-#: The steering holds of the open-loop flights (:mod:`lunarcap.runs.openloop`).
+#: The steering holds of the open-loop flights (:mod:`lunarcap.capture.openloop`).
 HOLD_NAMES = {"rtn": "RTN", "inertial": "inertial"}
 #: Tolerance of the days after the capture: 1e-10 moved the perilunes of 7 days in LP165P
 #: 20x20 by 3 mm from 1e-13's, at half the CPU (the 50x50 field: 28 s at 1e-13).

@@ -3,11 +3,11 @@
 Three parts, each a few tables and the numbers the prose quotes:
 
 (a) every entry of Tables 1-5 and B1 beside the same case solved with lunarcap
-    (:func:`lunarcap.runs.sweeps.sweep_table` at the paper's ignition offsets), and the
+    (:func:`lunarcap.studies.sweeps.sweep_table` at the paper's ignition offsets), and the
     impulsive row of every table beside our two-body impulsive chain;
 (b) every number of the paper's prose (:data:`lunarcap.paper.printed.QUOTES`) beside our
     equivalent from the best chains of the three engines (the paper's plans,
-    :func:`lunarcap.runs.chain.solve_plan`), and the printed perilune epochs beside the
+    :func:`lunarcap.capture.chain.solve_plan`), and the printed perilune epochs beside the
     plan's nominal ones;
 (c) the audit of the paper's consistency (:mod:`lunarcap.paper.audit`).
 
@@ -20,6 +20,7 @@ import re
 
 import pandas as pd
 
+from lunarcap.capture.chain import solve_plan
 from lunarcap.mission.plan import paper_plan
 from lunarcap.mission.scenario import paper_engine_pairs, paper_engines
 from lunarcap.paper import audit
@@ -29,8 +30,7 @@ from lunarcap.report import figdata
 from lunarcap.report import reproduction as rep
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
-from lunarcap.runs import sweeps as runs_sweeps
-from lunarcap.runs.chain import solve_plan
+from lunarcap.studies import sweeps as runs_sweeps
 
 NOTEBOOK = "notebooks/reproduction_report.ipynb"
 

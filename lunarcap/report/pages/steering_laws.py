@@ -1,7 +1,7 @@
 """The steering-laws page (notebooks/steering_laws.ipynb): what the optimal steering is worth.
 
 Each burn of the paper's plan, ignition free, is flown with three steering laws
-(:func:`lunarcap.runs.sweeps.steering_table`): the paper's optimal steering, one fixed
+(:func:`lunarcap.studies.sweeps.steering_table`): the paper's optimal steering, one fixed
 inertial direction (optimised) and thrust opposite the velocity. :func:`build` sets their
 delta-V and J (Eq. 9) penalties against the optimal steering side by side, per engine
 and LOI, with the terminal conditions the antivelocity law cannot meet and how far it
@@ -17,7 +17,7 @@ from lunarcap.report import figures
 from lunarcap.report.display import verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
-from lunarcap.runs import sweeps
+from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/steering_laws.ipynb"
 
@@ -38,7 +38,7 @@ PROSE_THRUSTS_N = (150.0, 300.0, 450.0)
 
 
 def steering_rows(engines, dynamics: str) -> pd.DataFrame:
-    """:func:`lunarcap.runs.sweeps.steering_table` of every engine, one frame.
+    """:func:`lunarcap.studies.sweeps.steering_table` of every engine, one frame.
 
     Columns of the steering table, plus engine (label), thrust_N and isp_s.
     """

@@ -5,7 +5,7 @@ our own verified end state of the burn before, mass carried through), its totals
 the same totals computed from the paper's Table B1, beside the numbers the paper prints.
 
 :func:`build` solves (or fetches) the chains through the paper's capture plans
-(:func:`lunarcap.runs.sweeps.sequence_table`, whose impulsive limits give the loss in
+(:func:`lunarcap.studies.sweeps.sequence_table`, whose impulsive limits give the loss in
 the same dynamics), assembles the four tables and the loss figure, and writes the
 notes the prose needs from the data: which engines were run, which way each difference
 goes.
@@ -25,7 +25,7 @@ from lunarcap.report import figures
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
-from lunarcap.runs import sweeps
+from lunarcap.studies import sweeps
 
 #: The stem of the totals' loss against the paper's printed impulses (glossary name).
 VS_PAPER = "total_loss_vs_paper_impulse"
@@ -35,7 +35,7 @@ NOTEBOOK = "notebooks/summary.ipynb"
 #: The paper's engines (thrust N, Isp s), in its order.
 PAPER_ENGINES = paper_engine_pairs()
 
-#: Totals of a chain (quantity, unit, key of :func:`lunarcap.runs.sweeps.sequence_totals`,
+#: Totals of a chain (quantity, unit, key of :func:`lunarcap.studies.sweeps.sequence_totals`,
 #: name of the number the paper prints in its prose, or None).
 QUANTITIES = (
     ("ΔV loss, sum of the three LOIs", "m/s", "total_loss_vs_paper_impulse_mps",
@@ -59,7 +59,7 @@ def _quote(name: str):
 
 
 def paper_totals(thrust_N: float) -> dict:
-    """The totals of :func:`lunarcap.runs.sweeps.sequence_totals` applied to Table B1.
+    """The totals of :func:`lunarcap.studies.sweeps.sequence_totals` applied to Table B1.
 
     Table B1 prints no masses: the propellant and the final mass are NaN.
     """
@@ -75,7 +75,7 @@ def paper_totals(thrust_N: float) -> dict:
 def b1_table(chains: dict) -> pd.DataFrame:
     """Table B1 rows beside ours: one row per engine and LOI.
 
-    ``chains``: {engine label: :func:`lunarcap.runs.sweeps.sequence_table`}. Columns of
+    ``chains``: {engine label: :func:`lunarcap.studies.sweeps.sequence_table`}. Columns of
     the sequence table plus engine, the differences ours - paper (delta-V m/s and %,
     duration min) and verified (yes / no).
     """
@@ -91,7 +91,7 @@ def b1_table(chains: dict) -> pd.DataFrame:
 def totals_table(engines, totals: dict) -> pd.DataFrame:
     """Totals per engine: as printed, the same arithmetic on Table B1, ours.
 
-    ``totals``: {thrust: :func:`lunarcap.runs.sweeps.sequence_totals`}. The quantity
+    ``totals``: {thrust: :func:`lunarcap.studies.sweeps.sequence_totals`}. The quantity
     names its unit, also in column ``unit``; ``paper_printed`` is the printed text.
     """
     rows = []

@@ -3,7 +3,7 @@
 One burn of the paper's plan for several ignition offsets.
 
 :func:`build` solves (or fetches) every case through the paper's capture plan
-(:func:`lunarcap.runs.sweeps.sweep_table`), sets our impulsive delta-V in the same
+(:func:`lunarcap.studies.sweeps.sweep_table`), sets our impulsive delta-V in the same
 dynamics beside the paper's, draws delta-V against the ignition offset, and writes the
 notes the prose needs (offsets from the paper, outliers, the burn durations) from the
 comparison itself.
@@ -19,7 +19,7 @@ from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.report import figures
 from lunarcap.report.page import Page, solver_description
-from lunarcap.runs import sweeps
+from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/loi_sweep.ipynb"
 

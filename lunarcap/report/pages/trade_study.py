@@ -1,13 +1,13 @@
 """The engine trade-study page (notebooks/trade_study.ipynb): loss against thrust-to-weight.
 
-:func:`build` runs (or resumes) the study of :mod:`lunarcap.runs.study` on Dask, one task
-per engine (the free-ignition chain LOI 1, 2, 3, verified), without a progress bar, and
-sets beside it Robbins' (1966) analytic estimate and Eq. (19), and the paper's three
-engines (Table B1).
+:func:`build` runs (or resumes) the study of :mod:`lunarcap.studies.engine_trade.trade` on Dask,
+one task per engine (the free-ignition chain LOI 1, 2, 3, verified), without a progress bar, and
+sets beside it Robbins' (1966) analytic estimate and Eq. (19), and the paper's three engines
+(Table B1).
 
-The loss is the study's (:mod:`lunarcap.runs.study`): against the impulsive limit of the
-same burn in the same dynamics from the same orbit, objective-based (Eq. 9: delta-V plus
-the speed left at the next perilune), so it goes to zero as the thrust grows and is never
+The loss is the study's (:mod:`lunarcap.studies.engine_trade.trade`): against the impulsive
+limit of the same burn in the same dynamics from the same orbit, objective-based (Eq. 9: delta-V
+plus the speed left at the next perilune), so it goes to zero as the thrust grows and is never
 negative. Robbins' (1966) estimate is drawn only where its expansion in omega_s t_b holds
 (:data:`ROBBINS_VALID_OMEGA_T`).
 """
@@ -22,7 +22,7 @@ from lunarcap.report import figures
 from lunarcap.report.display import markdown_table
 from lunarcap.report.page import Page
 from lunarcap.repro import paths
-from lunarcap.runs import study
+from lunarcap.studies.engine_trade import trade as study
 
 NOTEBOOK = "notebooks/trade_study.ipynb"
 
@@ -73,10 +73,11 @@ def _interp_log(x, xs, ys) -> float:
 def direct_solves(paper: pd.DataFrame, spec, solve=None) -> dict:
     """The study's rows of the paper's engines, each solved directly (not interpolated).
 
-    ``solve(thrust_N, isp_s, dynamics)``: :func:`lunarcap.runs.study.solve_engine` (the
-    same free-ignition chain and loss as every engine of the grid; cached on disk, and
-    solved already when the free-ignition page ran). Only the engines whose Isp is in the
-    grid (a quick build runs one Isp). Returns ``{(thrust N, Isp s): DataFrame}``.
+    ``solve(thrust_N, isp_s, dynamics)``:
+    :func:`lunarcap.studies.engine_trade.trade.solve_engine` (the same free-ignition chain and
+    loss as every engine of the grid; cached on disk, and solved already when the free-ignition
+    page ran). Only the engines whose Isp is in the grid (a quick build runs one Isp). Returns
+    ``{(thrust N, Isp s): DataFrame}``.
     """
     solve = solve or study.solve_engine
     out = {}
@@ -367,12 +368,12 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
     workers : local Dask worker processes
     output_name, quick : the page's output name and whether it is a quick build
     out : the study's CSV table (default ``<cache>/study/engine_trade.csv``)
-    task, processes : passed to :func:`lunarcap.runs.study.run_study` (tests)
+    task, processes : passed to :func:`lunarcap.studies.engine_trade.trade.run_study` (tests)
     timing_dir : directory of the timing runs listed in the runs table
         (default ``<cache>/study/timing``)
     lock_wait_s : how long to wait for another run writing the same table, s
     solve : how the paper's engines are solved directly (default
-        :func:`lunarcap.runs.study.solve_engine`; tests pass a stand-in)
+        :func:`lunarcap.studies.engine_trade.trade.solve_engine`; tests pass a stand-in)
     """
     params = dict(thrust_min_N=thrust_min_N, thrust_max_N=thrust_max_N, points=points,
                   isp_s=list(isp_s), workers=workers, dynamics=dynamics)

@@ -2,9 +2,9 @@
 
 Every solution the book shows passed the re-propagation gate
 (:mod:`lunarcap.optim.verify`). :func:`build` gathers the evidence: the residuals of every
-case of Tables 1-5 (:func:`lunarcap.runs.sweeps.verification_table`), the largest of each
+case of Tables 1-5 (:func:`lunarcap.studies.sweeps.verification_table`), the largest of each
 beside its gate, the impulsive limits behind the model-to-model losses
-(:func:`lunarcap.runs.chain.impulsive_limit`), and a mesh-convergence study of one case
+(:func:`lunarcap.capture.chain.impulsive_limit`), and a mesh-convergence study of one case
 per LOI (:func:`lunarcap.optim.verify.mesh_convergence`, cached by :func:`mesh_study`) that
 shows coarse meshes IPOPT solves to its tolerances and the gate still rejects.
 """
@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from lunarcap.capture.chain import paper_case, perilune_state
 from lunarcap.mission.plan import paper_plan
 from lunarcap.optim import verify
 from lunarcap.optim.collocation import DEFAULT_MESHES, Mesh
@@ -24,8 +25,7 @@ from lunarcap.report.display import FAILED, PASSED, verdict
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.repro.cache import cached
-from lunarcap.runs import bench, sweeps
-from lunarcap.runs.chain import paper_case, perilune_state
+from lunarcap.studies import bench, sweeps
 
 NOTEBOOK = "notebooks/verification.ipynb"
 
@@ -88,7 +88,7 @@ def _case_text(thrust_N, loi, start_min, with_engine: bool = True) -> str:
 def cases_table(case_list, dynamics: str) -> pd.DataFrame:
     """Verification residuals of every case (cached solves), one row each.
 
-    The columns of :func:`lunarcap.runs.sweeps.verification_table` plus ``case`` (text),
+    The columns of :func:`lunarcap.studies.sweeps.verification_table` plus ``case`` (text),
     ``table_b1`` (yes: a link of a Table B1 chain); ``passed`` as yes / no, the mesh as
     'n×m LGR-d'.
     """

@@ -13,14 +13,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from lunarcap.capture.chain import plan_result
+from lunarcap.capture.export import capture_arcs
+from lunarcap.capture.gmat_flight import lunarcap_events
 from lunarcap.exchange import gmat
 from lunarcap.exchange.ccsds import StateVector
 from lunarcap.mission.plan import load_plan
 from lunarcap.report.pages import gmat_flight
 from lunarcap.repro import paths
-from lunarcap.runs.chain import plan_result
-from lunarcap.runs.export import capture_arcs
-from lunarcap.runs.gmat import lunarcap_events
 
 
 @pytest.fixture(scope="module")

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
+from lunarcap.capture.joint_plan import chain_summary
 from lunarcap.report.pages import joint_capture
-from lunarcap.runs.joint import chain_summary
 
 pytestmark = pytest.mark.slow
 

@@ -33,7 +33,7 @@ def test_each_loss_is_measured_against_its_named_reference(page):
     np.testing.assert_allclose(b.loss_vs_paper_impulse_mps,
                                b.delta_v_mps - np.array(PAPER_IMPULSIVE_DV_MPS))
     np.testing.assert_allclose(b.delta_v_loss_mps, b.delta_v_mps - b.impulsive_limit_mps)
-    # the plan's own result (runs.chain.plan_result) has the same impulses and losses
+    # the plan's own result (capture.chain.plan_result) has the same impulses and losses
     rows = page.data["plan_results"]["LRO-class, 320 N / 200 s"].table()
     np.testing.assert_allclose(b.delta_v_loss_mps, rows.delta_v_loss_mps, atol=1e-9)
     np.testing.assert_allclose(b.objective_loss_mps, rows.objective_loss_mps, atol=1e-9)

@@ -14,7 +14,7 @@ from lunarcap.physics import constants as C
 from lunarcap.report.labels import label
 from lunarcap.report.pages import trade_study
 from lunarcap.repro import paths
-from lunarcap.runs import study
+from lunarcap.studies.engine_trade import trade as study
 
 THRUSTS = (100.0, 316.2, 1000.0)  # StudySpec(100, 1000, 3): log-spaced, 4 digits
 

@@ -6,7 +6,7 @@ import pandas as pd
 import pytest
 
 from lunarcap.report.pages import trade_study as ts
-from lunarcap.runs import study
+from lunarcap.studies.engine_trade import trade as study
 
 
 def _ok():

@@ -1,0 +1,240 @@
+"""Execute the notebooks of the manifest with papermill, then build the HTML book.
+
+Usage::
+
+    python -m lunarcap.bookbuild.build build [--quick] [--jobs N] [--only NAME ...] [--force]
+                                             [--no-build]
+    python -m lunarcap.bookbuild.build check   # validate the manifest and the table of contents
+
+The manifest ``notebooks/manifest.yml`` has one entry per execution::
+
+    entries:
+      - name: impulsive_baseline          # output name: book/generated/<name>.ipynb
+        title: "Impulsive baseline"       # heading of the generated page
+        notebook: impulsive_baseline.ipynb  # source, relative to notebooks/
+        parameters: {thrust_N: 150.0}     # injected by papermill
+        quick_parameters: {}              # overrides for --quick (CI): coarse mesh, one case
+        depends_on: []                    # names of entries that must run first
+        outputs: [tables/impulsive_baseline.csv]  # files below book/generated it writes
+
+Every entry also receives ``quick`` (bool) and ``output_name`` (its name). Entries run
+in dependency order, independent ones in parallel on up to ``--jobs`` processes, each
+process running its entries one after another in one kernel whose namespace is emptied
+before each (:mod:`lunarcap.bookbuild.kernels`).
+Each executed notebook is written to a temporary file and moved into place only on
+success; a failure stops the run (entries already running finish), names the entry
+and cell, keeps the failed notebook as ``book/generated/<name>.failed.ipynb`` and
+leaves every other output intact.
+
+An entry is skipped when its stamp ``book/generated/<name>.stamp.json`` matches: same
+source notebook, parameters, quick flag, lunarcap source
+(:func:`lunarcap.repro.cache.code_version`),
+environment lock, title and dependency stamps, and its outputs exist. Expensive
+solutions are cached separately by :mod:`lunarcap.repro.cache`.
+
+The book is then built with ``jupyter-book build book -W -n --keep-going`` with
+execution off (``--all`` whenever the generated notebooks changed since the last
+build, because pages quoting glued numbers of other pages must be rewritten).
+
+Interrupting a run (Ctrl-C, or SIGINT/SIGTERM sent to the main process alone, as CI
+runners and ``timeout`` do) stops it within seconds: the workers ignore SIGINT and leave
+the decision to the main process, which asks each worker to stop (SIGTERM), kills every
+process below it that is left (the Jupyter kernels run in sessions of their own, so a
+terminal's Ctrl-C does not reach them), removes the temporary files of the interrupted
+executions and prints one line. Executed notebooks and their outputs are only ever moved
+into place complete, so ``book/generated`` keeps what earlier runs made.
+
+``--quick`` builds a separate book: the sources are copied to ``book/_build/quick/``,
+whose own ``generated/`` and ``_build/html/`` receive the quick outputs and site
+(:func:`lunarcap.repro.paths.stage_quick_book`), so the quick build that ``make test``
+runs never replaces the full book or makes its next build start over.
+
+The work is split by concern: :mod:`lunarcap.bookbuild.manifest` (the manifest, its
+validation, the table of contents, the stamps), :mod:`lunarcap.bookbuild.execution`
+(papermill in worker processes, longest entries first, interruption) and this module
+(the jupyter-book call and the command line). The names of the first two are importable
+from here too.
+
+Exit status: 0 success, 1 an entry or the book build failed, 2 invalid manifest or usage,
+130 interrupted by SIGINT, 143 interrupted by SIGTERM.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+from lunarcap.bookbuild.execution import (  # noqa: F401  (the API of this module too)
+    _ANSI,
+    SETUP_HEADING,
+    Interrupted,
+    _alive,
+    _kill_all,
+    _shown,
+    descendants,
+    execute_entry,
+    interruptible,
+    longest_first,
+    move_setup_to_end,
+    only_shows,
+    prepare_for_book,
+    remove_temporaries,
+    run_entries,
+    stop_workers,
+)
+from lunarcap.bookbuild.manifest import (  # noqa: F401  (the API of this module too)
+    ENTRY_KEYS,
+    INJECTED,
+    KERNEL,
+    REQUIRED_KEYS,
+    STAMP_VERSION,
+    Entry,
+    ManifestError,
+    check_toc,
+    find_cycle,
+    is_up_to_date,
+    load_manifest,
+    notebook_parameters,
+    read_stamp,
+    select,
+    stamp_for,
+    toc_files,
+    validate_manifest,
+)
+from lunarcap.repro import paths
+
+
+# ====================================================================== book build
+def _generated_digest(entries: list[Entry]) -> str:
+    h = hashlib.sha256()
+    for e in entries:
+        s = read_stamp(e) or {}
+        h.update(f"{e.name}:{s.get('digest')}:{s.get('executed_utc')}\n".encode())
+    return h.hexdigest()
+
+
+def build_book(entries: list[Entry], log=print) -> bool:
+    """Run jupyter-book on the book being built (execution off); True on success.
+
+    The book is :data:`lunarcap.repro.paths.BOOK`: ``book/``, or ``book/_build/quick/`` for
+    a quick build. The full jupyter-book output goes to ``_build/jupyter-book.log`` below
+    it; on failure its warnings and errors are printed.
+    """
+    missing = [e.name for e in entries if not e.output.is_file()]
+    if missing:
+        log(f"error: cannot build the book: no executed notebook for {missing}; run "
+            f"`python -m lunarcap.bookbuild.build build` (without --only) first")
+        return False
+    digest = _generated_digest(entries)
+    marker = paths.BUILD / ".generated-digest"
+    full = not (paths.HTML / "index.html").is_file() or not marker.is_file() or \
+        marker.read_text().strip() != digest
+    jb = Path(sys.executable).with_name("jupyter-book")
+    cmd = [str(jb) if jb.exists() else "jupyter-book", "build", str(paths.BOOK), "-W", "-n",
+           "--keep-going"] + (["--all"] if full else [])
+    log(f"      building the book ({'full' if full else 'incremental'}): "
+        f"{' '.join(Path(c).name if i == 0 else c for i, c in enumerate(cmd))}")
+    t0 = time.perf_counter()
+    paths.BUILD.mkdir(parents=True, exist_ok=True)
+    proc = subprocess.run(cmd, cwd=paths.ROOT, capture_output=True, text=True)
+    out = _ANSI.sub("", proc.stdout + proc.stderr)
+    paths.write_text_atomic(paths.BUILD / "jupyter-book.log", out)
+    dt = time.perf_counter() - t0
+    if proc.returncode != 0:
+        lines = [ln for ln in out.splitlines()
+                 if re.search(r"WARNING|ERROR|Error|Exception|Traceback", ln)]
+        log(f"      jupyter-book ... FAILED {dt:.1f} s")
+        log("\n".join(lines[-40:]) or "\n".join(out.splitlines()[-40:]))
+        log(f"full log: {_shown(paths.BUILD / 'jupyter-book.log')}")
+        marker.unlink(missing_ok=True)
+        return False
+    log(f"      jupyter-book ... ok {dt:.1f} s")
+    from lunarcap.bookbuild.bookcheck import check_pages
+
+    said_nan = check_pages(paths.HTML, toc_files(paths.TOC))
+    if said_nan:
+        log(f"error: {len(said_nan)} built page(s) print \"nan\" where a value is missing "
+            f"(glue it as missing with its reason, Page.value(name, v, why=...)):")
+        for page, contexts in said_nan.items():
+            log(f"  {page}: " + " | ".join(repr(c) for c in contexts[:3]))
+        return False
+    paths.write_text_atomic(marker, digest)
+    return True
+
+
+# ====================================================================== CLI
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser."""
+    p = argparse.ArgumentParser(prog="python -m lunarcap.bookbuild.build",
+                                description="Execute the notebook manifest and build the book.")
+    sub = p.add_subparsers(dest="command", required=True)
+    b = sub.add_parser("build", help="execute notebooks (papermill) and build the HTML book")
+    b.add_argument("--quick", action="store_true",
+                   help="use each entry's quick_parameters (coarse, for CI)")
+    b.add_argument("--jobs", "-j", type=int, default=2, help="parallel notebook executions")
+    b.add_argument("--only", nargs="+", metavar="NAME",
+                   help="execute only these entries (and stale dependencies)")
+    b.add_argument("--force", action="store_true", help="re-execute even if up to date")
+    b.add_argument("--no-build", action="store_true", help="execute only; skip jupyter-book")
+    b.add_argument("--timeout", type=float, default=None,
+                   help="per-cell execution timeout, s (default: none)")
+    sub.add_parser("check", help="validate the manifest and the table of contents")
+    return p
+
+
+def main(argv=None) -> int:
+    """Entry point; returns the exit status."""
+    args = build_parser().parse_args(argv)
+    t0 = time.perf_counter()
+    try:
+        entries = load_manifest()
+        check_toc(entries)
+        if args.command == "check":
+            print(f"manifest ok: {len(entries)} entries; table of contents matches")
+            return 0
+        if args.jobs < 1:
+            raise ManifestError("--jobs must be at least 1")
+        chosen = select(entries, args.only)
+    except ManifestError as exc:
+        print(f"lunarcap.bookbuild.build: error: {exc}", file=sys.stderr)
+        return 2
+    mode = "quick" if args.quick else "full"
+    if args.quick and not os.environ.get("LUNARCAP_BOOK_DIR"):
+        paths.use_book(paths.stage_quick_book())  # never over the full book's results
+    print(f"lunarcap.bookbuild.build: {len(chosen)} of {len(entries)} entries, {mode} parameters, "
+          f"up to {args.jobs} in parallel", flush=True)
+    stage = "notebooks"
+    try:
+        with interruptible():
+            ok = run_entries(chosen, quick=args.quick, jobs=args.jobs, force=args.force,
+                             timeout=args.timeout)
+            if ok and not args.no_build:
+                stage = "book"
+                ok = build_book(entries)
+                if ok:
+                    print(f"book: {(paths.HTML / 'index.html')}")
+    except Interrupted as exc:
+        if stage == "book":  # the next run rebuilds the whole book
+            (paths.BUILD / ".generated-digest").unlink(missing_ok=True)
+            what = "the jupyter-book build was stopped"
+        else:
+            stopped = getattr(exc, "stopped", [])
+            what = (f"stopped {len(stopped)} running notebook(s) ({', '.join(stopped)})"
+                    if stopped else "no notebook was running")
+        print(f"lunarcap.bookbuild.build: interrupted by {exc} after "
+              f"{time.perf_counter() - t0:.1f} s: {what}; completed outputs in "
+              f"{_shown(paths.GENERATED)} are kept, nothing half-written is left",
+              file=sys.stderr, flush=True)
+        return exc.exit_status
+    print(f"total {time.perf_counter() - t0:.1f} s")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,1 +1,0 @@
-"""Runs: chains of burns solved in order and cached, sweeps, the trade study, the bench."""

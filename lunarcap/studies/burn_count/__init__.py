@@ -1,0 +1,1 @@
+"""How many capture burns: a plan's capture in N burns, periods optimised."""

@@ -1,0 +1,1 @@
+"""Dispersions: the capture's delta-V budget under execution and navigation errors."""

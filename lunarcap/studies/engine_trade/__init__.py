@@ -1,0 +1,1 @@
+"""The engine trade study: finite-burn loss against thrust-to-weight."""
