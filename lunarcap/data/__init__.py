@@ -1,0 +1,1 @@
+"""Data files of lunarcap, read by their loaders: the paper's printed numbers, the glossary."""
