@@ -1,35 +1,15 @@
-"""A solved plan out to other tools: CCSDS OEM, SPICE SPK, attitude and maneuver files.
+"""A solved plan out to other tools: the flown capture, prepared once, and its writers.
 
-:func:`export_plan` writes, for the verified, re-flown capture of a plan, from the
-arrival to one revolution of the final orbit:
-
-* ``<name>.oem``: CCSDS OEM 2.0 (KVN), Moon-centred ICRF, TDB (or UTC), one segment per
-  arc (the approach, each burn, each coast, the final orbit), so that no interpolation
-  crosses an ignition or a cut-off; states every :data:`COAST_STEP_S` on coasts and
-  :data:`BURN_STEP_S` in burns, where the file's own interpolation (Lagrange, degree 7,
-  declared in the file) is checked against the propagated states half-way between them;
-* ``<name>.bsp``: the same states as an SPK (type 9), spacecraft ID
-  :data:`lunarcap.exchange.spk.DEFAULT_OBJECT_ID` (-310001) unless given;
-* ``<name>_attitude.csv`` and ``<name>_maneuvers.csv`` (:mod:`lunarcap.exchange.burn_files`);
-* ``<name>.script``, a GMAT script that flies each burn from lunarcap's state at its
-  ignition and the whole capture from the arrival, with the files it reads,
-  ``<name>_gravity.cof`` and ``<name>_moon.bsp`` (:mod:`lunarcap.exchange.gmat`): the
-  thrust direction in segments of :data:`GMAT_SEGMENT_S`, each the mean of the flown
-  direction over the segment (Gauss-Legendre, :data:`GMAT_NODES` points).
-
-With the final orbit's evolution (``lunarcap plan --after-days``, an
-:class:`~lunarcap.physics.evolution.Evolution`), the OEM and the SPK gain a last segment,
-``after capture``, from the end of the final orbit's revolution to the end of the
-evolution: its states every :data:`COAST_STEP_S`, taken from the evolution's propagated
-samples (:func:`after_segment`).
-
-The arcs are the solutions' flights (:class:`lunarcap.optim.flight.Flight`), re-flown by
-:class:`lunarcap.optim.flight.Arc`: each burn interval by interval with the steering the
-verification flew, from the same states; each coast from the flown cut-off state, in the
-burn's own dynamics (its ephemeris fit), to the next ignition. States at the file's
-epochs are propagated there (CVODES, rtol 1e-13), not interpolated, and nothing is
-re-optimised. The approach starts
-:data:`APPROACH_MIN` before the first ignition (or at the state of a state arrival).
+:func:`export_plan` re-flies the verified capture of a plan from the arrival to one
+revolution of the final orbit (:func:`flight_arcs`: each burn interval by interval with
+the steering the verification flew, each coast from the flown cut-off, states propagated
+at the files' epochs, not interpolated, nothing re-optimised), prepares it once as a
+:class:`FlownCapture` (OEM segments every :data:`COAST_STEP_S` on coasts and
+:data:`BURN_STEP_S` in burns, one per arc so that no interpolation crosses an ignition or
+a cut-off; the comment lines; the burns' samples and GMAT's record on demand) and hands it
+to each writer of :data:`lunarcap.capture.writers.WRITERS`: CCSDS OEM, SPICE SPK, the
+attitude and maneuver CSV files and a GMAT script. A new format is one writer module and
+one line there.
 """
 
 from __future__ import annotations
@@ -39,13 +19,15 @@ import re
 import tempfile
 import time
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
 
+from lunarcap.capture.chain import plan_result
+from lunarcap.capture.writers import WRITERS
 from lunarcap.errors import InputError
 from lunarcap.exchange import gmat
-from lunarcap.exchange.burn_files import mean_direction, write_attitude, write_maneuvers
 from lunarcap.exchange.ccsds import (
     OEM_DEGREE,
     OemSegment,
@@ -53,9 +35,9 @@ from lunarcap.exchange.ccsds import (
     interpolation_error,
     lagrange_interpolate,
     reference_comments,
-    write_oem,
 )
-from lunarcap.exchange.spk import DEFAULT_OBJECT_ID, write_spk
+from lunarcap.exchange.spk import DEFAULT_OBJECT_ID
+from lunarcap.mission.plan import CapturePlan
 from lunarcap.optim.flight import Arc, BurnPlan, burn_arc, coast_arc
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import Model, rtn_from_mee
@@ -350,45 +332,95 @@ def check_export_dir(out_dir, what: str = "export directory") -> Path:
     return out
 
 
-def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFAULT_OBJECT_ID,
-                coast_step_s: float = COAST_STEP_S, burn_step_s: float = BURN_STEP_S,
-                approach_min: float = APPROACH_MIN, after=None) -> Export:
-    """Write the OEM, SPK, attitude and maneuver files of a solved plan into ``out_dir``.
+@dataclass(frozen=True)
+class FlownCapture:
+    """A solved plan's verified capture as every export writer receives it.
 
-    Parameters
+    Built once per export by :func:`flown_capture`; each writer of
+    :data:`lunarcap.capture.writers.WRITERS` reads what its format needs. What only some
+    writers need (the burns' samples, GMAT's record) is computed on first use, once.
+
+    Attributes
     ----------
-    result : lunarcap.capture.chain.PlanResult, or a CapturePlan (then solved, cached)
-    out_dir : directory (created if missing)
+    plan : CapturePlan
+    solutions : list of Solution
+        The verified solution of each burn, in order.
+    arcs : list of Arc
+        The flown capture (:func:`flight_arcs`): approach, burn 1, coast 1, ..., final orbit.
+    segments : list of OemSegment
+        One per arc, ICRF km and km/s at TDB epochs, and the evolution after the capture
+        (``after capture``) if one was given.
+    report : list of dict
+        Per segment: ``name``, ``start_s``, ``stop_s``, ``states`` and the file's
+        ``interpolation_error_m`` at the mid-steps.
+    comments : list of str
+        The lines each file carries after the Moon's GM and radius: what was flown, the
+        steps, the axes and ID, the time scale.
     time_system : {"TDB", "UTC"}
-        Of the epochs written (SPK epochs are always ET, i.e. TDB).
-    object_id : the spacecraft's NAIF ID in the SPK and the OEM's OBJECT_ID
-    after : Evolution, optional
-        The final orbit's evolution from the last cut-off
-        (:func:`lunarcap.capture.chain.after_capture`): the files then go on to its end
-        (:func:`after_segment`).
+        Of the epochs written as text.
+    object_id : int
+        The spacecraft's NAIF ID.
+    out : Path
+        The directory written.
+    stem : str
+        The plan's name as a file name (:func:`safe_name`): ``<stem>.oem``, ...
     """
-    from lunarcap.capture.chain import plan_result
-    from lunarcap.mission.plan import CapturePlan
 
-    out = check_export_dir(out_dir)
-    if isinstance(result, CapturePlan):
-        result = plan_result(result, impulsive=False)
-    if not all(b.solution.verification.passed for b in result.burns):
-        raise InputError(f"plan {result.plan.name}: not exported: a burn failed verification")
-    start = time.perf_counter()
-    plan = result.plan
-    ts = time_system.upper()
-    sols = [b.solution for b in result.burns]
+    plan: object
+    solutions: list
+    arcs: list
+    segments: list
+    report: list
+    comments: list
+    time_system: str
+    object_id: int
+    out: Path
+    stem: str
+
+    def path(self, suffix: str) -> Path:
+        """The file ``<out>/<stem><suffix>`` (``suffix``: ``".oem"``, ``"_attitude.csv"``)."""
+        return self.out / f"{self.stem}{suffix}"
+
+    @property
+    def pole(self) -> str:
+        """The lunar pole fixing the plan's M-MME2000 (:mod:`lunarcap.physics.frames`)."""
+        return self.plan.lunar_pole
+
+    @cached_property
+    def burn_arcs(self) -> list:
+        """The arcs that thrust, one per burn, in order."""
+        return [a for a in self.arcs if a.thrust_N]
+
+    @cached_property
+    def samples(self) -> list:
+        """Per burn, thrust direction (ICRF), thrust, mass every :data:`ATTITUDE_STEP_S`."""
+        return [burn_samples(s, a, self.pole) for s, a in zip(self.solutions, self.burn_arcs)]
+
+    @cached_property
+    def gmat(self) -> gmat.Capture:
+        """The capture as the GMAT script flies it (:func:`gmat_capture`)."""
+        return gmat_capture(self.plan, self.solutions, self.arcs)
+
+
+def _segment_row(seg: OemSegment, err: float) -> dict:
+    """A segment's line of the export's report (epochs s, states, interpolation error m)."""
+    return {"name": seg.name, "start_s": float(seg.t_s[0]), "stop_s": float(seg.t_s[-1]),
+            "states": int(seg.t_s.size), "interpolation_error_m": err}
+
+
+def _segments(plan, arcs: list, steps_s: tuple, after) -> tuple:
+    """(OEM segments, report rows) of the arcs, then of the evolution ``after`` (or None).
+
+    ``steps_s``: (coast, burn) steps of the states, s. InputError if the evolution does
+    not start at the last cut-off or ends within the final orbit's revolution.
+    """
+    coast_step_s, burn_step_s = steps_s
     pole = plan.lunar_pole
-    arcs = capture_arcs(result, approach_min)
-    stem = safe_name(plan.name)
     segs, report = [], []
     for arc in arcs:
         seg, err = segment_of(arc, pole, burn_step_s if arc.thrust_N else coast_step_s)
         segs.append(seg)
-        report.append({"name": arc.name, "start_s": float(seg.t_s[0]),
-                       "stop_s": float(seg.t_s[-1]), "states": int(seg.t_s.size),
-                       "interpolation_error_m": err})
+        report.append(_segment_row(seg, err))
     if after is not None:
         end = arcs[-1].span[1]
         if not after.t0_s <= end < after.trajectory.t[-1]:
@@ -396,10 +428,14 @@ def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFA
                              f"at its last cut-off and end after its final orbit's revolution")
         seg, err = after_segment(after, icrf_state(arcs[-1], end, pole), pole, coast_step_s)
         segs.append(seg)
-        report.append({"name": seg.name, "start_s": float(seg.t_s[0]),
-                       "stop_s": float(seg.t_s[-1]), "states": int(seg.t_s.size),
-                       "interpolation_error_m": err})
-    leap = leap_second_table()
+        report.append(_segment_row(seg, err))
+    return segs, report
+
+
+def _comments(plan, steps_s: tuple, report: list, object_id: int, time_system: str,
+              after) -> list:
+    """The lines every file carries: what was flown, its steps and accuracy, axes, scale."""
+    coast_step_s, burn_step_s = steps_s
     comments = [f"lunarcap plan {plan.name}: {plan.engine.thrust_N:g} N / "
                 f"{plan.engine.isp_s:g} s, {plan.dynamics} dynamics, {plan.n_burns} burn(s), "
                 f"verified re-flown capture from the arrival to one revolution of the final "
@@ -409,33 +445,82 @@ def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFA
                 f"Lagrange interpolation of degree 7 is within "
                 f"{max(r['interpolation_error_m'] for r in report):.2g} m of the "
                 f"propagated states at mid-steps",
-                f"ICRF axes (lunarcap M-MME2000 rotated with lunar pole {pole}); SPK "
-                f"object ID {object_id}"]
+                f"ICRF axes (lunarcap M-MME2000 rotated with lunar pole {plan.lunar_pole}); "
+                f"SPK object ID {object_id}"]
     if after is not None:
         comments.append(f"Last segment: the final orbit {after.days:g} days after the last "
                         f"cut-off, in {after.forces} dynamics")
-    if ts == "UTC":
+    if time_system == "UTC":
+        leap = leap_second_table()
         comments.append(f"UTC from TDB with ERFA and {leap['source']} (expires "
                         f"{leap['expires']}, TAI-UTC {leap['tai_minus_utc_s']:g} s)")
-    files = {"oem": out / f"{stem}.oem", "spk": out / f"{stem}.bsp",
-             "attitude": out / f"{stem}_attitude.csv",
-             "maneuvers": out / f"{stem}_maneuvers.csv"}
-    written = gmat.write_capture(out, stem, gmat_capture(plan, sols, arcs))
-    files.update({f"gmat_{k}": p for k, p in written.items()})
-    write_oem(files["oem"], segs, plan.name, str(object_id), ts, comments=comments)
-    write_spk(files["spk"], segs, object_id, comments=comments)
-    burn_arcs = [a for a in arcs if a.thrust_N]
-    samples = [burn_samples(s, a, pole) for s, a in zip(sols, burn_arcs)]
-    write_attitude(files["attitude"], samples, ts)
-    rows = []
-    for s, smp in zip(sols, samples):
-        rows.append({"t_ign_s": smp["t_s"][0], "duration_s": s.raw.t1_s,
-                     "thrust_N": smp["thrust_N"], "isp_s": s.problem.model.isp_s,
-                     "m_start_kg": smp["mass_kg"][0], "m_end_kg": smp["mass_kg"][-1],
-                     "delta_v_mps": s.flight.delta_v_mps,
-                     "dir_icrf": mean_direction(smp["t_s"], smp["u_icrf"], smp["thrust_N"],
-                                                smp["mass_kg"])})
-    write_maneuvers(files["maneuvers"], rows, ts)
+    return comments
+
+
+def flown_capture(result, out: Path, time_system: str = "TDB",
+                  object_id: int = DEFAULT_OBJECT_ID, steps_s: tuple = (COAST_STEP_S, BURN_STEP_S),
+                  approach_min: float = APPROACH_MIN, after=None) -> FlownCapture:
+    """What the writers receive of a solved plan (:class:`FlownCapture`), for ``out``.
+
+    The arcs from the arrival (:func:`capture_arcs`), their OEM segments every
+    ``steps_s`` = (coast, burn) seconds with the evolution ``after`` appended, and the
+    comment lines; see :func:`export_plan` for the parameters.
+    """
+    plan = result.plan
+    ts = time_system.upper()
+    arcs = capture_arcs(result, approach_min)
+    segs, report = _segments(plan, arcs, steps_s, after)
+    return FlownCapture(plan, [b.solution for b in result.burns], arcs, segs, report,
+                        _comments(plan, steps_s, report, object_id, ts, after), ts, object_id,
+                        Path(out), safe_name(plan.name))
+
+
+def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFAULT_OBJECT_ID,
+                coast_step_s: float = COAST_STEP_S, burn_step_s: float = BURN_STEP_S,
+                approach_min: float = APPROACH_MIN, after=None) -> Export:
+    """Write the files of every registered writer for a solved plan into ``out_dir``.
+
+    The writers (:data:`lunarcap.capture.writers.WRITERS`, in order: OEM, SPK, attitude,
+    maneuvers, GMAT script) each receive the same :class:`FlownCapture` and return the
+    paths they wrote; :class:`Export` lists them under the writers' keys.
+
+    Parameters
+    ----------
+    result : lunarcap.capture.chain.PlanResult, or a CapturePlan (then solved, cached)
+    out_dir : directory (created if missing)
+    time_system : {"TDB", "UTC"}
+        Of the epochs written (SPK epochs are always ET, i.e. TDB).
+    object_id : the spacecraft's NAIF ID in the SPK and the OEM's OBJECT_ID
+    coast_step_s, burn_step_s : float
+        Step of the OEM's and the SPK's states on coasts and in burns, s.
+    approach_min : float
+        The approach exported before the first ignition, min (unless the arrival is a state).
+    after : Evolution, optional
+        The final orbit's evolution from the last cut-off
+        (:func:`lunarcap.capture.chain.after_capture`): the files then go on to its end
+        (:func:`after_segment`).
+
+    Raises
+    ------
+    InputError
+        A burn failed verification, an evolution that does not follow the capture, or a
+        writer's refusal (a time system other than TDB or UTC, a positive SPK ID).
+    """
+    out = check_export_dir(out_dir)
+    if isinstance(result, CapturePlan):
+        result = plan_result(result, impulsive=False)
+    if not all(b.solution.verification.passed for b in result.burns):
+        raise InputError(f"plan {result.plan.name}: not exported: a burn failed verification")
+    start = time.perf_counter()
+    flown = flown_capture(result, out, time_system, object_id, (coast_step_s, burn_step_s),
+                          approach_min, after)
+    files = {}
+    for name, write in WRITERS.items():
+        written = write(flown)
+        clash = sorted(set(written) & set(files))
+        if clash:
+            raise ValueError(f"export writer {name!r} writes {clash}, already written")
+        files.update(written)
     seconds = time.perf_counter() - start
-    sizes = {k: p.stat().st_size for k, p in files.items()}
-    return Export(files, sizes, seconds, object_id, ts, report)
+    sizes = {k: Path(p).stat().st_size for k, p in files.items()}
+    return Export(files, sizes, seconds, object_id, flown.time_system, flown.report)
