@@ -475,6 +475,23 @@ def flown_capture(result, out: Path, time_system: str = "TDB",
                         Path(out), safe_name(plan.name))
 
 
+def write_files(flown: FlownCapture, writers: dict | None = None) -> dict:
+    """Run each writer (default :data:`lunarcap.capture.writers.WRITERS`) on ``flown``, in order.
+
+    Returns every file written, ``{key: path}`` in the writers' order. ValueError if a
+    writer returns a key an earlier one wrote (a file would be listed once for two).
+    """
+    files = {}
+    for name, write in (WRITERS if writers is None else writers).items():
+        written = write(flown)
+        clash = sorted(set(written) & set(files))
+        if clash:
+            raise ValueError(f"export writer {name!r} returns {clash}, already written by "
+                             f"an earlier writer")
+        files.update(written)
+    return files
+
+
 def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFAULT_OBJECT_ID,
                 coast_step_s: float = COAST_STEP_S, burn_step_s: float = BURN_STEP_S,
                 approach_min: float = APPROACH_MIN, after=None) -> Export:
@@ -514,13 +531,7 @@ def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFA
     start = time.perf_counter()
     flown = flown_capture(result, out, time_system, object_id, (coast_step_s, burn_step_s),
                           approach_min, after)
-    files = {}
-    for name, write in WRITERS.items():
-        written = write(flown)
-        clash = sorted(set(written) & set(files))
-        if clash:
-            raise ValueError(f"export writer {name!r} writes {clash}, already written")
-        files.update(written)
+    files = write_files(flown)
     seconds = time.perf_counter() - start
     sizes = {k: Path(p).stat().st_size for k, p in files.items()}
     return Export(files, sizes, seconds, object_id, flown.time_system, flown.report)
