@@ -78,16 +78,12 @@ def perilune_state(plan: CapturePlan, i: int, verbose: bool = False) -> np.ndarr
 def perilune_epoch_state(plan: CapturePlan, i: int, verbose: bool = False) -> tuple:
     """(epoch s, state (p, f, g, h, k, L, m)) at the perilune before burn ``i`` (0-based).
 
-    The arrival perilune for the first burn (for a plan with a start,
-    :class:`lunarcap.mission.plan.Start`, the start's epoch and state); else the verified
-    end of the previous burn's coast: the nominal perilune in the paper's formulation, the
+    The chain's start for the first burn (:func:`chain_start`); else the verified end of
+    the previous burn's coast: the nominal perilune in the paper's formulation, the
     perilune where the orbit asked holds for an ellipse target.
     """
-    if i == 0 and plan.start is not None:
-        return plan.start.epoch_s, np.array(plan.start.state)
-    if i == 0:  # the arrival state carries the plan's mass
-        arr = arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole)
-        return plan.nominal_perilunes_s[0], arr.state
+    if i == 0:
+        return _start(plan)
     key = plan.key(i)
     if _EARLIER is not None:
         if key not in _EARLIER:
@@ -98,20 +94,65 @@ def perilune_epoch_state(plan: CapturePlan, i: int, verbose: bool = False) -> tu
     return sol.problem.t_end_s, sol.end_state
 
 
-#: Burns of the plan being solved, for progress lines ("burn 2 of 5"): a burn is solved
-#: from the plan's prefix up to it (:meth:`CapturePlan.key`), which knows no later burn.
-_PLAN_BURNS: ContextVar = ContextVar("lunarcap_plan_burns", default=None)
+def chain_start(plan: CapturePlan) -> tuple:
+    """(epoch s, state (p, f, g, h, k, L, m)) where the first burn's chain starts.
+
+    The arrival perilune (:func:`arrival_for`: the state carries the plan's mass), or for
+    a plan with a :class:`lunarcap.mission.plan.Start` the start's epoch and state.
+    """
+    if plan.start is not None:
+        return plan.start.epoch_s, np.array(plan.start.state)
+    arr = arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole)
+    return plan.nominal_perilunes_s[0], arr.state
+
+
+def _start_of(plan: CapturePlan) -> tuple:
+    """What :func:`chain_start` depends on: the plan's arrival, ephemeris, pole and start."""
+    return plan.arrival, plan.ephemeris, plan.lunar_pole, plan.start
+
+
+@dataclass(frozen=True)
+class _Chain:
+    """The plan whose burns are being solved (:func:`labelled`), as its solves see it.
+
+    ``n_burns`` counts the progress lines' burns ("burn 2 of 5": a solve sees only the
+    plan's prefix up to its burn, :meth:`CapturePlan.key`); ``start`` is
+    :func:`chain_start` of the plan, built once for all its solves, and ``start_of`` what
+    it depends on (:func:`_start_of`), so that a solve of another plan builds its own.
+    """
+
+    n_burns: int
+    start_of: tuple
+    start: tuple
+
+
+#: The plan being solved (:func:`labelled`), or None.
+_CHAIN: ContextVar = ContextVar("lunarcap_chain", default=None)
+
+
+def _start(plan: CapturePlan) -> tuple:
+    """:func:`chain_start` of ``plan``, the chain's own if ``plan`` shares its start.
+
+    A copy of the state built on entering :func:`labelled`; built here for a plan whose
+    arrival, ephemeris, pole or start differ from the chain's (or outside the block).
+    """
+    chain = _CHAIN.get()
+    if chain is not None and chain.start_of == _start_of(plan):
+        t, x = chain.start
+        return t, np.array(x)
+    return chain_start(plan)
 
 
 @contextmanager
 def labelled(plan: CapturePlan):
-    """Within the block, progress lines and errors name ``plan``.
+    """Within the block, ``plan`` is the chain being solved: its start built once, named.
 
-    Progress lines count burns out of the plan's ("burn k of N") and a SolveError names
-    it (``plan two-burn-8h: burn 2 (...) failed ...``): the solves see the plan's key, its
-    name blanked.
+    Its arrival (:func:`chain_start`) is built on entering the block and every solve of
+    the block whose plan shares it starts from it; progress lines count burns out of the
+    plan's ("burn k of N"), and a SolveError names it (``plan two-burn-8h: burn 2 (...)
+    failed ...``): the solves see the plan's key, its name blanked.
     """
-    token = _PLAN_BURNS.set(plan.n_burns)
+    token = _CHAIN.set(_Chain(plan.n_burns, _start_of(plan), chain_start(plan)))
     try:
         yield
     except SolveError as exc:
@@ -119,13 +160,13 @@ def labelled(plan: CapturePlan):
             raise
         raise SolveError(f"plan {plan.name}: {exc}", exc.status, exc.details) from None
     finally:
-        _PLAN_BURNS.reset(token)
+        _CHAIN.reset(token)
 
 
 def _burn_number(i: int) -> str:
     """'burn 2 of 5' (0-based ``i``; 'burn 2' outside :func:`labelled`)."""
-    n = _PLAN_BURNS.get()
-    return f"burn {i + 1}" + ("" if n is None else f" of {n}")
+    chain = _CHAIN.get()
+    return f"burn {i + 1}" + ("" if chain is None else f" of {chain.n_burns}")
 
 
 def _burn_label(plan: CapturePlan, i: int) -> str:
