@@ -259,10 +259,7 @@ IMPULSE_WINDOW_MIN = 10.0
 #: delta-V dv thrusting at an angle a inward, then outward, ends dv a tau / 4 below the
 #: impulse's point for dv a^2 / 2 more delta-V: a gap g costs about 8 g^2 / (dv tau^2),
 #: for 1 m and the 2 s burn of a 245 m/s circularisation 0.008 m/s, within
-#: NO_LIMIT_TOL_MPS. (In J2 about the frame's pole the paper's circle is cleared by 0.2 m
-#: and its limit holds to the mm/s; in LP165P 8x8 by 25 m, where the rule predicts 4.9 and
-#: 1.2 m/s for the 2 s and 4 s burns and the solves measured their objectives 3.0 m/s
-#: apart; in 20x20 by 218 m, where the 2 s burn failed on every mesh.)
+#: NO_LIMIT_TOL_MPS.
 CIRCLE_GAP_TOL_M = 1.0
 
 
@@ -270,12 +267,11 @@ def _no_impulsive_limit(plan: CapturePlan, why: str, **extra) -> dict:
     """The impulsive limit of a burn in a gravity field that has none, and ``why``.
 
     In a field an impulse may not reach the orbit asked at all: the circle that the field
-    turns into the 100 km circle asked at the coast's end passes below the perilune of the
-    orbit before the burn (LP165P 20x20, the paper's third burn: 218 m below), where no
-    impulse on that orbit can be (:mod:`lunarcap.mission.reach`); a finite burn reaches it
-    by steering partly radially, the shorter the dearer (a 4 s burn 304 m/s, a 2 s burn
-    364 m/s and not verified, for the 248 m/s of the 10 min burn). So the limit of finite
-    burns does not exist; the burn has no loss. ``extra``: entries added to the result.
+    turns into the 100 km circle asked at the coast's end may pass below the perilune of
+    the orbit before the burn, where no impulse on that orbit can be
+    (:mod:`lunarcap.mission.reach`); a finite burn reaches it by steering partly
+    radially, the shorter the dearer. So the limit of finite burns does not exist; the
+    burn has no loss. ``extra``: entries added to the result.
     """
     from lunarcap.physics.forces import force_model
 

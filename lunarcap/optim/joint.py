@@ -1,26 +1,16 @@
-"""All burns of a capture plan in one NLP (beyond the paper).
+"""All burns of a capture plan in one NLP, the total delta-V its objective (beyond the paper).
 
-The paper optimises one burn at a time with the proxy objective Eq. (9) (burn delta-V +
-perilune speed at the end of the coast) and a grid of ignition times. Here the plan's N
-burns, their free ignition times and the linked coasts form one NLP whose objective is the
-total delta-V of the capture. It is the single-burn leg
-(:func:`~lunarcap.optim.transcription.add_leg`) composed N times: leg k starts where leg
-k-1 ends, at the nominal perilune epoch, and meets the same target conditions as in the
-single-burn NLP (perilune radius, inclination and gamma = 0 on the perilune branch; the
-circle), so the comparison isolates what the one-burn-at-a-time approach loses.
+The paper optimises one burn at a time with the proxy objective Eq. (9). Here the single
+burn leg (:func:`~lunarcap.optim.transcription.add_leg`) is composed N times, leg k
+starting where leg k-1 ends, each with a free ignition and the same target conditions as
+alone, so that the comparison isolates what the one-at-a-time approach loses. The optimum
+is verified leg by leg like a single burn, each from the previous leg's verified end.
 
-The joint optimum is verified leg by leg exactly like a single burn: each leg's steering
-is flown from the previous leg's *verified* end state.
-
-Free coasts (beyond the paper): a leg's coast, from the epoch its ignition is counted
-from to the nominal perilune where its target holds, may be a decision variable instead
-of the plan's period. The later epochs then follow from it (t_{k+1} = t_k + coast_k),
-so the NLP chooses the intermediate orbits (an ellipse's coast is its period: reaching
-the perilune radius on the perilune branch at t_{k+1} makes the orbit's period about
-coast_k); bounds on each free coast, an order (each free coast no longer than the free
-one before it: the orbits shrink) and a limit on the time from the first epoch to the
-end of the last burn are constraints. The optimum is returned as the plan with those
-coasts (:meth:`lunarcap.mission.plan.CapturePlan.with_coasts`) and verified from it.
+A leg's coast (from the epoch its ignition counts from to the perilune where its target
+holds) may be a decision variable instead of the plan's period: the NLP then chooses the
+intermediate orbits, within bounds on each coast, an order (no free coast longer than the
+free one before it), a limit on the time to the end of the last burn and, optionally, on
+each orbit's period. The optimum is returned as the plan with those coasts.
 """
 
 from __future__ import annotations
@@ -268,16 +258,27 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         raise SolveError(f"all-burns NLP{_of(plan)}: IPOPT "
                          f"{stats['return_status']}", status=stats["return_status"])
     w = np.asarray(res["x"]).ravel()
-    coasts = [float(lay.get(w, f"leg{k}.coast")[0]) * TU if free[k] else None
-              for k in range(plan.n_burns)]
-    if any(asked):  # the optimum as a plan: the coasts it chose (ellipses as asked keep theirs)
-        plan = plan.with_coasts([c if asked[k] else None for k, c in enumerate(coasts)])
-    t_ref = [plan.nominal_perilunes_s[0]]   # the perilunes reached
-    for k in range(plan.n_burns):
-        t_ref.append(t_ref[k] + (coasts[k] if coasts[k] is not None else plan.coast_s(k)))
+    plan, t_ref = _optimal_coasts(plan, lay, w, free, asked)
     legs = _verified_legs(plan, lay, w, warm, meshes, mesh, S, eph, fit, t_ref,
                           (stats, solve_s, nlp.compiled.build_s))
     return JointResult(legs, stats["return_status"], int(stats["iter_count"]), solve_s, plan)
+
+
+def _optimal_coasts(plan: CapturePlan, lay, w, free: tuple, asked: tuple) -> tuple:
+    """(plan, perilune epochs reached s) of the joint optimum ``w``.
+
+    The plan with the coasts the NLP chose where the caller freed them (an ellipse as
+    asked keeps its target: its coast ends where the orbit holds), and the N+1 epochs of
+    the perilunes each leg starts from and the last one ends at.
+    """
+    coasts = [float(lay.get(w, f"leg{k}.coast")[0]) * TU if free[k] else None
+              for k in range(plan.n_burns)]
+    if any(asked):
+        plan = plan.with_coasts([c if asked[k] else None for k, c in enumerate(coasts)])
+    t_ref = [plan.nominal_perilunes_s[0]]
+    for k in range(plan.n_burns):
+        t_ref.append(t_ref[k] + (coasts[k] if coasts[k] is not None else plan.coast_s(k)))
+    return plan, t_ref
 
 
 def _free_coast_bounds(plan: CapturePlan, lay, warm: list, asked: tuple, orbit: tuple,

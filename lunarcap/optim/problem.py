@@ -38,11 +38,10 @@ FIT_MARGIN_S = 6 * 3600.0
 
 
 #: Delta-V (m/s) whose burn duration is the least upper bound of any burn's duration.
-#: Three times Eq. (19) bounds the burns of the paper, whose impulses are 245-353 m/s. A
-#: small burn on a long orbit is not bounded by its two-body impulse: from 12.446 to
-#: 12.182 h at 38.2 deg (2.6 m/s two-body) the Earth lowers the next perilune by 11.8 km
-#: and turns the plane by 0.22 deg, and meeting the orbit asked costs 11.3 m/s in full
-#: dynamics. Bounded at 3 x 2.6 m/s, IPOPT reported the problem infeasible on every mesh.
+#: Three times Eq. (19) bounds the burns of the paper (impulses of 245-353 m/s), but not a
+#: small burn on a long orbit: besides its two-body impulse it must undo what the Earth
+#: does to the next perilune and to the plane over that orbit, several times the impulse
+#: (tests/optim/test_targets_as_asked.py has the case).
 MIN_BOUND_DELTA_V_MPS = 30.0
 
 
@@ -178,15 +177,11 @@ def anti_velocity_u(x) -> np.ndarray:
 
 
 #: Least half-width of a free ignition window for an ellipse as asked, and for every burn
-#: in perturbed dynamics, min. A short burn (Eq. 19: 25 s) that must also undo what the
-#: lunar J2, the Earth and the Sun do to the next perilune (5 km of perilune radius and
-#: 0.06 deg of inclination over a 12 h orbit of 10,500 km apolune) cannot from +-2 Eq. (19)
-#: durations around perilune: the perilune radius moves only with burns away from the
-#: perilune (IPOPT: Maximum_Iterations_Exceeded on every mesh; with +-30 min: solved,
-#: ignition 11.8 min after perilune). The same with the paper's perilune targets (Eq. 17):
-#: family-1 of the seed-24 missed family (266 N, 1,005 kg, full dynamics), burn 2 into
-#: 10.69 h (two-body 14.4 m/s, window +-1.5 min) was infeasible on every mesh; with +-20
-#: min it ignites 17.6 min after perilune, 25.58 m/s, and the plan solves burn by burn.
+#: in perturbed dynamics, min. A short burn that must also undo what the lunar J2, the
+#: Earth and the Sun do to the next perilune over an orbit (km of perilune radius,
+#: hundredths of a degree of inclination) moves the perilune radius only by burning away
+#: from the perilune: within +-2 Eq. (19) durations of it IPOPT finds no solution
+#: (tests/optim/test_targets_as_asked.py has the case).
 MIN_ORBIT_WINDOW_MIN = 30.0
 
 #: A target of free epoch (an ellipse as asked) holds at the perilune within this fraction

@@ -39,13 +39,10 @@ from lunarcap.physics.elements import speed_from_mee
 
 #: IPOPT settings (MUMPS, exact Hessian). The strict tolerances are on the scaled NLP;
 #: acceptance of a solution is decided by the verification gate, not by these.
-#: ``max_hessian_perturbation``: an iterate whose KKT matrix needs a larger regularisation
-#: than 1e8 is treated as singular (IPOPT then restores feasibility or gives up) rather
-#: than pushed to 1e17, where MUMPS asks for ever more memory and one iteration takes
-#: minutes: missed thrust, family-5 of the seed-24 family (444 N, 4 burns, full dynamics),
-#: burn 1 cut off after a quarter, the plan's-guesses start ran over 65 min of CPU at 2.9 GB
-#: under IPOPT's default (1e20) and ends in 8 s (Restoration_Failed) at 1e8; the next start
-#: recovers the case (penalty -0.05 m/s), 37 s in all.
+#: ``max_hessian_perturbation``: an iterate whose KKT matrix needs a regularisation above
+#: 1e8 is treated as singular (IPOPT then restores feasibility or gives up) rather than
+#: pushed towards the default 1e20, where MUMPS asks for ever more memory and an iteration
+#: takes minutes: a hopeless start then fails in seconds and the next start is tried.
 IPOPT_OPTIONS = {
     "print_level": 0, "sb": "yes",
     "tol": 1e-10, "constr_viol_tol": 1e-10, "acceptable_tol": 1e-7, "acceptable_iter": 3,
@@ -243,15 +240,8 @@ def add_leg(nlp: NLPBuilder, prefix: str, mesh: Mesh, target_kind: str, x_start,
     """
     d, nb, nc = mesh.degree, mesh.n_burn, mesh.n_coast
     n = lambda part: prefix + part  # noqa: E731
-    V_t1 = nlp.var(n("t1"), 1)
-    V_Xb = nlp.var(n("Xb"), N_X, nb * d + 1, STATE_LB[:, None], STATE_UB[:, None])
-    V_Ub = nlp.var(n("Ub"), 3, nb * d, -1.01, 1.01)        # Eq. (12)
-    V_Xc = nlp.var(n("Xc"), N_X, nc * d, STATE_LB[:, None], STATE_UB[:, None])
-    if free_start:
-        V_ts = nlp.var(n("ts"), 1)
-        V_X0 = nlp.var(n("X0"), N_X, N_PRE * d + 1, STATE_LB[:, None], STATE_UB[:, None])
-    V_uin = nlp.var(n("u_in"), 3, 1, -1.01, 1.01) if steering == "inertial" else None
-
+    V_t1, V_Xb, V_Ub, V_Xc, V_ts, V_X0, V_uin = _leg_variables(nlp, prefix, mesh, free_start,
+                                                                steering)
     prm_coast = ca.vertcat(prm[:P_THRUST], 0, prm[P_THRUST + 1:])
     t1_s = V_t1 * TU
     t_ign = t_ref + V_ts * TU if free_start else t_ref
@@ -283,6 +273,26 @@ def add_leg(nlp: NLPBuilder, prefix: str, mesh: Mesh, target_kind: str, x_start,
     dv = vex * ca.log(V_Xb[6, 0] / V_Xb[6, -1])
     v_end = speed_from_mee(xf[0], xf[1], xf[2], xf[5], 1.0)
     return Leg(prefix, mesh, free_start, steering, target_kind, dv, xf, v_end, t_ign, t1_s)
+
+
+def _leg_variables(nlp: NLPBuilder, prefix: str, mesh: Mesh, free_start: bool,
+                   steering: str) -> tuple:
+    """A leg's decision variables, declared in their layout order (see :func:`add_leg`).
+
+    (t1, Xb, Ub, Xc, ts, X0, u_in): ``ts`` and ``X0`` None without a free start, ``u_in``
+    None but for the inertial law. States within the collocation's bounds, the controls
+    within +-1.01 (Eq. 12).
+    """
+    d, nb, nc = mesh.degree, mesh.n_burn, mesh.n_coast
+    lb, ub = STATE_LB[:, None], STATE_UB[:, None]
+    V_t1 = nlp.var(prefix + "t1", 1)
+    V_Xb = nlp.var(prefix + "Xb", N_X, nb * d + 1, lb, ub)
+    V_Ub = nlp.var(prefix + "Ub", 3, nb * d, -1.01, 1.01)
+    V_Xc = nlp.var(prefix + "Xc", N_X, nc * d, lb, ub)
+    V_ts = nlp.var(prefix + "ts", 1) if free_start else None
+    V_X0 = nlp.var(prefix + "X0", N_X, N_PRE * d + 1, lb, ub) if free_start else None
+    V_uin = nlp.var(prefix + "u_in", 3, 1, -1.01, 1.01) if steering == "inertial" else None
+    return V_t1, V_Xb, V_Ub, V_Xc, V_ts, V_X0, V_uin
 
 
 def _steering_rows(nlp: NLPBuilder, prefix: str, steering: str, V_Ub, V_Xb, V_uin) -> None:
