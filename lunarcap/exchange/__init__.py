@@ -13,7 +13,7 @@ M-MME2000 is :mod:`lunarcap.physics.frames`'s, once.
 * :mod:`~lunarcap.exchange.gmat`: a GMAT script that flies a capture, the gravity file
   (COF) and Moon kernel it reads, running it with ``gmatpy`` and reading its reports.
 
-This package imports :mod:`lunarcap.physics` only (an import-linter contract): the runs
-hand it re-flown trajectories as arrays, and :mod:`lunarcap.mission.plan` reads OPM
-files through it.
+This package imports :mod:`lunarcap.physics` only (an import-linter contract): the
+capture service's writers (:mod:`lunarcap.capture.writers`) hand it re-flown trajectories
+as arrays, and :mod:`lunarcap.mission.plan` reads OPM files through it.
 """
