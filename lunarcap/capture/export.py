@@ -366,7 +366,7 @@ class FlownCapture:
         The plan's name as a file name (:func:`safe_name`): ``<stem>.oem``, ...
     """
 
-    plan: object
+    plan: CapturePlan
     solutions: list
     arcs: list
     segments: list
