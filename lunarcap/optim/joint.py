@@ -83,12 +83,10 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
     to bound that orbit's period.
 
     ``expand`` (:meth:`NLPBuilder.compile`): expanding an all-burns NLP costs 3-14 s of
-    CPU against 0.1-1.6 s unexpanded, and its solves then run about 2x faster. Worth it
-    only for a shape solved many times in one process: the missed-thrust recoveries
-    (study of the book: 32.9 s of cases expanded, 41.3 s not), not a nominal solved
-    once (37.6 -> 19.0 s of CPU unexpanded) nor the burns study (34.1 -> 22.8 s for
-    ``lunarcap burns song2011-150N --counts 1,2,3,4,5``). Either way the same optimum to
-    the solver's tolerance (every total and penalty of those runs equal to 1 mm/s).
+    CPU against 0.1-1.6 s unexpanded, and its solves then run about 2x faster: worth it
+    only for a shape solved many times in one process (the missed-thrust recoveries), not
+    for a nominal solved once nor the burns study. Either way the same optimum to the
+    solver's tolerance.
     """
     nb, nc = mesh.n_burn, mesh.n_coast
     n = len(target_kinds)
