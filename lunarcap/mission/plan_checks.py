@@ -447,11 +447,10 @@ def _check_engine_fits(plan) -> None:
 
     Except a make-up burn, the first of a plan that starts from a given state after a
     fault (``start.make_up``, :meth:`lunarcap.mission.plan.CapturePlan.resumed`): it may
-    need next to nothing (a cut-off just before the planned end), and its impulse, tangential where
-    the state is rather than at a perilune, sizes no Eq. (19) duration (1 min after a
-    late ignition of a circularisation 31 min before perilune, 942 m/s for the 565 m/s
-    the burn needs); its solver bounds its duration
-    (:data:`lunarcap.studies.missed.recovery.MIN_MAKE_UP_S`, 0.9 of its coast).
+    need next to nothing (a cut-off just before the planned end), and its impulse,
+    tangential where the state is rather than at a perilune, need not size its burn; its
+    solver bounds its duration (:data:`lunarcap.studies.missed.recovery.MIN_MAKE_UP_S`,
+    0.9 of its coast).
     """
     t = plan.nominal_perilunes_s
     thrust, mass = plan.engine.thrust_N, plan.initial_mass_kg

@@ -10,13 +10,12 @@ the direction of the spacecraft (two angles, the node and the phase, fix that) *
 its distance from the Moon. On a Kepler orbit every member is at distance r all along;
 the orbit before the burn has its perilune at r (the plans' perilunes are the circle's
 radius), so the impulse is tangential at that perilune. In other forces a member flown
-back is not at r: in J2 (the paper's model) the circle flown back over its one period is
-within 0.2 m of r at the perilune before it, while the LP165P field to degree 20 brings
-it 218 m below the perilune of the orbit before the third burn of the paper's capture
-(measured with this module). Then the orbit before the burn, whose lowest point is that
-perilune, nowhere meets a member: no impulse reaches the circle, and finite burns reach
-it only by thrusting partly radially, at a cost that grows as they shorten (the limit of
-ever shorter burns does not exist).
+back is not at r: within a metre of it in J2 (the paper's model), but a gravity field
+to degree 20 may bring it hundreds of metres below the perilune before the burn
+(``tests/mission/test_reach.py``). Then the orbit before the burn, whose lowest point is
+that perilune, nowhere meets a member: no impulse reaches the circle, and finite burns
+reach it only by thrusting partly radially, at a cost that grows as they shorten (the
+limit of ever shorter burns does not exist).
 
 :func:`circle_clearance` measures that: over the window of impulse epochs, the distance
 of the orbit before the burn from the Moon less that of the member flown back through

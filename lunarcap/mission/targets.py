@@ -1,11 +1,10 @@
 r"""Terminal conditions of a burn: the orbit its coast must reach.
 
 Each kind of target is written **once**, over generic operations (numpy or CasADi), as a
-function of the modified equinoctial elements at the end of the burn's coast. The
-single-burn NLP and the all-burns NLP (:mod:`lunarcap.optim`) impose these residuals as
-constraints, and the verification (:mod:`lunarcap.optim.verify`) evaluates the very same
-functions on the re-propagated state and turns them into physical errors (m, s, deg) with
-:meth:`Target.errors`.
+function of the modified equinoctial elements at the end of the burn's coast: the NLPs
+(:mod:`lunarcap.optim`) impose these residuals as constraints, and the verification
+(:mod:`lunarcap.optim.verify`) evaluates the same functions on the re-propagated state,
+as physical errors (m, s, deg) through :meth:`Target.errors`.
 
 Three kinds:
 
@@ -22,11 +21,11 @@ Three kinds:
     r_p)`, and the branch inequality :math:`f\cos L + g\sin L \ge 0` (a perilune, not an
     apolune). The epoch of that perilune is free (a decision variable of the NLP, within a
     fifth of the target period of the perilune the plan predicts), so a finite burn that
-    shifts the perilune passage still leaves the orbit asked. *Why at the perilune and not
-    at the end of the burn:* the perilune radius is only meaningful where the spacecraft
-    is at perilune, and in full dynamics the osculating elements vary along the orbit
-    (lunar J2: ~0.1 km in the semi-major axis); measuring every element at one physical
-    point keeps them one orbit, and it is where the next burn starts.
+    shifts the perilune passage still leaves the orbit asked. It is the perilune, not the
+    end of the burn, because the perilune radius is only meaningful there and in full
+    dynamics the osculating elements vary along the orbit (lunar J2: ~0.1 km in the
+    semi-major axis): one physical point keeps every element one orbit, and it is where
+    the next burn starts.
 
 ``perilune`` (Song et al. 2011, Eq. 17: the paper's formulation)
     At a **fixed** epoch, the next nominal perilune (the perilune before the burn plus the
@@ -38,13 +37,11 @@ Three kinds:
         e\sin\nu = f \sin L - g \cos L = 0,
 
     with :math:`r_p = p/(1+e)` (Eq. 18a) and :math:`\tan^2(i/2) = h^2 + k^2` (Eq. 18b),
-    and the perilune branch as above. The period is imposed only through the timing:
-    a finite burn that shifts the perilune passage leaves an orbit of a slightly
-    different period (the 12.235 h of the paper's LOI 1 becomes 11.997 h for an
-    apolune-targeted 300 km orbit's worth of shift; see the book's model page). The
-    packaged ``song2011-*`` plans keep this formulation so that the paper's numbers are
-    reproduced as the paper defined them; the studies use it with a free epoch when the
-    orbit itself is what they optimise (:mod:`lunarcap.optim.joint`).
+    and the perilune branch as above. The period is imposed only through the timing, so
+    a finite burn that shifts the perilune passage leaves an orbit of another period (the
+    book's model page). The packaged ``song2011-*`` plans keep this formulation so that
+    the paper's numbers are reproduced as the paper defined them; the studies use it with
+    a free epoch when the orbit itself is what they optimise (:mod:`lunarcap.optim.joint`).
 
 ``circular`` (the final circle)
     The literal Eq. (17) is degenerate for a circle (:math:`\gamma \equiv 0` and the

@@ -27,9 +27,7 @@ N_X = 7
 
 #: Box bounds of the scaled states (p LU, f, g, h, k, L rad, m / m_ref): wide, only to keep
 #: IPOPT away from nonsense (p > 0, a finite mass). h and k, tan(i/2) times the cosine and
-#: sine of the node, are widened per problem to admit its inclination
-#: (:func:`hk_bound`): with +-3 for every plan, retrograde plans (i > 143 deg for some
-#: nodes) were infeasible from their first iterate.
+#: sine of the node, are widened per problem to admit its inclination (:func:`hk_bound`).
 STATE_LB = np.array([0.2, -3, -3, -3, -3, -np.inf, 0.05])
 STATE_UB = np.array([200.0, 3, 3, 3, 3, np.inf, 1.0 + 1e-9])
 
@@ -137,13 +135,10 @@ def collocation_defects(Xall, U, mesh_frac, t_start, dur, prm, n, d, S, mode="fu
 
 
 #: Power of the perilune weight of a coast mesh in a gravity field (see
-#: :func:`sundman_fractions`). A field's terms of degree n fall off as (R/r)^(n+2), so
-#: near a 100 km perilune it changes over minutes (degree 20: a wavelength in 4 min) and
-#: higher up it hardly acts. On Sundman's spacing alone, the 4 s burns of the impulsive
-#: limit of the paper's first burn in LP165P 20x20 (a coast of 12.2 h from perilune to
-#: perilune) missed the flight-path angle by 5.7e-4 deg on 8x32 intervals and were solved
-#: only on 12x48 (two more NLPs to build: 18 s of CPU for that limit); with the weight
-#: (twice Sundman's density at the perilune, 19 % more 20 % higher up) they pass on 8x32.
+#: :func:`sundman_fractions`): twice Sundman's node density at the perilune, 19 % more
+#: 20 % higher up. A field's terms of degree n fall off as (R/r)^(n+2), so near a 100 km
+#: perilune they change over minutes (degree 20: a wavelength in 4 min) and higher up
+#: they hardly act.
 FIELD_PERILUNE_POWER = 10.0
 
 

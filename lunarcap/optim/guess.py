@@ -2,8 +2,7 @@
 
 The burn duration starts from Eq. (19); for an elliptic target it is tuned so that the
 guess coast ends at a perilune at the fixed end epoch, which removes most of the initial
-infeasibility of the NLP (without it the full-dynamics cases needed 53-88 IPOPT
-iterations instead of 9-20, and an ignition at perilune was infeasible).
+infeasibility of the NLP (in full dynamics, several times fewer IPOPT iterations).
 """
 
 from __future__ import annotations
@@ -122,10 +121,9 @@ def guess_orbit_as_asked(prob: BurnProblem, t1: float) -> Guess | None:
     (the first crossing on a dense grid of the propagated burn, refined linearly); the
     coast then runs to the perilune nearest the one the plan predicts (``t_end_s``, within
     the end window), where the NLP's end epoch starts. Timing the guess on the predicted
-    perilune instead (the paper's tuning) asks a short burn to move a perilune passage
-    that the lunar J2 and the Earth shift by minutes: IPOPT then started far from any
-    solution (Maximum_Iterations_Exceeded on every mesh for a 20 s burn between 13.5 h
-    and 12.1 h orbits). Returns None if either step finds nothing.
+    perilune instead (the paper's tuning) would ask a short burn to move a perilune
+    passage that the lunar J2 and the Earth shift by minutes, and start IPOPT far from any
+    solution. Returns None if either step finds nothing.
     """
     a_target = prob.target.semi_major_axis_km
     lo_end = prob.t_end_s + prob.end_window_s[0]

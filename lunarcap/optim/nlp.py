@@ -142,10 +142,9 @@ def prebuild(shapes, progress=None) -> None:
     tuples, the arguments of :func:`build_burn_nlp`; each is built once per process, here
     or later. The builds run off the main thread so that Ctrl-C acts at once
     (:func:`lunarcap.optim.interrupt.map_in_threads`), but never two at once: creating
-    CasADi's symbolic expressions is not thread-safe (shared reference counts), and two
-    concurrent builds crashed a ``lunarcap plan`` with a segmentation fault (exit -11)
-    once in a full test run. ``progress(str)``: a line before the builds, one per shape
-    built (what, how long) and the total.
+    CasADi's symbolic expressions is not thread-safe (shared reference counts; concurrent
+    builds can crash the process). ``progress(str)``: a line before the builds, one per
+    shape built (what, how long) and the total.
     """
     shapes = [s for s in dict.fromkeys(_normal(*s) for s in shapes) if s not in _NLPS]
     if not shapes:

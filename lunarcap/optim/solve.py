@@ -83,12 +83,11 @@ def prebuild(shapes, progress=None) -> None:
 def widened(prob: BurnProblem) -> BurnProblem | None:
     """The problem of an ellipse as asked with a wider free-ignition window, or None.
 
-    The second try of :func:`solve_burn_problem`: three times as early and twice as late as the
-    window that failed, within 120 min and 0.4 of the orbit the burn starts on. IPOPT's
-    path depends on the bounds: a capture whose next perilune the Earth lowers by 19 km
-    failed in +-30 min (its iterates stalled at the early bound) and was solved in -100 ..
-    +60 min, igniting at -6.4 min. The paper's formulation never gets here with a different
-    answer: its solves that succeed never reach this second try.
+    The second try of :func:`solve_burn_problem`: three times as early and twice as late
+    as the window that failed, within 120 min and 0.4 of the orbit the burn starts on.
+    IPOPT's path depends on the bounds (its iterates may stall at one of them), so a wider
+    window can succeed where the first failed. Only a failed solve gets here, and never
+    one in the paper's formulation (a fixed end epoch).
     """
     if not (prob.free_start and prob.target.free_epoch):
         return None

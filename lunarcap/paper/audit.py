@@ -23,15 +23,11 @@ Tolerances
   The paper does not state SOCS's tolerances; :data:`SOLVER_REL_TOL` (1e-4 of the
   computed value) is allowed on top of rounding for these relations.
 * **Print resolution of a compared duration.** A table row's burn duration is compared
-  with the duration recomputed from the same row's delta-V, and the audit states that
-  recomputation at the printed resolution (0.01 min, "printed 11.74 min, recomputed
-  11.73 min"). Two durations each known only to the printed digit cannot contradict
-  each other by less than one unit of that digit, so the rows allow half a unit for the
-  printed duration plus half a unit for the recomputed one
-  (:data:`DURATION_RESOLUTION_MIN`), on top of the propagated rounding of the row's
-  delta-V and start mass and the solver allowance. Table 2, -3 min (11.74 printed,
-  11.7301 recomputed: 0.0099 min, 0.85e-3 relative) is within this; Table 3, -3 min
-  (10.81 against 10.02 min) is not.
+  with the one recomputed from the same row's delta-V and stated at the printed
+  resolution (0.01 min). Two durations each known only to the printed digit cannot
+  contradict each other by less than one unit of it, so the rows allow half a unit for
+  each (:data:`DURATION_RESOLUTION_MIN`), on top of the propagated rounding of the row's
+  delta-V and start mass and the solver allowance.
 
 g0 = 9.80665 m/s^2 (:data:`lunarcap.physics.constants.G0_MPS2`).
 

@@ -16,12 +16,10 @@ MU_MOON = 4902.800
 #: Gravitational parameter of the Earth, km^3/s^2 (Song 2011, Sec. 3.1).
 MU_EARTH = 398600.441
 
-#: Gravitational parameter of the Sun, km^3/s^2.
-#: Song 2011 (Sec. 3.1) prints 13,271,244,207.6 km^3/s^2, which is ten times too
-#: small. The value used, 1.32712440018e11 km^3/s^2, is DE405's (Standish 1998, JPL IOM
-#: 312.F-98-048: GMS = 2.959122082855911e-4 AU^3/day^2), consistent with the ephemeris
-#: the dynamics read; it is not the IAU 2009 value (Luzum et al. 2011, Celest. Mech. Dyn.
-#: Astr. 110, 293: 1.32712442099e11 km^3/s^2, TCB-compatible).
+#: Gravitational parameter of the Sun, km^3/s^2: DE405's (Standish 1998, JPL IOM
+#: 312.F-98-048, GMS = 2.959122082855911e-4 AU^3/day^2), consistent with the ephemeris the
+#: dynamics read (not the TCB-compatible IAU 2009 value, 1.32712442099e11). Song 2011
+#: (Sec. 3.1) prints a value ten times too small (:data:`MU_SUN_AS_PRINTED`).
 MU_SUN = 1.32712440018e11
 
 #: The Sun's gravitational parameter as printed in Song 2011 (erroneous, kept only
@@ -56,13 +54,11 @@ DAY_S = 86400.0
 #: Julian date of the J2000.0 epoch, TDB.
 JD_J2000 = 2451545.0
 
-#: IAU (2009) orientation of the Moon's pole, constant terms, degrees (Archinal et al.
-#: 2011, Celest. Mech. Dyn. Astr. 109, 101, Table 2, Moon: alpha0 = 269.9949 + 0.0031 T
-#: + sum a_k sin E_k, delta0 = 66.5392 + 0.0130 T + sum d_k cos E_k, T in Julian
-#: centuries, d in days past J2000 TDB). The constant terms alone are the centre of the
-#: pole's 18.6-year precession circle (0.02 deg from the ecliptic pole), not the pole
-#: at any epoch; :func:`lunarcap.physics.frames.moon_pole_radec_deg` evaluates the
-#: whole expression.
+#: IAU (2009) orientation of the Moon's pole, constant terms, deg (Archinal et al. 2011,
+#: Celest. Mech. Dyn. Astr. 109, 101, Table 2: alpha0 = 269.9949 + 0.0031 T + sum a_k sin
+#: E_k, delta0 = 66.5392 + 0.0130 T + sum d_k cos E_k, T in Julian centuries). Alone they
+#: are the centre of the pole's 18.6-year precession circle, not the pole at any epoch
+#: (:func:`lunarcap.physics.frames.moon_pole_radec_deg` evaluates the whole expression).
 MOON_POLE_RA_DEG = 269.9949
 MOON_POLE_DEC_DEG = 66.5392
 #: Secular rates of alpha0 and delta0, deg per Julian century (same source).

@@ -2,32 +2,26 @@
 
 M-MME2000 (Song et al. 2010b; Song 2011, Sec. 1: "Moon centered Moon mean equator and
 International Astronomical Union vector of J2000"): origin at the Moon's centre, z along
-the Moon's pole at the epoch J2000 from the IAU (2009) orientation model (Archinal et
-al. 2011, Table 2), x along the IAU vector, the ascending node of the lunar equator on
-the ICRF equator, x = z_ICRF x z_Moon / |z_ICRF x z_Moon|, y = z x x.
+the lunar pole of the plan (``lunar_pole``, below), x along the IAU vector, the ascending
+node of the lunar equator on the ICRF equator, x = z_ICRF x z_Moon / |z_ICRF x z_Moon|,
+y = z x x. The frame is inertial, so its one rotation from ICRF, :func:`icrf_to_mme`,
+applies to velocities as to positions (:func:`mme_from_icrf`, :func:`icrf_from_mme`);
+everything lunarcap exchanges with other tools (:mod:`lunarcap.exchange`) is Moon-centred
+ICRF. SPICE's ``J2000`` is taken as ICRF, as NAIF labels the DE ephemerides (the 17 mas
+frame bias, 0.2 m at 2,000 km, is not applied).
 
-The lunar pole (a frame property, chosen per plan with ``lunar_pole``, see
-:data:`LUNAR_POLES`):
+The lunar poles (:data:`LUNAR_POLES`), from the IAU (2009) orientation model (Archinal et
+al. 2011, Table 2):
 
 ``iau2009-j2000`` (default)
-    The whole IAU expression evaluated at J2000, with its E1-E13 terms:
-    alpha0 = 266.8577 deg, delta0 = 65.6411 deg. This is the Moon's pole at the epoch
-    J2000, 1.57 deg from the ecliptic pole (by Cassini's laws the lunar equator keeps an
-    inclination of about 1.54 deg to the ecliptic), so the lunar J2 acts about the
-    Moon's axis and "90 deg inclination" is polar about it.
+    The whole expression, with its E1-E13 terms, at J2000: alpha0 = 266.8577 deg,
+    delta0 = 65.6411 deg, the Moon's axis at that epoch (1.57 deg from the ecliptic pole,
+    by Cassini's laws), so that the lunar J2 acts about it and "90 deg inclination" is
+    polar about it.
 ``iau-constant``
-    Only the constant terms, alpha0 = 269.9949 deg, delta0 = 66.5392 deg: the centre of
-    the pole's 18.6-year precession circle, 0.02 deg from the ecliptic pole and 1.56 deg
-    from the pole at J2000. lunarcap used it before 2026-11; kept to show the effect.
-
-Everything lunarcap reads or writes for other tools (:mod:`lunarcap.exchange`: OPM, OEM,
-SPK, attitude and maneuver files) is Moon-centred ICRF; the one rotation between ICRF and
-M-MME2000 is :func:`icrf_to_mme` of the plan's ``lunar_pole`` (by default the IAU 2009
-pole at J2000, alpha0 = 266.8577 deg, delta0 = 65.6411 deg), applied to vectors by
-:func:`mme_from_icrf` and :func:`icrf_from_mme`. The rotation is constant (M-MME2000 is
-an inertial frame), so it applies to velocities as to positions. SPICE's ``J2000`` frame
-is taken as ICRF, as NAIF labels the DE ephemerides (the 17 mas frame bias between
-EME2000 and ICRF, 0.2 m at 2,000 km, is not applied).
+    The constant terms only, alpha0 = 269.9949 deg, delta0 = 66.5392 deg: the centre of
+    the pole's 18.6-year precession circle, 1.56 deg from the pole at J2000; kept to show
+    what the choice of the pole changes (the book's lunar pole page).
 """
 
 from __future__ import annotations

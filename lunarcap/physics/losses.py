@@ -9,45 +9,29 @@ it replaces as
     \qquad \omega_s^2 = \mu / r^3,
 
 with :math:`t_b` the burn duration, :math:`\Delta V` the impulsive velocity change and
-:math:`\omega_s` the Schuler frequency at the burn radius :math:`r` (for a burn centred
-on a perilune, :math:`r = r_p`).
+:math:`\omega_s` the Schuler frequency at the burn radius :math:`r` (:math:`r_p` for a burn
+centred on a perilune). Here :math:`t_b` is each LOI's Eq. (19) duration (Song 2011) with
+the masses of the impulsive chain, so the estimate is closed-form and independent of the
+optimiser.
 
-Sources
--------
-* H. M. Robbins, "An analytical study of the impulsive approximation", AIAA Journal
-  4(8):1417-1423, 1966, doi:10.2514/3.3687 (the original).
-* J. C. F. Confraria, "Finite burn losses in spacecraft maneuvers revisited", MSc thesis,
-  Instituto Superior Tecnico, Lisbon, 2020, Sec. 2.2, Eq. (2.17)-(2.18), which, as
-  reported by the literature review below, quotes Robbins' expression, takes :math:`t_b`
-  from the impulsive :math:`\Delta V`, Isp and thrust-to-weight ratio, and finds it
-  overestimates the losses of velocity-following burns (by about 125 % near T/W0 = 0.1,
-  less at higher T/W0).
+Sources: H. M. Robbins, "An analytical study of the impulsive approximation", AIAA Journal
+4(8):1417-1423, 1966, doi:10.2514/3.3687, as quoted by J. C. F. Confraria, "Finite burn
+losses in spacecraft maneuvers revisited", MSc thesis, Instituto Superior Tecnico, Lisbon,
+2020, Sec. 2.2, Eq. (2.17)-(2.18), who finds that it overestimates the losses of
+velocity-following burns (by about 125 % near T/W0 = 0.1, less at higher T/W0). Neither
+text was read (the expression is taken from a public literature review quoting the
+thesis), so Robbins' exact form and assumptions (constant thrust or acceleration, the
+choice of r, a bound or an estimate) are not verified.
 
-What was checked and what was not: Robbins' paper could not be obtained (AIAA's copy is
-paywalled; searches of public sources on 2026-11-24 found its citation but neither its
-text nor its abstract). The expression above is as Confraria quotes it, read in a public
-literature review that quotes her thesis; the thesis itself was not read either. Not
-verified, therefore: that this is Robbins' expression exactly, and his assumptions
-(constant thrust or constant acceleration, the choice of r, whether it is stated as a
-bound).
-
-What is verified here: the expression is the exact leading-order loss of a burn of
-constant acceleration in a fixed inertial direction, centred on an apse, for
-:math:`\Delta V \ll v`. Expanding gravity along the burn (position :math:`y \approx v t`
-along the velocity, gravity component :math:`-\omega_s^2 y`), the work done by the thrust
-falls short of the impulse's by :math:`\omega_s^2 v t_b^2 \Delta V / 24`, which at the
-speed :math:`v` is the velocity loss above.
-``tests/studies/test_study.py::test_robbins_is_the_leading_order_loss_of_a_fixed_direction_burn``
-checks this against a numerical integration (planar two-body, a circular orbit and the
-12 h ellipse's perilune, :math:`\omega_s t_b` = 0.1 and 0.3). The optimal burns of
-:mod:`lunarcap.optim.nlp` steer the thrust and choose the ignition time (and their
-acceleration grows as mass is spent, and the delta-V is not small against the perilune
-speed), so the estimate is a yardstick for them, not a prediction: the trade study shows
-how far apart the two are.
-
-Here :math:`t_b` is the Eq. (19) duration (Song 2011) of each LOI, with the masses of the
-impulsive chain (rocket equation from the arrival mass), so the estimate is closed-form
-and independent of the optimiser.
+What is verified: the expression is the exact leading-order loss of a burn of constant
+acceleration in a fixed inertial direction, centred on an apse, for :math:`\Delta V \ll v`.
+Gravity along the burn (:math:`-\omega_s^2 y`, with :math:`y \approx v t` along the
+velocity) makes the thrust's work fall short of the impulse's by
+:math:`\omega_s^2 v t_b^2 \Delta V / 24`, the velocity loss above at the speed :math:`v`
+(checked against a numerical integration by
+``tests/studies/test_study.py::test_robbins_is_the_leading_order_loss_of_a_fixed_direction_burn``).
+The optimal burns steer, choose their ignition and spend mass, so for them the estimate is
+a yardstick, not a prediction.
 """
 
 from __future__ import annotations

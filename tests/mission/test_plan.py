@@ -252,6 +252,28 @@ def test_a_plan_resumed_from_a_state_keeps_the_later_perilunes():
     assert rest.n_burns == 2 and rest.nominal_perilunes_s[1] == pytest.approx(t[2])
 
 
+
+def test_a_make_up_burn_is_exempt_from_the_eq19_checks():
+    """A make-up burn (the first of a plan resumed after a fault) is not sized by Eq. (19).
+
+    Its impulse is tangential where the state is, not at a perilune, so it sizes no burn:
+    after a cut-off just before the planned end it is next to nothing, and after a late
+    ignition it may be far too much (a circularisation ignited 1 min late, 31 min before
+    perilune: 942 m/s for the 565 m/s the burn needs), and the plan was refused as "too
+    strong" or "too weak" before any solve. Here a state already on the orbit the burn
+    asks: no impulse, so Eq. (19) gives 0 s, refused for an ordinary resumed plan and
+    accepted for a make-up burn, whose solver bounds its duration instead.
+    """
+    plan = load_plan("song2011-150N")
+    t = plan.nominal_perilunes_s
+    a = (MU * (plan.burns[0].period_s / (2 * math.pi)) ** 2) ** (1 / 3)
+    e = 1.0 - RP / a
+    on_target = (a * (1 - e * e), e, 0.0, 1.0, 0.0, 0.0, 500.0)   # at its perilune, polar
+    made_up = plan.resumed(0, t[0] + 60.0, on_target, window_min=(0.0, 20.0), make_up=True)
+    assert made_up.start.make_up and made_up.impulsive()[0].delta_v_mps == pytest.approx(0.0)
+    with pytest.raises(PlanError, match=r"engine\.thrust_N: 150 N is too strong: burn 1"):
+        plan.resumed(0, t[0] + 60.0, on_target, window_min=(0.0, 20.0))
+
 def test_with_coasts_and_burn_count():
     plan = load_plan("song2011-150N")
     three = plan.with_burn_count([10 * 3600.0, 4 * 3600.0])
