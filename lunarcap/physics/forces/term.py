@@ -161,7 +161,9 @@ class Term:
     """A force term; a module subclasses it, fills the hooks, and :func:`register` s it once.
 
     The defaults suit a term that is its own (single) acceleration, reads no plan key,
-    needs no ephemeris and has no exporter counterpart.
+    needs no ephemeris and has no exporter counterpart. A term's own keys (those that are
+    not fields of :class:`~lunarcap.physics.forces.ForceModel`) are kept in the model's
+    ``extra`` and read back with ``forces.setting(key)``.
 
     Attributes
     ----------
