@@ -289,11 +289,11 @@ def _unreachable_circle(plan: CapturePlan, i: int, t_peri: float, x_peri, eph, f
     (:func:`lunarcap.mission.reach.circle_clearance`, a few coast propagations).
     """
     from lunarcap.mission.reach import circle_clearance
-    from lunarcap.optim.correction import nlp_forces
+    from lunarcap.optim.correction import needs_correction
     from lunarcap.physics.dynamics import Model
 
     target = plan.targets[i]
-    if not target.circular or nlp_forces(plan.dynamics) is None:
+    if not target.circular or not needs_correction(plan.dynamics):
         return None
     model = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
     t_end = burn_problem(plan, i, x_peri, eph, fit=fit, t_perilune_s=t_peri).t_end_s
@@ -330,7 +330,7 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     dict with delta_v_mps (extrapolated), objective_j_mps (likewise), the two finite-limit
     delta-Vs, the impulse's epoch offset (min), end speed (km/s) and the verdicts.
     """
-    from lunarcap.optim.correction import nlp_forces
+    from lunarcap.optim.correction import needs_correction
 
     i = plan.n_burns - 1
     t_peri, x_peri = perilune_epoch_state(plan, i, verbose)
@@ -354,7 +354,7 @@ def _impulsive_limit(plan: CapturePlan, verbose: bool = False) -> dict:
     # side of the perilune (a few seconds before and after, differing by ~0.2 m/s in
     # delta-V and ~0.003 m/s in J): solve on each side and keep the lower objective.
     centre = -d_long / 120.0  # ignition (min) of a 4 s burn centred on the perilune
-    field = nlp_forces(plan.dynamics) is not None   # only a field may have no limit
+    field = needs_correction(plan.dynamics)   # only a field may have no limit
     try:
         out = _finite_limit(plan, i, x_peri, t_peri, eph, fit, centre, big, progress)
     except SolveError as exc:
@@ -541,7 +541,7 @@ def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
     ``burns``: 1-based burn numbers (default all). Burns (and impulsive limits) already in
     the disk cache need no NLP and are left out. ``verbose``: say what is built, how long.
     """
-    from lunarcap.optim.correction import nlp_forces
+    from lunarcap.optim.correction import needs_correction
     from lunarcap.optim.solve import prebuild
 
     shapes = []
@@ -553,7 +553,7 @@ def prebuild_for(plan: CapturePlan, burns=None, impulsive: bool = True,
             shapes.append((kind, b.free_start, b.steering, plan.dynamics, free_end))
         # a circle in a field: its limit is first checked for reach (no NLP), and its
         # fixed 2 s burn has the burn's own shape; the rest is built if it is needed
-        circle_in_field = plan.targets[n - 1].circular and nlp_forces(plan.dynamics) is not None
+        circle_in_field = plan.targets[n - 1].circular and needs_correction(plan.dynamics)
         if impulsive and not circle_in_field:
             if not (enabled() and _in_cache(_impulsive_limit, impulsive_key(key))):
                 shapes += [(kind, True, "optimal", plan.dynamics, free_end),

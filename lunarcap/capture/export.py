@@ -44,7 +44,7 @@ from lunarcap.physics.dynamics import Model, rtn_from_mee
 from lunarcap.physics.elements import orbit_summary, period_from_semi_major_axis, rv_from_mee
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.epochs import leap_second_table
-from lunarcap.physics.frames import icrf_from_mme, moon_pole_radec_deg
+from lunarcap.physics.frames import icrf_from_mme
 from lunarcap.physics.propagate import N_X
 from lunarcap.physics.state import MASS, State
 
@@ -209,28 +209,13 @@ def gmat_burn(sol, arc: Arc, pole: str, segment_s: float = GMAT_SEGMENT_S,
 def gmat_gravity(model: Model, pole: str) -> gmat.Gravity:
     """The central body's gravity of a model for GMAT (:class:`lunarcap.exchange.gmat.Gravity`).
 
-    The lunar GM of the dynamics always; the paper's J2 (or none) about the pole of the
-    plan's frame, fixed; J2 about the IAU pole of date; or a field to its degree and order
-    (the orders above zeroed) in the Moon's DE405 frame (GMAT's ``Luna``) or the IAU one.
+    The lunar GM of the dynamics always, and the field its terms ask for
+    (:func:`lunarcap.exchange.gmat.capture_forces`): the paper's J2 (or none) about the
+    pole of the plan's frame, fixed; J2 about the IAU pole of date; or a field to its
+    degree and order (the orders above zeroed) in the Moon's DE405 frame (GMAT's ``Luna``)
+    or the IAU one.
     """
-    f = model.forces
-    if f.is_field:
-        n = f.degree
-        c, s = f.field.C[:n + 1, :n + 1].copy(), f.field.S[:n + 1, :n + 1].copy()
-        c[:, f.order + 1:], s[:, f.order + 1:] = 0.0, 0.0
-        return gmat.Gravity(model.mu, f.field.radius_km, c, s,
-                            "luna" if f.body_frame == "de405" else "iau-of-date",
-                            source=f"{f.label} ({f.field.name}, Konopliv et al. 2001 for "
-                                   f"LP165P); GM lunarcap's")
-    j2 = model.j2 if f.gravity == "j2" else 0.0
-    g = gmat.Gravity.zonal_j2(
-        model.mu, model.radius, j2, moon_pole_radec_deg(pole),
-        f"lunar point mass{' + J2' if j2 else ''} (Song 2011 Sec. 3.1), pole {pole}")
-    if j2 and f.pole == "of-date":
-        from dataclasses import replace
-
-        g = replace(g, frame="iau-of-date", source=g.source + " (J2 about the pole of date)")
-    return g
+    return gmat.capture_forces(model, pole)[0]
 
 
 def gmat_capture(plan, sols, arcs) -> gmat.Capture:
@@ -242,9 +227,7 @@ def gmat_capture(plan, sols, arcs) -> gmat.Capture:
     pole = plan.lunar_pole
     model = sols[0].problem.model
     gravity = gmat_gravity(model, pole)
-    third = tuple((name.capitalize(), mu) for name, mu in (("earth", model.mu_earth),
-                                                           ("sun", model.mu_sun))
-                  if name in model.forces.third_bodies)
+    third = gmat.capture_forces(model, pole)[1]
     burn_arcs = [a for a in arcs if a.thrust_N]
     burns = [gmat_burn(s, a, pole) for s, a in zip(sols, burn_arcs)]
     coasts = [icrf_state(a, a.span[1], pole) for a in burn_arcs]

@@ -9,12 +9,12 @@ makes GMAT fly lunarcap's dynamics, and the files it reads:
   from lunarcap's state at the cut-off before it (per-arc comparisons), and the whole
   capture flown open loop from the arrival, burn after coast (an end-to-end one). When
   run it writes, next to itself (GMAT's paths ``./...`` are relative to the directory
-  GMAT runs in; :func:`run_script` runs it there): ``<stem>_gmat_burns.txt``,
-  ``<stem>_gmat_coasts.txt`` and ``<stem>_gmat_capture.txt``, GMAT ReportFiles of the
-  states at ignitions, cut-offs and the end (TDB modified Julian date, GMAT's
-  JD - 2430000, then the Moon-centred position in km, velocity in km/s and mass in kg;
-  :func:`read_report`), and ``<stem>_gmat.oem``, GMAT's CCSDS OEM of the whole capture
-  (UTC epochs: GMAT's OEM writer offers no TDB).
+  GMAT runs in; :func:`~lunarcap.exchange.gmat_run.run_script` runs it there):
+  ``<stem>_gmat_burns.txt``, ``<stem>_gmat_coasts.txt`` and ``<stem>_gmat_capture.txt``,
+  GMAT ReportFiles of the states at ignitions, cut-offs and the end (TDB modified Julian
+  date, GMAT's JD - 2430000, then the Moon-centred position in km, velocity in km/s and
+  mass in kg; :func:`~lunarcap.exchange.gmat_run.read_report`), and ``<stem>_gmat.oem``, GMAT's
+  CCSDS OEM of the whole capture (UTC epochs: GMAT's OEM writer offers no TDB).
 * ``<stem>_gravity.cof``: the central body's gravity field in GMAT's COF format
   (:func:`write_cof`): GMAT takes the GM and the reference radius of a field from its
   file, and the wheel ships no lunar field.
@@ -54,17 +54,14 @@ metres to kilometres (measured by the check reported in the project's issue 25 a
   early, and the 247 segments of burn 1 put its cut-off 58 us early (with 2 s segments,
   160 us and 0.25 m off); on absolute epochs every cut-off is within 1 us.
 
-This module imports :mod:`lunarcap.physics` only; running GMAT needs the ``gmatpy``
-package (a test dependency, see the README) and happens in a child process
-(:func:`run_script`).
+What each force term needs in the script (the central field, point masses) the term says
+itself (:func:`capture_forces`). This module imports :mod:`lunarcap.physics` only; running
+GMAT and reading its reports is :mod:`lunarcap.exchange.gmat_run` (re-exported here).
 """
 
 from __future__ import annotations
 
 import math
-import os
-import subprocess
-import sys
 from dataclasses import dataclass, field
 from decimal import Decimal
 from pathlib import Path
@@ -73,11 +70,19 @@ import numpy as np
 
 from lunarcap.errors import InputError
 from lunarcap.exchange.ccsds import StateVector, reference_comments
+from lunarcap.exchange.gmat_run import (  # noqa: F401  (running GMAT, re-exported)
+    GMAT_MJD_OFFSET_JD,
+    REPORT_FIELDS,
+    GmatError,
+    Row,
+    epoch_from_gmat_mjd,
+    gmat_defaults,
+    read_report,
+    run_script,
+)
 from lunarcap.physics import constants as C
+from lunarcap.physics.forces import MoonField, ThirdBody, zonal_c20
 
-#: GMAT's modified Julian date is the Julian date minus this (GMAT Mathematical
-#: Specifications, "Time Systems"): its MJD of J2000.0 is 21545.0.
-GMAT_MJD_OFFSET_JD = 2430000.0
 #: The body the script creates for a lunar field about a pole fixed in the axes.
 FIXED_POLE_BODY = "LunarcapMoon"
 #: NAIF ID of the Moon (its states in ``<stem>_moon.bsp``) and of the Earth (their centre).
@@ -88,8 +93,6 @@ MOON_KERNEL_STEP_S = 3600.0
 MOON_KERNEL_MARGIN_S = 86400.0
 #: How the central body's field is oriented (see :class:`Gravity`).
 FRAMES = ("fixed-pole", "iau-of-date", "luna")
-#: Columns of the report files (after the burn number and event code).
-REPORT_FIELDS = ("TDBModJulian", "X", "Y", "Z", "VX", "VY", "VZ", "TotalMass")
 #: Event codes of the report rows.
 IGNITION, CUTOFF, END = 0, 1, 2
 
@@ -170,10 +173,47 @@ class Gravity:
     def zonal_j2(cls, mu_km3s2: float, radius_km: float, j2: float, pole_radec_deg,
                  source: str = "") -> "Gravity":
         """Point mass plus J2 (unnormalised) about a fixed pole: C_20 = -J2 / sqrt(5)."""
-        c = np.zeros((3, 3))
-        c[2, 0] = -j2 / math.sqrt(5.0)
-        return cls(mu_km3s2, radius_km, c, np.zeros((3, 3)), "fixed-pole",
+        c, s = zonal_c20(j2)
+        return cls(mu_km3s2, radius_km, c, s, "fixed-pole",
                    tuple(float(a) for a in pole_radec_deg), source)
+
+    @classmethod
+    def of(cls, f: MoonField) -> "Gravity":
+        """The field a force term asks for (:class:`lunarcap.physics.forces.MoonField`)."""
+        return cls(f.mu_km3s2, f.radius_km, f.c, f.s, _FRAME_OF[f.frame],
+                   tuple(float(a) for a in f.pole_radec_deg), f.source)
+
+
+#: GMAT's orientation of each body-fixed frame a force term names.
+_FRAME_OF = {"fixed-pole": "fixed-pole", "iau2009": "iau-of-date", "de405": "luna"}
+
+
+def capture_forces(model, pole: str) -> tuple:
+    """(central body's :class:`Gravity`, point masses) that fly a model's terms in GMAT.
+
+    Each term of ``model.forces`` (a :class:`lunarcap.physics.dynamics.Model`) says what it
+    needs (:meth:`lunarcap.physics.forces.Term.export`): the Moon's field (exactly one
+    term gives it) or point masses ``((GMAT body name, GM km^3/s^2), ...)``. ``pole``: the
+    plan's lunar pole. A term with no GMAT counterpart is refused, by name.
+    """
+    fields, masses = [], []
+    for term in model.forces.terms:
+        parts = term.export(model.forces, model, pole)
+        if parts is None:
+            raise InputError(f"GMAT script: the force term {term.name!r} "
+                             f"({term.words(model.forces)}) has no GMAT counterpart")
+        for part in parts:
+            if isinstance(part, MoonField):
+                fields.append(Gravity.of(part))
+            elif isinstance(part, ThirdBody):
+                masses.append((part.name, part.mu_km3s2))
+            else:
+                raise InputError(f"GMAT script: the force term {term.name!r} asks for "
+                                 f"{type(part).__name__}, which the script cannot carry")
+    if len(fields) != 1:
+        raise InputError(f"GMAT script: {len(fields)} terms give the Moon's field "
+                         f"({model.forces.label}); the script carries one")
+    return fields[0], tuple(masses)
 
 
 @dataclass
@@ -560,154 +600,3 @@ def write_capture(out_dir, stem: str, cap: Capture) -> dict:
                                           cap.arrival.epoch_s - MOON_KERNEL_MARGIN_S,
                                           cap.end_s + MOON_KERNEL_MARGIN_S)
     return files
-
-
-# ---------------------------------------------------------------------- running and reading
-class GmatError(RuntimeError):
-    """GMAT could not be started, or refused or failed a script (the message quotes its log)."""
-
-
-_RUNNER = """
-import os, sys, tempfile
-import gmatpy
-
-script, log, field = sys.argv[1:4]
-with tempfile.TemporaryDirectory() as tmp, gmatpy.native_session() as gmat:
-    gmat.UseLogFile(log)
-    files = gmat.FileManager.Instance()
-    if not os.path.exists(files.GetFullPathname("LP165P_FILE")) and os.path.exists(field):
-        os.symlink(field, os.path.join(tmp, "LP165P.cof"))
-        files.SetAbsPathname("LUNA_POT_PATH", tmp + os.sep)
-    ok = bool(gmat.LoadScript(script)) and bool(gmat.RunScript())
-sys.exit(0 if ok else 3)
-"""
-
-
-def run_script(script, python: str | None = None, timeout_s: float = 1800.0) -> Path:
-    """Run a GMAT script with ``gmatpy`` in a child process, in the script's directory.
-
-    GMAT checks that its default lunar field (``LP165P.cof``) exists as soon as a force
-    model names ``Luna`` among its primary bodies, before the script's own
-    ``PotentialFile`` replaces it; the wheel ships no lunar field, so where GMAT has none
-    this points GMAT's lunar field folder to a temporary one in which ``LP165P.cof`` is
-    the script's ``<stem>_gravity.cof`` (GMAT's desktop application has its own).
-
-    Parameters
-    ----------
-    script : path of the ``.script``
-    python : the interpreter that has ``gmatpy`` (default: this one)
-    timeout_s : s
-
-    Returns
-    -------
-    Path of GMAT's log, ``<stem>_gmat.log`` beside the script.
-
-    Raises
-    ------
-    GmatError
-        gmatpy missing, a script GMAT refuses, a mission that fails, or the timeout; the
-        message ends with the errors of GMAT's log.
-    """
-    script = Path(script).resolve()
-    log = script.with_name(f"{script.stem}_gmat.log")
-    field = script.with_name(f"{script.stem}_gravity.cof")
-    cmd = [python or sys.executable, "-c", _RUNNER, str(script), str(log), str(field)]
-    try:
-        proc = subprocess.run(cmd, cwd=script.parent, capture_output=True, text=True,
-                              timeout=timeout_s, env=dict(os.environ, PYTHONUNBUFFERED="1"))
-    except subprocess.TimeoutExpired:
-        raise GmatError(f"GMAT did not finish {script.name} within {timeout_s:g} s") from None
-    if proc.returncode != 0:
-        text = log.read_text(errors="replace") if log.exists() else ""
-        errors = [ln.strip() for ln in text.splitlines() if "ERROR" in ln or "rror" in ln]
-        why = "; ".join(errors[-5:]) or (proc.stderr.strip().splitlines() or ["no output"])[-1]
-        raise GmatError(f"GMAT failed on {script.name} (exit {proc.returncode}): {why}")
-    return log
-
-
-_DEFAULTS = """
-import json, os, sys
-import gmatpy
-
-with gmatpy.native_session() as gmat:
-    thruster = gmat.Construct("ChemicalThruster", "Thruster")
-    craft = gmat.Construct("Spacecraft", "Craft")
-    forces = gmat.Construct("ForceModel", "Forces")
-    luna = gmat.GetObject("Luna")
-    out = {k: obj.GetField(f) for k, obj, f in (
-        ("g0_mps2", thruster, "GravitationalAccel"), ("thrust_frame", thruster, "CoordinateSystem"),
-        ("thrust_axes", thruster, "Axes"), ("date_format", craft, "DateFormat"),
-        ("coordinate_system", craft, "CoordinateSystem"), ("central_body", forces, "CentralBody"),
-        ("luna_mu_km3s2", luna, "Mu"), ("luna_radius_km", luna, "EquatorialRadius"))}
-    out["lunar_field_file"] = os.path.exists(
-        gmat.FileManager.Instance().GetFullPathname("LP165P_FILE"))
-print(json.dumps(out))
-"""
-
-
-def gmat_defaults(python: str | None = None, timeout_s: float = 300.0) -> dict:
-    """GMAT's own defaults of what the exported script sets, read from GMAT (``gmatpy``).
-
-    In a child process, as :func:`run_script`: a new ChemicalThruster's standard gravity
-    (``g0_mps2``, m/s^2) and thrust axes (``thrust_frame``, ``thrust_axes``), a new
-    Spacecraft's epoch format and coordinate system, a new ForceModel's central body,
-    ``Luna``'s GM (km^3/s^2) and radius (km), and whether GMAT has its lunar field file
-    (``lunar_field_file``). Numbers as floats, the rest as GMAT writes them.
-
-    Raises
-    ------
-    GmatError
-        gmatpy missing or failing, or the timeout.
-    """
-    import json
-
-    cmd = [python or sys.executable, "-c", _DEFAULTS]
-    try:
-        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout_s)
-    except subprocess.TimeoutExpired:
-        raise GmatError(f"GMAT did not report its defaults within {timeout_s:g} s") from None
-    if proc.returncode != 0:
-        why = (proc.stderr.strip().splitlines() or ["no output"])[-1]
-        raise GmatError(f"GMAT could not report its defaults: {why}")
-    out = json.loads(proc.stdout.strip().splitlines()[-1])
-    for k in ("g0_mps2", "luna_mu_km3s2", "luna_radius_km"):
-        out[k] = float(out[k])
-    return out
-
-
-@dataclass(frozen=True)
-class Row:
-    """One row of a report written by the script: burn number, event code, GMAT's state."""
-
-    burn: int
-    event: int
-    epoch_s: float
-    r_km: np.ndarray
-    v_kmps: np.ndarray
-    mass_kg: float
-
-
-def epoch_from_gmat_mjd(mjd: float) -> float:
-    """TDB seconds past J2000 of GMAT's TDB modified Julian date (JD - 2430000)."""
-    return (mjd - (C.JD_J2000 - GMAT_MJD_OFFSET_JD)) * 86400.0
-
-
-def read_report(path) -> list:
-    """The rows of ``<stem>_gmat_burns.txt`` or ``<stem>_gmat_capture.txt`` (:class:`Row`).
-
-    Header lines (GMAT repeats one before every row) are skipped; a data line has the
-    burn number, the event, then :data:`REPORT_FIELDS`.
-    """
-    path = Path(path)
-    rows = []
-    for n, line in enumerate(path.read_text(encoding="ascii").splitlines(), 1):
-        parts = line.split()
-        if not parts or not parts[0][0].isdigit():
-            continue
-        if len(parts) != 2 + len(REPORT_FIELDS):
-            raise InputError(f"{path.name}, line {n}: {len(parts)} columns, expected "
-                             f"{2 + len(REPORT_FIELDS)}")
-        v = [float(p) for p in parts]
-        rows.append(Row(int(v[0]), int(v[1]), epoch_from_gmat_mjd(v[2]), np.array(v[3:6]),
-                        np.array(v[6:9]), v[9]))
-    return rows

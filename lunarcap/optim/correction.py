@@ -26,7 +26,7 @@ import numpy as np
 
 from lunarcap.optim.collocation import DEFAULT_MESHES, Mesh
 from lunarcap.optim.guess import Guess
-from lunarcap.optim.nlp import RawSolution, solve_nlp
+from lunarcap.optim.nlp import BurnNLP, RawSolution, nlp_for, solve_nlp
 from lunarcap.optim.problem import BurnProblem
 from lunarcap.physics.forces import ForceModel, force_model, perturbation_rtn
 
@@ -49,12 +49,27 @@ MAX_ITERATIONS = 10
 FIELD_MESHES = (Mesh(8, 32, 5), Mesh(12, 48, 5), Mesh(18, 72, 6))
 
 
+def needs_correction(forces) -> bool:
+    """True if a model's NLP needs the outer correction: a field beyond what the NLP carries.
+
+    ``forces``: a preset word, a plan's ``dynamics`` mapping or a ForceModel. Only a field
+    above :data:`NLP_DEGREE` x :data:`NLP_ORDER` has terms the NLP leaves to the correction;
+    the callers outside the optimiser ask it where a burn may have no impulsive limit.
+    """
+    return force_model(forces).beyond(NLP_DEGREE, NLP_ORDER)
+
+
 def nlp_forces(forces) -> ForceModel | None:
     """The forces the NLP carries for a model, or None if it carries the model itself."""
-    f = force_model(forces)
-    if not f.is_field or (f.degree <= NLP_DEGREE and f.order <= NLP_ORDER):
+    if not needs_correction(forces):
         return None
-    return f.truncated(NLP_DEGREE, NLP_ORDER)
+    return force_model(forces).truncated(NLP_DEGREE, NLP_ORDER)
+
+
+def nlp_of(prob: BurnProblem, mesh: Mesh) -> BurnNLP:
+    """The NLP :func:`solve_in_model` solves for ``prob`` on ``mesh`` (built on first use)."""
+    low = nlp_forces(prob.model.forces)
+    return nlp_for(prob, mesh) if low is None else nlp_for(prob, mesh, low, True)
 
 
 def nlp_shape(forces) -> tuple:
@@ -65,7 +80,7 @@ def nlp_shape(forces) -> tuple:
 
 def meshes_for(forces) -> tuple:
     """The meshes tried in turn for a burn in these forces."""
-    return DEFAULT_MESHES if nlp_forces(forces) is None else FIELD_MESHES
+    return FIELD_MESHES if needs_correction(forces) else DEFAULT_MESHES
 
 
 def _phases(raw: RawSolution) -> dict:
@@ -132,6 +147,6 @@ def solve_corrected(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
 
 def solve_in_model(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
     """The burn's NLP: directly, or by outer corrections for a field above the NLP's degree."""
-    if nlp_forces(prob.model.forces) is None:
+    if not needs_correction(prob.model.forces):
         return solve_nlp(prob, mesh, guess)
     return solve_corrected(prob, mesh, guess)

@@ -12,7 +12,8 @@ and the rates are ``dy/dt = A(y) Delta + b(y)`` (Eq. 2, A2-A4), ``dm/dt = -T/(g0
 spherical-harmonic field, J2 about the pole of date, ...); its terms' sum is Delta less the
 thrust. :func:`mee_rates` is written once over generic operations: it evaluates on numpy
 arrays and builds the CasADi expression that the transcription and the propagators share
-through :func:`rhs_function`.
+through :func:`rhs_function`. The terms' own formulas (RTN basis, Eq. 7's J2, Eq. 6's
+third bodies) live with the terms (:mod:`lunarcap.physics.forces`) and are re-exported here.
 
 An independent Cartesian formulation (:func:`cartesian_rates`, numpy only, J2 from the
 gradient of the potential) exists to check the MEE equations.
@@ -38,7 +39,14 @@ from lunarcap.physics.forces import (  # noqa: F401  (re-exported: the parameter
     ForceModel,
     force_model,
     perturbation_rtn,
+    rtn_from_mee,
 )
+from lunarcap.physics.forces.third_body import (  # noqa: F401  (re-exported)
+    third_body_accel,
+    third_body_rtn,
+)
+from lunarcap.physics.forces.zonal_j2 import J2, j2_rtn  # noqa: F401  (j2_rtn re-exported)
+from lunarcap.physics.gravity import sh_acceleration
 
 
 @dataclass
@@ -57,6 +65,10 @@ class Model:
     fit : ChebyshevFit or None
         Earth/Sun ephemeris fit (with the Moon's orientation when a term turns with it);
         required when the forces need it (:attr:`ForceModel.needs_fit`).
+    mu, radius, j2, mu_earth, mu_sun : float
+        The Moon's GM (km^3/s^2), radius (km) and J2, the Earth's and the Sun's GM
+        (km^3/s^2): Song 2011's values (:mod:`lunarcap.physics.constants`), which the terms
+        read (:meth:`~lunarcap.physics.forces.Term.values`).
     """
 
     mode: str | ForceModel = "full"
@@ -91,12 +103,16 @@ class Model:
         return C.G0_KMPS2 * self.isp_s
 
     def params(self, thrust_N: float | None = None) -> np.ndarray:
-        """The numeric parameter vector (length ``forces.n_param``) of :func:`rhs_function`."""
+        """The numeric parameter vector (length ``forces.n_param``) of :func:`rhs_function`.
+
+        GM, thrust and exhaust speed, then each term's values
+        (:meth:`~lunarcap.physics.forces.ForceModel.values`: the lunar radius and J2, the
+        bodies' GMs, a field's own radius and J2) in the model's layout, then the fit.
+        """
         T = self.thrust_N if thrust_N is None else thrust_N
         f = self.forces
-        radius, j2 = (f.field.radius_km, f.field.j2) if f.is_field else (self.radius, self.j2)
         values = {"mu": self.mu, "thrust_kN": T * 1e-3, "vex_mps": self.exhaust_speed_kmps * 1e3,
-                  "radius": radius, "j2": j2, "mu_earth": self.mu_earth, "mu_sun": self.mu_sun}
+                  **f.values(self)}
         out = [values[name] for name in f.layout if name != "fit"]
         if f.needs_fit:
             out = np.concatenate([out, self.fit.param_vector()])
@@ -113,69 +129,6 @@ def fit_for(mode, eph, t0_s: float, t1_s: float) -> ChebyshevFit | None:
     if not forces.needs_fit:
         return None
     return ChebyshevFit.fit(eph, t0_s, t1_s, body_frame=forces.rotation)
-
-
-def rtn_from_mee(h, k, L):
-    """RTN unit vectors (i_r, i_t, i_n), each a 3-tuple, from MEE (equivalent to Eq. A5)."""
-    xp = ops(h, k, L)
-    s2 = 1 + h * h + k * k
-    fh = ((1 + h * h - k * k) / s2, 2 * h * k / s2, -2 * k / s2)
-    gh = (2 * h * k / s2, (1 - h * h + k * k) / s2, 2 * h / s2)
-    cL, sL = xp.cos(L), xp.sin(L)
-    ir = tuple(cL * a + sL * b for a, b in zip(fh, gh))
-    it = tuple(-sL * a + cL * b for a, b in zip(fh, gh))
-    i_n = (2 * k / s2, -2 * h / s2, (1 - h * h - k * k) / s2)
-    return ir, it, i_n
-
-
-def j2_rtn(p, f, g, h, k, L, mu, radius, j2):
-    """Lunar J2 acceleration in RTN, km/s^2, Eq. (7) (Kechichian 2000)."""
-    xp = ops(p, f, g, h, k, L)
-    cL, sL = xp.cos(L), xp.sin(L)
-    q = 1 + f * cL + g * sL
-    r = p / q
-    s2 = 1 + h * h + k * k
-    c = mu * j2 * radius ** 2 / r ** 4
-    w = h * sL - k * cL
-    dr = -1.5 * c * (1 - 12 * w * w / (s2 * s2))
-    dt = -12 * c * w * (h * cL + k * sL) / (s2 * s2)
-    dn = -6 * c * (1 - h * h - k * k) * w / (s2 * s2)
-    return dr, dt, dn
-
-
-def third_body_accel(r, rj, muj):
-    """Point-mass third-body acceleration on the spacecraft, km/s^2, Eq. (6).
-
-    a = mu_j [ (r_j - r)/|r_j - r|^3 - r_j/|r_j|^3 ], with r the spacecraft and r_j
-    the body relative to the Moon (component tuples or arrays).
-    """
-    xp = ops(*r, *rj)
-    d = [rj[i] - r[i] for i in range(3)]
-    dn = xp.sqrt(d[0] ** 2 + d[1] ** 2 + d[2] ** 2)
-    rn = xp.sqrt(rj[0] ** 2 + rj[1] ** 2 + rj[2] ** 2)
-    return tuple(muj * (d[i] / dn ** 3 - rj[i] / rn ** 3) for i in range(3))
-
-
-def third_body_rtn(r, rtn, rj, muj):
-    """Point-mass third-body acceleration in RTN, km/s^2: Eq. (6) rotated by Eq. (A5).
-
-    The acceleration of :func:`third_body_accel` projected on the RTN unit vectors
-    ``rtn = (i_r, i_t, i_n)`` of a spacecraft at distance ``r`` (position r i_r), written
-    with the body's RTN components (c_r, c_t, c_n) = (i_r.r_j, i_t.r_j, i_n.r_j):
-    |r_j - r|^2 = |r_j|^2 - 2 r c_r + r^2, and
-
-        a = mu_j [ (c - r e_r)/|r_j - r|^3 - c/|r_j|^3 ].
-
-    The same quantity as ``dot(i, third_body_accel(r i_r, r_j, mu_j))``, in fewer
-    operations (no Cartesian spacecraft position, three dot products instead of nine).
-    """
-    xp = ops(r, *rj)
-    c = [a[0] * rj[0] + a[1] * rj[1] + a[2] * rj[2] for a in rtn]
-    rj2 = rj[0] ** 2 + rj[1] ** 2 + rj[2] ** 2
-    d2 = rj2 - 2 * r * c[0] + r * r
-    kd = muj / (d2 * xp.sqrt(d2))
-    kj = muj / (rj2 * xp.sqrt(rj2))
-    return ((kd - kj) * c[0] - kd * r, (kd - kj) * c[1], (kd - kj) * c[2])
 
 
 def mee_rates(x, u, t, prm, forces="full", a_extra=None):
@@ -265,6 +218,10 @@ def rhs_function(mode="full", thrust: bool = True, extra: bool = False) -> ca.Fu
 
 
 # ------------------------------------------------------------------ independent check
+#: The terms :func:`cartesian_rates` writes out (by their names in the registry).
+CARTESIAN_TERMS = ("point", "zonal-j2", "body-pole-j2", "harmonics", "third-bodies")
+
+
 def cartesian_rates(t, state, model: Model, u_rtn=(0.0, 0.0, 0.0)):
     """Cartesian equations of motion, written independently of the MEE form (numpy).
 
@@ -272,16 +229,18 @@ def cartesian_rates(t, state, model: Model, u_rtn=(0.0, 0.0, 0.0)):
     r'' = -mu r/r^3 + grad(U_J2) + grad(U_field) + a_Earth + a_Sun + T/m Q^T u.
     The J2 term is the gradient of U = -mu J2 R^2 / (2 r^3) (3 z^2/r^2 - 1) with z along
     its axis (the frame's pole, or the body pole from the fit); a field is evaluated
-    whole (its C20 too) in the body-fixed frame and rotated back.
+    whole (its C20 too) in the body-fixed frame and rotated back. Written for lunarcap's
+    own terms: a model with another term is refused rather than checked without it.
     """
-    from lunarcap.physics.forces import J2
-    from lunarcap.physics.gravity import sh_acceleration
-
+    fm = model.forces
+    other = [t.name for t in fm.terms if t.name not in CARTESIAN_TERMS]
+    if other:
+        raise InputError(f"cartesian_rates: no independent form of the term(s) "
+                         f"{', '.join(other)}")
     r = np.asarray(state[:3], float)
     v = np.asarray(state[3:6], float)
     m = state[6]
     mu = model.mu
-    fm = model.forces
     rn = np.linalg.norm(r)
     a = -mu * r / rn ** 3
     axes = model.fit.body_axes(t) if fm.rotation else np.eye(3)

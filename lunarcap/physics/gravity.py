@@ -64,7 +64,7 @@ class GravityField:
         The packaged name, or the file's stem.
     gm_km3ps2 : float
         The field's GM, km^3/s^2 (lunarcap's dynamics use the plan's GM; see
-        :mod:`lunarcap.physics.forces`).
+        :mod:`lunarcap.physics.forces.harmonics`).
     radius_km : float
         Reference radius R, km.
     degree, order : int

@@ -265,8 +265,8 @@ def engine_profile(engines=((300.0, 250.0), (420.0, 250.0)), dynamics: str = "fu
     import joblib
 
     import lunarcap.optim.solve as solve_mod
-    from lunarcap.optim.correction import nlp_forces
-    from lunarcap.optim.nlp import n_built, nlp_for
+    from lunarcap.optim.correction import nlp_of
+    from lunarcap.optim.nlp import n_built
     from lunarcap.repro import cache
     from lunarcap.studies.engine_trade.trade import solve_engine
 
@@ -276,8 +276,7 @@ def engine_profile(engines=((300.0, 250.0), (420.0, 250.0)), dynamics: str = "fu
     def counted(prob, mesh, guess):
         before = n_built()
         t0 = time.perf_counter()
-        low = nlp_forces(prob.model.forces)  # the NLP solve_in_model solves
-        nlp = nlp_for(prob, mesh) if low is None else nlp_for(prob, mesh, low, True)
+        nlp = nlp_of(prob, mesh)  # the NLP solve_in_model solves
         if n_built() > before:
             acc["build_s"] = acc.get("build_s", 0.0) + time.perf_counter() - t0
         t0 = time.perf_counter()

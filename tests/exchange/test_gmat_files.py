@@ -149,3 +149,52 @@ def _capture_with_nan():
     cap = _capture()
     cap.burns[0].u_icrf[0, 1] = np.nan
     return cap
+
+
+def _forces_model(spec):
+    from lunarcap.mission.scenario import paper_scenario
+    from lunarcap.physics.dynamics import Model, fit_for
+    from lunarcap.physics.ephemeris import default_ephemeris
+
+    t = seconds_from_calendar(paper_scenario().epoch_tdb)
+    return Model(spec, 150.0, 200.0, fit_for(spec, default_ephemeris(), t - 3600, t + 3600))
+
+
+@pytest.mark.parametrize("spec,frame,j2,third", [
+    ("full", "fixed-pole", C.J2_MOON, ("Earth", "Sun")),
+    ("j2", "fixed-pole", C.J2_MOON, ()),
+    ("two-body", "fixed-pole", 0.0, ()),
+    ({"gravity": "j2", "pole": "of-date", "third_bodies": ["sun"]}, "iau-of-date", C.J2_MOON,
+     ("Sun",)),
+])
+def test_each_term_says_what_gmat_flies_zonal(spec, frame, j2, third):
+    # the central field and the point masses the terms ask for: the paper's J2 about the
+    # plan's pole (fixed: GMAT's own Luna would turn with the librations), J2 of date in
+    # GMAT's IAU Moon, the bodies with lunarcap's GMs
+    from lunarcap.physics.frames import moon_pole_radec_deg
+
+    grav, masses = gmat.capture_forces(_forces_model(spec), "iau2009-j2000")
+    assert grav.frame == frame and (grav.degree, grav.order) == (2, 0)
+    assert (grav.mu_km3s2, grav.radius_km) == (C.MU_MOON, C.R_MOON)
+    assert grav.c[2, 0] == -j2 / math.sqrt(5.0) and not grav.s.any()
+    assert grav.pole_radec_deg == tuple(float(a) for a in moon_pole_radec_deg("iau2009-j2000"))
+    assert masses == tuple((b, {"Earth": C.MU_EARTH, "Sun": C.MU_SUN}[b]) for b in third)
+    assert ("+ J2" in grav.source) is (j2 != 0.0)
+
+
+@pytest.mark.parametrize("body_frame,frame", [("de405", "luna"), ("iau2009", "iau-of-date")])
+def test_each_term_says_what_gmat_flies_field(body_frame, frame):
+    # a field goes whole (its C20 too) to its degree and order, the orders above zeroed, in
+    # GMAT's Luna (DE405 librations) or its IAU Moon, scaled by lunarcap's GM
+    from lunarcap.physics.gravity import packaged_field
+
+    spec = {"gravity": "LP165P", "degree": 6, "order": 3, "body_frame": body_frame,
+            "third_bodies": ["earth"]}
+    grav, masses = gmat.capture_forces(_forces_model(spec), "iau2009-j2000")
+    lp = packaged_field()
+    assert grav.frame == frame and (grav.degree, grav.order) == (6, 3)
+    assert (grav.mu_km3s2, grav.radius_km) == (C.MU_MOON, lp.radius_km)
+    np.testing.assert_array_equal(grav.c[:, :4], lp.C[:7, :4])
+    np.testing.assert_array_equal(grav.s[:, :4], lp.S[:7, :4])
+    assert not grav.c[:, 4:].any() and not grav.s[:, 4:].any()
+    assert masses == (("Earth", C.MU_EARTH),)

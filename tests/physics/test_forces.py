@@ -185,3 +185,27 @@ def test_bad_dynamics_name_the_key(spec, words):
 def test_model_without_the_fit_it_needs_is_refused(fits):
     with pytest.raises(InputError, match="de405 orientation"):
         dyn.Model(ForceModel("LP165P", degree=4, order=4), fit=fits[None])
+
+
+@pytest.mark.parametrize("spec,perturbed", [
+    ("full", True), ("j2", True), ("two-body", False),
+    ({"gravity": "point", "third_bodies": []}, False),
+    ({"gravity": "point", "third_bodies": ["sun"]}, True),
+    ({"gravity": "j2", "pole": "of-date", "third_bodies": []}, True),
+    ({"gravity": "LP165P", "degree": 2, "order": 0, "third_bodies": []}, True),
+    ({"gravity": "LP165P", "degree": 20, "third_bodies": []}, True),
+    ({"gravity": "LP165P", "degree": 8, "body_frame": "iau2009"}, True),
+])
+def test_perturbed_is_any_force_beyond_a_point_moon(fits, spec, perturbed):
+    # 'perturbed' decides whether the ignition window keeps the +-30 min floor of a moving
+    # perilune (optim.problem); it once stayed False for J2-only dynamics, unseen by any test
+    forces = force_model(spec)
+    assert forces.perturbed is perturbed
+    # and it says what the right-hand side does: a point Moon's coast rates are Kepler's
+    model = dyn.Model(forces, fit=fits[forces.rotation] if forces.needs_fit else None)
+    x = _states(1, seed=7)[0]
+    t = fits[None].t0_s + 7200.0
+    rates = np.asarray(dyn.rhs_function(forces)(x, [0, 0, 0], t, model.params())).ravel()
+    kepler = np.asarray(dyn.rhs_function("two-body")(x, [0, 0, 0], t,
+                                                    dyn.Model("two-body").params())).ravel()
+    assert bool(np.any(rates[:5] != kepler[:5])) is perturbed
