@@ -634,3 +634,81 @@ def test_a_make_up_dearer_than_the_burn_itself_is_also_tried_at_the_next_perilun
     assert r["status"] == "recovered" and r["all_verified"]
     assert r["reason"].startswith("make-up burn at the next perilune: its recovery burns")
     assert abs(r["penalty_mps"]) < 5.0, r["penalty_mps"]
+
+
+def test_a_two_body_recovery_keeps_its_first_verified_start(monkeypatch):
+    """In two-body dynamics the starts after the first are fallbacks: the first verified
+    recovery (from the plan's guesses, on every mesh from the coarsest) is kept and no
+    other start is solved, even one that would be cheaper. The solver stands in for IPOPT;
+    it answers each call cheaper than the last."""
+    from types import SimpleNamespace
+
+    import lunarcap.studies.missed.recovery as rec
+    import lunarcap.studies.missed.starts as starts
+    from lunarcap.studies.missed.makeup import RECOVERY_MESHES
+
+    plan = load_plan("song2011-150N").with_dynamics("two-body")
+    monkeypatch.setattr(rec, "nothing_to_make_up", lambda *a: False)
+    monkeypatch.setattr(rec, "physical_bound", lambda *a: "")
+    leg = SimpleNamespace(delta_v_mps=300.0, raw=SimpleNamespace(t1_s=600.0))
+    calls = []
+
+    def recover(nplan, i, place, max_period_s, guess, meshes):
+        calls.append((guess, meshes))
+        return SimpleNamespace(total_delta_v_mps=900.0 - len(calls)), {"first_coast_guess_s": 0.0}
+    monkeypatch.setattr(starts, "recover", recover)
+    how, res, _ = rec.recovery(plan, [leg] * 3, 0, 60.0, None, (0.0, 30.0), 86400.0,
+                               lambda w: None, None, later=False)
+    assert how == "window" and res.total_delta_v_mps == 899.0 and len(calls) == 1
+    guess, meshes = calls[0]
+    assert guess.legs is None and guess.first_coast_s is None   # the plan's guesses
+    assert meshes == RECOVERY_MESHES
+
+
+def test_a_two_body_nominal_starts_from_the_plans_orbit_and_the_longest_allowed(monkeypatch):
+    """In two-body dynamics the nominal is solved from the plan's orbit after the burn and
+    from the longest orbit allowed, and the cheaper kept; no two-body optimum is solved
+    first and no halfway start. From the plan's orbit alone IPOPT may stop where it started
+    (family-0 of the seed-24 family: 813.121 m/s on the plan's 17.3 h orbit, 812.999 m/s
+    on the 24 h bound, and its recoveries found the cheaper one: penalties of -0.10 m/s).
+    The all-burns solve stands in, cheapest on the longest orbit."""
+    from types import SimpleNamespace
+
+    import lunarcap.studies.missed.nominal as M
+    from lunarcap.repro.cache import caching
+
+    plan = load_plan("song2011-150N").with_dynamics("two-body")
+    own_s, longest_s = plan.coast_s(0), DEFAULT_MAX_PERIOD_H * 3600.0
+    tried = []
+
+    def stand_in(start, i, max_period_s):
+        tried.append((start.dynamics, start.coast_s(i)))
+        return SimpleNamespace(plan=start, legs=[], total_delta_v_mps=-start.coast_s(i))
+    monkeypatch.setattr(M, "_nominal_from", stand_in)
+    with caching(False):
+        nom = M.nominal(plan, 1, longest_s)
+    assert tried == [("two-body", pytest.approx(own_s)), ("two-body", pytest.approx(longest_s))]
+    assert nom["plan"].coast_s(0) == pytest.approx(longest_s)
+
+
+def test_a_case_leaves_nothing_in_the_worker_for_the_next(plan, monkeypatch):
+    """A Dask worker runs case after case: the nominal a case is given reaches that case
+    (passed on to it) and nothing else. No module of the study keeps it, or anything, in a
+    module-level container, so no answer depends on the cases a worker ran before. (The
+    case itself stands in.)"""
+    import importlib
+
+    import lunarcap.studies.missed.cases as cases
+
+    names = ("orbits", "nominal", "makeup", "starts", "recovery", "contingency", "cases")
+    mods = [importlib.import_module(f"lunarcap.studies.missed.{m}") for m in names]
+
+    def state():
+        return {(m.__name__, k): repr(v) for m in mods for k, v in vars(m).items()
+                if isinstance(v, (dict, list, set))}
+    before, given, seen = state(), {"plan": "the nominal of this case"}, []
+    monkeypatch.setattr(cases, "case_result", lambda *a, **k: seen.append(k.get("nominal"))
+                        or {"status": "recovered", "reason": ""})
+    row = cases.case_row(plan, 1, 0.5, 0.0, DEFAULT_MAX_PERIOD_H, None, given)
+    assert row["status"] == "recovered" and seen == [given]
+    assert state() == before

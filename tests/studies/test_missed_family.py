@@ -135,3 +135,24 @@ def test_the_last_burn_cut_off_half_way_with_no_delay_resumes_at_no_cost(plans, 
         r = cases[(p.name, p.n_burns, 0.5, 0.0, None)]
         assert r["status"] == "recovered" and not r["reason"], (p.name, r["reason"])
         assert abs(r["penalty_mps"]) < 0.05, (p.name, r["penalty_mps"])
+
+
+def test_the_seed_24_family_is_drawn_again_as_the_histories_name_it():
+    """The case histories in these tests' docstrings name plans of the seed-24 family
+    (``plan_family(24, 12, mass_kg=(400, 2000), formulations=("orbit", "song2011"))``):
+    drawn again anywhere (tests, tools/missed_family.py), family-k must be the same plan.
+    Its engines, masses and burns as those histories give them; plan 9 is refused at load."""
+    family, refused = plan_family(24, 12, mass_kg=(400, 2000),
+                                  formulations=("orbit", "song2011"))
+    by_name = {p.name: p for p in family}
+    assert len(family) == 11 and len(refused) == 1 and "family-9" not in by_name
+    drawn = {name: (p.engine.thrust_N, p.arrival.mass_kg, p.n_burns, p.formulation)
+             for name, p in by_name.items()}
+    assert drawn["family-0"] == (537.0, 538.0, 3, "song2011")
+    assert drawn["family-2"] == (141.0, 1145.0, 4, "song2011")
+    assert drawn["family-3"] == (194.0, 744.0, 3, "orbit")
+    assert drawn["family-4"] == (201.0, 1685.0, 2, "song2011")
+    assert drawn["family-5"] == (444.0, 802.0, 4, "orbit")
+    assert drawn["family-11"] == (239.0, 1453.0, 4, "orbit")
+    # the last target of the song2011 plans is a circle, as the paper's formulation needs
+    assert all(p.targets[-1].kind == "circular" for p in family if p.formulation == "song2011")
