@@ -1,72 +1,7 @@
-"""Seeded families of generated capture plans (the ranges an analyst might write).
+"""The seeded plan families of the tests: :mod:`lunarcap.studies.families`, shared with tools.
 
-Shared by the tests that must hold on any plan the load-time checks accept, not only on
-the paper's: the solver's (tests/optim/test_targets_as_asked.py) and the missed-thrust
-study's (tests/studies/test_missed_family.py; tools/missed_family.py runs a bigger family).
+Imported by the tests that must hold on any plan the load-time checks accept
+(tests/optim/test_targets_as_asked.py, tests/studies/test_missed*.py).
 """
 
-import math
-
-import numpy as np
-
-from lunarcap.mission.plan import CapturePlan, PlanError
-from lunarcap.physics import constants as C
-
-
-def plan_of(burns, dynamics="two-body", inclination=90.0, formulation="orbit", thrust=120.0,
-            mass=700.0, name="asked", isp=220.0):
-    """A plan arriving at the paper's epoch, 100 km perilune, v_inf 0.8 km/s."""
-    return CapturePlan.from_dict({
-        "name": name, "formulation": formulation, "dynamics": dynamics,
-        "arrival": {"epoch": "2017-02-20 03:41:26 TDB", "perilune_altitude_km": 100,
-                    "inclination_deg": inclination, "v_inf_kmps": 0.8, "mass_kg": mass},
-        "engine": {"thrust_N": thrust, "isp_s": isp}, "burns": burns})
-
-
-def random_plan(rng, index, dynamics="two-body", mass_kg=(400, 1200), formulations=("orbit",)):
-    """A plan drawn from the ranges an analyst might write (may be refused at load).
-
-    2-5 burns; intermediate ellipses of 2.5-14 h, each by its period or its apolune; the
-    last a circle or a 100 x 150-600 km ellipse; 20-170 deg; 100-600 N; ``mass_kg`` (kg).
-    With more than one ``formulations`` one is drawn per plan (after the other draws, so
-    the default family is unchanged); the paper's (``song2011``, Eq. 17 targets) ends on a
-    circle, the only final orbit it can name.
-    """
-    n = int(rng.integers(2, 6))
-    periods = np.sort(rng.uniform(2.5, 14.0, n - 1))[::-1]
-    burns = []
-    for p in periods:
-        if rng.random() < 0.5:
-            burns.append({"target_period_h": float(round(p, 3)), "start_min": "free"})
-        else:   # the apolune of that period's ellipse at 100 km perilune
-            a = (C.MU_MOON * (p * 3600 / (2 * math.pi)) ** 2) ** (1 / 3)
-            burns.append({"target_apolune_altitude_km": float(round(2 * a - 2 * (C.R_MOON + 100)
-                                                                    + 100, 1)),
-                          "start_min": "free"})
-    last = rng.choice(["circular", "ellipse"])
-    burns.append({"target": "circular", "start_min": "free"} if last == "circular" else
-                 {"target": {"perilune_altitude_km": 100,
-                             "apolune_altitude_km": float(round(rng.uniform(150, 600)))},
-                  "start_min": "free"})
-    inclination = float(round(rng.uniform(20, 170), 1))
-    thrust = float(round(rng.uniform(100, 600)))
-    mass = float(round(rng.uniform(*mass_kg)))
-    formulation = "orbit"
-    if len(formulations) > 1:
-        formulation = str(rng.choice(formulations))
-        if formulation == "song2011":
-            burns[-1] = {"target": "circular", "start_min": "free"}
-    return plan_of(burns, dynamics, inclination=inclination, thrust=thrust, mass=mass,
-                   name=f"family-{index}", formulation=formulation)
-
-
-def plan_family(seed, count, **kwargs):
-    """(accepted plans, refusals) of ``count`` generated plans (``random_plan``'s options)."""
-    rng = np.random.default_rng(seed)
-    plans, refused = [], []
-    for i in range(count):
-        try:
-            plans.append(random_plan(rng, i, **kwargs))
-        except PlanError as exc:
-            refused.append(str(exc))
-    return plans, refused
+from lunarcap.studies.families import plan_family, plan_of, random_plan  # noqa: F401

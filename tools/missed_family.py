@@ -5,7 +5,7 @@ Usage (from the repository root)::
     .venv/bin/python tools/missed_family.py --seed 24 --count 12 --dynamics two-body \
         --out /tmp/family.jsonl
 
-Each accepted plan (tests/plan_family.py: 2-5 burns, 100-600 N, 400-2,000 kg,
+Each accepted plan (lunarcap.studies.families: 2-5 burns, 100-600 N, 400-2,000 kg,
 20-170 deg, every target kind) is run for each burn asked (``--burns first,last``):
 cut-offs of 0.25, 0.5, 0.9 and 1.0 of the burn at 0 and 30 min, late ignitions of 1 and
 5 min. One JSON line per case (plan, burn, case, status, reason, penalty, wall time); the
@@ -19,14 +19,11 @@ import argparse
 import json
 import sys
 import time
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-
-from plan_family import plan_family  # noqa: E402
-
-from lunarcap.repro.cache import caching  # noqa: E402
-from lunarcap.studies.missed.cases import case_result  # noqa: E402
+from lunarcap.repro.cache import caching
+from lunarcap.studies.families import plan_family
+from lunarcap.studies.missed.cases import case_result
+from lunarcap.studies.missed.nominal import DEFAULT_MAX_PERIOD_H, nominal_of
 
 FRACTIONS = (0.25, 0.5, 0.9, 1.0)
 DELAYS_MIN = (0.0, 30.0)
@@ -40,12 +37,17 @@ def cases():
 
 
 def run_plan(plan, burn: int) -> list[dict]:
-    """Every case of ``burn`` of ``plan`` (a failure of the study is a row, not raised)."""
-    rows = []
+    """Every case of ``burn`` of ``plan`` (a failure of the study is a row, not raised).
+
+    The burn's nominal is solved once, by the first case that needs it, and passed to the
+    others (a nominal that fails is tried again by the next case).
+    """
+    rows, nominal = [], None
     for f, d, late in cases():
         t0 = time.perf_counter()
         try:
-            r = case_result(plan, burn, f, d, late_min=late)
+            nominal = nominal or nominal_of(plan, burn, DEFAULT_MAX_PERIOD_H * 3600.0)
+            r = case_result(plan, burn, f, d, late_min=late, nominal=nominal)
             row = {"status": r["status"], "reason": r.get("reason", ""),
                    "penalty_mps": r.get("penalty_mps"), "all_verified": r.get("all_verified")}
         except Exception as exc:   # a crash is counted as a failure of the study

@@ -1,6 +1,6 @@
 """Missed thrust and late ignition on generated plans, not the paper's (two-body, no cache).
 
-From a seeded family of generated plans (tests/plan_family.py: 2-5 burns, 100-600 N,
+From a seeded family of generated plans (lunarcap.studies.families: 2-5 burns, 100-600 N,
 400-2,000 kg, 20-170 deg) the first plan of each kind of final orbit and formulation: the
 paper's (Eq. 17 targets, ending on a circle), orbits as asked ending on a circle, orbits
 as asked ending on an ellipse. Burn 1 is cut off after 0.25, 0.5, 0.9 and 1.0 of its
@@ -24,11 +24,12 @@ tools/missed_family.py runs a bigger family (and full dynamics) outside the test
 """
 
 import pytest
-from plan_family import plan_family
 
 from lunarcap.physics.epochs import seconds_from_calendar
 from lunarcap.repro.cache import caching
-from lunarcap.studies.missed.cases import DEFAULT_MAX_PERIOD_H, case_result, nominal_of
+from lunarcap.studies.families import plan_family
+from lunarcap.studies.missed.cases import case_result
+from lunarcap.studies.missed.nominal import DEFAULT_MAX_PERIOD_H, nominal_of
 
 pytestmark = pytest.mark.slow
 
@@ -56,17 +57,27 @@ def plans():
 
 
 @pytest.fixture(scope="module")
-def cases(plans):
+def nominals(plans):
+    """{(plan name, burn): nominal} of burn 1 and the last burn of each plan, solved once."""
+    with caching(False):
+        return {(p.name, burn): nominal_of(p, burn, MAX_PERIOD_S)
+                for p in plans for burn in (1, p.n_burns)}
+
+
+@pytest.fixture(scope="module")
+def cases(plans, nominals):
     """{(plan name, burn, fraction, delay, late): row} of every case, computed once."""
     out = {}
     with caching(False):
         for p in plans:
+            first, last = nominals[(p.name, 1)], nominals[(p.name, p.n_burns)]
             for f, d in CUT_OFFS:
-                out[(p.name, 1, f, d, None)] = case_result(p, 1, f, d)
+                out[(p.name, 1, f, d, None)] = case_result(p, 1, f, d, nominal=first)
             for m in LATE_MIN:
-                out[(p.name, 1, None, 0.0, m)] = case_result(p, 1, late_min=m)
+                out[(p.name, 1, None, 0.0, m)] = case_result(p, 1, late_min=m, nominal=first)
             for f, d in LAST_BURN_CUT_OFFS:
-                out[(p.name, p.n_burns, f, d, None)] = case_result(p, p.n_burns, f, d)
+                out[(p.name, p.n_burns, f, d, None)] = case_result(p, p.n_burns, f, d,
+                                                                   nominal=last)
     return out
 
 
@@ -79,7 +90,7 @@ def test_every_case_is_recovered_and_verified_or_refused_with_a_reason(cases):
             assert r["reason"], key
 
 
-def test_no_recovery_beats_the_nominal_with_its_freedoms(plans, cases):
+def test_no_recovery_beats_the_nominal_with_its_freedoms(plans, cases, nominals):
     by_name = {p.name: p for p in plans}
     for (name, burn, f, d, late), r in cases.items():
         if r["status"] != "recovered":
@@ -89,7 +100,7 @@ def test_no_recovery_beats_the_nominal_with_its_freedoms(plans, cases):
             continue
         # two burns where the nominal had one: not below the two-body impulses from the
         # orbit before the burn to the final orbit (tangential at perilune)
-        nplan = nominal_of(by_name[name], burn, MAX_PERIOD_S)["plan"]
+        nplan = nominals[(by_name[name].name, burn)]["plan"]
         impulses = sum(b.delta_v_mps for b in nplan.impulsive()[burn - 1:])
         assert r["total_delta_v_mps"] >= impulses - 0.05, (name, burn, f, d)
 
@@ -105,9 +116,9 @@ def test_a_full_burn_costs_nothing_and_leaves_nothing_to_make_up(plans, cases):
         assert cases[(p.name, p.n_burns, 1.0, 0.0, None)]["recovery_burns"] == [], p.name
 
 
-def test_a_late_ignition_ignites_that_many_minutes_after_the_nominal(plans, cases):
+def test_a_late_ignition_ignites_that_many_minutes_after_the_nominal(plans, cases, nominals):
     for p in plans:
-        t_nominal = nominal_of(p, 1, MAX_PERIOD_S)["legs"][0].problem.t_ign_s
+        t_nominal = nominals[(p.name, 1)]["legs"][0].problem.t_ign_s
         for m in LATE_MIN:
             r = cases[(p.name, 1, None, 0.0, m)]
             assert r["status"] == "recovered", (p.name, m, r["reason"])
@@ -124,3 +135,24 @@ def test_the_last_burn_cut_off_half_way_with_no_delay_resumes_at_no_cost(plans, 
         r = cases[(p.name, p.n_burns, 0.5, 0.0, None)]
         assert r["status"] == "recovered" and not r["reason"], (p.name, r["reason"])
         assert abs(r["penalty_mps"]) < 0.05, (p.name, r["penalty_mps"])
+
+
+def test_the_seed_24_family_is_drawn_again_as_the_histories_name_it():
+    """The case histories in these tests' docstrings name plans of the seed-24 family
+    (``plan_family(24, 12, mass_kg=(400, 2000), formulations=("orbit", "song2011"))``):
+    drawn again anywhere (tests, tools/missed_family.py), family-k must be the same plan.
+    Its engines, masses and burns as those histories give them; plan 9 is refused at load."""
+    family, refused = plan_family(24, 12, mass_kg=(400, 2000),
+                                  formulations=("orbit", "song2011"))
+    by_name = {p.name: p for p in family}
+    assert len(family) == 11 and len(refused) == 1 and "family-9" not in by_name
+    drawn = {name: (p.engine.thrust_N, p.arrival.mass_kg, p.n_burns, p.formulation)
+             for name, p in by_name.items()}
+    assert drawn["family-0"] == (537.0, 538.0, 3, "song2011")
+    assert drawn["family-2"] == (141.0, 1145.0, 4, "song2011")
+    assert drawn["family-3"] == (194.0, 744.0, 3, "orbit")
+    assert drawn["family-4"] == (201.0, 1685.0, 2, "song2011")
+    assert drawn["family-5"] == (444.0, 802.0, 4, "orbit")
+    assert drawn["family-11"] == (239.0, 1453.0, 4, "orbit")
+    # the last target of the song2011 plans is a circle, as the paper's formulation needs
+    assert all(p.targets[-1].kind == "circular" for p in family if p.formulation == "song2011")

@@ -1,9 +1,11 @@
 """The orbit a contingency leaves: its kind, the Moon's sphere of influence, the make-up bound.
 
-Split from :mod:`lunarcap.studies.missed.cases` (which re-exports every name): two-body geometry
-the missed-thrust study uses before any solve, to size the make-up burn
-(:func:`make_up_estimate`) and to answer a case that physics forbids as "no recovery"
-with its reason (:func:`physical_bound`).
+Two-body geometry the missed-thrust study uses before any solve: to classify the orbit at
+the cut-off (:func:`classify`), to size the make-up burn (:func:`make_up_estimate`), to
+answer a case that physics forbids as "no recovery" with its reason
+(:func:`physical_bound`), and to bound the free orbit after a burn so that the next burn
+keeps a burn to do and room to do it (:func:`shortest_free_period_s`,
+:func:`after_free_orbit`).
 """
 
 from __future__ import annotations
@@ -150,9 +152,7 @@ def shortest_free_period_s(plan: CapturePlan, i: int) -> float | None:
     period, or the circle) plus the delta-V that burn needs to last twice the shortest
     burn the transcription resolves (:data:`lunarcap.mission.plan.MIN_BURN_S`, Eq. 19 at
     its mass in the plan's impulsive chain): an orbit after burn i equal to the next one
-    would leave a burn of nothing, which no plan may have (family-5 of the seed-24
-    family, 444 N, full dynamics: the nominal's optimum made burn 2 vanish, and the plan
-    checks refused it). None after the last burn.
+    would leave a burn of nothing, which no plan may have. None after the last burn.
     """
     if i + 1 >= plan.n_burns:
         return None
@@ -171,10 +171,8 @@ def after_free_orbit(prob, plan: CapturePlan, i: int, max_period_s: float):
     delta-V is the plan's guess of that orbit, not the orbit the NLP chooses. The bound is
     raised to 3 x Eq. (19) of the delta-V from the longest orbit allowed (``max_period_s``,
     at the plan's perilune radius) to the orbit after burn i + 1, from ``prob``'s mass, and
-    kept within 0.9 of its ignition-to-end span as the default is. Family-0 of the seed-24
-    family (537 N, 538 kg), burn 1 cut off after a quarter, 30 min: sized by the make-up's
-    guessed orbit, burn 2 was held to 27.4 s and in two-body dynamics ended on that bound
-    (913.7 m/s); in full dynamics the bound, 26.8 s, left that recovery infeasible.
+    kept within 0.9 of its ignition-to-end span as the default is: held to the guessed
+    orbit's delta-V, the next burn may end on its bound, or make the NLP infeasible.
     """
     nxt = plan.burns[i + 1]
     rp = plan.perilune_radius_km
