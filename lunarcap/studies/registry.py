@@ -11,7 +11,15 @@ that declares records, the benchmark lists them.
 
 A ``command.py`` imports nothing heavy at module level (its campaign module only inside
 ``prepare``): the command line lists every study, and ``lunarcap plan`` should not pay
-for importing pandas and Dask to do so.
+for importing pandas and Dask to do so. This is also why a study's command is declared
+apart from its :class:`~lunarcap.studies.study.Study`, which lives with the campaign.
+
+Examples
+--------
+>>> list(studies())
+['study', 'burns', 'missed', 'dispersions']
+>>> studies()["burns"].dask, sorted(studies()["burns"].records)
+('count', ['burns', 'burns_count', 'burns_count_burn'])
 """
 
 from __future__ import annotations
