@@ -150,8 +150,8 @@ def test_a_registered_toy_study_reaches_the_cli_and_the_schemas(toy, tmp_path, m
     assert schema["properties"]["toy_cases"]["items"]["properties"][
         "toy_scaled_delta_v_mps"]["x-unit"] == "m/s"
     stray = json.loads(out)
-    stray["toy_cases"][0]["loss_mps"] = 1.0   # a key its records do not declare
-    with pytest.raises(jsonschema.ValidationError, match="loss_mps"):
+    stray["toy_cases"][0]["toy_stray_mps"] = 1.0   # a key its records do not declare
+    with pytest.raises(jsonschema.ValidationError, match="toy_stray_mps"):
         jsonschema.validate(stray, schema, cls=jsonschema.Draft202012Validator)
     # bad input: one line, exit 2, before any work
     rc, out, err = _main(["toy", str(toy), "--factors", "-1"], capsys)
