@@ -256,6 +256,7 @@ def test_plan_overrides_say_the_plans_and_the_papers_default():
 # ---------------------------------------------------------------------- altitudes
 def test_final_orbit_is_printed_as_altitudes(capsys):
     """Plans take altitudes, so the text output's final orbit is in altitudes, not radii."""
+    from lunarcap.cli.plan import print_totals
     from lunarcap.physics.constants import R_MOON
 
     tot = {"total_delta_v_loss_mps": None, "total_delta_v_mps": 800.0,
@@ -263,6 +264,6 @@ def test_final_orbit_is_printed_as_altitudes(capsys):
            "total_fuel_kg": 150.0, "final_mass_kg": 374.9, "final_rp_km": R_MOON + 100.0,
            "final_ra_km": R_MOON + 300.0, "final_inc_deg": 90.0,
            "final_orbit_epoch": "2017-02-21 00:00:00 TDB", "time_to_final_orbit_h": 20.0}
-    cli._print_totals(tot)
+    print_totals(tot)
     out = capsys.readouterr().out
     assert "final orbit 100.0 x 300.0 km altitude" in out, out

@@ -53,6 +53,28 @@ def test_composed_names_and_retired_names():
         Q.lookup("loss_mps")
 
 
+def test_a_name_is_defined_once_in_the_glossary_files(tmp_path, monkeypatch):
+    """The glossary is data: a key given twice in one file (YAML would keep the last) or a
+    name that another file defines (a study's own quantity shadowing a shared one) is an
+    error, not a silent choice between two definitions."""
+    twice = tmp_path / "twice.yaml"
+    twice.write_text("quantities:\n  a_m:\n    label: a\n    definition: A.\n"
+                     "  a_m:\n    label: b\n    definition: B.\n", encoding="utf-8")
+    with pytest.raises(ValueError, match="line 5: 'a_m' is defined twice"):
+        Q.read(twice)
+    monkeypatch.setattr(Q, "GLOSSARY", dict(Q.GLOSSARY))
+    monkeypatch.setattr(Q, "_Q", list(Q._Q))
+    monkeypatch.setattr(Q, "_SOURCES", dict(Q._SOURCES))
+    shadow = tmp_path / "glossary.yaml"
+    shadow.write_text("quantities:\n  delta_v_mps:\n    label: ΔV\n    definition: Mine.\n",
+                      encoding="utf-8")
+    with pytest.raises(ValueError, match=r"delta_v_mps \(already in .*data/glossary.yaml\)"):
+        Q.merge_file(shadow)
+    assert Q.lookup("delta_v_mps").definition.startswith("Delta-V of the finite burn")
+    assert Q.merge_file(Q.STUDY_FILES[0]) == []   # a file already read adds nothing
+    assert {p.parent.name for p in Q.STUDY_FILES} == {"missed", "dispersions"}
+
+
 def test_labels_come_from_the_glossary():
     from lunarcap.report.labels import label
     for name in ("delta_v_loss_mps", "impulsive_limit_mps", "time_to_final_orbit_h"):

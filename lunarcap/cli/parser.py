@@ -1,5 +1,10 @@
 """The argument parser of ``lunarcap`` (its commands run in :mod:`lunarcap.cli`).
 
+lunarcap's own commands (plan, solve, impulsive, plans, bench) are declared here; each
+registered study (:mod:`lunarcap.studies.registry`) adds its command after them, with the
+plan's options (:func:`add_plan_options`), its own and the Dask options
+(:func:`add_dask_options`) as it declares.
+
 Numbers are read by :mod:`lunarcap.errors`' one parser; a bad option is one line,
 ``lunarcap: error: --thrust: must be positive (N), got '-1'``, exit status 2. Every help
 text states the option's real default: the plan's, for the options that override a plan.
@@ -13,9 +18,7 @@ import sys
 
 from lunarcap.errors import InputError, integer, number
 from lunarcap.physics.forces import PRESETS
-
-#: What a help text says of an option that overrides the plan's value.
-PLAN_DEFAULT = "default: the plan's"
+from lunarcap.studies.registry import PLAN_DEFAULT, studies
 
 
 class Parser(argparse.ArgumentParser):
@@ -187,123 +190,24 @@ def _add_bench(sub, func) -> None:
     p.set_defaults(func=func)
 
 
-def _add_study(sub, func) -> None:
-    p = sub.add_parser("study", help="engine trade study: loss vs thrust-to-weight on Dask")
-    p.add_argument("--thrust-min", default="50", metavar="N",
-                   help="lowest thrust, N (default 50)")
-    p.add_argument("--thrust-max", default="2000", metavar="N",
-                   help="highest thrust, N (default 2000)")
-    p.add_argument("--points", default="30", metavar="K",
-                   help="log-spaced thrusts (default 30)")
-    p.add_argument("--isp", default="200,250,300", metavar="S1,S2,...",
-                   help="specific impulses, s (default 200,250,300)")
-    p.add_argument("--workers", default="2", metavar="W",
-                   help="local Dask worker processes, one thread each (default 2)")
-    p.add_argument("--scheduler", default=None, metavar="ADDR",
-                   help="address of an existing Dask scheduler (default: a local cluster)")
-    p.add_argument("--out", default=None, metavar="PATH",
-                   help="CSV table, appended as engines finish and resumed on rerun "
-                        "(default: .cache/study/engine_trade.csv)")
-    p.add_argument("--dynamics", choices=list(PRESETS), default="full",
-                   help="perturbations (default full)")
-    p.add_argument("--retry-failed", action="store_true",
-                   help="recompute engines that failed in an earlier run")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+def _add_study(sub, study, func) -> None:
+    """A registered study's command: the plan's options, its own, the Dask options."""
+    p = sub.add_parser(study.name, help=study.help)
+    if study.plan:
+        add_plan_options(p, plan_positional=True)
+    study.options(p)
+    if study.dask:
+        add_dask_options(p, study.dask)
     p.set_defaults(func=func)
 
 
-def _add_burns(sub, func) -> None:
-    p = sub.add_parser("burns", help="how many capture burns: N burns, periods optimised")
-    add_plan_options(p, plan_positional=True)
-    p.add_argument("--counts", default="1,2,3,4,5", metavar="N1,N2,...",
-                   help="numbers of burns to try (default 1,2,3,4,5)")
-    p.add_argument("--max-period-h", default="12.235", metavar="H",
-                   help="longest intermediate period, h (default 12.235)")
-    p.add_argument("--max-days", default="3", metavar="D",
-                   help="longest time from the arrival perilune to the end of the last burn, "
-                        "days (default 3)")
-    add_dask_options(p, "count")
-    p.set_defaults(func=func)
+def build_parser(commands: dict, description: str, study_command) -> Parser:
+    """The argument parser of every subcommand.
 
-
-def _add_missed(sub, func) -> None:
-    p = sub.add_parser("missed", help="missed thrust or late ignition: a burn gone wrong, "
-                                      "the capture re-planned")
-    add_plan_options(p, plan_positional=True)
-    p.add_argument("--burn", default="1", metavar="N", help="the burn cut short (default 1)")
-    p.add_argument("--fractions", default=None, metavar="F1,F2,...",
-                   help="fractions of the burn flown before the engine stops, in (0, 1] "
-                        "(default 0.25,0.5,0.75,0.9; none if only --late-min is given)")
-    p.add_argument("--delays-min", default="0,30,120,720", metavar="D1,D2,...",
-                   help="minutes from the cut-off to the recovery window (default "
-                        "0,30,120,720)")
-    p.add_argument("--late-min", default=None, metavar="L1,L2,...",
-                   help="late ignition: the burn ignites these minutes after its planned "
-                        "ignition, is re-optimised from there and the later burns re-planned "
-                        "(default: none)")
-    p.add_argument("--max-period-h", default="24", metavar="H",
-                   help="longest period of the orbit after the burn, in the recovery and "
-                        "in the nominal it is compared with, h (default 24)")
-    add_dask_options(p, "case")
-    p.set_defaults(func=func)
-
-
-_SIGMAS = (("--thrust-sigma-pct", "%", "thrust, per burn"),
-           ("--isp-sigma-pct", "%", "specific impulse, per burn"),
-           ("--pointing-sigma-deg", "deg", "thrust direction, each of two tilt angles, "
-                                           "fixed over a burn"),
-           ("--ignition-sigma-s", "s", "ignition epoch, per burn"),
-           ("--arrival-sigma-km", "km", "arrival position, per RTN axis"),
-           ("--arrival-sigma-mps", "m/s", "arrival velocity, per RTN axis"),
-           ("--knowledge-sigma-km", "km", "orbit-determination position error of the "
-                                          "state each re-plan starts from, per RTN axis"),
-           ("--knowledge-sigma-mps", "m/s", "orbit-determination velocity error of the "
-                                            "state each re-plan starts from, per RTN axis"),
-           ("--gates-magnitude-pct", "%", "Gates proportional magnitude error, per burn"),
-           ("--gates-magnitude-mps", "m/s", "Gates fixed magnitude error, per burn"),
-           ("--gates-pointing-deg", "deg", "Gates proportional pointing error, per axis "
-                                           "and burn"),
-           ("--gates-pointing-mps", "m/s", "Gates fixed pointing error (a transverse "
-                                           "delta-V), per axis and burn"))
-
-
-def _add_dispersions(sub, func) -> None:
-    p = sub.add_parser("dispersions", help="the capture's delta-V budget under execution and "
-                                           "arrival errors (Monte Carlo, closed loop)")
-    add_plan_options(p, plan_positional=True)
-    p.add_argument("--samples", default="100", metavar="N", help="samples (default 100)")
-    p.add_argument("--seed", default="0", metavar="S",
-                   help="seed: sample k draws its errors from numpy's generator seeded by "
-                        "(S, k), the same whatever the sigmas (default 0)")
-    for opt, unit, what in _SIGMAS:
-        p.add_argument(opt, default="0", metavar=unit.upper().replace("/", "").replace(
-            "%", "PCT"), help=f"1-sigma error of the {what}, {unit.replace('%', '%%')} "
-                                   "(default 0)")
-    p.add_argument("--arrival-cov", default=None, metavar="FILE",
-                   help="instead of --arrival-sigma-*: a 6x6 covariance of the arrival state "
-                        "in its RTN frame, km and km/s (36 numbers, whitespace or commas)")
-    p.add_argument("--knowledge-cov", default=None, metavar="FILE",
-                   help="instead of --knowledge-sigma-*: a 6x6 covariance of the "
-                        "orbit-determination error at each re-plan, RTN, km and km/s "
-                        "(default none)")
-    p.add_argument("--bplane-cov", default=None, metavar="FILE",
-                   help="a 2x2 (B.R, B.T; km) or 3x3 (and the time of closest approach, s) "
-                        "covariance of the arrival's B-plane target (4 or 9 numbers; default "
-                        "none)")
-    p.add_argument("--sensitivity", action="store_true",
-                   help="instead of one budget: each non-zero sigma alone at 0.5, 1 and 2 "
-                        "times its value (the others 0, the same draws), the mean and the "
-                        "99 %% budget of each")
-    p.add_argument("--formulation", choices=["orbit", "song2011"], default=None,
-                   help=f"how the re-planned burns meet a period: orbit (the orbit asked, its "
-                        f"perilune epoch free) or song2011 (the paper's: at the plan's nominal "
-                        f"perilune epochs, a fixed timeline) ({PLAN_DEFAULT})")
-    add_dask_options(p, "sample")
-    p.set_defaults(func=func)
-
-
-def build_parser(commands: dict, description: str) -> Parser:
-    """The argument parser of every subcommand; ``commands`` maps each name to its function."""
+    ``commands`` maps lunarcap's own commands (plan, solve, impulsive, plans, bench) to
+    their functions; every registered study (:func:`lunarcap.studies.registry.studies`)
+    follows them, its function ``study_command(study)``.
+    """
     parser = Parser(prog="lunarcap", description=description)
     sub = parser.add_subparsers(dest="command", required=True)
     _add_plan(sub, commands["plan"])
@@ -316,29 +220,32 @@ def build_parser(commands: dict, description: str) -> Parser:
                    help="a packaged plan to print (default: list them all)")
     p.set_defaults(func=commands["plans"])
     _add_bench(sub, commands["bench"])
-    _add_study(sub, commands["study"])
-    _add_burns(sub, commands["burns"])
-    _add_missed(sub, commands["missed"])
-    _add_dispersions(sub, commands["dispersions"])
+    for study in studies().values():
+        _add_study(sub, study, study_command(study))
     return parser
 
 
-_LIST_OPTIONS = ("--starts", "--previous-starts", "--start", "--counts", "--fractions",
-                 "--delays-min", "--max-period-h", "--max-days", "--burn", "--workers",
-                 "--samples", "--seed", "--thrust-sigma-pct", "--isp-sigma-pct",
-                 "--pointing-sigma-deg", "--ignition-sigma-s", "--arrival-sigma-km",
-                 "--arrival-sigma-mps", "--late-min", "--thrust", "--isp", "--mass",
-                 "--knowledge-sigma-km", "--knowledge-sigma-mps", "--gates-magnitude-pct",
-                 "--gates-magnitude-mps", "--gates-pointing-deg", "--gates-pointing-mps")
+#: lunarcap's own options whose value may begin with '-' (a study declares its own).
+_SIGNED = ("--starts", "--previous-starts", "--start", "--burn", "--workers", "--thrust",
+           "--isp", "--mass")
 
 
-def join_negative_lists(argv: list) -> list:
-    """Let ``--starts -10,-6,-5`` work: argparse would take '-10,-6,-5' for an option."""
+def signed_options() -> set:
+    """Every option whose value may begin with '-': lunarcap's and the studies'."""
+    return {*_SIGNED, *(opt for study in studies().values() for opt in study.signed)}
+
+
+def join_negative_lists(argv: list, signed=None) -> list:
+    """Let ``--starts -10,-6,-5`` work: argparse would take '-10,-6,-5' for an option.
+
+    ``signed``: the options concerned (default :func:`signed_options`).
+    """
+    signed = signed_options() if signed is None else signed
     out = []
     i = 0
     while i < len(argv):
         a = argv[i]
-        if a in _LIST_OPTIONS and i + 1 < len(argv) and re.match(r"^-\d", argv[i + 1]):
+        if a in signed and i + 1 < len(argv) and re.match(r"^-\d", argv[i + 1]):
             out.append(f"{a}={argv[i + 1]}")
             i += 2
             continue
@@ -347,7 +254,6 @@ def join_negative_lists(argv: list) -> list:
     return out
 
 
-def parse_args(commands: dict, description: str, argv=None) -> argparse.Namespace:
-    """The parsed command line (``argv``; default ``sys.argv[1:]``)."""
-    parser = build_parser(commands, description)
+def parse_args(parser: Parser, argv=None) -> argparse.Namespace:
+    """The command line ``argv`` (default ``sys.argv[1:]``) parsed by ``parser``."""
     return parser.parse_args(join_negative_lists(sys.argv[1:] if argv is None else list(argv)))

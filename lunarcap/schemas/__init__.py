@@ -1,12 +1,18 @@
 """JSON Schemas of the command line's ``--json`` outputs, generated from the glossary.
 
-One schema per command (``lunarcap/schemas/<command>.schema.json``, package data). Each
-record lists its keys (:data:`RECORDS`); the type, unit and description of every key come
+One schema per command with a ``--json`` output (``lunarcap/schemas/<command>.schema.json``,
+package data): lunarcap's own (:data:`OWN`: impulsive, solve, plan) and each registered
+study that declares records (:mod:`lunarcap.studies.registry`). Each record lists its keys
+(:data:`RECORDS`, and the studies' own); the type, unit and description of every key come
 from :mod:`lunarcap.quantities`, so a key that is not in the glossary cannot be written
 here, and a record with a key not listed fails validation (``additionalProperties``
 false). :func:`schemas` builds them; :func:`write` stores them (``python -m
 lunarcap.schemas``); the tests check that the stored files are the generated ones and that
 real outputs validate.
+
+The schemas sit above the studies (they read the registry) rather than the studies
+handing their records down: a schema describes a command's output, which the studies
+define, and reading the registry when a schema is asked for needs no order of imports.
 
 Examples
 --------
@@ -21,12 +27,15 @@ import json
 from pathlib import Path
 
 from lunarcap import quantities as Q
+from lunarcap.studies.registry import merge_quantities, studies
 
 HERE = Path(__file__).resolve().parent
 DRAFT = "https://json-schema.org/draft/2020-12/schema"
 
-#: The keys of each kind of record (object) of the outputs; a nested record is named by
-#: ``{"key": "record"}`` instead of a key.
+#: The keys of each kind of record (object) of lunarcap's own outputs and the records the
+#: studies share; a nested record is named by ``{"key": "record"}`` instead of a key, a key
+#: whose JSON type is not its glossary kind by ``(key, kind)``. A study's own records are
+#: declared in its folder (:class:`lunarcap.studies.registry.StudyCommand`).
 _SUMMARY = ["burn", "thrust_N", "isp_s", "dynamics", "steering", "target_kind", "free_start",
             "start_min", "ignition_epoch", "end_epoch", "burn_duration_min", "delta_v_mps",
             "impulsive_delta_v_two_body_mps", "m_start_kg", "m_end_kg", "fuel_kg", "v_end_kmps",
@@ -39,6 +48,16 @@ _VERIFICATION = ["delta_v_mps", "delta_v_diff_mps", "objective_diff_mps", "rp_er
                  "ra_error_m", "inc_error_deg", "gamma_error_deg", "final_position_diff_m",
                  "passed", "nfev", "released", "end_e_cos_nu", "end_speed_diff_mps",
                  "period_error_s", "ellipse"]
+
+#: The run record of every study (:func:`lunarcap.studies.campaign.run_campaign`'s keys and
+#: those the packaged studies describe their runs with); a study's further keys are its
+#: ``run_keys`` (:class:`lunarcap.studies.registry.StudyCommand`).
+RUN = ["study", "started_utc", "wall_s", "cluster_start_s", "scheduler", "workers",
+       ("cases", "integer"), "computed", "reused", "failed_computed", "interrupted", "table",
+       "cache", "code_version", "host", "cpu_count", "load_avg_1min_start", "load_avg_1min_end",
+       "counts", "grid", "burn", "fractions", "delays_min", ("late_min", "array"),
+       "max_period_h", "max_days", "seed", ("samples", "integer"), ("error_model", "string")]
+
 RECORDS = {
     "impulsive": ["plan", "thrust_N", "isp_s", "mass_kg", "v_inf_kmps",
                   "total_impulsive_delta_v_two_body_mps", {"burns": "impulsive_burn"}],
@@ -80,89 +99,14 @@ RECORDS = {
                        "coast_min", ("start_min", "number or free"), "steering",
                        "start_bounds_min"],
     "plan_start": ["epoch", "mee", "mass_kg", "first_coast_min"],
-    "burns": [{"plan": "plan_file"}, "max_period_h", "max_days", "table", {"run": "run"},
-              {"counts": "burns_count"}],
-    "burns_count": ["plan", "plan_id", "thrust_N", "isp_s", "dynamics", "n_burns",
-                    "max_period_h", "max_days", "status", "reason", "periods_h",
-                    "total_delta_v_mps", "total_impulsive_limit_mps", "total_delta_v_loss_mps",
-                    "total_impulsive_delta_v_two_body_mps", "total_fuel_kg", "final_mass_kg",
-                    "total_burn_duration_min", "time_to_final_orbit_h", "all_verified",
-                    "ipopt_status", "total_ipopt_iterations", "task_wall_s", "worker",
-                    "code_version", "completed_utc", "error", {"burns": "burns_count_burn"}],
-    "burns_count_burn": ["burn", "target_orbit", "period_after_h", "nominal_perilune_epoch",
-                         "ignition_epoch", "start_min", "burn_duration_min", "delta_v_mps",
-                         "impulsive_limit_mps", "delta_v_loss_mps", "m_start_kg", "m_end_kg",
-                         "fuel_kg", "rp_end_km", "ra_end_km", "verified", "impulsive_verified"],
-    "run": ["study", "started_utc", "wall_s", "cluster_start_s", "scheduler", "workers",
-            ("cases", "integer"), "computed", "reused", "failed_computed", "interrupted",
-            "table", "cache", "code_version", "host", "cpu_count", "load_avg_1min_start",
-            "load_avg_1min_end", "counts", "grid", "burn", "fractions", "delays_min",
-            ("late_min", "array"), "max_period_h", "max_days", "seed", ("samples", "integer"),
-            ("error_model", "string")],
-    "missed": [{"plan": "plan_file"}, "burn", "max_period_h", "table", {"run": "run"},
-               {"cases": "missed_case"}],
-    "missed_case": ["plan", "plan_id", "thrust_N", "isp_s", "dynamics", "burn", "contingency",
-                    "fraction", "delay_min", "late_min", "max_period_h", "status", "reason",
-                    "captured", "cutoff_orbit", "cutoff_epoch", "cutoff_min_after_ignition",
-                    "nominal_burn_duration_min", "partial_delta_v_mps",
-                    "nominal_burn_delta_v_mps", "cutoff_energy_km2ps2", "cutoff_e",
-                    "cutoff_rp_km", "cutoff_ra_km", "cutoff_period_h", "cutoff_soi_radius_km",
-                    "recovery_start_e", "recovery_delta_v_mps", "total_delta_v_mps",
-                    "nominal_remaining_delta_v_mps", "penalty_mps", "make_up_delta_v_mps",
-                    "make_up_estimate_mps", "make_up_period_h", "nominal_period_after_burn_h",
-                    "first_coast_h", "make_up_estimate_h", "time_to_final_orbit_h",
-                    "nominal_time_to_final_orbit_h", "all_verified", "ipopt_status",
-                    "task_wall_s", "worker", "code_version", "completed_utc", "error",
-                    {"recovery_burns": "recovery_burn"}],
-    "recovery_burn": ["burn", "target_orbit", "ignition_epoch", "ignition_min_after_fault",
-                      "burn_duration_min", "delta_v_mps", "verified"],
-    "dispersions": [{"plan": "plan_file"}, {"error_model": "error_model"}, "seed", "table",
-                    {"run": "run"}, {"summary": "dispersions_summary"},
-                    {"samples": "dispersions_sample"}],
-    "error_model": ["thrust_sigma_pct", "isp_sigma_pct", "pointing_sigma_deg",
-                    "ignition_sigma_s", "arrival_sigma_km", "arrival_sigma_mps", "arrival_cov",
-                    "knowledge_sigma_km", "knowledge_sigma_mps", "knowledge_cov",
-                    "gates_magnitude_pct", "gates_magnitude_mps", "gates_pointing_deg",
-                    "gates_pointing_mps", "bplane_cov", "description"],
-    "dispersions_summary": [
-        ("samples", "integer"), "captured_and_corrected", "nominal_delta_v_mps",
-        "nominal_propellant_kg", *[f"{q}_p{p}_{u}" for p in (50, 90, 95, 99)
-                                   for q, u in (("delta_v", "mps"), ("propellant", "kg"))],
-        *[f"{k}_p{p}{u}" for p in (50, 90, 95, 99)
-          for k, u in (("delta_v", "_ci_mps"), ("samples_needed", ""))],
-        "mean_above_nominal_mps", "mean_above_nominal_se_mps",
-        "budget_p99_above_nominal_mps", "budget_p99_ci_mps", "budget_p99_ci_ranks",
-        "ci_level", "p_not_captured", "p_not_captured_upper95", "p_correction_failed",
-        "p_correction_failed_upper95", {"failures": "failed_sample"},
-        *[f"final_{s}_{e}" for e in ("rp_error_km", "ra_error_km", "inc_error_deg")
-          for s in ("rms", "max_abs")]],
-    "failed_sample": ["sample", "status", "reason"],
-    "dispersions_sample": ["plan", "plan_id", "thrust_N", "isp_s", "dynamics", "seed",
-                           "sample", "antithetic", "thrust_sigma_pct", "isp_sigma_pct",
-                           "pointing_sigma_deg", "ignition_sigma_s", "arrival_sigma_km",
-                           "arrival_sigma_mps", "arrival_cov", "status", "reason",
-                           "burns_flown", "total_delta_v_mps", "propellant_kg",
-                           "nominal_delta_v_mps", "nominal_propellant_kg",
-                           "delta_v_above_nominal_mps", "final_rp_error_km",
-                           "final_ra_error_km", "final_inc_error_deg", "final_rp_altitude_km",
-                           "final_ra_altitude_km", "arrival_dr_km", "arrival_dv_mps",
-                           "task_wall_s", "task_cpu_s", "worker", "code_version",
-                           "completed_utc", "error", "knowledge_sigma_km",
-                           "knowledge_sigma_mps", "knowledge_cov", "gates_magnitude_pct",
-                           "gates_magnitude_mps", "gates_pointing_deg", "gates_pointing_mps",
-                           "bplane_cov", "arrival_db_km", "arrival_dt_s",
-                           {"burns": "dispersed_burn"}],
-    "dispersed_burn": ["burn", "delta_v_mps", "planned_delta_v_mps", "ignition_min",
-                       "duration_min", "thrust_error_pct", "isp_error_pct",
-                       "pointing_error_deg", "ignition_error_s", "knowledge_dr_km",
-                       "knowledge_dv_mps"],
+    "run": RUN,
 }
 
-#: Records that are arrays of records where they appear.
-ARRAYS = {"attempt", "impulsive_burn", "plan_burn", "plan_file_burn", "burns_count",
-          "burns_count_burn",
-          "missed_case", "recovery_burn", "dispersions_sample", "dispersed_burn",
-          "failed_sample", "revolution"}
+#: Shared records that are arrays of records where they appear.
+ARRAYS = {"attempt", "impulsive_burn", "plan_burn", "plan_file_burn", "revolution"}
+
+#: lunarcap's own commands with a ``--json`` output; each one's document is its record.
+OWN = ("impulsive", "solve", "plan")
 
 
 #: What a plan file writes where one JSON type is not enough (see
@@ -196,14 +140,41 @@ def _leaf(name: str, kind: str | None = None) -> dict:
     return out
 
 
-def record_schema(record: str) -> dict:
-    """The schema of one kind of record (its keys from :data:`RECORDS`)."""
+def _leaf(name: str, kind: str | None = None) -> dict:
+    q = Q.lookup(name)
+    out = _types(kind or q.kind) | {"title": q.header, "description": q.definition}
+    if q.unit:
+        out["x-unit"] = q.unit
+    return out
+
+
+def all_records() -> tuple:
+    """``(records, arrays)``: :data:`RECORDS` and :data:`ARRAYS` with every study's own.
+
+    ValueError if a study declares a record that is already declared (shared or another
+    study's): a record is declared once.
+    """
+    records, arrays = dict(RECORDS), set(ARRAYS)
+    for study in studies().values():
+        twice = sorted(set(study.records) & set(records))
+        if twice:
+            raise ValueError(f"study {study.name!r} declares records already declared: "
+                             f"{', '.join(twice)}")
+        records |= study.records
+        arrays |= set(study.arrays)
+    return records, arrays
+
+
+def record_schema(record: str, records: dict | None = None, arrays=None) -> dict:
+    """The schema of one kind of record (its keys from ``records``, default all of them)."""
+    if records is None:
+        records, arrays = all_records()
     props = {}
-    for item in RECORDS[record]:
+    for item in records[record]:
         if isinstance(item, dict):
             (key, sub), = item.items()
-            inner = record_schema(sub)
-            if sub in ARRAYS:
+            inner = record_schema(sub, records, arrays)
+            if sub in arrays:
                 props[key] = {"type": "array", "items": inner}
             else:
                 props[key] = inner | {"type": ["object", "null"]}
@@ -215,16 +186,35 @@ def record_schema(record: str) -> dict:
     return {"type": "object", "properties": props, "additionalProperties": False}
 
 
-#: The commands with a ``--json`` output and their top-level record.
-COMMANDS = {"impulsive": "impulsive", "solve": "solve", "plan": "plan", "burns": "burns",
-            "missed": "missed", "dispersions": "dispersions"}
+def commands() -> dict:
+    """``{command: its document's record}`` of every ``--json`` output with a schema.
+
+    :data:`OWN`, then the registered studies that declare a record named as their command,
+    in the registry's order.
+    """
+    return {**{c: c for c in OWN},
+            **{name: name for name, s in studies().items() if name in s.records}}
+
+
+def __getattr__(name: str):
+    """``COMMANDS``: :func:`commands`, read from the registry when asked."""
+    if name == "COMMANDS":
+        return commands()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def schemas() -> dict:
-    """``{command: JSON Schema}`` of every ``--json`` output."""
+    """``{command: JSON Schema}`` of every ``--json`` output.
+
+    A study's document sees the shared run record with its own ``run_keys`` added.
+    """
+    merge_quantities()
+    records, arrays = all_records()
+    run_keys = {name: s.run_keys for name, s in studies().items()}
     out = {}
-    for cmd, rec in COMMANDS.items():
-        s = record_schema(rec)
+    for cmd, rec in commands().items():
+        extra = [k for k in run_keys.get(cmd, ()) if k not in RUN]
+        s = record_schema(rec, records | {"run": RUN + extra} if extra else records, arrays)
         out[cmd] = {"$schema": DRAFT, "$id": f"lunarcap/schemas/{cmd}.schema.json",
                     "title": f"lunarcap {cmd} --json", **s}
     return out

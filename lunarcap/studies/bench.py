@@ -336,8 +336,11 @@ def study_walls(out=print) -> list[dict]:
             f"{r.get('cases', '?')} cases computed ({r.get('reused', 0)} reused), "
             f"{r.get('workers', '?')} workers, load {r.get('load_avg_1min_start', '?')}"
             f" -> {r.get('load_avg_1min_end', '?')}")
-    if not rows:
-        out("no study run recorded yet (lunarcap study / burns / missed write <table>.runs.json)")
+    if not rows:   # the registered studies' commands, each of which records its runs
+        from lunarcap.studies.registry import studies as registered
+
+        out(f"no study run recorded yet (lunarcap {' / '.join(registered())} write "
+            f"<table>.runs.json)")
     return rows
 
 

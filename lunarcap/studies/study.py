@@ -9,7 +9,11 @@ one case, the statuses a row may have and those that are answers, the words of i
 progress bar, the code its rows depend on, the table's JSON-encoded columns and how a row
 is decoded for ``--json``, and the text of its report. :meth:`Study.run` runs any of
 them through :func:`lunarcap.studies.campaign.run_campaign` (tables, resume, Dask, progress,
-Ctrl-C); the command line runs any of them through one function (``lunarcap.cli``).
+Ctrl-C); the command line reports any of them alike
+(:meth:`lunarcap.studies.registry.StudyRun.of`, :mod:`lunarcap.cli.studies`). What the
+rest of lunarcap knows of a study (its command, options, ``--json`` records and
+quantities) is declared beside it, in its folder's ``command.py``
+(:mod:`lunarcap.studies.registry`).
 
 The helpers the studies share live here too: :func:`plan_id`, :func:`plan_columns` (the
 columns naming a plan in every plan study's table) and :func:`check_workers`.

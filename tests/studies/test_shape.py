@@ -2,7 +2,7 @@
 runner.
 
 No solve: each study's declaration is checked against the glossary and itself, and the
-command line's one runner (``lunarcap.cli.run_study``) is given a finished campaign's
+command line's one runner (``lunarcap.cli.studies.run_study``) is given a finished campaign's
 rows, to check the ``--json`` document, the text and the exit status it makes of them.
 """
 
@@ -13,7 +13,7 @@ import pandas as pd
 import pytest
 
 from lunarcap import quantities as Q
-from lunarcap.cli import run_study
+from lunarcap.cli.studies import run_study
 from lunarcap.mission.plan import load_plan
 from lunarcap.studies.burn_count import counts as burns
 from lunarcap.studies.dispersions import samples as dispersions
