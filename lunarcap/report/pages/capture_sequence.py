@@ -21,11 +21,23 @@ from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.quantities import capture_name
 from lunarcap.report import figdata, figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.figstyle import colour_name
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 
 NOTEBOOK = "notebooks/capture_sequence.ipynb"
+BOOK = BookPage(NOTEBOOK, "The paper's figures", 20, (
+    Execution(
+        "capture_sequence", "Figs. 2–5: the capture sequence, 150 N / Isp 200 s",
+        parameters=dict(thrust_N=150.0, isp_s=200.0,
+                        starts=[-10.0, -6.0, -5.0],  # the paper's best offsets (Table B1), min
+                        dynamics="full"),
+        # no quick parameters: only three (cached) solves, the same as the full run
+        depends_on=("table3",),
+        outputs=(table_files("capture_sequence", "burns", "fig4", "fig5")
+                 + figure_files("capture_sequence", "fig2", "fig3", "fig4", "fig5"))),
+))
 
 #: The case Sec. 3.3 of the paper describes: engine (N, s) and ignition offsets (min).
 PAPER_ENGINE = paper_engine_pairs()[0]

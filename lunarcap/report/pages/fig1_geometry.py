@@ -16,9 +16,16 @@ import matplotlib.pyplot as plt
 from lunarcap.mission.scenario import paper_scenario
 from lunarcap.physics import constants as C
 from lunarcap.report import figdata, figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.page import Page
 
 NOTEBOOK = "notebooks/fig1_geometry.ipynb"
+BOOK = BookPage(NOTEBOOK, "The paper's figures", 10, (
+    Execution(
+        "fig1_geometry", "Fig. 1: thrust angles in the RTN frame",
+        parameters=dict(alpha_deg=55.0, beta_deg=30.0, true_anomaly_deg=-40.0, period_h=12.235),
+        outputs=figure_files("fig1_geometry", "rtn") + table_files("fig1_geometry", "vectors")),
+))
 
 
 def build(alpha_deg: float = 55.0, beta_deg: float = 30.0, true_anomaly_deg: float = -40.0,

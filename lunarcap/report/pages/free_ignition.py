@@ -21,11 +21,22 @@ from lunarcap.mission.scenario import paper_engine_pairs, paper_engines
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_IMPULSIVE_DV_MPS, PAPER_STARTS_MIN
 from lunarcap.quantities import capture_name
 from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
 from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/free_ignition.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 10, (
+    Execution(
+        "free_ignition", "Free ignition: what the paper's grid left on the table",
+        parameters=dict(dynamics="full"),
+        quick_parameters=dict(engines=[[450.0, 300.0]],
+                              dynamics="two-body"),  # quick: about 5x faster solves
+        expected_s=21,
+        outputs=(table_files("free_ignition", "gain", "chain", "eq19_rule")
+                 + figure_files("free_ignition", "eq19_rule"))),
+))
 
 #: A chain gaining this much more than its burn 1 (m/s) has its later burns discussed.
 CHAIN_EXTRA_MPS = 0.1

@@ -26,6 +26,7 @@ from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.physics.rocket import burn_duration_estimate_s
+from lunarcap.report.contents import BookPage, Execution, table_files
 from lunarcap.report.labels import period_text
 from lunarcap.report.page import Page
 
@@ -34,6 +35,13 @@ from lunarcap.report.page import Page
 PAPER_ENGINE = paper_engine_pairs()[0]
 
 NOTEBOOK = "notebooks/impulsive_baseline.ipynb"
+BOOK = BookPage(NOTEBOOK, "Results", 20, (
+    Execution(
+        "impulsive_baseline", "Impulsive baseline: 150 N, Isp 200 s",
+        parameters=dict(thrust_N=150.0, isp_s=200.0, mass_kg=524.895, altitude_km=100.0,
+                        eq19_masses="paper"),
+        outputs=table_files("impulsive_baseline", "delta_v", "eq19")),
+))
 
 #: The finite-burn masses the paper prints (Sec. 3.2.1, 150 N / 200 s): at arrival, after
 #: LOI 1 and after LOI 2, i.e. at the ignition of LOI 1, 2 and 3.

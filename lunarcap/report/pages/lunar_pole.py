@@ -19,11 +19,20 @@ from lunarcap.capture.chain import impulsive_limit, solve_plan
 from lunarcap.mission.plan import paper_plan
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_ENGINES, paper_table_b1
 from lunarcap.physics import frames
+from lunarcap.report.contents import BookPage, Execution, table_files
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page
 
 NOTEBOOK = "notebooks/lunar_pole.ipynb"
+BOOK = BookPage(NOTEBOOK, "The problem", 20, (
+    Execution(
+        "lunar_pole", "The lunar pole of M-MME2000",
+        parameters=dict(dynamics="full", thrusts_N=None),
+        quick_parameters=dict(dynamics="two-body", thrusts_N=[150.0]),
+        expected_s=19,
+        outputs=table_files("lunar_pole", "poles", "effect")),
+))
 NEW, OLD = frames.LUNAR_POLES
 
 

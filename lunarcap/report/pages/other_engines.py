@@ -33,11 +33,23 @@ from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
 from lunarcap.quantities import capture_name
 from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import verdict
 from lunarcap.report.page import Page, solver_description
 from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/other_engines.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 50, (
+    Execution(
+        "other_engines", "LRO-class and SELENE-class engines (Sec. 3.1)",
+        parameters=dict(engines=[[320.0, 200.0], [500.0, 300.0]],  # Sec. 3.1: LRO, SELENE
+                        engine_names=["LRO-class", "SELENE-class"],
+                        starts=["free", "free", "free"], dynamics="full", model_loss=True),
+        quick_parameters=dict(engines=[[320.0, 200.0]], engine_names=["LRO-class"],
+                              paper_engines=[], model_loss=False, dynamics="two-body"),
+        outputs=(table_files("other_engines", "burns", "losses", "totals", "budget")
+                 + figure_files("other_engines", "loss"))),
+))
 
 #: Origin of the paper's own engines in the tables and the figure.
 PAPER_ENGINE = "paper's engine"

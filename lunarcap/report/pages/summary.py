@@ -22,6 +22,7 @@ from lunarcap.paper import printed as paper
 from lunarcap.physics.rocket import rocket_mass_after
 from lunarcap.quantities import capture_name
 from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
@@ -31,6 +32,16 @@ from lunarcap.studies import sweeps
 VS_PAPER = "total_loss_vs_paper_impulse"
 
 NOTEBOOK = "notebooks/summary.ipynb"
+BOOK = BookPage(NOTEBOOK, "The paper's tables", 100, (
+    Execution(
+        "summary", "Table B1 and the totals of each engine",
+        parameters=dict(starts=None,  # the paper's best offsets (Table B1)
+                        dynamics="full"),
+        quick_parameters=dict(engines=[[150.0, 200.0]]),
+        depends_on=("table3", "table4_loi3", "table5_loi3"),
+        outputs=(table_files("summary", "b1", "duration", "totals", "model_loss")
+                 + figure_files("summary", "loss"))),
+))
 
 #: The paper's engines (thrust N, Isp s), in its order.
 PAPER_ENGINES = paper_engine_pairs()

@@ -19,12 +19,24 @@ import pandas as pd
 
 from lunarcap.quantities import capture_name
 from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import markdown_table
 from lunarcap.report.page import Page
 from lunarcap.repro import paths
 from lunarcap.studies.engine_trade import trade as study
 
 NOTEBOOK = "notebooks/trade_study.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 20, (
+    Execution(
+        "trade_study", "Engine trade study: loss against thrust-to-weight",
+        parameters=dict(thrust_min_N=50.0, thrust_max_N=2000.0,
+                        points=6,  # 18 engines (the CLI's study takes any grid)
+                        isp_s=[200.0, 250.0, 300.0], workers=2, dynamics="full"),
+        quick_parameters=dict(points=4, isp_s=[250.0], workers=1),
+        expected_s=100,
+        outputs=(table_files("trade_study", "grid", "paper_engines", "runs")
+                 + figure_files("trade_study", "loss", "duration"))),
+))
 
 #: Panel titles of the parts of the chain (the study's ``part`` values), in panel order.
 PART_TITLES = {"LOI1": "LOI 1: hyperbola → 12.235 h", "LOI2": "LOI 2: 12.235 h → 3.525 h",
