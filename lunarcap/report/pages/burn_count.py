@@ -15,8 +15,8 @@ import pandas as pd
 from lunarcap.mission.impulsive import capture_total_mps
 from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
-from lunarcap.report import figures
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.figures import burn_count as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.studies.burn_count import counts as burns
@@ -156,7 +156,7 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
         "Every burn of every count: ignition (min from its nominal perilune), duration, "
         "ΔV, its impulsive limit and loss (m/s), verification."),
         show_columns=BURN_SHOWN, floatfmt=".3f", columns={"n_burns": "N"})
-    page.figure("loss", figures.plot_burn_count(table), caption=(
+    page.figure("loss", draw.plot_burn_count(table), caption=(
         "Top: total finite-burn loss against the number of burns; bottom: time from the "
         "arrival perilune to the end of the last burn. One line per plan; a cross on the "
         "axis marks a count with no capture."),

@@ -14,8 +14,8 @@ import pandas as pd
 
 from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
-from lunarcap.report import figures
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.figures import missed_thrust as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.studies.missed import cases as missed
@@ -208,7 +208,7 @@ def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75
     t, late = cut_offs(everything), late_ignitions(everything)
     page.data.update(table=everything, run=res.run)
     r0 = t.iloc[0]
-    page.figure("penalty", figures.plot_missed_penalty(t), caption=(
+    page.figure("penalty", draw.plot_missed_penalty(t), caption=(
         f"Penalty (m/s) of a cut-off in burn {burn} of {p.name} ({p.engine.thrust_N:g} N / "
         f"{p.engine.isp_s:g} s, {p.dynamics} dynamics): ΔV of the partial burn plus the "
         f"recovery's, minus the nominal burns {burn}–{p.n_burns} "

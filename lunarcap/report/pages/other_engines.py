@@ -32,9 +32,9 @@ from lunarcap.mission.plan import paper_plan
 from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
 from lunarcap.quantities import capture_name
-from lunarcap.report import figures
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import verdict
+from lunarcap.report.figures import other_engines as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.studies import sweeps
 
@@ -260,7 +260,7 @@ def _add_figure(page: Page, totals: pd.DataFrame, ignition: str, model_loss: boo
     loss_col, _, ref_short = loss_columns(model_loss)
     page.figure(
         "loss_figure",
-        figures.plot_engine_loss(totals, loss_col, f"total ΔV loss vs {ref_short} (m/s)"),
+        draw.plot_engine_loss(totals, loss_col, f"total ΔV loss vs {ref_short} (m/s)"),
         caption=("Top: total ΔV loss of the capture (m/s) above "
                  + (REF_OURS if model_loss else REF_PAPER)
                  + f". Bottom: propellant of LOI 1–3 (kg). Both against thrust (N), ignition "

@@ -32,7 +32,7 @@ from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 from lunarcap.physics.forces import force_model
 from lunarcap.physics.frames import rotation_313
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
-from lunarcap.report.figures import plot_evolution
+from lunarcap.report.figures import real_moon as draw
 from lunarcap.report.page import Page, solver_description
 
 NOTEBOOK = "notebooks/real_moon.ipynb"
@@ -495,7 +495,7 @@ def _evolution(page: Page, p, days: float, degrees) -> None:
     models = [None] + [field(d) for d in degrees]
     evs = {model_name(p.dynamics if m is None else m): evolution(p, days, m, EVOLUTION_RTOL)
            for m in models}
-    page.figure("evolution", plot_evolution(histories(evs)), caption=(
+    page.figure("evolution", draw.plot_evolution(histories(evs)), caption=(
         f"The final orbit of the J2 design flown {_days(days)} after its last cut-off in "
         "each model: each revolution's lowest and highest altitude (km, solid and dashed) "
         "and its mean inclination (deg, about the plan's frame's pole), the revolutions "

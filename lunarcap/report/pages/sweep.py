@@ -17,8 +17,8 @@ import pandas as pd
 from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
-from lunarcap.report import figures
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.figures import sweep as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.studies import sweeps
 
@@ -313,7 +313,7 @@ def _add_items(page: Page, sweep: pd.DataFrame, impulsive: dict, printed, case: 
                   "burn_duration_min": ".2f", "burn_duration_diff_min": "+.2f"},
         paper=source and f"{source}, burn durations")
     page.figure(
-        "dv_figure", figures.plot_sweep_dv(sweep, printed, f"Song et al. (2011), {source}"),
+        "dv_figure", draw.plot_sweep_dv(sweep, printed, f"Song et al. (2011), {source}"),
         caption=(f"Delta-V (m/s) of LOI {loi} ({thrust_N:g} N / Isp {isp_s:g} s) against the "
                  "ignition offset (min from the nominal perilune, negative before): ours "
                  "(filled circles, the star is the smallest), the paper's printed rows (open "

@@ -18,9 +18,9 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.quantities import capture_name
-from lunarcap.report import figures
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import markdown_table
+from lunarcap.report.figures import trade_study as draw
 from lunarcap.report.page import Page
 from lunarcap.repro import paths
 from lunarcap.studies.engine_trade import trade as study
@@ -237,7 +237,7 @@ def _add_loss(page: Page, ok, valid, paper, spec, newton_per_ratio: float,
     """The loss figure and the table at the paper's engines (returned)."""
     loss_def, dynamics = LOSS_DEFINITION, spec.dynamics
     page.figure(
-        "loss", figures.plot_trade_study_loss(ok, valid, paper, spec.isp_s, PART_TITLES,
+        "loss", draw.plot_trade_study_loss(ok, valid, paper, spec.isp_s, PART_TITLES,
                                               newton_per_ratio, LOSS_AXIS_PERCENT),
         caption=("Finite-burn loss (% of the impulsive ΔV, logarithmic) of the optimal burns "
                  "(free ignition, verified) against the initial thrust-to-weight ratio "
@@ -277,7 +277,7 @@ def _add_duration_grid_runs(page: Page, loi_ok, wide, spec, newton_per_ratio: fl
                             result, timing_dir) -> None:
     loss_def = LOSS_DEFINITION
     page.figure(
-        "duration", figures.plot_trade_study_duration(
+        "duration", draw.plot_trade_study_duration(
             loi_ok, spec.isp_s, {p: PART_TITLES[p] for p in study.PARTS[:3]},
             newton_per_ratio),
         caption=("One row per burn. Left: optimal burn duration divided by the Eq. (19) "

@@ -20,9 +20,9 @@ from lunarcap.optim import verify
 from lunarcap.optim.collocation import DEFAULT_MESHES, Mesh
 from lunarcap.optim.problem import burn_problem
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_ENGINES
-from lunarcap.report import figures
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import FAILED, PASSED, verdict
+from lunarcap.report.figures import verification as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.repro.cache import cached
@@ -380,7 +380,7 @@ def _add_mesh(page: Page, mesh: pd.DataFrame, mesh_list, default_points: int) ->
     page.table("mesh_full", mesh, caption="Mesh convergence, every column.")
     page.figure(
         "mesh_figure",
-        figures.plot_mesh_convergence(mesh.assign(accepted=mesh.accepted == PASSED),
+        draw.plot_mesh_convergence(mesh.assign(accepted=mesh.accepted == PASSED),
                                       verify.TOL_DV_MPS, default_points),
         caption=("Change of the delta-V (m/s, log scale) from its value on the finest mesh, "
                  "against the number of collocation points (log scale), for each case of the "
