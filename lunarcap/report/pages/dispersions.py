@@ -66,8 +66,8 @@ SOURCE_LABELS = {"thrust_sigma_pct": "thrust", "isp_sigma_pct": "Isp",
                  "gates_pointing_deg": "Gates pointing (prop.)",
                  "gates_pointing_mps": "Gates pointing (fixed)"}
 
-#: Shown on the page (fits the 688 px column at 1280 px; make screenshots measured the
-#: full set 349 px too wide): propellant, final-orbit errors and timings stay in the CSV.
+#: Shown on the page, to fit its 688 px column at 1280 px (`make screenshots` checks it):
+#: propellant, final-orbit errors and timings stay in the CSV.
 BUDGET_SHOWN = ["engine", "samples", "nominal_delta_v_mps", "impulsive_delta_v_two_body_mps",
                 "mean_above_nominal_mps", "mean_above_nominal_se_mps", "max_above_nominal_mps",
                 "p99_text", "p_failure"]

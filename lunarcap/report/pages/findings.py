@@ -1,6 +1,6 @@
 """The findings page (notebooks/findings.ipynb) and the landing page's first screen.
 
-Run after every other page of the book (manifest ``depends_on: ["*"]``), :func:`build`
+Run after every other page of the book (its ``BOOK`` depends on every page), :func:`build`
 reads what each executed page glued (:mod:`lunarcap.report.landing`): its finding
 (``headline``) for the list of every page's finding, in the order of the table of
 contents, and the numbers of a few pages for the landing page's first screen

@@ -3,11 +3,11 @@
 The paper's frame, M-MME2000 ("Moon centered Moon mean equator and IAU vector of J2000",
 Song 2011, Sec. 1, defined in Song et al. 2010b), has its z axis along the Moon's pole
 at J2000 from the IAU orientation model. The IAU (2009) expression (Archinal et al.
-2011, Table 2) has constant terms and 13 periodic terms; an earlier lunarcap used the
-constant terms only. :func:`build` solves the paper's best chains (Table B1's offsets)
-and their impulsive limits with both poles (:data:`lunarcap.physics.frames.LUNAR_POLES`)
-and tabulates the difference: every burn, its impulsive limit in the same dynamics and
-the loss between them.
+2011, Table 2) has constant terms and 13 periodic terms. :func:`build` solves the paper's
+best chains (Table B1's offsets) and their impulsive limits with the full expression and
+with its constant terms alone (:data:`lunarcap.physics.frames.LUNAR_POLES`) and tabulates
+the difference: every burn, its impulsive limit in the same dynamics and the loss
+between them, so a reader sees what the periodic terms are worth.
 """
 
 from __future__ import annotations

@@ -307,7 +307,7 @@ def _add_checks(page: Page, totals: pd.DataFrame, seqs: dict, results: dict, row
 
 def _add_measured_checks(page: Page, totals: pd.DataFrame, seqs: dict, rows,
                          model_loss: bool) -> None:
-    """Ranges measured in full dynamics with free ignition (the manifest's build)."""
+    """Ranges measured in full dynamics with free ignition (the book's parameters, :data:`BOOK`)."""
     by_thrust, seq_by_thrust = _by_thrust(totals, seqs, rows)
     if 320.0 in seq_by_thrust:  # measured: LOI 1 8.90 min, loss 4.30 (paper), 4.70 (ours)
         s, r = seq_by_thrust[320.0], by_thrust[320.0]
