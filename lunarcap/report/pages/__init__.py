@@ -5,7 +5,10 @@ result, so everything a page computes is library code, tested in ``tests/report/
 Each page module declares its notebook, the executions of it the book makes and its place
 in the table of contents (``BOOK``, a :class:`lunarcap.report.contents.BookPage`);
 :data:`PAGES` registers it, which is all the book's build reads
-(:mod:`lunarcap.report.contents`).
+(:mod:`lunarcap.report.contents`). A new page ``x`` is ``pages/x.py`` (``NOTEBOOK``,
+``BOOK``, ``build``), ``notebooks/x.ipynb`` (a parameters cell, ``x.build(...)``, the
+``show`` calls) and the line ``"x",`` below; a figure only it draws goes in
+``lunarcap/report/figures/x.py``.
 """
 
 #: The book's page modules, one line each; their executions are listed to the build in
