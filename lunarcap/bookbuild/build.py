@@ -1,59 +1,28 @@
-"""Execute the notebooks of the manifest with papermill, then build the HTML book.
+"""Execute the book's notebooks with papermill, then build the HTML book.
 
 Usage::
 
     python -m lunarcap.bookbuild.build build [--quick] [--jobs N] [--only NAME ...] [--force]
                                              [--no-build]
-    python -m lunarcap.bookbuild.build check   # validate the manifest and the table of contents
+    python -m lunarcap.bookbuild.build check   # validate the pages and the table of contents
 
-The manifest ``notebooks/manifest.yml`` has one entry per execution::
+What runs is the manifest: one entry per execution of a notebook, declared by the page
+modules (:mod:`lunarcap.report.contents`; see :mod:`lunarcap.bookbuild.manifest`). Every
+entry also receives ``quick`` (bool) and ``output_name`` (its name). Entries run in
+dependency order, independent ones in parallel on up to ``--jobs`` worker processes, each
+running its entries in one kernel emptied before each (:mod:`lunarcap.bookbuild.kernels`).
+An executed notebook is moved into place only on success; a failure stops the run,
+names the entry and cell and keeps ``book/generated/<name>.failed.ipynb``. An entry is
+skipped when its stamp (``book/generated/<name>.stamp.json``: notebook, parameters, quick
+flag, lunarcap source, lock, title, dependencies) matches and its outputs exist.
 
-    entries:
-      - name: impulsive_baseline          # output name: book/generated/<name>.ipynb
-        title: "Impulsive baseline"       # heading of the generated page
-        notebook: impulsive_baseline.ipynb  # source, relative to notebooks/
-        parameters: {thrust_N: 150.0}     # injected by papermill
-        quick_parameters: {}              # overrides for --quick (CI): coarse mesh, one case
-        depends_on: []                    # names of entries that must run first
-        outputs: [tables/impulsive_baseline.csv]  # files below book/generated it writes
-
-Every entry also receives ``quick`` (bool) and ``output_name`` (its name). Entries run
-in dependency order, independent ones in parallel on up to ``--jobs`` processes, each
-process running its entries one after another in one kernel whose namespace is emptied
-before each (:mod:`lunarcap.bookbuild.kernels`).
-Each executed notebook is written to a temporary file and moved into place only on
-success; a failure stops the run (entries already running finish), names the entry
-and cell, keeps the failed notebook as ``book/generated/<name>.failed.ipynb`` and
-leaves every other output intact.
-
-An entry is skipped when its stamp ``book/generated/<name>.stamp.json`` matches: same
-source notebook, parameters, quick flag, lunarcap source
-(:func:`lunarcap.repro.cache.code_version`),
-environment lock, title and dependency stamps, and its outputs exist. Expensive
-solutions are cached separately by :mod:`lunarcap.repro.cache`.
-
-The book is then built with ``jupyter-book build book -W -n --keep-going`` with
-execution off (``--all`` whenever the generated notebooks changed since the last
-build, because pages quoting glued numbers of other pages must be rewritten).
-
-Interrupting a run (Ctrl-C, or SIGINT/SIGTERM sent to the main process alone, as CI
-runners and ``timeout`` do) stops it within seconds: the workers ignore SIGINT and leave
-the decision to the main process, which asks each worker to stop (SIGTERM), kills every
-process below it that is left (the Jupyter kernels run in sessions of their own, so a
-terminal's Ctrl-C does not reach them), removes the temporary files of the interrupted
-executions and prints one line. Executed notebooks and their outputs are only ever moved
-into place complete, so ``book/generated`` keeps what earlier runs made.
-
-``--quick`` builds a separate book: the sources are copied to ``book/_build/quick/``,
-whose own ``generated/`` and ``_build/html/`` receive the quick outputs and site
-(:func:`lunarcap.repro.paths.stage_quick_book`), so the quick build that ``make test``
-runs never replaces the full book or makes its next build start over.
-
-The work is split by concern: :mod:`lunarcap.bookbuild.manifest` (the manifest, its
-validation, the table of contents, the stamps), :mod:`lunarcap.bookbuild.execution`
-(papermill in worker processes, longest entries first, interruption) and this module
-(the jupyter-book call and the command line). The names of the first two are importable
-from here too.
+The book is then built with ``jupyter-book build book -W -n --keep-going`` with execution
+off (``--all`` whenever the generated notebooks changed, since pages quote each other's
+glued numbers), with the table of contents generated from the pages in ``_build/_toc.yml``
+(beside it ``_build/manifest.yml``, what the build executed). ``--quick`` builds a
+separate book in ``book/_build/quick/`` (:func:`lunarcap.repro.paths.stage_quick_book`),
+so ``make test`` never replaces the full book. SIGINT or SIGTERM stop the run within
+seconds, leaving nothing half-written (:mod:`lunarcap.bookbuild.execution`).
 
 Exit status: 0 success, 1 an entry or the book build failed, 2 invalid manifest or usage,
 130 interrupted by SIGINT, 143 interrupted by SIGTERM.
@@ -106,6 +75,7 @@ from lunarcap.bookbuild.manifest import (  # noqa: F401  (the API of this module
     stamp_for,
     toc_files,
     validate_manifest,
+    write_contents,
 )
 from lunarcap.repro import paths
 
@@ -135,9 +105,10 @@ def build_book(entries: list[Entry], log=print) -> bool:
     marker = paths.BUILD / ".generated-digest"
     full = not (paths.HTML / "index.html").is_file() or not marker.is_file() or \
         marker.read_text().strip() != digest
+    toc = write_contents(paths.BUILD)
     jb = Path(sys.executable).with_name("jupyter-book")
     cmd = [str(jb) if jb.exists() else "jupyter-book", "build", str(paths.BOOK), "-W", "-n",
-           "--keep-going"] + (["--all"] if full else [])
+           "--keep-going"] + (["--toc", str(toc)] if toc else []) + (["--all"] if full else [])
     log(f"      building the book ({'full' if full else 'incremental'}): "
         f"{' '.join(Path(c).name if i == 0 else c for i, c in enumerate(cmd))}")
     t0 = time.perf_counter()
@@ -157,7 +128,7 @@ def build_book(entries: list[Entry], log=print) -> bool:
     log(f"      jupyter-book ... ok {dt:.1f} s")
     from lunarcap.bookbuild.bookcheck import check_pages
 
-    said_nan = check_pages(paths.HTML, toc_files(paths.TOC))
+    said_nan = check_pages(paths.HTML, toc_files())
     if said_nan:
         log(f"error: {len(said_nan)} built page(s) print \"nan\" where a value is missing "
             f"(glue it as missing with its reason, Page.value(name, v, why=...)):")
@@ -184,7 +155,7 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--no-build", action="store_true", help="execute only; skip jupyter-book")
     b.add_argument("--timeout", type=float, default=None,
                    help="per-cell execution timeout, s (default: none)")
-    sub.add_parser("check", help="validate the manifest and the table of contents")
+    sub.add_parser("check", help="validate the pages (or manifest) and the table of contents")
     return p
 
 

@@ -347,8 +347,8 @@ def _execute(entry, parameters, stamp, timeout, tmp, t0, errlog, env) -> dict:
             os.replace(tmp, entry.failed_path)
             return {"ok": False, "seconds": time.perf_counter() - t0,
                     "error": f"the notebook ran but did not write its declared outputs {missing} "
-                             "(paths below book/generated; fix the manifest's 'outputs' or the "
-                             "notebook)"}
+                             "(paths below book/generated; fix the entry's 'outputs', in its "
+                             "page's BOOK, or the notebook)"}
         os.replace(tmp, entry.output)
         stamp = dict(stamp, executed_utc=time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
                      seconds=round(time.perf_counter() - t0, 2),

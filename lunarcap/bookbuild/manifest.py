@@ -1,10 +1,13 @@
 """The book's manifest: its entries, their validation, the table of contents, the stamps.
 
-``notebooks/manifest.yml`` lists one :class:`Entry` per execution of a notebook (see
-:mod:`lunarcap.bookbuild.build` for the format). :func:`load_manifest` reads and validates it
-(every problem at once, :class:`ManifestError`), :func:`check_toc` matches it against
-``book/_toc.yml``, :func:`select` picks entries with their dependencies, and
-:func:`stamp_for` / :func:`is_up_to_date` decide whether an executed notebook is current.
+The manifest lists one :class:`Entry` per execution of a notebook. lunarcap's book has no
+manifest file: its entries and table of contents are derived from the registered pages
+(:mod:`lunarcap.report.contents`, :func:`from_pages`); a throw-away book, as the tests
+make, may carry its own ``notebooks/manifest.yml`` and ``book/_toc.yml`` instead.
+:func:`load_manifest` validates the entries (every problem at once, :class:`ManifestError`),
+:func:`check_toc` matches them against the table of contents, :func:`select` picks
+entries with their dependencies, and :func:`stamp_for` / :func:`is_up_to_date` decide
+whether an executed notebook is current.
 """
 
 from __future__ import annotations
@@ -18,6 +21,7 @@ from pathlib import Path
 
 import yaml
 
+from lunarcap.report import contents
 from lunarcap.repro import paths
 
 ENTRY_KEYS = {"name", "title", "notebook", "parameters", "quick_parameters", "depends_on",
@@ -305,11 +309,42 @@ def validate_manifest(data, notebooks_dir: Path | None = None,
     return entries
 
 
-def load_manifest(path: Path | None = None, check_notebooks: bool = True) -> list[Entry]:
-    """Read and validate the manifest (default ``notebooks/manifest.yml``).
+def from_pages() -> bool:
+    """Whether the book is the registered pages' (no ``notebooks/manifest.yml`` in the tree).
 
-    See :func:`validate_manifest`.
+    lunarcap's book declares its pages in :data:`lunarcap.report.pages.PAGES`; a manifest
+    file is the input of a throw-away book (the tests' trees), executed as written.
     """
+    return not paths.MANIFEST.is_file()
+
+
+def registered_pages() -> list:
+    """The registered pages (:func:`lunarcap.report.contents.registered`), checked.
+
+    Raises
+    ------
+    ManifestError
+        Naming each page without a notebook, notebook without a page, unknown part...
+    """
+    try:
+        pages = contents.registered()
+    except contents.ContentsError as exc:
+        raise ManifestError(str(exc)) from exc
+    errors = contents.problems(pages, paths.NOTEBOOKS)
+    if errors:
+        raise ManifestError("the registered pages are invalid:\n  - " + "\n  - ".join(errors))
+    return pages
+
+
+def load_manifest(path: Path | None = None, check_notebooks: bool = True) -> list[Entry]:
+    """The book's entries, validated (see :func:`validate_manifest`).
+
+    From ``path`` if given, else from ``notebooks/manifest.yml`` if the tree has one, else
+    from the registered pages (:func:`from_pages`).
+    """
+    if path is None and from_pages():
+        return validate_manifest(contents.manifest(registered_pages(), paths.NOTEBOOKS),
+                                 paths.NOTEBOOKS, check_notebooks)
     path = Path(path or paths.MANIFEST)
     if not path.is_file():
         raise ManifestError(f"manifest not found: {path}")
@@ -321,7 +356,13 @@ def load_manifest(path: Path | None = None, check_notebooks: bool = True) -> lis
 
 
 def toc_files(toc_path: Path | None = None) -> list[str]:
-    """Every ``file:`` of the jupyter-book table of contents, root first (no extension)."""
+    """Every ``file:`` of the jupyter-book table of contents, root first (no extension).
+
+    Of ``toc_path`` if given, else of the registered pages (:func:`from_pages`), else of
+    the tree's ``book/_toc.yml``.
+    """
+    if toc_path is None and from_pages():
+        return contents.toc_files(registered_pages())
     toc = yaml.safe_load(Path(toc_path or paths.TOC).read_text(encoding="utf-8"))
     out = [toc["root"]]
 
@@ -342,12 +383,15 @@ def toc_files(toc_path: Path | None = None) -> list[str]:
 def check_toc(entries: list[Entry], toc_path: Path | None = None) -> None:
     """Every entry must appear in the toc as ``generated/<name>`` and vice versa.
 
+    Every other file it lists must exist in ``book/``. The table of contents is
+    ``toc_path``'s if given, else as :func:`toc_files` finds it.
+
     Raises
     ------
     ManifestError
     """
     toc_path = Path(toc_path or paths.TOC)
-    files = toc_files(toc_path)
+    files = toc_files(None if toc_path == paths.TOC else toc_path)
     gen = {f.split("/", 1)[1] for f in files if f.startswith("generated/")}
     names = {e.name for e in entries}
     errors = [f"manifest entry {n!r} is not in {toc_path.name} (add '- file: generated/{n}')"
@@ -362,6 +406,28 @@ def check_toc(entries: list[Entry], toc_path: Path | None = None) -> None:
     if errors:
         raise ManifestError("table of contents does not match the manifest:\n  - "
                             + "\n  - ".join(errors))
+
+
+def write_contents(directory: Path) -> Path | None:
+    """Write the registered pages' manifest and ``_toc.yml`` in ``directory``.
+
+    Returns the table of contents to give jupyter-book (``--toc``), or None for a book
+    with its own ``_toc.yml`` (:func:`from_pages`). Files are rewritten only when their
+    content changes.
+    """
+    if not from_pages():
+        return None
+    pages = registered_pages()
+    toc = Path(directory) / "_toc.yml"
+    for path, data, head in (
+            (Path(directory) / "manifest.yml", contents.manifest(pages, paths.NOTEBOOKS),
+             "# What the build executed: generated from lunarcap.report.pages.PAGES.\n"),
+            (toc, contents.toc(pages),
+             "# The table of contents: generated from lunarcap.report.pages.PAGES.\n")):
+        text = head + yaml.safe_dump(data, sort_keys=False, allow_unicode=True, width=100)
+        if not path.is_file() or path.read_text(encoding="utf-8") != text:
+            paths.write_text_atomic(path, text)
+    return toc
 
 
 def select(entries: list[Entry], only: list[str] | None) -> list[Entry]:

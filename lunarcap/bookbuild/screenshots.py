@@ -6,45 +6,19 @@ Usage::
                                           [--html book/_build/html] [--out book/_build/screenshots]
                                           [--no-screenshots] [--chromium chromium]
 
-Every page of the table of contents (or those named with ``--pages``) is served from the
-built site (``book/_build/html``) by a web server on 127.0.0.1 and opened in headless
-Chromium (Debian's ``chromium`` package) at each width, with every host name other than
-127.0.0.1 unresolvable, so that the book is read offline. For each page and width the
-script
+Each page of the table of contents (or of ``--pages``) is served from the built site on
+127.0.0.1 and opened in headless Chromium at each width, every other host unresolvable, so
+the book is read offline. For each page and width it takes a full-page screenshot
+(``<out>/<width>/<page>.png``) and finds what a reader would miss: a table, display
+formula or page whose content is wider than its scroll box (``scrollWidth`` against
+``clientWidth``, after ``_static/lunarcap.js`` has run); a figure shown below
+:data:`MIN_FIGURE_SCALE` of its natural width, whose 9 pt text would shrink
+(:func:`figure_scale`); a formula MathJax left raw or in error; a request to another
+host. It exits with 1 if it finds any, 2 on bad usage or without Chromium, else 0, and
+writes the measurements to ``<out>/report.json``.
 
-* waits for the page to load and for MathJax to typeset every formula,
-* takes a full-page screenshot ``<out>/<width>/<page>.png``,
-* measures, in CSS px, every table's scroll box (the table's nearest scrolling ancestor,
-  the theme's ``pst-scrollable-table-container``): its ``scrollWidth`` against its
-  ``clientWidth``; a table whose content is wider than its box has columns or caption
-  text hidden behind a horizontal scroll bar; likewise every displayed math block
-  (``div.math``) and the page itself,
-* notes (without failing) the code blocks of the prose that scroll sideways,
-* measures every figure (``img``) as shown against its natural size: the scale is the
-  shown width (CSS px) over the image's width at 96 CSS px per inch of the figure (its
-  pixels and the resolution in its PNG ``pHYs`` chunk, :func:`figure_scale`); a figure
-  shown below :data:`MIN_FIGURE_SCALE` of its natural width has its text shrunk below
-  the size it was drawn at (the book's figures use 9 pt or more, i.e. 9 px or more at
-  that scale),
-* counts the formulas left as raw TeX (a ``.math`` element without ``mjx-container``),
-  the formulas MathJax could not typeset (``mjx-merror``) and every request the page
-  made to another host (the book must need no network),
-
-prints one line per page and width, and exits with status 1 if any table or math block
-overflows, any figure is shown below :data:`MIN_FIGURE_SCALE` of its natural width, any
-formula is left untypeset or in error, any page scrolls sideways or any page asked for a
-remote resource; 2 on bad usage or when Chromium is missing; 0 otherwise.
-The measurements are also written to ``<out>/report.json`` (with, per table, whether the
-book's ``_static/lunarcap.js`` had to tighten it or let its words break: what is measured
-is the page as a reader sees it, after that script has run).
-
-Chromium is driven through its DevTools protocol over a pipe (``--remote-debugging-pipe``:
-JSON messages separated by NUL bytes on file descriptors 3 and 4), so no WebSocket client
-is needed. It runs with ``--headless --no-sandbox --disable-gpu --disable-quic
---no-first-run --disable-background-networking --disable-component-update --disable-sync``
-and a fresh ``--user-data-dir``, removed afterwards.
-
-Not part of ``make test`` (Chromium is not installed there): ``make screenshots``.
+Chromium is driven through its DevTools protocol over a pipe (``--remote-debugging-pipe``),
+so no WebSocket client is needed. ``make screenshots`` runs it.
 """
 
 from __future__ import annotations

@@ -1,8 +1,8 @@
 """The style shared by the book's figures: sizes, fonts, colours, the Moon, saving.
 
-Every figure module (:mod:`.figures_capture`, :mod:`.figures_studies`, re-exported by
-:mod:`.figures`) draws with these, so the figures read alike and pass the legibility
-checks (tests/report/test_figure_legibility.py).
+Every figure module (:mod:`lunarcap.report.figures` and its module per page) draws with
+these, so the figures read alike and pass the legibility checks
+(tests/report/test_figure_legibility.py).
 """
 
 from __future__ import annotations
@@ -151,6 +151,11 @@ def colour_name(colour: str) -> str:
 def isp_colour(isp_s: float, k: int = 0) -> str:
     """Colour of the engines of one specific impulse (the paper's engine of that Isp)."""
     return ISP_COLOURS.get(float(isp_s), OTHER_COLOURS[k % len(OTHER_COLOURS)])
+
+
+def isp_colours(isp_s) -> dict:
+    """``{Isp: colour}`` of the specific impulses of one figure (:func:`isp_colour`)."""
+    return {float(isp): isp_colour(isp, k) for k, isp in enumerate(isp_s)}
 
 
 def engine_colour(thrust_N: float, isp_s: float | None = None, k: int = 0) -> str:

@@ -77,10 +77,11 @@ class Headline:
 def headlines(entries, generated: Path, toc: list[str]) -> list[Headline]:
     """The finding each executed page glued, in the order of the table of contents.
 
-    ``entries``: the manifest's (:class:`lunarcap.bookbuild.manifest.Entry`); ``generated``:
-    the directory of the executed notebooks; ``toc``: the toc files
-    (:func:`lunarcap.bookbuild.manifest.toc_files`). A page without an executed notebook or
-    a headline has ``markdown`` None (the findings page says so; a test fails on it).
+    ``entries``: the book's executions (each with a ``name`` and a ``title``,
+    :class:`lunarcap.report.contents.Execution`); ``generated``: the directory of the
+    executed notebooks; ``toc``: the toc files (:func:`lunarcap.report.contents.toc_files`).
+    A page without an executed notebook or a headline has ``markdown`` None (the findings
+    page says so, and its check fails).
     """
     by_name = {e.name: e for e in entries}
     out = []

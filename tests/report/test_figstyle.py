@@ -15,7 +15,7 @@ import pytest
 from matplotlib.colors import to_hex
 
 from lunarcap.report import figstyle as S
-from lunarcap.report import figures as F
+from lunarcap.report.figures.exchange import plot_exported_trajectory
 
 matplotlib.use("Agg")
 
@@ -62,7 +62,7 @@ def _arcs():
 
 
 def test_exported_trajectory_colours_each_orbit_and_burn_as_every_other_figure():
-    fig = F.plot_exported_trajectory(_arcs(), 1738.2)
+    fig = plot_exported_trajectory(_arcs(), 1738.2)
     colour = {ln.get_label(): to_hex(ln.get_color()) for ln in fig.axes[0].get_lines()}
     assert colour["coast 1"] == to_hex(S.coast_colour(1))      # the 12.235 h orbit: blue
     assert colour["coast 2"] == to_hex(S.coast_colour(2))

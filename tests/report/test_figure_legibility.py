@@ -8,6 +8,14 @@ import pandas as pd
 import pytest
 
 from lunarcap.report import figures as F
+from lunarcap.report.figures import (
+    burn_count,
+    free_ignition,
+    other_engines,
+    steering_laws,
+    summary,
+    trade_study,
+)
 
 matplotlib.use("Agg")
 
@@ -29,37 +37,38 @@ def _trade_rows(parts):
 def _figures():
     ok = _trade_rows(PARTS)
     paper = ok.groupby(["part", "isp_s"]).head(1)
-    yield "trade loss", F.plot_trade_study_loss(ok, ok, paper, ISP, PARTS, N_PER_RATIO)
+    yield "trade loss", trade_study.plot_trade_study_loss(ok, ok, paper, ISP, PARTS, N_PER_RATIO)
     three = {k: v for k, v in PARTS.items() if k != "sequence"}
-    yield "trade duration", F.plot_trade_study_duration(_trade_rows(three), ISP, three,
+    yield "trade duration", trade_study.plot_trade_study_duration(_trade_rows(three), ISP, three,
                                                         N_PER_RATIO)
     chain = pd.DataFrame(dict(loi=[1, 2, 3], paper_delta_v_mps=[370.0, 250.0, 280.0],
                               paper_impulsive_delta_v_mps=[353.0, 245.0, 275.0],
                               loss_vs_paper_impulse_mps=[15.0, 4.0, 3.0], delta_v_loss_mps=[14.0,
                                                                                             4.5,
                                                                                             2.5]))
-    yield "summary loss", F.plot_summary_loss({f"{t} N": chain for t in (150, 300, 450)})
+    yield "summary loss", summary.plot_summary_loss({f"{t} N": chain for t in (150, 300, 450)})
     rule = pd.DataFrame([dict(engine=f"{t} N", burn=b, rule_start_min=-10.0 / b,
                               free_start_min=-11.0 / b, grid_start_min=-10.0 / b,
                               eq19_duration_min=20.0 / b, start_minus_rule_min=-1.0 / b)
                          for t in (150, 300, 450) for b in (1, 2, 3)])
-    yield "free ignition", F.plot_free_ignition_rule(rule)
+    yield "free ignition", free_ignition.plot_free_ignition_rule(rule)
     steer = pd.DataFrame([dict(engine=f"{t} N", loi=n, steering=law, delta_v_penalty_mps=1.0,
                                objective_penalty_mps=0.5, rp_miss_km=2.0)
                           for t in (150, 300, 450) for n in (1, 2, 3)
                           for law in ("inertial", "antivelocity")])
-    yield "steering", F.plot_steering_penalty(steer, ["150 N", "300 N", "450 N"])
+    yield "steering", steering_laws.plot_steering_penalty(steer, ["150 N", "300 N", "450 N"])
     totals = pd.DataFrame(dict(thrust_N=[150.0, 300.0, 450.0, 320.0, 500.0],
                                isp_s=[200.0, 250.0, 300.0, 200.0, 300.0],
                                origin=["paper's engine"] * 3 + ["LRO-class", "SELENE-class"],
                                total_fuel_kg=[190.0, 155.0, 133.0, 186.0, 130.0],
                                delta_v_loss_mps=[20.0, 5.0, 2.0, 4.6, 1.5]))
-    yield "engine loss", F.plot_engine_loss(totals, "delta_v_loss_mps", "total ΔV loss (m/s)")
+    yield "engine loss", other_engines.plot_engine_loss(totals, "delta_v_loss_mps",
+                                                        "total ΔV loss (m/s)")
     counts = pd.DataFrame([dict(label=lab, n_burns=n, status="ok" if n > 1 else "infeasible",
                                 total_delta_v_loss_mps=100.0 / n, time_to_final_orbit_h=5.0 * n)
                            for lab in ("song2011-150N", "song2011-300N", "lro-like-5burn")
                            for n in (1, 2, 3, 4, 5)])
-    yield "burn count", F.plot_burn_count(counts)
+    yield "burn count", burn_count.plot_burn_count(counts)
 
 
 FIGURES = list(_figures())

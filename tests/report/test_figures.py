@@ -12,6 +12,10 @@ from lunarcap.paper.audit import AUDIT_CHECK_TITLES
 from lunarcap.physics import constants as C
 from lunarcap.physics.frames import thrust_angles_deg, thrust_direction_rtn
 from lunarcap.report import display, figdata, figures, reproduction
+from lunarcap.report.figures import capture_sequence as sequence_figures
+from lunarcap.report.figures import fig1_geometry as fig1_figures
+from lunarcap.report.pages import capture_sequence as sequence_page
+from lunarcap.report.pages import fig1_geometry as fig1_page
 from lunarcap.repro import paths
 
 
@@ -67,7 +71,7 @@ def test_eq14_agrees_with_the_solution_module():
 @pytest.mark.parametrize("alpha, beta, nu", [(55.0, 30.0, -40.0), (180.0, 0.0, 0.0),
                                              (137.5, -10.0, 25.0), (300.0, 80.0, 170.0)])
 def test_fig1_geometry_is_consistent_with_eq14(alpha, beta, nu):
-    g = figdata.fig1_geometry(alpha_deg=alpha, beta_deg=beta, true_anomaly_deg=nu)
+    g = fig1_page.fig1_geometry(alpha_deg=alpha, beta_deg=beta, true_anomaly_deg=nu)
     assert g.alpha_deg == pytest.approx(alpha % 360, abs=1e-9)
     assert g.beta_deg == pytest.approx(beta, abs=1e-9)
     q = g.rtn
@@ -90,31 +94,31 @@ def test_fig1_geometry_is_consistent_with_eq14(alpha, beta, nu):
 
 
 def test_fig1_orbit_and_flight_path_angle():
-    g0 = figdata.fig1_geometry(true_anomaly_deg=0.0)
+    g0 = fig1_page.fig1_geometry(true_anomaly_deg=0.0)
     assert g0.flight_path_angle_deg == pytest.approx(0.0, abs=1e-9)      # v along i_t
     r = np.linalg.norm(g0.orbit_LU, axis=0) * C.LU_KM
     assert r.min() == pytest.approx(C.R_MOON + 100.0, rel=1e-9)          # 100 km perilune
-    g = figdata.fig1_geometry(true_anomaly_deg=-40.0)
+    g = fig1_page.fig1_geometry(true_anomaly_deg=-40.0)
     assert g.flight_path_angle_deg < 0                                   # approaching perilune
     assert g.v_hat @ g.rtn[1] == pytest.approx(math.cos(math.radians(g.flight_path_angle_deg)))
 
 
 def test_fig1_accepts_a_direction_and_rejects_bad_ones():
-    g = figdata.fig1_geometry(u_rtn=[0.0, -2.0, 0.0])
+    g = fig1_page.fig1_geometry(u_rtn=[0.0, -2.0, 0.0])
     assert g.alpha_deg == pytest.approx(180.0) and g.beta_deg == pytest.approx(0.0)
     for bad in ([0, 0, 0], [1, np.nan, 0], [1, 0]):
         with pytest.raises(ValueError):
-            figdata.fig1_geometry(u_rtn=bad)
+            fig1_page.fig1_geometry(u_rtn=bad)
 
 
 def test_fig1_vectors_table():
-    t = figdata.fig1_geometry().vectors_table()
+    t = fig1_page.fig1_geometry().vectors_table()
     assert list(t.columns) == ["vector", "x", "y", "z"] and len(t) == 7
     assert t[["x", "y", "z"]].notna().all().all()
 
 
 def test_plot_fig1_draws_both_panels():
-    fig = figures.plot_fig1_geometry(figdata.fig1_geometry())
+    fig = fig1_figures.plot_fig1_geometry(fig1_page.fig1_geometry())
     assert len(fig.axes) == 2
     assert fig.axes[0].get_xlabel().endswith("(LU)") and fig.axes[0].get_ylabel() == "y (LU)"
     plt.close(fig)
@@ -142,7 +146,7 @@ def test_show_table_and_figure_write_files(tmp_path, monkeypatch):
     assert ":::{table} Caption (m/s)." in md and ":name: tbl-t1" in md
     assert "| ΔV (m/s) |" in md and "| 1.235 |" in md
     assert "{download}`t1.csv <tables/t1.csv>`" in md and "`notebooks/x.ipynb` with a=1" in md
-    fig = figures.plot_fig1_geometry(figdata.fig1_geometry())
+    fig = fig1_figures.plot_fig1_geometry(fig1_page.fig1_geometry())
     md = display.show_figure(fig, "f1", "A caption (deg).", "notebooks/x.ipynb", display=False)
     for ext in ("png", "svg"):
         assert (gen / "figures" / f"f1.{ext}").stat().st_size > 1000
@@ -164,7 +168,7 @@ def test_paper_tables_and_figures_carry_the_papers_number_and_no_book_number(tmp
                             paper="Table 1")
     assert md.startswith(":::{table} **Song et al. (2011) Table 1.** Delta-V (m/s).\n")
     assert ":name:" not in md and "\n:class: lc-paper\n" in md
-    fig = figures.plot_fig1_geometry(figdata.fig1_geometry())
+    fig = fig1_figures.plot_fig1_geometry(fig1_page.fig1_geometry())
     md = display.show_figure(fig, "f2", "Geometry.", "notebooks/x.ipynb", display=False,
                              paper="Fig. 1")
     assert "\n\n**Song et al. (2011) Fig. 1.** Geometry. " in md and ":name:" not in md
@@ -273,7 +277,7 @@ def test_fig4_steering_data(capture):
 @pytest.mark.slow
 def test_fig5_thrust_opposes_velocity_through_the_burn(capture):
     sols, plan, geo = capture
-    d = figdata.fig5_vectors(sols[0], geo.basis)
+    d = sequence_page.fig5_vectors(sols[0], geo.basis)
     assert (d.angle_deg > 90).all()                           # "tend to de-accelerate"
     # the projected vectors keep the angle (the motion is nearly planar)
     cos2d = (d.v_xy_kmps * d.a_xy_mps2).sum(0) / (np.linalg.norm(d.v_xy_kmps, axis=0)
@@ -291,10 +295,11 @@ def test_fig5_thrust_opposes_velocity_through_the_burn(capture):
 def test_capture_figures_draw(capture):
     sols, plan, geo = capture
     figs = [(figures.plot_fig2_capture(geo), 1),
-            (figures.plot_fig3_burn_arcs(geo), 2),
-            (figures.plot_fig4_steering(figdata.fig4_steering(sols[0]), (137.5, 215.3), 434.471,
-                                      19.51), 3),
-            (figures.plot_fig5_vectors(figdata.fig5_vectors(sols[0], geo.basis), geo), 2)]
+            (sequence_figures.plot_fig3_burn_arcs(geo), 2),
+            (sequence_figures.plot_fig4_steering(figdata.fig4_steering(sols[0]), (137.5, 215.3),
+                                                 434.471, 19.51), 3),
+            (sequence_figures.plot_fig5_vectors(sequence_page.fig5_vectors(sols[0], geo.basis),
+                                                geo), 2)]
     for fig, n_axes in figs:
         assert len(fig.axes) == n_axes
         for ax in fig.axes:   # units on every axis (shared x axes: on the bottom one)

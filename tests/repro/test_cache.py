@@ -25,7 +25,7 @@ def _key():
 
 @pytest.mark.parametrize("path,expect_change", [
     ("cli/__init__.py", False),                          # help text of the CLI
-    ("report/figures.py", False),               # a figure
+    ("report/figures/__init__.py", False),      # a figure
     ("studies/engine_trade/trade.py", False),                   # the trade study's bookkeeping
     ("optim/transcription.py", True),           # the NLP
     ("physics/dynamics.py", True),              # the equations of motion
@@ -42,7 +42,7 @@ def test_only_numerical_code_changes_the_key(package_copy, path, expect_change):
 def test_presentation_changes_the_book_stamp(package_copy):
     cache.code_version.cache_clear()
     before = cache.code_version(include_presentation=True)
-    f = package_copy / "report" / "figures.py"
+    f = package_copy / "report" / "figures" / "__init__.py"
     f.write_text(f.read_text() + "\n# edited\n")
     cache.code_version.cache_clear()
     assert cache.code_version(include_presentation=True) != before

@@ -15,13 +15,29 @@ import pandas as pd
 from lunarcap.mission.impulsive import capture_total_mps
 from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
-from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.figures import burn_count as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.studies.burn_count import counts as burns
 from lunarcap.studies.study import plan_id
 
 NOTEBOOK = "notebooks/burn_count.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 90, (
+    Execution(
+        "burn_count", "How many capture burns",
+        parameters=dict(
+            plans=["song2011-150N", "lro-like-5burn"],  # the paper's 150 N and one not its
+            counts=[1, 2, 3, 4],  # `lunarcap burns PLAN --counts ...` runs any plan, count
+            max_period_h=12.235, max_days=3.0,
+            dynamics=None,  # each plan's own (full)
+            workers=2),
+        quick_parameters=dict(plans=["song2011-150N"], counts=[1, 2, 3], dynamics="two-body",
+                              workers=1),
+        expected_s=60,
+        outputs=(table_files("burn_count", "counts", "burns")
+                 + figure_files("burn_count", "loss"))),
+))
 
 COUNT_SHOWN = ["plan", "n_burns", "status", "periods_h", "total_delta_v_mps",
                "total_impulsive_limit_mps", "total_delta_v_loss_mps", "total_fuel_kg",
@@ -140,7 +156,7 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
         "Every burn of every count: ignition (min from its nominal perilune), duration, "
         "ΔV, its impulsive limit and loss (m/s), verification."),
         show_columns=BURN_SHOWN, floatfmt=".3f", columns={"n_burns": "N"})
-    page.figure("loss", figures.plot_burn_count(table), caption=(
+    page.figure("loss", draw.plot_burn_count(table), caption=(
         "Top: total finite-burn loss against the number of burns; bottom: time from the "
         "arrival perilune to the end of the last burn. One line per plan; a cross on the "
         "axis marks a count with no capture."),

@@ -28,11 +28,36 @@ from lunarcap.physics.elements import period_from_semi_major_axis, semi_major_ax
 from lunarcap.physics.rocket import exhaust_speed_mps, rocket_delta_v_mps
 from lunarcap.quantities import capture_name
 from lunarcap.report import figdata, figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import verdict
 from lunarcap.report.labels import period_text
 from lunarcap.report.page import Page, solver_description
 
 NOTEBOOK = "notebooks/capture_plan.ipynb"
+
+
+def _plan_page(name: str, title: str, plan: str, compared: str | None = None) -> Execution:
+    """One capture plan in its own dynamics (quick: two-body), a page of the book.
+
+    ``plan``: a packaged plan (``lunarcap/mission/plans``) or a YAML file; ``compared``:
+    the stem of the table setting it beside a reference (the published LRO figures or
+    the paper), if it has one.
+    """
+    return Execution(
+        name, title,
+        parameters=dict(plan=plan, dynamics=None),  # the plan's own dynamics (full)
+        quick_parameters=dict(dynamics="two-body"),
+        outputs=(table_files(name, "plan", "burns", "masses", "verification", "totals",
+                             *([compared] if compared else []))
+                 + figure_files(name, "capture")))
+
+
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 70, (
+    _plan_page("plan_lro_like", "An LRO-like five-burn capture", "lro-like-5burn",
+               "published"),
+    _plan_page("plan_two_burn", "The paper's arrival captured in two burns", "two-burn-8h",
+               "vs_paper"),
+))
 
 #: Published LRO figures (book page "Beside published lunar captures", sources S7 and S8).
 LRO = {"plan": "lro-like-5burn",

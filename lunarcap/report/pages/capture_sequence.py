@@ -4,11 +4,14 @@ One complete capture with finite burns: the paper's plan for one engine, its bur
 igniting at given offsets (:func:`lunarcap.mission.plan.paper_plan`), solved in order
 (:func:`lunarcap.capture.chain.solve_plan`) and drawn from the verified solutions: the whole
 capture (Fig. 2), the burn arcs (Fig. 3), the thrust angles and mass of burn 1 (Fig. 4)
-and its thrust-acceleration and velocity vectors (Fig. 5). The data of the figures come
-from :mod:`lunarcap.report.figdata`, the drawing from :mod:`lunarcap.report.figures`.
+and its thrust-acceleration and velocity vectors (Fig. 5). The data of Figs. 2-4 come
+from :mod:`lunarcap.report.figdata` (shared with other pages), that of Fig. 5 from here
+(:func:`fig5_vectors`); Figs. 3-5 are drawn by :mod:`lunarcap.report.figures.capture_sequence`.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
@@ -21,11 +24,24 @@ from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.quantities import capture_name
 from lunarcap.report import figdata, figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.figstyle import colour_name
+from lunarcap.report.figures import capture_sequence as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 
 NOTEBOOK = "notebooks/capture_sequence.ipynb"
+BOOK = BookPage(NOTEBOOK, "The paper's figures", 20, (
+    Execution(
+        "capture_sequence", "Figs. 2–5: the capture sequence, 150 N / Isp 200 s",
+        parameters=dict(thrust_N=150.0, isp_s=200.0,
+                        starts=[-10.0, -6.0, -5.0],  # the paper's best offsets (Table B1), min
+                        dynamics="full"),
+        # no quick parameters: only three (cached) solves, the same as the full run
+        depends_on=("table3",),
+        outputs=(table_files("capture_sequence", "burns", "fig4", "fig5")
+                 + figure_files("capture_sequence", "fig2", "fig3", "fig4", "fig5"))),
+))
 
 #: The case Sec. 3.3 of the paper describes: engine (N, s) and ignition offsets (min).
 PAPER_ENGINE = paper_engine_pairs()[0]
@@ -48,6 +64,90 @@ class FigureDataPage(Page):
         return super().show(key, display)
 
 
+# ---------------------------------------------------------------------- Fig. 5's data
+@dataclass
+class Fig5Vectors:
+    """Data of Fig. 5: thrust acceleration and velocity along one burn arc.
+
+    Positions and vectors are projected on the drawing plane (rows e_x, e_y of
+    ``basis``, M-MME2000).
+
+    Attributes
+    ----------
+    t_min : ndarray, shape (N,)
+        Time from ignition, min.
+    xy_km : ndarray, shape (2, N)
+        Projected position, km.
+    v_xy_kmps : ndarray, shape (2, N)
+        Projected velocity, km/s.
+    a_xy_mps2 : ndarray, shape (2, N)
+        Projected thrust acceleration, m/s^2.
+    v_kmps, a_mps2 : ndarray, shape (3, N)
+        The full vectors (M-MME2000).
+    angle_deg : ndarray, shape (N,)
+        Angle between the thrust acceleration and the velocity (3-D), deg.
+    arrows : ndarray of int
+        Indices of the samples drawn as arrows.
+    basis : ndarray, shape (3, 3)
+    burn : int
+    """
+
+    t_min: np.ndarray
+    xy_km: np.ndarray
+    v_xy_kmps: np.ndarray
+    a_xy_mps2: np.ndarray
+    v_kmps: np.ndarray
+    a_mps2: np.ndarray
+    angle_deg: np.ndarray
+    arrows: np.ndarray
+    basis: np.ndarray
+    burn: int
+
+    def table(self):
+        """The arrows' data as a DataFrame (units in the column names)."""
+        import pandas as pd
+
+        i = self.arrows
+        return pd.DataFrame({"min_from_ignition": self.t_min[i], "x_km": self.xy_km[0, i],
+                             "y_km": self.xy_km[1, i], "vx_kmps": self.v_xy_kmps[0, i],
+                             "vy_kmps": self.v_xy_kmps[1, i],
+                             "ax_thrust_mps2": self.a_xy_mps2[0, i],
+                             "ay_thrust_mps2": self.a_xy_mps2[1, i],
+                             "angle_thrust_velocity_deg": self.angle_deg[i]})
+
+
+def fig5_vectors(solution, basis, n: int = 241, n_arrows: int = 9) -> Fig5Vectors:
+    """Thrust acceleration and velocity vectors along a burn, projected (Fig. 5).
+
+    Parameters
+    ----------
+    solution : Solution
+    basis : ndarray, shape (3, 3)
+        Drawing plane (``CaptureGeometry.basis``, from
+        :func:`lunarcap.report.figdata.orbit_plane_basis`).
+    n : int
+        Samples over the burn.
+    n_arrows : int
+        Arrows drawn, evenly spaced in time from ignition to cutoff.
+
+    Returns
+    -------
+    Fig5Vectors
+    """
+    h = solution.history(n_burn=n, n_coast=2)
+    b = h[h.phase == "burn"]
+    r = b[["x_km", "y_km", "z_km"]].to_numpy().T
+    v = b[["vx_kmps", "vy_kmps", "vz_kmps"]].to_numpy().T
+    a = b[["ax_thrust_kmps2", "ay_thrust_kmps2", "az_thrust_kmps2"]].to_numpy().T * 1e3
+    cosang = (v * a).sum(axis=0) / (np.linalg.norm(v, axis=0) * np.linalg.norm(a, axis=0))
+    angle = np.degrees(np.arccos(np.clip(cosang, -1.0, 1.0)))
+    basis = np.asarray(basis, float)
+    arrows = np.unique(np.round(np.linspace(0, r.shape[1] - 1, n_arrows)).astype(int))
+    return Fig5Vectors(b.min_from_ignition.to_numpy(), basis[:2] @ r, basis[:2] @ v,
+                       basis[:2] @ a, v, a, angle, arrows, basis, int(solution.problem.index))
+
+
+# ---------------------------------------------------------------------- the page
 def data_link(name: str) -> str:
     """MyST download link to ``tables/<name>.csv`` (as written by :class:`FigureDataPage`)."""
     return f"{{download}}`{name}.csv <{paths.relative_to_page(paths.table_path(name))}>`"
@@ -198,7 +298,7 @@ def _add_fig3(page: Page, geo, table: pd.DataFrame, ctx: dict) -> None:
     spans = ", ".join(f"burn {int(r.burn)} {r.ignition_from_perilune_deg:+.1f}° to "
                       f"{r.cutoff_from_perilune_deg:+.1f}°" for r in table.itertuples())
     page.figure(
-        "fig3", figures.plot_fig3_burn_arcs(geo),
+        "fig3", draw.plot_fig3_burn_arcs(geo),
         caption=("The burn arcs (Song et al. 2011, Fig. 3: \"the zoomed view of Fig. 2, "
                  "showing details of every finite burn arc\"). (a) The figure above zoomed on "
                  f"burns {ctx['burn_list']} (thick: burning; ● ignition, ■ cutoff; dashed: the "
@@ -232,7 +332,7 @@ def _add_fig4(page: Page, d4, ctx: dict) -> None:
              "after ignition" if np.isfinite(t180) else "")
     page.data["figure_csv"] = {"fig4": d4.table()}
     page.figure(
-        "fig4", figures.plot_fig4_steering(d4, p["alpha_deg"] if paper_case else None,
+        "fig4", draw.plot_fig4_steering(d4, p["alpha_deg"] if paper_case else None,
                                            p["mass1_kg"] if paper_case else None,
                                            p["burn1_min"] if paper_case else None),
         caption=("Thrust steering angles and mass during burn 1, LOI 1 (Song et al. 2011, "
@@ -257,7 +357,7 @@ def _add_fig5(page: Page, d5, geo, ctx: dict) -> None:
     slows = bool((d5.angle_deg > 90.0).all())
     page.data["figure_csv"]["fig5"] = d5.table()
     page.figure(
-        "fig5", figures.plot_fig5_vectors(d5, geo),
+        "fig5", draw.plot_fig5_vectors(d5, geo),
         caption=("Thrust-acceleration and velocity vectors along the burn 1 (LOI 1) arc "
                  "(Song et al. 2011, Fig. 5: \"direction relations between the thrust "
                  "acceleration vectors and the spacecraft's velocity vectors for the 1st LOI "
@@ -378,7 +478,7 @@ def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
     _add_fig3(page, geo, table, ctx)
     d4 = figdata.fig4_steering(sols[0])
     _add_fig4(page, d4, ctx)
-    d5 = figdata.fig5_vectors(sols[0], geo.basis)
+    d5 = fig5_vectors(sols[0], geo.basis)
     _add_fig5(page, d5, geo, ctx)
     for name, v in _prose_values(plan, geo, summ, d4, d5, ctx["paper_case"]).items():
         page.value(name, float(v))

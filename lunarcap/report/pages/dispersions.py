@@ -22,18 +22,34 @@ import pandas as pd
 
 from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
-from lunarcap.report.figstyle import (
-    FIG_WIDTH_IN,
-    SOURCE_COLOURS,
-    SOURCE_MARKERS,
-    label_colour,
-)
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.figures import dispersions as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.studies.dispersions import samples as disp
 from lunarcap.studies.study import plan_id
 
 NOTEBOOK = "notebooks/dispersions.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 110, (
+    Execution(
+        "dispersions", "Delta-V budget under dispersions",
+        parameters=dict(
+            plans=["song2011-150N", "song2011-300N", "song2011-450N"],
+            samples=4,  # per engine, full dynamics (about 0.3 s of CPU each)
+            seed=2011,
+            sigmas=dict(thrust_sigma_pct=1.0, isp_sigma_pct=0.5, pointing_sigma_deg=0.3,
+                        ignition_sigma_s=1.0, arrival_sigma_km=1.0, arrival_sigma_mps=1.0,
+                        knowledge_sigma_km=0.1, knowledge_sigma_mps=0.1),
+            dynamics=None,  # the plans' own (full)
+            workers=2,
+            sensitivity_samples=2,  # one antithetic pair per engine, source and sigma
+            sensitivity_factors=[1.0, 2.0],
+            sensitivity_plans=["song2011-150N"]),  # `lunarcap dispersions --sensitivity`: any
+        quick_parameters=dict(samples=2, dynamics="two-body", workers=1, sensitivity_samples=2),
+        expected_s=140,  # measured 141 s wall, load 9-11 on 2 cores, nominals cached
+        outputs=(table_files("dispersions", "budget", "failures", "sensitivity")
+                 + figure_files("dispersions", "cdf", "sensitivity_150N"))),
+))
 
 #: The example error model of the page (1 sigma), assumed: see the page's assumptions.
 DEFAULT_SIGMAS = {"thrust_sigma_pct": 1.0, "isp_sigma_pct": 0.5, "pointing_sigma_deg": 0.3,
@@ -50,8 +66,8 @@ SOURCE_LABELS = {"thrust_sigma_pct": "thrust", "isp_sigma_pct": "Isp",
                  "gates_pointing_deg": "Gates pointing (prop.)",
                  "gates_pointing_mps": "Gates pointing (fixed)"}
 
-#: Shown on the page (fits the 688 px column at 1280 px; make screenshots measured the
-#: full set 349 px too wide): propellant, final-orbit errors and timings stay in the CSV.
+#: Shown on the page, to fit its 688 px column at 1280 px (`make screenshots` checks it):
+#: propellant, final-orbit errors and timings stay in the CSV.
 BUDGET_SHOWN = ["engine", "samples", "nominal_delta_v_mps", "impulsive_delta_v_two_body_mps",
                 "mean_above_nominal_mps", "mean_above_nominal_se_mps", "max_above_nominal_mps",
                 "p99_text", "p_failure"]
@@ -117,89 +133,26 @@ def budget_row(plan, table: pd.DataFrame) -> dict:
             "median_sample_cpu_s": float(cpu.median()) if len(ok) else math.nan}
 
 
-def plot_cdf(tables: dict):
-    """Empirical CDF of the delta-V above the nominal, one step curve per engine.
+def convergence_curves(tables: dict) -> dict | None:
+    """Each engine's 99 % estimate and its 95 % interval against the samples N.
 
-    ``tables``: engine label -> its samples. A failed sample counts as above every
-    captured one (the curve stops below 1).
+    From the first N whose samples bound the interval (368) on; None when no table has
+    that many samples (the page then shows no such figure).
     """
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(FIG_WIDTH_IN, 4.0), layout="constrained")
-    for k, (label, t) in enumerate(tables.items()):
-        nom = float(t.nominal_delta_v_mps.iloc[0])
-        v = np.sort(t.loc[t.status == "ok", "total_delta_v_mps"].astype(float) - nom)
-        n = len(t)
-        if v.size:
-            ax.step(np.concatenate([[v[0]], v]), np.arange(0, v.size + 1) / n, where="post",
-                    label=f"{label} ({n} samples)", color=label_colour(label, k))
-    ax.axhline(0.99, color="0.5", lw=0.8, ls=":")
-    ax.axvline(0.0, color="0.5", lw=0.8)
-    ax.set_xlabel("ΔV above the nominal (m/s)")
-    ax.set_ylabel("fraction of samples")
-    ax.set_ylim(0, 1.02)
-    ax.legend(loc="lower right")
-    ax.grid(alpha=0.3)
-    return fig
-
-
-def plot_convergence(tables: dict):
-    """The 99 % estimate above the nominal and its 95 % interval against the samples.
-
-    Drawn from the first N whose samples bound the interval (368); None when no table
-    has that many samples (the page then shows no such figure).
-    """
-    import matplotlib.pyplot as plt
-
     need = disp.samples_needed(0.99)
     if max(len(t) for t in tables.values()) < need:
         return None
-    fig, ax = plt.subplots(figsize=(FIG_WIDTH_IN, 4.0), layout="constrained")
-    for k, (label, t) in enumerate(tables.items()):
+    curves = {}
+    for label, t in tables.items():
         c = disp.convergence(t)
-        c = c[c.samples >= need]
-        color = label_colour(label, k)
-        ax.plot(c.samples, c.estimate_mps, color=color, label=label, drawstyle="steps-post")
-        ax.fill_between(c.samples, c.ci_lo_mps, c.ci_hi_mps.replace(np.inf, np.nan),
-                        color=color, alpha=0.15, step="post")
-    ax.set_xlabel("samples N")
-    ax.set_ylabel("99 % ΔV above the nominal (m/s)")
-    ax.legend()
-    ax.grid(alpha=0.3)
-    return fig
+        curves[label] = c[c.samples >= need]
+    return curves
 
 
-def plot_sensitivity(rows: list, engine: str):
-    """One engine's mean ΔV above the nominal against each source's sigma (log-log).
-
-    The x axis is the sigma over the page's example sigma (each source's own unit in the
-    legend); the mean over the samples (captured ones) with its standard error, and the
-    costliest sample dashed.
-    """
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(FIG_WIDTH_IN, 4.6), layout="constrained")
-    mine = [r for r in rows if r["engine"] == engine]
-    for k, source in enumerate(dict.fromkeys(r["source"] for r in mine)):
-        pts = sorted((r for r in mine if r["source"] == source), key=lambda r: r["sigma"])
-        x = [r["factor"] for r in pts]
-        y = np.array([r["mean_above_nominal_mps"] for r in pts])
-        se = np.array([r["mean_above_nominal_se_mps"] for r in pts])
-        color = SOURCE_COLOURS[k % len(SOURCE_COLOURS)]
-        ax.errorbar(x, np.clip(y, 1e-6, None), yerr=se, color=color,
-                    marker=SOURCE_MARKERS[k % len(SOURCE_MARKERS)], ms=4,
-                    capsize=2, label=f"{SOURCE_LABELS[source]} ({pts[-1]['example']:g} "
-                                     f"{pts[-1]['unit']} = 1)")
-        ax.plot(x, np.clip([r["max_above_nominal_mps"] for r in pts], 1e-6, None),
-                color=color, ls="--", lw=0.8)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("sigma / the page's example sigma")
-    ax.set_ylabel("ΔV above the nominal (m/s)")
-    ax.set_title(f"{engine}: mean (markers) and costliest sample (dashed)")
-    ax.legend(ncol=2)
-    ax.grid(alpha=0.3, which="both")
-    return fig
+def plot_convergence(tables: dict):
+    """The figure of :func:`convergence_curves`, or None when it has no curve."""
+    curves = convergence_curves(tables)
+    return None if curves is None else draw.plot_convergence(curves)
 
 
 def sensitivity_table(rows: list) -> pd.DataFrame:
@@ -242,6 +195,44 @@ def failure_rows(tables: dict) -> pd.DataFrame:
     return pd.DataFrame(rows, columns=["engine", "sample", "status", "reason"])
 
 
+def _load(plans, dynamics: str | None, formulation: str | None) -> list:
+    """The plans, in ``dynamics`` and ``formulation`` where given (None: each plan's own)."""
+    from dataclasses import replace
+
+    loaded = []
+    for name in plans:
+        p = load_plan(name)
+        if dynamics is not None and dynamics != p.dynamics:
+            p = p.with_dynamics(dynamics)
+        if formulation is not None and formulation != p.formulation:
+            p = replace(p, formulation=formulation)
+        loaded.append(p)
+    return loaded
+
+
+def _per_engine(loaded: list, res, sres, models, sig: dict) -> tuple[dict, list, list]:
+    """Each engine's samples, budget row and sensitivity rows (labelled by the engine).
+
+    Returns ``(tables, rows, srows)``: engine label -> its samples (with its two-body
+    impulsive delta-V), the budget rows, and the sensitivity rows with each source's
+    example sigma and the factor of the sigma run over it.
+    """
+    from lunarcap.studies.dispersions import sensitivity as sens
+
+    tables, rows, srows = {}, [], []
+    for p in loaded:
+        t = res.table[res.table.plan_id == plan_id(p)].copy()
+        t["impulsive_delta_v_two_body_mps"] = \
+            disp.nominal_totals(p)["impulsive_delta_v_two_body_mps"]
+        label = f"{p.engine.thrust_N:g} N / {p.engine.isp_s:g} s"
+        tables[label] = t
+        rows.append(budget_row(p, t))
+        for r in sens.sensitivity_rows(sres.table[sres.table.plan_id == plan_id(p)], models):
+            srows.append(dict(r, engine=label, example=sig[r["source"]],
+                              factor=r["sigma"] / sig[r["source"]]))
+    return tables, rows, srows
+
+
 def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: int = 10,
           seed: int = 2011, sigmas: dict | None = None, dynamics: str | None = None,
           workers: int = 2, output_name: str = "dispersions", quick: bool = False,
@@ -253,8 +244,6 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
     same dynamics, seed and table as the example budget; ``sensitivity_plans``: the plans
     (names, a subset of ``plans``) whose sensitivities are run (None: every plan).
     """
-    from dataclasses import replace
-
     from lunarcap.studies.dispersions import sensitivity as sens
 
     sig = dict(DEFAULT_SIGMAS, **(sigmas or {}))
@@ -270,14 +259,7 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
     unknown = sorted(set(chosen) - set(plans))
     if unknown:  # before any sample is flown
         raise ValueError(f"sensitivity_plans: {unknown} not among the page's plans {list(plans)}")
-    loaded = []
-    for name in plans:
-        p = load_plan(name)
-        if dynamics is not None and dynamics != p.dynamics:
-            p = p.with_dynamics(dynamics)
-        if formulation is not None and formulation != p.formulation:
-            p = replace(p, formulation=formulation)
-        loaded.append(p)
+    loaded = _load(plans, dynamics, formulation)
     out = paths.CACHE / "study" / f"{output_name}.csv"
     res = disp.run_dispersions(loaded, samples, seed, model, out=out, workers=workers,
                                progress=False)
@@ -286,26 +268,30 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
                                         factors=tuple(sensitivity_factors), out=out,
                                         workers=workers, progress=False, antithetic=True)
     runs = [res.run, sres.run]
-    tables, rows, srows = {}, [], []
-    for p in loaded:
-        t = res.table[res.table.plan_id == plan_id(p)].copy()
-        t["impulsive_delta_v_two_body_mps"] = \
-            disp.nominal_totals(p)["impulsive_delta_v_two_body_mps"]
-        label = f"{p.engine.thrust_N:g} N / {p.engine.isp_s:g} s"
-        tables[label] = t
-        rows.append(budget_row(p, t))
-        for r in sens.sensitivity_rows(sres.table[sres.table.plan_id == plan_id(p)], models):
-            srows.append(dict(r, engine=label, example=sig[r["source"]],
-                              factor=r["sigma"] / sig[r["source"]]))
+    tables, rows, srows = _per_engine(loaded, res, sres, models, sig)
     budget = pd.DataFrame(rows)
+    dyn = loaded[-1].dynamics
     page.data.update(tables=tables, budget=budget, runs=runs, sensitivity=srows)
-    _show_budget(page, budget, tables, samples, seed, p.dynamics, res.path)
+    _show_budget(page, budget, tables, samples, seed, dyn, res.path)
+    _show_sensitivity(page, srows, sensitivity_factors, sensitivity_samples)
+    _values(page, model, sig, rows, budget, tables, runs, samples, seed, dyn)
+    page.value("sensitivity_samples", int(sensitivity_samples))
+    page.value("n_sensitivity", int(len(sres.table)))
+    page.value("sensitivity_cpu_s", float(sample_cpu_s(sres.table).sum()))
+    _checks(page, tables, sres.table, rows)
+    page.capture("fixed", dyn)
+    return page
+
+
+def _show_sensitivity(page: Page, srows: list, factors, n_samples: int) -> None:
+    """One figure per engine of each source's sensitivity, and the table of their laws."""
     for label in dict.fromkeys(r["engine"] for r in srows):
         tag = label.split(" N")[0]
-        page.figure(f"sensitivity_{tag}N", plot_sensitivity(srows, label), caption=(
+        fig = draw.plot_sensitivity(srows, label, SOURCE_LABELS)
+        page.figure(f"sensitivity_{tag}N", fig, caption=(
             f"{label}: the ΔV above the nominal with each error source alone at "
-            f"{', '.join(f'{f:g}' for f in sensitivity_factors)} times its example sigma "
-            f"(the others 0; {sensitivity_samples} samples each, antithetic pairs, the same "
+            f"{', '.join(f'{f:g}' for f in factors)} times its example sigma "
+            f"(the others 0; {n_samples} samples each, antithetic pairs, the same "
             f"draws for every source and sigma): the mean with its standard error, and "
             f"the costliest sample dashed. A slope of 1 is a linear law, 2 a quadratic "
             f"one."), alt=f"Sensitivity of the delta-V to each error source, {label}")
@@ -320,11 +306,11 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
                  "max_above_nominal_mps": "costliest sample above nominal (m/s)",
                  "max_exponent": "its exponent"},
         floatfmt={"mean_above_nominal_mps": ".4f", "max_above_nominal_mps": ".3f"})
-    _values(page, model, sig, rows, budget, tables, runs, samples, seed, p.dynamics)
-    page.value("sensitivity_samples", int(sensitivity_samples))
-    page.value("n_sensitivity", int(len(sres.table)))
-    page.value("sensitivity_cpu_s", float(sample_cpu_s(sres.table).sum()))
-    sens_bugs = sres.table[~sres.table.status.isin(disp.OK_STATUSES)]
+
+
+def _checks(page: Page, tables: dict, sensitivity: pd.DataFrame, rows: list) -> None:
+    """The page's assertions and its headline."""
+    sens_bugs = sensitivity[~sensitivity.status.isin(disp.OK_STATUSES)]
     bugs = pd.concat([t[~t.status.isin(disp.OK_STATUSES)] for t in tables.values()]
                      + [sens_bugs])
     page.expect("no sample ended in an unexpected error (failures are reported, not hidden)",
@@ -340,8 +326,6 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
                   f"(*{capture_name('fixed')}*, re-planned after each burn from an estimate "
                   f"of the state); a 99 % budget needs {t('samples_needed_p99', '.0f')} "
                   f"samples; {t('n_failed', '.0f')} samples not captured or not corrected.")
-    page.capture("fixed", p.dynamics)
-    return page
 
 
 def _show_budget(page: Page, budget, tables: dict, samples: int, seed: int,
@@ -365,7 +349,7 @@ def _show_budget(page: Page, budget, tables: dict, samples: int, seed: int,
                                                      "mean_above_nominal_se_mps": ".3f",
                                                      "median_sample_s": ".2f",
                                                      "median_sample_cpu_s": ".2f"})
-    page.figure("cdf", plot_cdf(tables), caption=(
+    page.figure("cdf", draw.plot_cdf(tables), caption=(
         "Cumulative distribution of the capture's ΔV above its nominal, per engine, under "
         "the example error model (closed-loop re-planning after each burn; dotted line: "
         "99 %). With fewer samples than the 99 % point needs, the curve's top step is the "

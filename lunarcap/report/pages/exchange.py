@@ -19,11 +19,20 @@ from lunarcap.exchange.burn_files import read_maneuvers
 from lunarcap.mission.plan import load_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.epochs import calendar_from_seconds, leap_second_table
-from lunarcap.report.figures import plot_exported_trajectory
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.figures import exchange as draw
 from lunarcap.report.page import Page
 from lunarcap.repro import paths
 
 NOTEBOOK = "notebooks/exchange.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 120, (
+    Execution(
+        "exchange", "Hand the plan to other tools",
+        parameters=dict(plan="song2011-150N", dynamics=None),
+        quick_parameters=dict(dynamics="two-body"),
+        outputs=(table_files("exchange", "files", "segments")
+                 + figure_files("exchange", "trajectory"))),
+))
 
 #: What each exported file is, for the files table.
 FILE_KINDS = {"oem": "CCSDS OEM 2.0 (KVN): states, one segment per arc",
@@ -112,7 +121,7 @@ def build(plan: str = "song2011-150N", dynamics: str | None = None,
                         "stop_tdb": "stop (TDB)", "states": "states",
                         "interpolation_error_m": "interpolation error (m)"},
                floatfmt={"interpolation_error_m": ".1e"})
-    page.figure("trajectory", plot_exported_trajectory(trajectory_arcs(ex.files["oem"]),
+    page.figure("trajectory", draw.plot_exported_trajectory(trajectory_arcs(ex.files["oem"]),
                                                        C.R_MOON),
                 caption=(f"The capture of {p.name} as read back from the exported OEM: "
                          "Moon-centred ICRF, x-y and x-z projections (km); burns in red."),

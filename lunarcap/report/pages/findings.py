@@ -1,6 +1,6 @@
 """The findings page (notebooks/findings.ipynb) and the landing page's first screen.
 
-Run after every other page of the book (manifest ``depends_on: ["*"]``), :func:`build`
+Run after every other page of the book (its ``BOOK`` depends on every page), :func:`build`
 reads what each executed page glued (:mod:`lunarcap.report.landing`): its finding
 (``headline``) for the list of every page's finding, in the order of the table of
 contents, and the numbers of a few pages for the landing page's first screen
@@ -14,10 +14,11 @@ paper's three engines, the paper's inconsistencies, what lunarcap adds (the page
 from __future__ import annotations
 
 import pandas as pd
-import yaml
 
 from lunarcap.mission.scenario import paper_engine_pairs
+from lunarcap.report import contents
 from lunarcap.report import landing as F
+from lunarcap.report.contents import EVERY_PAGE, BookPage, Execution, table_files
 from lunarcap.report.page import Page, listing
 from lunarcap.repro import paths
 
@@ -26,19 +27,19 @@ NOTEBOOK = "notebooks/findings.ipynb"
 LANDING, BY_PAGE, CITATION = "findings_landing.md", "findings_by_page.md", "citation.md"
 #: The archive of all the book's data (below book/generated), linked from the landing page.
 ARCHIVE = "lunarcap-book-data.zip"
+#: It reads what every other page glued, so it runs after all of them.
+BOOK = BookPage(NOTEBOOK, "Results", 10, (
+    Execution(
+        "findings", "Findings, page by page",
+        depends_on=(EVERY_PAGE,),
+        outputs=(LANDING, BY_PAGE, CITATION, ARCHIVE) + table_files("findings", "pages")),
+))
 #: The part of the table of contents whose pages are "what lunarcap adds".
 BEYOND_CAPTION = "Beyond the paper"
 #: The paper's engines, as the landing page names them (thrust N, Isp s).
 PAPER_ENGINES = tuple((int(t), int(i)) for t, i in paper_engine_pairs())
 #: The label of the landing page's "How to cite" section (book/index.md).
 CITE_LABEL = "how-to-cite"
-
-
-def toc_parts(toc_path=None) -> list[tuple[str, list[str]]]:
-    """``[(caption, [files])]`` of the table of contents' parts, in order."""
-    toc = yaml.safe_load((toc_path or paths.TOC).read_text(encoding="utf-8"))
-    return [(p.get("caption", ""), [c["file"] for c in p.get("chapters", [])])
-            for p in toc.get("parts", [])]
 
 
 #: What a value no page glued is shown as (a page left out of a partial build).
@@ -101,13 +102,13 @@ def first_screen(values: dict, items: list, beyond: list[str], cite: dict | None
 
 def build(output_name: str = "findings", quick: bool = False) -> Page:
     """The findings page (see the module docstring); writes the landing page's includes."""
-    from lunarcap.bookbuild.manifest import load_manifest, toc_files
-
-    entries = [e for e in load_manifest(check_notebooks=False) if e.name != output_name]
+    pages = contents.registered()
+    entries = [x for x in contents.executions(pages) if x.name != output_name]
     page = Page(NOTEBOOK, {}, output_name, quick)
-    items = F.headlines(entries, paths.GENERATED, toc_files())
-    values = {e.name: F.glued(e.output) for e in entries if e.output.is_file()}
-    beyond = next((files for cap, files in toc_parts() if cap == BEYOND_CAPTION), [])
+    items = F.headlines(entries, paths.GENERATED, contents.toc_files(pages))
+    values = {x.name: F.glued(x.output) for x in entries if x.output.is_file()}
+    beyond = next((files for cap, files in contents.toc_parts(pages)
+                   if cap == BEYOND_CAPTION), [])
     c = F.citation(paths.ROOT / "CITATION.cff")
     landing = first_screen(values, items, beyond, c)
     by_page = F.by_page_markdown(items, link_prefix="/")

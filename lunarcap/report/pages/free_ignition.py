@@ -20,12 +20,23 @@ from lunarcap.mission.plan import paper_plan
 from lunarcap.mission.scenario import paper_engine_pairs, paper_engines
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_IMPULSIVE_DV_MPS, PAPER_STARTS_MIN
 from lunarcap.quantities import capture_name
-from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.figures import free_ignition as draw
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
 from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/free_ignition.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 10, (
+    Execution(
+        "free_ignition", "Free ignition: what the paper's grid left on the table",
+        parameters=dict(dynamics="full"),
+        quick_parameters=dict(engines=[[450.0, 300.0]],
+                              dynamics="two-body"),  # quick: about 5x faster solves
+        expected_s=21,
+        outputs=(table_files("free_ignition", "gain", "chain", "eq19_rule")
+                 + figure_files("free_ignition", "eq19_rule"))),
+))
 
 #: A chain gaining this much more than its burn 1 (m/s) has its later burns discussed.
 CHAIN_EXTRA_MPS = 0.1
@@ -328,7 +339,7 @@ def _add_rule(page: Page, rule: pd.DataFrame, engines) -> None:
         show_columns=["engine", "burn", "rule_start_min", "free_start_min",
                       "start_minus_rule_min", "burn_midpoint_min", "rule_objective_cost_mps"])
     page.figure(
-        "rule_figure", figures.plot_free_ignition_rule(rule), name="eq19_rule",
+        "rule_figure", draw.plot_free_ignition_rule(rule), name="eq19_rule",
         caption=("Optimal ignition against half the Eq. (19) duration estimate, in min from "
                  "the nominal perilune (top; filled markers: the free optimum, open: the best "
                  "of the paper's grid on the same orbit; dashed: the rule exactly), and the "

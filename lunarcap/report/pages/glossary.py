@@ -14,9 +14,15 @@ import pandas as pd
 
 from lunarcap import quantities as Q
 from lunarcap import schemas
+from lunarcap.report.contents import BookPage, Execution, table_files
 from lunarcap.report.page import Page
 
 NOTEBOOK = "notebooks/glossary.ipynb"
+BOOK = BookPage(NOTEBOOK, "Reproduce", 10, (
+    Execution(
+        "glossary", "Glossary of quantities",
+        outputs=table_files("glossary", "losses", "quantities", "composition", "captures")),
+))
 
 #: The quantities a reader confuses most easily, in the order the page explains them.
 CONFUSABLE = ("impulsive_delta_v_two_body_mps", "impulsive_limit_mps",

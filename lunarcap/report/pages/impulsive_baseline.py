@@ -26,6 +26,7 @@ from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.physics.rocket import burn_duration_estimate_s
+from lunarcap.report.contents import BookPage, Execution, table_files
 from lunarcap.report.labels import period_text
 from lunarcap.report.page import Page
 
@@ -34,6 +35,13 @@ from lunarcap.report.page import Page
 PAPER_ENGINE = paper_engine_pairs()[0]
 
 NOTEBOOK = "notebooks/impulsive_baseline.ipynb"
+BOOK = BookPage(NOTEBOOK, "Results", 20, (
+    Execution(
+        "impulsive_baseline", "Impulsive baseline: 150 N, Isp 200 s",
+        parameters=dict(thrust_N=150.0, isp_s=200.0, mass_kg=524.895, altitude_km=100.0,
+                        eq19_masses="paper"),
+        outputs=table_files("impulsive_baseline", "delta_v", "eq19")),
+))
 
 #: The finite-burn masses the paper prints (Sec. 3.2.1, 150 N / 200 s): at arrival, after
 #: LOI 1 and after LOI 2, i.e. at the ignition of LOI 1, 2 and 3.
@@ -155,6 +163,55 @@ def _add_checks(page: Page, burns, printed_min, altitude_km: float, eq19_paper: 
                         f"{t19[n - 1]:.3f} vs {printed_min[n - 1]:.2f} min")
 
 
+#: The page's parameters its tables and note name (engine N, s; mass kg; altitude km).
+_ENGINE_AND_ORBIT = ("thrust_N", "isp_s", "mass_kg", "altitude_km")
+
+
+def _add_tables(page: Page, burns, rp_km: float, masses, printed_min) -> None:
+    """The chain's delta-Vs beside the paper's, and its Eq. (19) durations beside the paper's."""
+    thrust_N, isp_s, mass_kg, altitude_km = (page.parameters[k] for k in _ENGINE_AND_ORBIT)
+    page.table(
+        "delta_v", delta_v_table(burns, rp_km),
+        caption=(f"Impulsive capture sequence, two-body model, perilune altitude "
+                 f"{altitude_km:g} km, {mass_kg:g} kg at arrival, Isp {isp_s:g} s, beside "
+                 "the paper's values (Tables 1-5). Orbits are given by their periods (h, or min "
+                 "below 3 h as the paper writes the final orbit); "
+                 "delta-V in m/s, ours − paper in m/s, mass after each impulse (rocket "
+                 "equation) in kg."),
+        columns={"delta_v_mps": "ΔV, ours (m/s)", "difference_mps": "ours − paper (m/s)"},
+        floatfmt={"delta_v_mps": ".3f", "paper_delta_v_mps": ".3f", "difference_mps": "+.3f",
+                  "m_after_kg": ".3f"})
+    page.table(
+        "eq19", eq19_table(burns, masses, printed_min),
+        caption=(f"Burn-duration estimates of Eq. (19) for a {thrust_N:g} N / {isp_s:g} s "
+                 "engine from the impulsive ΔV above (m/s), with m₀ (kg) the mass at ignition "
+                 + ("as printed in the paper's finite-burn chain (Sec. 3.2.1)"
+                    if masses is not None else "of the impulsive chain")
+                 + ", beside the paper's estimates (Sec. 3.2.1; printed for 150 N only); "
+                 "durations and ours − paper in min."),
+        columns={"duration_min": "duration, ours (min)",
+                 "paper_duration_min": "duration, paper (min)",
+                 "difference_min": "ours − paper (min)"},
+        floatfmt={"delta_v_mps": ".3f", "m0_kg": ".3f", "duration_min": ".2f",
+                  "paper_duration_min": ".2f", "difference_min": "+.2f"})
+
+
+def _add_masses_note(page: Page, burns, chain, printed_min) -> bool:
+    """The note on which masses reproduce the paper's Eq. (19); True for the paper's case."""
+    paper = paper_scenario()
+    thrust_N, isp_s, mass_kg, altitude_km = (page.parameters[k] for k in _ENGINE_AND_ORBIT)
+    paper_case = ((float(thrust_N), float(isp_s)) == PAPER_ENGINE
+                  and mass_kg == paper.mass_kg
+                  and altitude_km == paper.perilune_altitude_km)
+    page.note("eq19_masses_note",
+              _masses_note(burns, chain, thrust_N, isp_s, printed_min) if paper_case else
+              "The paper prints its Eq. (19) estimates and its finite-burn masses only for "
+              f"its 150 N / 200 s engine from {paper.mass_kg:g} kg with "
+              f"{paper.perilune_altitude_km:g} km perilunes: there is nothing to compare with "
+              "here.")
+    return paper_case
+
+
 def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
           mass_kg: float = paper_scenario().mass_kg,
           altitude_km: float = paper_scenario().perilune_altitude_km, eq19_masses: str = "paper",
@@ -191,43 +248,10 @@ def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
     v_inf = v_inf_from_loi1(rp_km=rp_km)
     chain = impulsive_sequence(thrust_N, isp_s, mass_kg, altitude_km)
     burns = impulsive_sequence(thrust_N, isp_s, mass_kg, altitude_km, eq19_masses_kg=masses)
-    page.table(
-        "delta_v", delta_v_table(burns, rp_km),
-        caption=(f"Impulsive capture sequence, two-body model, perilune altitude "
-                 f"{altitude_km:g} km, {mass_kg:g} kg at arrival, Isp {isp_s:g} s, beside the "
-                 "paper's values (Tables 1-5). Orbits are given by their periods (h, or min "
-                 "below 3 h as the paper writes the final orbit); "
-                 "delta-V in m/s, ours − paper in m/s, mass after each impulse (rocket "
-                 "equation) in kg."),
-        columns={"delta_v_mps": "ΔV, ours (m/s)", "difference_mps": "ours − paper (m/s)"},
-        floatfmt={"delta_v_mps": ".3f", "paper_delta_v_mps": ".3f", "difference_mps": "+.3f",
-                  "m_after_kg": ".3f"})
-    page.table(
-        "eq19", eq19_table(burns, masses, printed_min),
-        caption=(f"Burn-duration estimates of Eq. (19) for a {thrust_N:g} N / {isp_s:g} s "
-                 "engine from the impulsive ΔV above (m/s), with m₀ (kg) the mass at ignition "
-                 + ("as printed in the paper's finite-burn chain (Sec. 3.2.1)"
-                    if masses is not None else "of the impulsive chain")
-                 + ", beside the paper's estimates (Sec. 3.2.1; printed for 150 N only); "
-                 "durations and ours − paper in min."),
-        columns={"duration_min": "duration, ours (min)",
-                 "paper_duration_min": "duration, paper (min)",
-                 "difference_min": "ours − paper (min)"},
-        floatfmt={"delta_v_mps": ".3f", "m0_kg": ".3f", "duration_min": ".2f",
-                  "paper_duration_min": ".2f", "difference_min": "+.2f"})
-
+    _add_tables(page, burns, rp_km, masses, printed_min)
     for name, v in prose_values(burns, v_inf, rp_km, printed_min).items():
         page.value(name, v)
-    paper = paper_scenario()
-    paper_case = ((float(thrust_N), float(isp_s)) == PAPER_ENGINE
-                  and mass_kg == paper.mass_kg and altitude_km == paper.perilune_altitude_km)
-    page.note("eq19_masses_note",
-              _masses_note(burns, chain, thrust_N, isp_s, printed_min) if paper_case else
-              "The paper prints its Eq. (19) estimates and its finite-burn masses only for "
-              f"its 150 N / 200 s engine from {paper.mass_kg:g} kg with "
-              f"{paper.perilune_altitude_km:g} km perilunes: there is nothing to compare with "
-              "here.")
-
+    paper_case = _add_masses_note(page, burns, chain, printed_min)
     _add_checks(page, burns, printed_min, altitude_km, paper_case and eq19_masses == "paper")
     page.data["burns"] = burns
     t = page.text

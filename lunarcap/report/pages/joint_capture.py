@@ -16,12 +16,21 @@ import pandas as pd
 from lunarcap.capture import joint_plan as joint
 from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.quantities import capture_name
+from lunarcap.report.contents import BookPage, Execution, table_files
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page
 from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/joint_capture.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 40, (
+    Execution(
+        "joint_capture", "All three burns in one optimisation",
+        parameters=dict(dynamics="full"),
+        quick_parameters=dict(engines=[[450.0, 300.0]],
+                              dynamics="two-body"),  # quick: about 5x faster solves
+        outputs=table_files("joint_capture", "legs", "timing", "totals", "solve")),
+))
 
 #: The engines the prose quotes (glued values are NaN for an engine not built).
 PROSE_THRUSTS_N = (150.0, 300.0, 450.0)

@@ -14,12 +14,29 @@ import pandas as pd
 
 from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
-from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.figures import missed_thrust as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.studies.missed import cases as missed
 
 NOTEBOOK = "notebooks/missed_thrust.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 100, (
+    Execution(
+        "missed_thrust", "Missed thrust and late ignition: a capture burn gone wrong",
+        parameters=dict(
+            plan="song2011-150N", burn=1,
+            # 2 x 3 cut-offs and 2 late ignitions (`lunarcap missed` runs any grid)
+            fractions=[0.5, 0.9], delays_min=[0.0, 30.0, 720.0], late_min=[1.0, 5.0],
+            max_period_h=24.0,  # the orbit after burn 1, recovery and nominal alike
+            dynamics=None,  # the plan's own (full)
+            workers=2),
+        quick_parameters=dict(fractions=[0.5, 1.0], delays_min=[0.0, 30.0], late_min=[5.0],
+                              dynamics="two-body", workers=1),
+        expected_s=80,
+        outputs=(table_files("missed_thrust", "cases", "late", "recovery")
+                 + figure_files("missed_thrust", "penalty"))),
+))
 
 #: Shown (the rest in the CSV: e at cut-off, the partial burn's ΔV, the make-up orbit's
 #: period, the time to the final orbit): with them the column broke words ("esca pe").
@@ -191,7 +208,7 @@ def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75
     t, late = cut_offs(everything), late_ignitions(everything)
     page.data.update(table=everything, run=res.run)
     r0 = t.iloc[0]
-    page.figure("penalty", figures.plot_missed_penalty(t), caption=(
+    page.figure("penalty", draw.plot_missed_penalty(t), caption=(
         f"Penalty (m/s) of a cut-off in burn {burn} of {p.name} ({p.engine.thrust_N:g} N / "
         f"{p.engine.isp_s:g} s, {p.dynamics} dynamics): ΔV of the partial burn plus the "
         f"recovery's, minus the nominal burns {burn}–{p.n_burns} "

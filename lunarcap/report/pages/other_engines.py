@@ -32,12 +32,24 @@ from lunarcap.mission.plan import paper_plan
 from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS
 from lunarcap.quantities import capture_name
-from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import verdict
+from lunarcap.report.figures import other_engines as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/other_engines.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 50, (
+    Execution(
+        "other_engines", "LRO-class and SELENE-class engines (Sec. 3.1)",
+        parameters=dict(engines=[[320.0, 200.0], [500.0, 300.0]],  # Sec. 3.1: LRO, SELENE
+                        engine_names=["LRO-class", "SELENE-class"],
+                        starts=["free", "free", "free"], dynamics="full", model_loss=True),
+        quick_parameters=dict(engines=[[320.0, 200.0]], engine_names=["LRO-class"],
+                              paper_engines=[], model_loss=False, dynamics="two-body"),
+        outputs=(table_files("other_engines", "burns", "losses", "totals", "budget")
+                 + figure_files("other_engines", "loss"))),
+))
 
 #: Origin of the paper's own engines in the tables and the figure.
 PAPER_ENGINE = "paper's engine"
@@ -248,7 +260,7 @@ def _add_figure(page: Page, totals: pd.DataFrame, ignition: str, model_loss: boo
     loss_col, _, ref_short = loss_columns(model_loss)
     page.figure(
         "loss_figure",
-        figures.plot_engine_loss(totals, loss_col, f"total ΔV loss vs {ref_short} (m/s)"),
+        draw.plot_engine_loss(totals, loss_col, f"total ΔV loss vs {ref_short} (m/s)"),
         caption=("Top: total ΔV loss of the capture (m/s) above "
                  + (REF_OURS if model_loss else REF_PAPER)
                  + f". Bottom: propellant of LOI 1–3 (kg). Both against thrust (N), ignition "
@@ -295,7 +307,7 @@ def _add_checks(page: Page, totals: pd.DataFrame, seqs: dict, results: dict, row
 
 def _add_measured_checks(page: Page, totals: pd.DataFrame, seqs: dict, rows,
                          model_loss: bool) -> None:
-    """Ranges measured in full dynamics with free ignition (the manifest's build)."""
+    """Ranges measured in full dynamics with free ignition (the book's parameters, :data:`BOOK`)."""
     by_thrust, seq_by_thrust = _by_thrust(totals, seqs, rows)
     if 320.0 in seq_by_thrust:  # measured: LOI 1 8.90 min, loss 4.30 (paper), 4.70 (ours)
         s, r = seq_by_thrust[320.0], by_thrust[320.0]

@@ -23,10 +23,19 @@ from lunarcap.physics import constants as C
 from lunarcap.physics.elements import orbit_summary
 from lunarcap.physics.rocket import burn_duration_estimate_s, rocket_mass_after
 from lunarcap.quantities import capture_name
+from lunarcap.report.contents import BookPage, Execution, table_files
 from lunarcap.report.page import Page
 from lunarcap.studies.sweeps import sequence_table
 
 NOTEBOOK = "notebooks/real_missions.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 60, (
+    Execution(
+        "real_missions", "Beside published lunar captures",
+        parameters=dict(engines=[[320.0, 200.0], [500.0, 300.0]],  # LRO-, SELENE-class
+                        dynamics="full"),
+        quick_parameters=dict(engines=[[320.0, 200.0]], dynamics="two-body"),
+        outputs=table_files("real_missions", "published", "durations", "kplo")),
+))
 
 #: The engines of the paper's Sec. 3.1 ("about 320 N with Isp of 200 seconds", "about
 #: 500 N, 300 s"): (thrust N, Isp s).

@@ -28,11 +28,23 @@ from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.report import figdata
 from lunarcap.report import reproduction as rep
+from lunarcap.report.contents import BookPage, Execution, table_files
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.studies import sweeps as runs_sweeps
 
 NOTEBOOK = "notebooks/reproduction_report.ipynb"
+BOOK = BookPage(NOTEBOOK, "Reproduction report", 10, (
+    Execution(
+        "reproduction_report", "Reproduction report: every printed number beside ours",
+        parameters=dict(dynamics="full"),
+        # quick: part (a) for one engine; (b) and (c) unchanged
+        quick_parameters=dict(engines=[[150.0, 200.0]]),
+        depends_on=("table3", "table4_loi3", "table5_loi3"),
+        outputs=table_files("reproduction_report", "tables", "tables_data", "tables_summary",
+                            "quotes", "quotes_data", "epochs", "findings_by_group",
+                            "findings", "findings_data")),
+))
 
 #: Labels of the quantities of part (a), with their units.
 QUANTITY_LABELS = {"burn duration": "duration (min)", "delta-V": "ΔV (m/s)",

@@ -13,13 +13,23 @@ from __future__ import annotations
 import pandas as pd
 
 from lunarcap.mission.scenario import paper_engine_pairs
-from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import verdict
+from lunarcap.report.figures import steering_laws as draw
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
 from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/steering_laws.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 30, (
+    Execution(
+        "steering_laws", "Steering laws: optimal, fixed inertial, opposite the velocity",
+        parameters=dict(dynamics="full"),
+        quick_parameters=dict(engines=[[450.0, 300.0]],
+                              dynamics="two-body"),  # quick: about 5x faster solves
+        outputs=(table_files("steering_laws", "penalty", "targets")
+                 + figure_files("steering_laws", "penalty"))),
+))
 
 #: The laws compared with the optimal steering, in the order of the table and figure.
 SIMPLE_LAWS = ("inertial", "antivelocity")
@@ -114,7 +124,7 @@ def _add_items(page: Page, steer: pd.DataFrame, engines, dynamics: str) -> None:
         floatfmt={"rp_miss_km": "+.2f", "inc_miss_deg": ".4f"})
     page.figure(
         "penalty_figure",
-        figures.plot_steering_penalty(steer, [engine_label(t, i) for t, i in engines],
+        draw.plot_steering_penalty(steer, [engine_label(t, i) for t, i in engines],
                                       SIMPLE_LAWS),
         caption=("Penalty of a fixed inertial thrust direction and of thrust opposite the "
                  "velocity against the optimal steering, per LOI, one column per engine "

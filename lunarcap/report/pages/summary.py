@@ -21,8 +21,9 @@ from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics.rocket import rocket_mass_after
 from lunarcap.quantities import capture_name
-from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import PASSED, verdict
+from lunarcap.report.figures import summary as draw
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
 from lunarcap.studies import sweeps
@@ -31,6 +32,16 @@ from lunarcap.studies import sweeps
 VS_PAPER = "total_loss_vs_paper_impulse"
 
 NOTEBOOK = "notebooks/summary.ipynb"
+BOOK = BookPage(NOTEBOOK, "The paper's tables", 100, (
+    Execution(
+        "summary", "Table B1 and the totals of each engine",
+        parameters=dict(starts=None,  # the paper's best offsets (Table B1)
+                        dynamics="full"),
+        quick_parameters=dict(engines=[[150.0, 200.0]]),
+        depends_on=("table3", "table4_loi3", "table5_loi3"),
+        outputs=(table_files("summary", "b1", "duration", "totals", "model_loss")
+                 + figure_files("summary", "loss"))),
+))
 
 #: The paper's engines (thrust N, Isp s), in its order.
 PAPER_ENGINES = paper_engine_pairs()
@@ -392,7 +403,7 @@ def _add_model_loss(page: Page, engines, chains: dict, totals: dict) -> None:
                       "impulsive_limit_mps", "paper_delta_v_loss_mps", "loss_vs_paper_impulse_mps",
                       "delta_v_loss_mps"])
     page.figure(
-        "loss", figures.plot_summary_loss(chains),
+        "loss", draw.plot_summary_loss(chains),
         caption=("Delta-V loss (m/s) of each LOI of the best chains: the paper's (Table B1 "
                  "minus its impulsive values), ours against the same impulsive values, and ours "
                  "against an impulse in our own dynamics from the same pre-burn orbit."),

@@ -17,11 +17,51 @@ import pandas as pd
 from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
-from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.figures import sweep as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/loi_sweep.ipynb"
+
+
+def _table(name: str, title: str, thrust_N: float, isp_s: float, loi: int, starts: list,
+           quick_start: float, after: str | None = None) -> Execution:
+    """One execution of the sweep: a table of the paper (its offsets, min; quick: one).
+
+    An LOI 2 or 3 sweep starts from the best solution of the LOI before, which ``after``
+    computes and leaves in the cache.
+    """
+    return Execution(
+        name, title,
+        parameters=dict(thrust_N=thrust_N, isp_s=isp_s, loi=loi, starts=starts,
+                        previous_starts=None,  # the paper's best earlier offsets (Table B1)
+                        dynamics="full"),
+        quick_parameters=dict(starts=[quick_start]),
+        depends_on=(after,) if after else (),
+        outputs=table_files(name, "dv", "duration") + figure_files(name, "dv"))
+
+
+BOOK = BookPage(NOTEBOOK, "The paper's tables", 10, (
+    _table("table1", "Table 1: LOI 1, 150 N / 200 s", 150.0, 200.0, 1,
+           [0.0, -6.0, -8.0, -10.0, -12.0, -14.0], -10.0),
+    _table("table2", "Table 2: LOI 2, 150 N / 200 s", 150.0, 200.0, 2,
+           [0.0, -3.0, -6.0, -9.0], -6.0, "table1"),
+    _table("table3", "Table 3: LOI 3, 150 N / 200 s", 150.0, 200.0, 3,
+           [0.0, -3.0, -5.0, -7.0], -5.0, "table2"),
+    _table("table4_loi1", "Table 4: LOI 1, 300 N / 250 s", 300.0, 250.0, 1,
+           [0.0, -2.0, -4.0, -6.0], -4.0),
+    _table("table4_loi2", "Table 4: LOI 2, 300 N / 250 s", 300.0, 250.0, 2,
+           [0.0, -1.0, -3.0, -5.0], -3.0, "table4_loi1"),
+    _table("table4_loi3", "Table 4: LOI 3, 300 N / 250 s", 300.0, 250.0, 3,
+           [0.0, -1.0, -2.0, -3.0], -2.0, "table4_loi2"),
+    _table("table5_loi1", "Table 5: LOI 1, 450 N / 300 s", 450.0, 300.0, 1,
+           [0.0, -2.0, -3.0, -4.0], -3.0),
+    _table("table5_loi2", "Table 5: LOI 2, 450 N / 300 s", 450.0, 300.0, 2,
+           [0.0, -2.0, -4.0], -2.0, "table5_loi1"),
+    _table("table5_loi3", "Table 5: LOI 3, 450 N / 300 s", 450.0, 300.0, 3,
+           [0.0, -1.0, -2.0, -3.0], -2.0, "table5_loi2"),
+))
 
 #: A row whose ours - paper differs from the median row by more than this (%) is discussed.
 OUTLIER_PERCENT = 0.25
@@ -273,7 +313,7 @@ def _add_items(page: Page, sweep: pd.DataFrame, impulsive: dict, printed, case: 
                   "burn_duration_min": ".2f", "burn_duration_diff_min": "+.2f"},
         paper=source and f"{source}, burn durations")
     page.figure(
-        "dv_figure", figures.plot_sweep_dv(sweep, printed, f"Song et al. (2011), {source}"),
+        "dv_figure", draw.plot_sweep_dv(sweep, printed, f"Song et al. (2011), {source}"),
         caption=(f"Delta-V (m/s) of LOI {loi} ({thrust_N:g} N / Isp {isp_s:g} s) against the "
                  "ignition offset (min from the nominal perilune, negative before): ours "
                  "(filled circles, the star is the smallest), the paper's printed rows (open "

@@ -18,13 +18,25 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.quantities import capture_name
-from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import markdown_table
+from lunarcap.report.figures import trade_study as draw
 from lunarcap.report.page import Page
 from lunarcap.repro import paths
 from lunarcap.studies.engine_trade import trade as study
 
 NOTEBOOK = "notebooks/trade_study.ipynb"
+BOOK = BookPage(NOTEBOOK, "Beyond the paper", 20, (
+    Execution(
+        "trade_study", "Engine trade study: loss against thrust-to-weight",
+        parameters=dict(thrust_min_N=50.0, thrust_max_N=2000.0,
+                        points=6,  # 18 engines (the CLI's study takes any grid)
+                        isp_s=[200.0, 250.0, 300.0], workers=2, dynamics="full"),
+        quick_parameters=dict(points=4, isp_s=[250.0], workers=1),
+        expected_s=100,
+        outputs=(table_files("trade_study", "grid", "paper_engines", "runs")
+                 + figure_files("trade_study", "loss", "duration"))),
+))
 
 #: Panel titles of the parts of the chain (the study's ``part`` values), in panel order.
 PART_TITLES = {"LOI1": "LOI 1: hyperbola → 12.235 h", "LOI2": "LOI 2: 12.235 h → 3.525 h",
@@ -225,7 +237,7 @@ def _add_loss(page: Page, ok, valid, paper, spec, newton_per_ratio: float,
     """The loss figure and the table at the paper's engines (returned)."""
     loss_def, dynamics = LOSS_DEFINITION, spec.dynamics
     page.figure(
-        "loss", figures.plot_trade_study_loss(ok, valid, paper, spec.isp_s, PART_TITLES,
+        "loss", draw.plot_trade_study_loss(ok, valid, paper, spec.isp_s, PART_TITLES,
                                               newton_per_ratio, LOSS_AXIS_PERCENT),
         caption=("Finite-burn loss (% of the impulsive ΔV, logarithmic) of the optimal burns "
                  "(free ignition, verified) against the initial thrust-to-weight ratio "
@@ -265,7 +277,7 @@ def _add_duration_grid_runs(page: Page, loi_ok, wide, spec, newton_per_ratio: fl
                             result, timing_dir) -> None:
     loss_def = LOSS_DEFINITION
     page.figure(
-        "duration", figures.plot_trade_study_duration(
+        "duration", draw.plot_trade_study_duration(
             loi_ok, spec.isp_s, {p: PART_TITLES[p] for p in study.PARTS[:3]},
             newton_per_ratio),
         caption=("One row per burn. Left: optimal burn duration divided by the Eq. (19) "

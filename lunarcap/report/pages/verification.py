@@ -20,14 +20,35 @@ from lunarcap.optim import verify
 from lunarcap.optim.collocation import DEFAULT_MESHES, Mesh
 from lunarcap.optim.problem import burn_problem
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_ENGINES
-from lunarcap.report import figures
+from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import FAILED, PASSED, verdict
+from lunarcap.report.figures import verification as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
 from lunarcap.repro.cache import cached
 from lunarcap.studies import bench, sweeps
 
 NOTEBOOK = "notebooks/verification.ipynb"
+BOOK = BookPage(NOTEBOOK, "Verification", 10, (
+    Execution(
+        "verification", "How far to trust each number",
+        parameters=dict(
+            cases="paper",  # the 37 cases of Tables 1-5
+            mesh_cases=[[150.0, 200.0, 1, -10.0, []], [150.0, 200.0, 2, -6.0, [-10.0]],
+                        [150.0, 200.0, 3, -5.0, [-10.0, -6.0]]],
+            meshes=[[2, 4, 3], [3, 6, 4], [4, 8, 4], [6, 12, 5], [8, 16, 5], [12, 24, 5],
+                    [18, 36, 6]],
+            dynamics="full"),
+        quick_parameters=dict(
+            cases=[[150.0, 200.0, 1, -10.0, []], [150.0, 200.0, 2, -6.0, [-10.0]]],
+            mesh_cases=[[150.0, 200.0, 1, -10.0, []], [150.0, 200.0, 2, -6.0, [-10.0]]],
+            meshes=[[4, 8, 4], [8, 16, 5]]),
+        depends_on=("table3", "table4_loi3", "table5_loi3"),
+        expected_s=35,
+        outputs=(table_files("verification", "cases", "cases_full", "gate", "impulsive",
+                             "mesh", "mesh_full")
+                 + figure_files("verification", "mesh"))),
+))
 
 #: The default mesh (the first of the refinement sequence).
 DEFAULT = DEFAULT_MESHES[0]
@@ -359,7 +380,7 @@ def _add_mesh(page: Page, mesh: pd.DataFrame, mesh_list, default_points: int) ->
     page.table("mesh_full", mesh, caption="Mesh convergence, every column.")
     page.figure(
         "mesh_figure",
-        figures.plot_mesh_convergence(mesh.assign(accepted=mesh.accepted == PASSED),
+        draw.plot_mesh_convergence(mesh.assign(accepted=mesh.accepted == PASSED),
                                       verify.TOL_DV_MPS, default_points),
         caption=("Change of the delta-V (m/s, log scale) from its value on the finest mesh, "
                  "against the number of collocation points (log scale), for each case of the "

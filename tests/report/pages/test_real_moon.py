@@ -203,12 +203,13 @@ def test_evolution_figure_is_legible_with_units():
     import matplotlib.pyplot as plt
 
     from lunarcap.report import figures
+    from lunarcap.report.figures.real_moon import plot_evolution
 
     evs = {"J2": _evolution(100.0, [100.0, 99.0, 99.5], [101.0, 102.0, 101.5],
                             [90.0, 90.5, 90.6], 1838.2),
            "LP165P 20x20": _evolution(100.0, [98.0, 95.0, 93.0], [103.0, 104.0, 106.0],
                                       [90.0, 91.0, 91.2], 1839.2)}
-    fig = figures.plot_evolution(real_moon.histories(evs))
+    fig = plot_evolution(real_moon.histories(evs))
     assert figures.legibility_problems(fig) == []
     labels = [t.get_text() for lg in fig.legends for t in lg.get_texts()]
     assert labels == ["J2", "LP165P 20x20", "perilune", "apolune"]
