@@ -137,10 +137,19 @@ def fly_in_gmat(result, out_dir, python: str | None = None) -> GmatComparison:
     ``python``: the interpreter with ``gmatpy`` (default: this one).
     """
     ex = export_plan(result, out_dir)
-    script = Path(ex.files["gmat_script"])
     t0 = time.perf_counter()
-    gmat.run_script(script, python)
-    wall = time.perf_counter() - t0
+    gmat.run_script(Path(ex.files["gmat_script"]), python)
+    return gmat_comparison(result, ex.files, time.perf_counter() - t0)
+
+
+def gmat_comparison(result, files: dict, gmat_wall_s: float = float("nan")) -> GmatComparison:
+    """GMAT's reports of an exported script, already run, against lunarcap's flight.
+
+    ``files``: the export's files (:attr:`lunarcap.capture.export.Export.files`; its
+    ``gmat_script`` names the reports beside it), however GMAT was run (:func:`fly_in_gmat`,
+    or the README's command); ``gmat_wall_s``: GMAT's wall time, s.
+    """
+    script = Path(files["gmat_script"])
     stem = script.stem
     ref = lunarcap_events(result, capture_arcs(result))
     burns = [_residual(r, ref[(r.burn, gmat.CUTOFF)])
@@ -165,8 +174,8 @@ def fly_in_gmat(result, out_dir, python: str | None = None) -> GmatComparison:
         raise gmat.GmatError(f"{stem}: GMAT reported {len(burns)} burns, {len(coasts)} "
                              f"coasts and {len(capture)} capture events, expected {n}, {n} "
                              f"and {2 * n + 2}")
-    return GmatComparison(result.plan.name, burns, coasts, capture, final, wall,
-                          dict(ex.files))
+    return GmatComparison(result.plan.name, burns, coasts, capture, final, gmat_wall_s,
+                          dict(files))
 
 
 #: What :func:`default_costs` changes, each to GMAT's default: the thruster's standard

@@ -21,6 +21,9 @@ makes GMAT fly lunarcap's dynamics, and the files it reads:
 * ``<stem>_moon.bsp`` (unless the field turns with GMAT's ``Luna``): the Moon's geocentric
   states from lunarcap's ephemeris, an SPK (type 13, Hermite) read by the body the script
   creates.
+* ``<stem>_gmat.py`` (only when the field turns with GMAT's ``Luna``): runs the script
+  with ``gmatpy`` (``python <stem>_gmat.py``), GMAT's lunar field folder pointed to
+  ``<stem>_gravity.cof`` (see below).
 
 The settings GMAT would otherwise choose for itself, each of which moves the result by
 metres to kilometres (measured by the check reported in the project's issue 25 and with
@@ -29,7 +32,8 @@ metres to kilometres (measured by the check reported in the project's issue 25 a
 * the thruster's g0 (``GravitationalAccel``; GMAT's default is 9.81 m/s^2, lunarcap's the
   standard 9.80665 m/s^2, :data:`lunarcap.physics.constants.G0_MPS2`), its thrust
   (``C1``, N) and specific impulse (``K1``, s) with every pressure and temperature
-  coefficient zero, the whole mass in one tank;
+  coefficient zero, the whole mass in one tank sized from it (:func:`tank_volume_m3`:
+  GMAT's default tank holds 945 kg);
 * epochs as ``TDBModJulian`` (GMAT's modified Julian date is JD - 2430000.0, not the
   usual JD - 2400000.5), printed from exact decimal arithmetic on TDB seconds;
 * axes ``MJ2000Eq``: GMAT reads DE405 in them, and lunarcap's ICRF states are DE405's axes
@@ -43,8 +47,17 @@ metres to kilometres (measured by the check reported in the project's issue 25 a
   script: the ``Moon`` type would impose the IAU lunar model whatever the script says),
   placed by ``<stem>_moon.bsp``; about the IAU pole of date (:attr:`Gravity.frame`
   ``"iau-of-date"``) the body is a ``Moon`` orbiting the Earth, which GMAT orients by the
-  IAU lunar model; a field in the Moon's DE405 principal-axis frame (``"luna"``) is
-  carried by GMAT's ``Luna`` itself;
+  IAU lunar model (pole and prime meridian); a field in the Moon's DE405 principal-axis
+  frame (``"luna"``) is carried by GMAT's ``Luna`` itself, which turns with the DE
+  file's libration angles (GMAT's ``DEFile`` rotation source: the only one this GMAT
+  gives ``Luna``, no longer settable by a script, so the script says it in a comment and
+  ``tests/exchange/test_gmat_frames.py`` checks the axes at the pole and the prime
+  meridian);
+* a field in ``Luna``: GMAT asks for its default lunar field file as soon as a force
+  model names ``Luna`` among its primary bodies, before the script's ``PotentialFile``
+  replaces it, and the PyPI wheel ships none (nor can a script point GMAT elsewhere), so
+  the export writes beside such a script ``<stem>_gmat.py``, the one command that runs it
+  (:func:`~lunarcap.exchange.gmat_run.runner_text`);
 * the steering: GMAT's thruster points along a direction fixed in the axes for as long
   as a ``Propagate`` lasts, so a burn is a sequence of segments inside one
   ``BeginFiniteBurn``/``EndFiniteBurn``, each setting the direction
@@ -79,6 +92,7 @@ from lunarcap.exchange.gmat_run import (  # noqa: F401  (running GMAT, re-export
     gmat_defaults,
     read_report,
     run_script,
+    runner_text,
 )
 from lunarcap.physics import constants as C
 from lunarcap.physics.forces import MoonField, ThirdBody, zonal_c20
@@ -95,6 +109,10 @@ MOON_KERNEL_MARGIN_S = 86400.0
 FRAMES = ("fixed-pole", "iau-of-date", "luna")
 #: Event codes of the report rows.
 IGNITION, CUTOFF, END = 0, 1, 2
+#: The tank's fuel density, kg/m^3 (GMAT's default, written out), and the factor by which
+#: its volume exceeds the whole mass's (GMAT refuses a load above the volume at start).
+TANK_DENSITY_KGM3 = 1260.0
+TANK_MARGIN = 1.01
 
 
 # ---------------------------------------------------------------------- the data
@@ -255,6 +273,19 @@ class Capture:
 
 
 # ---------------------------------------------------------------------- numbers
+def tank_volume_m3(mass_kg: float) -> float:
+    """The volume of a tank that holds ``mass_kg`` of fuel at :data:`TANK_DENSITY_KGM3`, m^3.
+
+    GMAT stops at load ("Fuel volume exceeds tank capacity") when a tank's fuel mass
+    over its density exceeds its volume, and its default tank (0.75 m^3 at 1,260 kg/m^3)
+    holds 945 kg; the script carries the whole spacecraft as fuel, so each tank is sized
+    from its mass, :data:`TANK_MARGIN` over. The volume plays no other part in the
+    flight: the tank is pressure-regulated and the thrust and Isp coefficients of pressure
+    and temperature are zero.
+    """
+    return float(mass_kg) / TANK_DENSITY_KGM3 * TANK_MARGIN
+
+
 def gmat_mjd(t_s: float) -> str:
     """GMAT's TDB modified Julian date (JD - 2430000) of TDB seconds past J2000, as text.
 
@@ -347,7 +378,11 @@ def _body_lines(cap: Capture, stem: str) -> tuple:
     if g.frame not in FRAMES:
         raise InputError(f"gravity frame must be one of {', '.join(FRAMES)}, got {g.frame!r}")
     if g.frame == "luna":
-        out += ["% The field turns with GMAT's lunar body-fixed frame (DE405 librations).",
+        out += ["% The field turns with GMAT's Luna: its principal axes from the libration angles",
+                "% of GMAT's DE file (GMAT's DEFile rotation source, the only one it gives Luna;",
+                "% a script no longer sets Luna.RotationDataSource). GMAT asks for its default",
+                "% lunar field file as soon as Luna is a primary body: run this script with",
+                f"% {stem}_gmat.py beside it, which points GMAT to ./{stem}_gravity.cof.",
                 f"Luna.Mu = {_num(g.mu_km3s2)};", f"Luna.EquatorialRadius = {_num(g.radius_km)};"]
         return "Luna", out
     body = FIXED_POLE_BODY
@@ -435,6 +470,9 @@ def _spacecraft_lines(sc: str, state: StateVector, thrust_N: float | None = None
             f"{sc}.Tanks = {{{sc}Tank}};",
             f"{sc}.Thrusters = {{{sc}Engine}};",
             f"Create ChemicalTank {sc}Tank;",
+            f"{sc}Tank.FuelDensity = {_num(TANK_DENSITY_KGM3)};   % kg/m^3",
+            f"{sc}Tank.Volume = {_num(tank_volume_m3(state.mass_kg))};   % m^3: the whole "
+            f"mass, {100 * (TANK_MARGIN - 1):g} % spare",
             f"{sc}Tank.FuelMass = {_num(state.mass_kg)};   % kg: the whole mass",
             f"{sc}Tank.AllowNegativeFuelMass = false;",
             f"{sc}Tank.PressureModel = PressureRegulated;",
@@ -497,8 +535,9 @@ def _header_lines(cap: Capture, stem: str) -> list:
     return [*[f"% {c}" for c in reference_comments()],
             f"% lunarcap: the capture {cap.name} flown in GMAT (written by lunarcap).",
             "% Run it unmodified where it lies, e.g. with the PyPI wheel gmatpy:",
-            f"%   cd <this folder> && python -c \"import gmatpy; "
-            f"gmatpy.run_script('{stem}.script', outputs={{}})\"",
+            (f"%   cd <this folder> && python {stem}_gmat.py" if cap.gravity.frame == "luna"
+             else f"%   cd <this folder> && python -c \"import gmatpy; "
+                  f"gmatpy.run_script('{stem}.script', outputs={{}})\""),
             f"% It writes ./{stem}_gmat_burns.txt (each burn from lunarcap's state at its",
             f"% ignition), ./{stem}_gmat_coasts.txt (each coast from lunarcap's state at the",
             f"% cut-off before it), ./{stem}_gmat_capture.txt (the whole capture from the",
@@ -584,7 +623,8 @@ def write_capture(out_dir, stem: str, cap: Capture) -> dict:
 
     Keys ``script``, ``gravity`` (``<stem>_gravity.cof``) and, unless the field turns with
     GMAT's ``Luna``, ``moon`` (``<stem>_moon.bsp``, covering the flight with
-    :data:`MOON_KERNEL_MARGIN_S` each side).
+    :data:`MOON_KERNEL_MARGIN_S` each side); when it does, ``runner`` (``<stem>_gmat.py``,
+    the command that runs the script: :func:`~lunarcap.exchange.gmat_run.runner_text`).
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -593,7 +633,10 @@ def write_capture(out_dir, stem: str, cap: Capture) -> dict:
     g = cap.gravity
     write_cof(files["gravity"], g, [*reference_comments(), f"lunarcap plan {cap.name}: {g.source}",
                                     f"degree {g.degree}, order {g.order}, fully normalised"])
-    if g.frame != "luna":
+    if g.frame == "luna":
+        files["runner"] = out / f"{stem}_gmat.py"
+        files["runner"].write_text(runner_text(stem), encoding="ascii")
+    else:
         if cap.ephemeris is None:
             raise InputError("a GMAT script with lunarcap's Moon needs the plan's ephemeris")
         files["moon"] = write_moon_kernel(out / f"{stem}_moon.bsp", cap.ephemeris,

@@ -136,7 +136,7 @@ def test_capture_files_and_refusals(tmp_path):
     with pytest.raises(InputError, match="ephemeris"):
         gmat.write_capture(tmp_path, "x", _capture())
     files = gmat.write_capture(tmp_path, "x", _capture("luna"))
-    assert set(files) == {"script", "gravity"}
+    assert set(files) == {"script", "gravity", "runner"}
     cap = _capture()
     cap.burns = []
     with pytest.raises(InputError, match="at least one burn"):
@@ -198,3 +198,40 @@ def test_each_term_says_what_gmat_flies_field(body_frame, frame):
     np.testing.assert_array_equal(grav.s[:, :4], lp.S[:7, :4])
     assert not grav.c[:, 4:].any() and not grav.s[:, 4:].any()
     assert masses == (("Earth", C.MU_EARTH),)
+
+
+@pytest.mark.parametrize("mass_kg", [150.0, 524.895, 945.0, 1200.0, 5000.0, 80000.0])
+def test_each_tank_holds_its_spacecraft_whole(mass_kg):
+    # GMAT stops at load when FuelMass / FuelDensity > Volume ("Fuel volume exceeds tank
+    # capacity"); its default tank (0.75 m^3 at 1,260 kg/m^3) holds 945 kg. Each tank the
+    # script creates is sized from the mass it carries, as GMAT reads the numbers back.
+    cap = _capture()
+    cap.burns[0].start = StateVector(cap.burns[0].start.epoch_s, cap.burns[0].start.r_km,
+                                     cap.burns[0].start.v_kmps, mass_kg=mass_kg)
+    cap.arrival = cap.burns[0].start
+    lines = gmat.script_text(cap, "x").splitlines()
+    for sc in ("Burn1", "Capture"):
+        field = {ln.split("=")[0].strip(): float(ln.split("=")[1].split(";")[0])
+                 for ln in lines if ln.startswith(f"{sc}Tank.") and "=" in ln
+                 and ln.split("=")[1].split(";")[0].strip()[0].isdigit()}
+        assert field[f"{sc}Tank.FuelMass"] == mass_kg
+        held = field[f"{sc}Tank.Volume"] * field[f"{sc}Tank.FuelDensity"]
+        assert mass_kg < held < 1.02 * mass_kg       # room for it, and no more than 2 %
+        # the tank is declared before the mass it holds is set (GMAT checks at load)
+        order = [ln.split(".")[1].split()[0] for ln in lines if ln.startswith(f"{sc}Tank.")]
+        assert order.index("Volume") < order.index("FuelMass")
+
+
+def test_a_field_in_luna_gets_its_runner_and_no_other(tmp_path):
+    # only a field turning with GMAT's Luna needs the runner (GMAT asks for its default
+    # lunar field file when Luna is a primary body); it is plain Python that names the
+    # script and the field beside it, and the script's header says to run it
+    files = gmat.write_capture(tmp_path, "x", _capture("luna"))
+    assert set(files) == {"script", "gravity", "runner"}
+    text = files["runner"].read_text()
+    compile(text, files["runner"].name, "exec")
+    assert "STEM = 'x'" in text and '"LP165P.cof"' in text and "LUNA_POT_PATH" in text
+    assert "%   cd <this folder> && python x_gmat.py" in files["script"].read_text()
+    # lunarcap's own runner is the same text, the script named on its command line
+    assert gmat.runner_text("") == text.replace("STEM = 'x'", "STEM = ''").replace(
+        text.split('"""')[1], gmat.runner_text("").split('"""')[1])
