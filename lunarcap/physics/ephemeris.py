@@ -100,13 +100,27 @@ class Ephemeris:
             self.jd_last = min(s.end_jd for s in segs)
 
     # ------------------------------------------------------------------ provenance
+    def data_files(self) -> list:
+        """The files this ephemeris reads: positions, and the Moon's orientation.
+
+        The .bsp file, or the de405 package's arrays of the Earth-Moon barycentre, the
+        Moon and the Sun; and in both cases the package's DE405 libration angles
+        (``jpl-librations.npy``), which the Moon's DE405 body frame reads whatever gives
+        the positions (:meth:`body_angles`).
+        """
+        if self._kind == "spk":
+            import de405
+
+            return [self.path, os.path.join(os.path.dirname(de405.__file__),
+                                            "jpl-librations.npy")]
+        return [os.path.join(self.path, f"jpl-{n}.npy")
+                for n in ("earthmoon", "moon", "sun", "librations")]
+
     @cached_property
     def sha256(self) -> str:
-        """SHA-256 of the ephemeris data (the .bsp file, or the de405 arrays used)."""
+        """SHA-256 of the ephemeris data, every file of :meth:`data_files` in its order."""
         h = hashlib.sha256()
-        files = ([self.path] if self._kind == "spk" else
-                 [os.path.join(self.path, f"jpl-{n}.npy") for n in ("earthmoon", "moon", "sun")])
-        for fn in files:
+        for fn in self.data_files():
             with open(fn, "rb") as fh:
                 for chunk in iter(lambda: fh.read(1 << 20), b""):
                     h.update(chunk)

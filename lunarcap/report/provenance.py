@@ -98,7 +98,9 @@ def collect(ephemeris=None, solver: dict | None = None) -> dict:
     dict
         ``lunarcap``, ``code_version``, ``git_commit``, ``git_dirty``, ``python``,
         ``platform``, ``numpy``, ``casadi``, ``ipopt``, ``ephemeris``,
-        ``ephemeris_sha256``, ``date_utc`` (and ``solver`` if given).
+        ``ephemeris_sha256`` (of every file the ephemeris reads, the libration angles of
+        the Moon's body frame included: :meth:`~lunarcap.physics.ephemeris.Ephemeris.
+        data_files`), ``date_utc`` (and ``solver`` if given).
     """
     rec = {"lunarcap": __version__, "code_version": code_version(include_presentation=True)}
     rec.update(git_state())
@@ -192,7 +194,8 @@ def render_markdown(prov: dict, notebook: str | None = None, parameters: dict | 
     ]
     if "ephemeris" in prov:
         rows.append(("Ephemeris", f"{prov['ephemeris']}, SHA-256 "
-                                  f"{_code(prov.get('ephemeris_sha256'))}"))
+                                  f"{_code(prov.get('ephemeris_sha256'))} (its positions and "
+                                  f"the DE405 libration angles of the Moon's body frame)"))
     else:
         rows.append(("Ephemeris", "not used"))
     if prov.get("solver"):
