@@ -28,10 +28,15 @@ epoch, altitude, inclination, hemisphere and the two-body v_inf of the perilune 
 replace the reconstruction, and the arrival state is that propagated perilune state.
 
 An arrival may also be a **B-plane target** (:class:`BPlaneArrival`: B.R and B.T in km,
-v_inf, the incoming asymptote and the epoch of closest approach, in ICRF or M-MME2000, as
-a trans-lunar trajectory team hands it over). Its perilune is that of the two-body
-hyperbola it defines (:func:`lunarcap.physics.bplane.perilune_from_bplane`; the B-plane's
-T axis lies along S x z of the named frame, z its pole), at the epoch of closest approach.
+v_inf, the incoming asymptote and the epoch of closest approach, the asymptote in ICRF or
+M-MME2000, as a trans-lunar trajectory team hands it over). Its perilune is that of the
+two-body hyperbola it defines (:func:`lunarcap.physics.bplane.perilune_from_bplane`), at
+the epoch of closest approach. The B-plane's T axis is S x k / |S x k| with k the pole of
+its reference plane, ``bplane_reference``: ``EME2000`` by default (the Earth's mean
+equator of J2000, as GMAT's BdotT/BdotR and trajectory teams give it), ``lunar-equator``
+on request (the plan's M-MME2000 equator); :attr:`ArrivalSpec.bplane_reference` is the
+same choice for any arrival (the reference of a B-plane covariance in the dispersions
+study).
 """
 
 
@@ -95,13 +100,16 @@ class BPlaneArrival:
     epoch : str
         Calendar epoch of closest approach (the perilune), with its scale.
     frame : {"ICRF", "M-MME2000"}
-        Axes of ``approach_dir``; the frame's pole is the reference of the T axis.
+        Axes of ``approach_dir``.
     b_r_km, b_t_km : float
         The miss vector's components along R and T, km.
     v_inf_kmps : float
         Hyperbolic excess speed, km/s.
     approach_dir : tuple of 3 floats
         The incoming asymptote S (the approach velocity's direction at infinity), unit.
+    reference : {"EME2000", "lunar-equator"}
+        The plane the T axis lies in (:data:`lunarcap.physics.bplane.REFERENCE_PLANES`):
+        T = S x k / |S x k|, R = S x T, k its pole.
     """
 
     epoch: str
@@ -110,14 +118,16 @@ class BPlaneArrival:
     b_t_km: float
     v_inf_kmps: float
     approach_dir: tuple
+    reference: str = "EME2000"
 
     def perilune_rv(self, lunar_pole: str) -> tuple:
         """(r km, v km/s) of the perilune in M-MME2000 (InputError if it has none)."""
-        from lunarcap.physics.bplane import perilune_from_bplane
+        from lunarcap.physics.bplane import perilune_from_bplane, reference_pole
         from lunarcap.physics.frames import mme_from_icrf
 
+        k = reference_pole(self.reference, self.frame, lunar_pole)
         r, v = perilune_from_bplane(float(self.b_r_km), float(self.b_t_km),
-                                    float(self.v_inf_kmps), self.approach_dir, C.MU_MOON)
+                                    float(self.v_inf_kmps), self.approach_dir, C.MU_MOON, k)
         if self.frame == "ICRF":
             r, v = mme_from_icrf(r, lunar_pole), mme_from_icrf(v, lunar_pole)
         return np.asarray(r, float), np.asarray(v, float)
@@ -148,7 +158,9 @@ class ArrivalSpec:
     The ``arrival`` section of a capture plan (:mod:`lunarcap.mission.plan`). ``v_inf_kmps``
     is the hyperbolic excess speed, km/s (``None``: derived from the paper's impulsive
     LOI 1); ``approach_dir`` a unit 3-vector in M-MME2000 (``None``: anti-parallel to the
-    Moon's geocentric velocity).
+    Moon's geocentric velocity); ``bplane_reference`` the plane the arrival's B-plane T
+    axis lies in (:data:`lunarcap.physics.bplane.REFERENCE_PLANES`; a B-plane target's
+    and a B-plane covariance's).
     """
 
     epoch: str = _PAPER.epoch_tdb
@@ -161,6 +173,7 @@ class ArrivalSpec:
     state: StateArrival | None = None     # a state arrival (the rest derived from it)
     bplane: BPlaneArrival | None = None   # a B-plane arrival (the rest derived from it)
     perilune_mee: tuple | None = None     # derived: (p, f, g, h, k, L) at ``epoch``
+    bplane_reference: str = "EME2000"     # the B-plane's reference plane (target, covariance)
 
     @property
     def perilune_radius_km(self) -> float:

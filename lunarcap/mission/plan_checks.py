@@ -22,6 +22,7 @@ from lunarcap.errors import InputError, number
 from lunarcap.mission.impulsive import PAPER_DV_LOI1_MPS, v_inf_from_loi1
 from lunarcap.mission.targets import CIRCULAR, PERILUNE, check_inclination
 from lunarcap.physics import constants as C
+from lunarcap.physics.bplane import REFERENCE_PLANES
 from lunarcap.physics.elements import period_from_semi_major_axis, semi_major_axis_from_period
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 from lunarcap.physics.forces import PRESETS, ForceModel, force_model
@@ -151,6 +152,15 @@ def checked_engine(e):
                    isp_s=num("engine.isp_s", e.isp_s, "s"))
 
 
+def _check_bplane_reference(a) -> None:
+    """A B-plane arrival's reference plane: one of the planes, the arrival's own (PlanError)."""
+    choice("arrival.bplane_reference", a.bplane.reference, REFERENCE_PLANES)
+    if a.bplane_reference != a.bplane.reference:
+        raise err("arrival.bplane_reference", f"the B-plane target is given about "
+                                              f"{a.bplane.reference}, the arrival about "
+                                              f"{a.bplane_reference}: give one")
+
+
 def checked_arrival(a):
     """The arrival with each field checked against its own range, numbers as floats."""
     if not isinstance(a.epoch, str):
@@ -173,6 +183,7 @@ def checked_arrival(a):
         vinf = num("arrival.v_inf_kmps", vinf, "km/s", maximum=MAX_V_INF_KMPS,
                    limit="lunarcap's limit; a direct transfer arrives at about 1 km/s")
     choice("arrival.hemisphere", a.hemisphere, HEMISPHERES)
+    choice("arrival.bplane_reference", a.bplane_reference, REFERENCE_PLANES)
     approach = a.approach_dir
     if approach is not None:
         approach = tuple(num(f"arrival.approach_dir[{j + 1}]", x, "", positive=False)
@@ -314,6 +325,7 @@ def validate(plan) -> None:
     if plan.arrival.state is not None:
         plan._derive_state_arrival()
     if plan.arrival.bplane is not None:
+        _check_bplane_reference(plan.arrival)
         plan._derive_bplane_arrival()
     s(plan, "arrival", checked_arrival(plan.arrival))
     alt = plan.arrival.perilune_altitude_km

@@ -12,8 +12,17 @@ from pathlib import Path
 
 from lunarcap.errors import InputError
 from lunarcap.mission.arrival import StateArrival
-from lunarcap.mission.plan_checks import PlanError, default_pole, err, frame_epoch, keys, num
+from lunarcap.mission.plan_checks import (
+    PlanError,
+    choice,
+    default_pole,
+    err,
+    frame_epoch,
+    keys,
+    num,
+)
 from lunarcap.mission.targets import CIRCULAR, PERILUNE
+from lunarcap.physics.bplane import DEFAULT_REFERENCE, REFERENCE_PLANES
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 from lunarcap.physics.forces import force_model
 from lunarcap.physics.frames import pole_of_date
@@ -26,10 +35,14 @@ TOP_KEYS = {"name", "description", "arrival", "engine", "dynamics", "burns", "ep
             "lunar_pole", "start", "formulation"}
 START_KEYS = {"epoch", "mee", "mass_kg", "first_coast_min"}
 ARRIVAL_KEYS = {"epoch", "perilune_altitude_km", "inclination_deg", "v_inf_kmps",
-                "impulsive_loi1_mps", "hemisphere", "approach_dir", "mass_kg"}
-STATE_ARRIVAL_KEYS = {"epoch", "frame", "position_km", "velocity_kmps", "mass_kg"}
+                "impulsive_loi1_mps", "hemisphere", "approach_dir", "mass_kg",
+                "bplane_reference"}
+STATE_ARRIVAL_KEYS = {"epoch", "frame", "position_km", "velocity_kmps", "mass_kg",
+                      "bplane_reference"}
 BPLANE_ARRIVAL_KEYS = {"epoch", "frame", "b_r_km", "b_t_km", "v_inf_kmps", "approach_dir",
-                       "mass_kg"}
+                       "mass_kg", "bplane_reference"}
+#: The keys an arrival of any kind must give (``bplane_reference`` may be left out).
+BPLANE_OPTIONAL = {"bplane_reference"}
 ENGINE_KEYS = {"thrust_N", "isp_s"}
 BURN_KEYS = {"target", "target_period_h", "target_apolune_altitude_km", "start_min",
              "coast_min", "steering", "start_bounds_min"}
@@ -152,7 +165,18 @@ def _perilune_arrival(a):
     return ArrivalSpec(epoch=a["epoch"], perilune_altitude_km=a["perilune_altitude_km"],
                        inclination_deg=a["inclination_deg"], mass_kg=a["mass_kg"],
                        v_inf_kmps=a.get("v_inf_kmps"), hemisphere=a.get("hemisphere", "north"),
-                       approach_dir=None if approach is None else tuple(approach))
+                       approach_dir=None if approach is None else tuple(approach),
+                       bplane_reference=bplane_reference(a))
+
+
+def bplane_reference(a) -> str:
+    """An arrival's ``bplane_reference`` (default EME2000), checked (PlanError names it).
+
+    The plane the arrival's B-plane T axis lies in (:mod:`lunarcap.physics.bplane`): its
+    B-plane target's, and a B-plane covariance's in the dispersions study.
+    """
+    return choice("arrival.bplane_reference", a.get("bplane_reference", DEFAULT_REFERENCE),
+                  REFERENCE_PLANES)
 
 
 def _epoch_and_frame(a, epoch_form: str) -> None:
@@ -178,7 +202,7 @@ def _bplane_arrival(a):
     """The ``arrival`` of a plan given as its B-plane target (the perilune derived later)."""
     from lunarcap.mission.arrival import ArrivalSpec, BPlaneArrival
 
-    keys("arrival", a, BPLANE_ARRIVAL_KEYS, BPLANE_ARRIVAL_KEYS)
+    keys("arrival", a, BPLANE_ARRIVAL_KEYS, BPLANE_ARRIVAL_KEYS - BPLANE_OPTIONAL)
     _epoch_and_frame(a, "the epoch of closest approach as a text like "
                         "'2017-02-20 03:41:26 TDB'")
     s = a["approach_dir"]
@@ -192,9 +216,11 @@ def _bplane_arrival(a):
     b = BPlaneArrival(a["epoch"], a["frame"],
                       num("arrival.b_r_km", a["b_r_km"], "km", positive=False),
                       num("arrival.b_t_km", a["b_t_km"], "km", positive=False),
-                      num("arrival.v_inf_kmps", a["v_inf_kmps"], "km/s"), s)
+                      num("arrival.v_inf_kmps", a["v_inf_kmps"], "km/s"), s,
+                      bplane_reference(a))
     return ArrivalSpec(epoch=b.epoch, perilune_altitude_km=100.0, inclination_deg=90.0,
-                       mass_kg=a["mass_kg"], v_inf_kmps=b.v_inf_kmps, bplane=b)
+                       mass_kg=a["mass_kg"], v_inf_kmps=b.v_inf_kmps, bplane=b,
+                       bplane_reference=b.reference)
 
 
 def _state_arrival(a, base_dir):
@@ -214,14 +240,15 @@ def _state_arrival(a, base_dir):
         state = _given_state(a)
     # placeholders (a valid perilune), replaced by the derivation in the plan's dynamics
     return ArrivalSpec(epoch=state.epoch, perilune_altitude_km=100.0, inclination_deg=90.0,
-                       mass_kg=mass, v_inf_kmps=1.0, state=state)
+                       mass_kg=mass, v_inf_kmps=1.0, state=state,
+                       bplane_reference=bplane_reference(a))
 
 
 def _opm_state(a, base_dir) -> tuple:
     """(StateArrival, mass) of ``arrival: {opm: FILE, mass_kg: ...}``."""
     from lunarcap.exchange.ccsds import read_opm
 
-    keys("arrival", a, {"opm", "mass_kg"}, {"opm"})
+    keys("arrival", a, {"opm", "mass_kg", "bplane_reference"}, {"opm"})
     path = a["opm"]
     if not isinstance(path, str):
         raise err("arrival.opm", f"must be the path of a CCSDS OPM file, got {path!r}")
@@ -247,7 +274,7 @@ def _given_state(a) -> StateArrival:
         raise err(f"arrival.{unknown[0]}",
                   f"a state arrival takes {', '.join(sorted(STATE_ARRIVAL_KEYS))}; "
                   f"{unknown[0]} belongs to an arrival given by its perilune")
-    keys("arrival", a, STATE_ARRIVAL_KEYS, STATE_ARRIVAL_KEYS)
+    keys("arrival", a, STATE_ARRIVAL_KEYS, STATE_ARRIVAL_KEYS - BPLANE_OPTIONAL)
     _epoch_and_frame(a, "a text like '2017-02-20 03:11:26 UTC'")
     vecs = []
     for key, unit in (("position_km", "km"), ("velocity_kmps", "km/s")):
@@ -308,14 +335,17 @@ def _arrival_dict(plan) -> dict:
     a = plan.arrival
     if a.bplane is not None:   # as given (the perilune is derived again on loading)
         b = a.bplane
-        return {"epoch": b.epoch, "frame": b.frame, "b_r_km": b.b_r_km, "b_t_km": b.b_t_km,
-                "v_inf_kmps": b.v_inf_kmps, "approach_dir": list(b.approach_dir),
-                "mass_kg": a.mass_kg}
+        return {"epoch": b.epoch, "frame": b.frame, "bplane_reference": b.reference,
+                "b_r_km": b.b_r_km, "b_t_km": b.b_t_km, "v_inf_kmps": b.v_inf_kmps,
+                "approach_dir": list(b.approach_dir), "mass_kg": a.mass_kg}
+    # any other arrival names its B-plane's reference only when not the default
+    ref = ({} if a.bplane_reference == DEFAULT_REFERENCE else
+           {"bplane_reference": a.bplane_reference})
     if a.state is not None:   # as given (the perilune is derived again on loading)
         st = a.state
         return ({"opm": st.opm} if st.opm else
                 {"epoch": st.epoch, "frame": st.frame, "position_km": list(st.position_km),
-                 "velocity_kmps": list(st.velocity_kmps)}) | {"mass_kg": a.mass_kg}
+                 "velocity_kmps": list(st.velocity_kmps)}) | {"mass_kg": a.mass_kg} | ref
     out = {"epoch": a.epoch, "perilune_altitude_km": a.perilune_altitude_km,
            "inclination_deg": a.inclination_deg}
     if plan.impulsive_loi1_mps is not None:
@@ -326,7 +356,7 @@ def _arrival_dict(plan) -> dict:
     if a.approach_dir is not None:
         out["approach_dir"] = list(a.approach_dir)
     out["mass_kg"] = a.mass_kg
-    return out
+    return out | ref
 
 
 def _burn_dict(b) -> dict:

@@ -7,8 +7,9 @@ to the incoming asymptote of the osculating two-body hyperbola:
 * ``S``: the unit vector along the incoming asymptote, the direction of the approach
   velocity at infinity: S = (1/e) e_hat + sqrt(1 - 1/e^2) (h_hat x e_hat), with e_hat
   the eccentricity (periapsis) direction and h_hat the orbit normal;
-* ``T = S x k / |S x k|`` with ``k`` the reference pole (the frame's third axis unless
-  another is given), ``R = S x T``;
+* ``T = S x k / |S x k|`` with ``k`` the pole of the reference plane (the frame's third
+  axis unless another is given), ``R = S x T``: T lies in the reference plane, and for
+  an asymptote along +x with k along +z, T is -y and R is -z;
 * the miss vector ``B`` from the centre to the asymptote, perpendicular to it, in the
   orbit plane: B = b (S x h_hat), b = h / v_inf = |a| sqrt(e^2 - 1);
 * the target: ``B . R``, ``B . T`` (km), v_inf (km/s) and the epoch of closest approach
@@ -18,6 +19,18 @@ Given S, v_inf and (B.R, B.T) the hyperbola is fixed: h_hat = B_hat x S,
 e = sqrt(1 + b^2 v_inf^4 / mu^2), e_hat = (1/e) S + sqrt(1 - 1/e^2) B_hat, and the
 perilune is r_p = |a| (e - 1) along e_hat with speed sqrt(v_inf^2 + 2 mu / r_p) along
 h_hat x e_hat. Pure functions of arrays; ``mu`` is passed explicitly.
+
+**The reference plane** (:data:`REFERENCE_PLANES`, :func:`reference_pole`) is data: a
+B-plane target or covariance handed over by a navigation or trajectory team is, by
+convention, referenced to the Earth's mean equator of J2000 (``EME2000``: k the pole of
+lunarcap's ICRF axes, which GMAT reads as its ``MJ2000Eq``; GMAT's ``BdotT`` and
+``BdotR`` of a state in a Moon-centred ``MJ2000Eq`` coordinate system are these, since
+GMAT computes its B-plane in the axes of the parameter's coordinate system with
+T = (S_y, -S_x, 0) / |...|, i.e. S x z: GMAT User Guide, "Calculation Parameters", and
+``GmatCalcUtil::CalculateBPlaneData`` in GMAT's source), and lunarcap's default is that
+one. ``lunar-equator`` (k the plan's lunar pole, the z axis of its M-MME2000) is on
+request: for the paper's asymptote the two T axes are 24 deg apart, so a covariance
+long in T and short in R given in one and read in the other mixes the two.
 """
 
 from __future__ import annotations
@@ -30,6 +43,41 @@ from lunarcap.errors import InputError
 
 #: The reference pole of the B-plane's T axis by default: the frame's third axis.
 Z_AXIS = (0.0, 0.0, 1.0)
+#: The reference planes a B-plane may be given in (see the module docstring), the default
+#: first: the Earth's mean equator of J2000, and the lunar equator of the plan's M-MME2000.
+REFERENCE_PLANES = ("EME2000", "lunar-equator")
+DEFAULT_REFERENCE = REFERENCE_PLANES[0]
+#: Axes a B-plane's vectors may be written in (their pole is expressed in them).
+AXES = ("ICRF", "M-MME2000")
+
+
+def check_reference(reference, where: str = "bplane_reference") -> str:
+    """``reference`` if it is one of :data:`REFERENCE_PLANES`; else InputError naming ``where``."""
+    if reference not in REFERENCE_PLANES:
+        raise InputError(f"{where} must be one of {', '.join(REFERENCE_PLANES)} (the plane "
+                         f"the B-plane's T axis lies in: the Earth's mean equator of J2000, "
+                         f"as GMAT's BdotT/BdotR, or the lunar equator), got {reference!r}")
+    return reference
+
+
+def reference_pole(reference: str, axes: str, lunar_pole: str) -> np.ndarray:
+    """The unit pole k of a reference plane (:data:`REFERENCE_PLANES`), in ``axes``.
+
+    ``axes``: ``"ICRF"`` (Moon-centred ICRF, lunarcap's files; GMAT's MJ2000Eq) or
+    ``"M-MME2000"`` of the lunar pole choice ``lunar_pole``
+    (:data:`lunarcap.physics.frames.LUNAR_POLES`). EME2000's pole is ICRF's z axis;
+    the lunar equator's is M-MME2000's z axis.
+    """
+    from lunarcap.physics.frames import icrf_from_mme, mme_from_icrf
+
+    check_reference(reference)
+    if axes not in AXES:
+        raise InputError(f"B-plane axes must be one of {', '.join(AXES)}, got {axes!r}")
+    z = np.array(Z_AXIS)
+    if (reference == "EME2000") == (axes == "ICRF"):
+        return z
+    k = mme_from_icrf(z, lunar_pole) if axes == "M-MME2000" else icrf_from_mme(z, lunar_pole)
+    return k / np.linalg.norm(k)
 
 
 @dataclass(frozen=True)

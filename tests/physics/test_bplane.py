@@ -62,3 +62,76 @@ def test_no_b_plane_for_an_ellipse_or_a_radial_fall():
         bplane_from_rv(a.r_km, 0.5 * a.v_kmps, C.MU_MOON)
     with pytest.raises(InputError, match="radial fall"):
         perilune_from_bplane(0.0, 0.0, 0.9, [1.0, 0.0, 0.0], C.MU_MOON)
+
+
+# ---------------------------------------------------------------------- fixed geometry
+def _line(b_vec, v=1.0, x0=-1e6):
+    """A state on the straight approach along +x offset by ``b_vec`` (km): the limit of a
+    hyperbola as mu -> 0, whose B vector is ``b_vec`` itself (Kizner's definition: the
+    miss vector from the centre to the asymptote, perpendicular to it)."""
+    return np.array([x0, 0.0, 0.0]) + np.asarray(b_vec, float), np.array([v, 0.0, 0.0])
+
+
+#: A gravitational parameter small enough that the trajectory is its asymptote: the
+#: bending over 1e6 km at 1 km/s is mu / (r v^2) = 1e-15 rad.
+MU_TINY = 1e-9
+
+
+@pytest.mark.parametrize("b", [10.0, 4975.0])
+def test_b_plane_axes_in_the_standard_convention_against_fixed_geometry(b):
+    # T = S x k / |S x k|, R = S x T, k the reference pole (+z): an approach along +x offset
+    # by b along +y has B.T = -b and B.R = 0; offset along +z, B.R = -b (the axes of GMAT's
+    # BdotT/BdotR and of trajectory teams). The mutant T = k x S flips both signs.
+    along_y = bplane_from_rv(*_line([0.0, b, 0.0]), MU_TINY)
+    np.testing.assert_allclose(along_y.s_hat, [1.0, 0.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(along_y.t_hat, [0.0, -1.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(along_y.r_hat, [0.0, 0.0, -1.0], atol=1e-12)
+    assert along_y.b_t_km == pytest.approx(-b, rel=1e-9)
+    assert abs(along_y.b_r_km) < 1e-9 * b
+    along_z = bplane_from_rv(*_line([0.0, 0.0, b]), MU_TINY)
+    assert along_z.b_r_km == pytest.approx(-b, rel=1e-9)
+    assert abs(along_z.b_t_km) < 1e-9 * b
+    # the inverse, same limit: the closest approach lies at the miss vector, moving along S
+    r, v = perilune_from_bplane(0.0, -b, 1.0, [1.0, 0.0, 0.0], MU_TINY)
+    np.testing.assert_allclose(r, [0.0, b, 0.0], atol=1e-9 * b)
+    np.testing.assert_allclose(v, [1.0, 0.0, 0.0], atol=1e-9)   # bent by mu / (b v^2)
+    r, v = perilune_from_bplane(-b, 0.0, 1.0, [1.0, 0.0, 0.0], MU_TINY)
+    np.testing.assert_allclose(r, [0.0, 0.0, b], atol=1e-9 * b)
+
+
+def test_the_reference_pole_sets_the_t_axis():
+    # the same straight approach (along +x, offset b along +y) about other poles: about
+    # k = -z the axes turn over (T = +y, B.T = +b); about k = +y, T = S x y = +z and B lies
+    # along R = S x T = -y (B.R = -b, B.T = 0)
+    b = 300.0
+    turned = bplane_from_rv(*_line([0.0, b, 0.0]), MU_TINY, pole=(0.0, 0.0, -1.0))
+    assert turned.b_t_km == pytest.approx(b, rel=1e-9)
+    about_y = bplane_from_rv(*_line([0.0, b, 0.0]), MU_TINY, pole=(0.0, 1.0, 0.0))
+    np.testing.assert_allclose(about_y.t_hat, [0.0, 0.0, 1.0], atol=1e-12)
+    assert about_y.b_r_km == pytest.approx(-b, rel=1e-9)
+    assert abs(about_y.b_t_km) < 1e-9 * b
+
+
+def test_reference_poles_of_the_two_planes_in_both_axes():
+    # EME2000's pole is ICRF's z; the lunar equator's is M-MME2000's z; each seen from the
+    # other axes is the other frame's pole, at the lunar pole's declination (65.64 deg at
+    # J2000: the ICRF pole is 24.36 deg from the lunar pole), the lunar pole at its right
+    # ascension and declination (Archinal et al. 2011)
+    from lunarcap.physics.bplane import check_reference, reference_pole
+    from lunarcap.physics.frames import moon_pole_radec_deg
+
+    pole = "iau2009-j2000"
+    ra_deg, dec_deg = moon_pole_radec_deg(pole)
+    np.testing.assert_array_equal(reference_pole("EME2000", "ICRF", pole), [0, 0, 1])
+    np.testing.assert_array_equal(reference_pole("lunar-equator", "M-MME2000", pole), [0, 0, 1])
+    k_e = reference_pole("EME2000", "M-MME2000", pole)
+    k_l = reference_pole("lunar-equator", "ICRF", pole)
+    assert np.degrees(np.arccos(k_e[2])) == pytest.approx(90.0 - dec_deg, abs=1e-9)
+    assert abs(dec_deg - 65.64) < 0.01
+    assert k_l[2] == pytest.approx(k_e[2], abs=1e-15)
+    dec, ra = np.radians(dec_deg), np.radians(ra_deg)
+    np.testing.assert_allclose(k_l, [np.cos(dec) * np.cos(ra), np.cos(dec) * np.sin(ra),
+                                     np.sin(dec)], atol=1e-15)
+    with pytest.raises(InputError, match="bplane_reference must be one of EME2000, "
+                                         "lunar-equator"):
+        check_reference("ecliptic")

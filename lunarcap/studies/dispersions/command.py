@@ -53,9 +53,13 @@ def options(p) -> None:
                         "orbit-determination error at each re-plan, RTN, km and km/s "
                         "(default none)")
     p.add_argument("--bplane-cov", default=None, metavar="FILE",
-                   help="a 2x2 (B.R, B.T; km) or 3x3 (and the time of closest approach, s) "
-                        "covariance of the arrival's B-plane target (4 or 9 numbers; default "
-                        "none)")
+                   help="a 2x2 (B.T, B.R; km) or 3x3 (and the time of closest approach, s) "
+                        "covariance of the arrival's B-plane target (4 or 9 numbers; a line "
+                        "'order: B.R B.T t' in the file gives another order), in the B-plane "
+                        "about the plan's arrival.bplane_reference: EME2000 by default (T = "
+                        "S x k / |S x k|, R = S x T, S the incoming asymptote, k the pole of "
+                        "the Earth's mean equator of J2000, as GMAT's BdotT and BdotR and "
+                        "trajectory teams give it), lunar-equator on request (default none)")
     p.add_argument("--sensitivity", action="store_true",
                    help="instead of one budget: each non-zero sigma alone at 0.5, 1 and 2 "
                         "times its value (the others 0, the same draws), the mean and the "

@@ -116,8 +116,9 @@ class ErrorModel:
         (a transverse delta-V, m/s), per burn.
     bplane_cov : tuple of 4 or 9 floats, optional
         The B-plane covariance: 2x2 of (B.R, B.T) in km, or 3x3 with the time of closest
-        approach (s) third; axes of the arrival's osculating hyperbola (T parallel to the
-        lunar equator of M-MME2000).
+        approach (s) third; in the B-plane of the arrival's osculating hyperbola about the
+        plan's ``arrival.bplane_reference`` (EME2000 by default; :func:`bplane_error`). A
+        ``--bplane-cov`` file is (B.T, B.R) unless labelled (:func:`read_covariance`).
     """
 
     thrust_sigma_pct: float = 0.0
@@ -230,17 +231,45 @@ def arrival_factor(cov) -> np.ndarray:
     return covariance_factor(cov, "arrival_cov")
 
 
+#: The quantities a B-plane covariance file may name in its ``order:`` line, and the order
+#: a file without one is read in: B.T, B.R (km), then the time of closest approach (s).
+BPLANE_LABELS = ("B.T", "B.R", "t")
+#: The order lunarcap keeps a B-plane covariance in (:attr:`ErrorModel.bplane_cov`).
+BPLANE_STORED = ("B.R", "B.T", "t")
+
+
+def _bplane_order(line: str, opt: str, p) -> tuple:
+    """The quantities of an ``order: B.T B.R [t]`` line of a B-plane covariance file."""
+    names = tuple(line.split(":", 1)[1].replace(",", " ").split())
+    if sorted(names) not in (sorted(BPLANE_LABELS[:2]), sorted(BPLANE_LABELS)):
+        raise InputError(f"{opt} {p}: the order line must name B.T and B.R (and t, the time "
+                         f"of closest approach), each once, got {line.strip()!r}")
+    return names
+
+
 def read_covariance(path, name: str = "arrival_cov") -> tuple:
-    """The covariance ``name`` from a text file (whitespace or commas; '#' comments)."""
+    """The covariance ``name`` from a text file (whitespace or commas; '#' comments).
+
+    A B-plane covariance (``bplane_cov``) is read in the order navigation teams write it,
+    (B.T, B.R) and then the time of closest approach, unless the file has a line
+    ``order: B.R B.T t`` (any order of those names, the matrix's size) saying its own;
+    it is returned in lunarcap's order :data:`BPLANE_STORED`. Its axes are the plan's
+    B-plane (``arrival.bplane_reference``, :func:`bplane_error`).
+    """
     opt = COVARIANCES[name][0]
     p = Path(path).expanduser()
     try:
         text = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(f"{opt} {p}: cannot read it ({exc})") from None
-    vals = []
+    vals, order = [], None
     for line in text.splitlines():
         line = line.split("#", 1)[0].replace(",", " ")
+        if name == "bplane_cov" and line.strip().lower().startswith("order:"):
+            if order is not None:
+                raise InputError(f"{opt} {p}: two order lines")
+            order = _bplane_order(line, opt, p)
+            continue
         try:
             vals += [float(t) for t in line.split()]
         except ValueError:
@@ -250,7 +279,16 @@ def read_covariance(path, name: str = "arrival_cov") -> tuple:
         raise InputError(f"{opt} {p}: the matrix has {' or '.join(str(s) for s in sizes)} "
                          f"numbers, the file has {len(vals)}")
     covariance_factor(vals, name)
-    return tuple(vals)
+    if name != "bplane_cov":
+        return tuple(vals)
+    m = math.isqrt(len(vals))
+    order = order or BPLANE_LABELS[:m]
+    if len(order) != m:
+        raise InputError(f"{opt} {p}: the order line names {len(order)} quantities, the "
+                         f"matrix is {m}x{m}")
+    idx = [order.index(q) for q in BPLANE_STORED[:m]]
+    c = np.reshape(vals, (m, m))[np.ix_(idx, idx)]
+    return tuple(float(v) for v in c.ravel())
 
 
 # ====================================================================== draws
@@ -323,10 +361,35 @@ def gates_errors(z: np.ndarray, model: ErrorModel, i: int, planned_delta_v_mps: 
     return ExecutionErrors(base.thrust_factor * f, base.isp_factor * f, tilt, base.ignition_s)
 
 
-def bplane_error(z: np.ndarray, model: ErrorModel) -> np.ndarray:
-    """The B-plane error (3,): B.R (km), B.T (km), time of closest approach (s)."""
+def bplane_error(z: np.ndarray, model: ErrorModel, plan=None) -> np.ndarray:
+    """The B-plane error (3,): B.R (km), B.T (km), time of closest approach (s).
+
+    Drawn from ``model.bplane_cov`` (L z, L L^T the covariance, in its stored order
+    :data:`BPLANE_STORED`) in the B-plane of the plan's ``arrival.bplane_reference``
+    (EME2000 by default: T = S x k / |S x k| with k the Earth's mean equator pole of
+    J2000, as GMAT's BdotT/BdotR; lunar-equator on request), and with ``plan`` given,
+    expressed in lunarcap's own axes, those the dispersed arrival is built in
+    (:func:`lunarcap.studies.dispersions.samples.fly_sample`): the same miss vector
+    B.R R + B.T T projected on the axes about the plan's lunar pole, at the nominal
+    arrival's asymptote (a rotation about S, 24 deg for the paper's arrival). Without
+    ``plan``: the draw in the covariance's own axes.
+    """
     if model.bplane_cov is None:
         return np.zeros(3)
     L = covariance_factor(model.bplane_cov, "bplane_cov")
     d = L @ np.asarray(z, float)[BPLANE: BPLANE + L.shape[0]]
-    return np.concatenate([d, np.zeros(3 - d.size)])
+    d = np.concatenate([d, np.zeros(3 - d.size)])
+    if plan is None or plan.arrival.bplane_reference == "lunar-equator" or not np.any(d[:2]):
+        return d
+    from lunarcap.capture.chain import perilune_epoch_state
+    from lunarcap.physics import constants as C
+    from lunarcap.physics.bplane import bplane_from_rv, reference_pole
+    from lunarcap.physics.elements import rv_from_mee
+
+    _, x0 = perilune_epoch_state(plan, 0)
+    r, v = (np.asarray(q, float) for q in rv_from_mee(*np.asarray(x0, float)[:6], C.MU_MOON))
+    given = bplane_from_rv(r, v, C.MU_MOON, reference_pole(plan.arrival.bplane_reference,
+                                                           "M-MME2000", plan.lunar_pole))
+    own = bplane_from_rv(r, v, C.MU_MOON)
+    miss = d[0] * given.r_hat + d[1] * given.t_hat
+    return np.array([miss @ own.r_hat, miss @ own.t_hat, d[2]])

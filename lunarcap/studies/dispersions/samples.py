@@ -368,7 +368,7 @@ def fly_sample(plan: CapturePlan, z, model: ErrorModel) -> dict:
     noms = nominal(plan)
     t_start, c_start = time.perf_counter(), time.process_time()
     d_arr, errs = realise(z, model, plan.n_burns)
-    d_b = bplane_error(z, model)
+    d_b = bplane_error(z, model, plan)
     out = {"status": "ok", "reason": "", "burns_flown": 0, "_t0": t_start, "_c0": c_start,
            "arrival_dr_km": float(np.linalg.norm(d_arr[:3])),
            "arrival_dv_mps": float(np.linalg.norm(d_arr[3:6])) * 1e3,
