@@ -41,7 +41,8 @@ FILE_KINDS = {"oem": "CCSDS OEM 2.0 (KVN): states, one segment per arc",
               "maneuvers": "one row per burn: ignition, duration, ΔV and its mean direction",
               "gmat_script": "GMAT script: each burn, then the whole capture, in GMAT",
               "gmat_gravity": "the lunar field the script reads (GMAT's COF format)",
-              "gmat_moon": "the Moon's states (SPK) for the script's fixed-pole Moon"}
+              "gmat_moon": "the Moon's states (SPK) for the script's fixed-pole Moon",
+              "gmat_runner": "the command that runs the script (a field in GMAT's Luna)"}
 
 
 def files_table(export) -> pd.DataFrame:

@@ -205,7 +205,8 @@ def settings_table(script: str, defaults: dict, costs: dict, facts: dict) -> pd.
 def files_table(files: dict) -> pd.DataFrame:
     """The GMAT files of a case, with a download link to each (served by the book)."""
     what = {"gmat_script": "the GMAT script", "gmat_gravity": "the gravity field it reads",
-            "gmat_moon": "the Moon's states it reads (SPK)"}
+            "gmat_moon": "the Moon's states it reads (SPK)",
+            "gmat_runner": "the command that runs it (a field in GMAT's Luna)"}
     return pd.DataFrame([{"file": Path(p).name, "what": what[k], "download":
                           f"{{download}}`{Path(p).name} <{paths.relative_to_page(Path(p))}>`"}
                          for k, p in files.items() if k in what])
