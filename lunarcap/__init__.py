@@ -31,9 +31,9 @@ def __getattr__(name):
         except PackageNotFoundError:  # a source tree without installation
             return "0+unknown"
     if name in __all__:
-        from lunarcap import api
+        import importlib
 
-        value = getattr(api, name)
+        value = getattr(importlib.import_module("lunarcap.api"), name)
         globals()[name] = value
         return value
     raise AttributeError(f"module 'lunarcap' has no attribute {name!r}")

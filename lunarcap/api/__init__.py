@@ -27,20 +27,33 @@ Examples
 (440.0, 'ellipse, 8 h')
 """
 
-from lunarcap.api.capture import BurnSolution, CaptureResult, GmatFlight, solve, solve_burn
-from lunarcap.api.plans import available, load_plan, paper_plan
-from lunarcap.api.studies import (
-    StudyResult,
-    burns,
-    dispersions,
-    engine_trade,
-    missed,
-    run_study,
-)
-from lunarcap.errors import InputError, LunarcapError, SolveError
-from lunarcap.mission.plan import CapturePlan, PlanError
+#: Where each public name is defined (imported when first asked for: the command line and
+#: the Dask workers import this package without paying for the plans' and studies' modules).
+_WHERE = {
+    "lunarcap.api.capture": ("BurnSolution", "CaptureResult", "GmatFlight", "solve",
+                             "solve_burn"),
+    "lunarcap.api.plans": ("available", "load_plan", "paper_plan"),
+    "lunarcap.api.studies": ("StudyResult", "burns", "dispersions", "engine_trade", "missed",
+                             "run_study"),
+    "lunarcap.errors": ("InputError", "LunarcapError", "SolveError"),
+    "lunarcap.mission.plan": ("CapturePlan", "PlanError"),
+}
+_MODULE = {name: module for module, names in _WHERE.items() for name in names}
 
-__all__ = ["BurnSolution", "CapturePlan", "CaptureResult", "GmatFlight", "InputError",
-           "LunarcapError", "PlanError", "SolveError", "StudyResult", "available", "burns",
-           "dispersions", "engine_trade", "load_plan", "missed", "paper_plan", "run_study",
-           "solve", "solve_burn"]
+__all__ = sorted(_MODULE)
+
+
+def __getattr__(name):
+    """A public name, imported from its module when first asked for."""
+    if name not in _MODULE:
+        raise AttributeError(f"module 'lunarcap.api' has no attribute {name!r}")
+    import importlib
+
+    value = getattr(importlib.import_module(_MODULE[name]), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    """The package's names and the public API's."""
+    return sorted(set(globals()) | set(__all__))

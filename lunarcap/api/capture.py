@@ -38,6 +38,29 @@ class CaptureResult(Result):
         burn was verified.
     after_days : float or None
         The days asked (the document then has an ``after`` record, null if not computed).
+
+    Examples
+    --------
+    The plan of :func:`solve`'s example (read from the cache), its document, its figure
+    and its OEM:
+
+    >>> import tempfile, lunarcap
+    >>> res = lunarcap.solve(lunarcap.load_plan("two-burn-8h", dynamics="two-body"),
+    ...                      impulsive=False)
+    >>> res
+    <CaptureResult two-burn-8h: 2 of 2 burn(s), 890.253 m/s, verified>
+    >>> doc = res.to_dict()
+    >>> doc["complete"], doc["burns"][1]["target_orbit"], doc["totals"]["all_verified"]
+    (True, 'circle', True)
+    >>> len(res.plot().axes)
+    1
+    >>> ex = res.export(tempfile.mkdtemp(), formats=["oem"])
+    >>> [p.name for p in ex.files.values()]
+    ['two-burn-8h.oem']
+    >>> res.export(tempfile.mkdtemp(), formats=["kml"])  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    lunarcap.errors.InputError: formats: ['kml'] not among the registered writers (oem, ...)
     """
 
     def __init__(self, plan, burns, after=None, after_days=None):
@@ -212,7 +235,9 @@ def solve(plan, *, impulsive: bool = True, after_days: float | None = None,
     --------
     Two burns in two-body dynamics (seconds; read back from the disk cache once solved):
 
-    >>> res = solve(load_plan("two-burn-8h", dynamics="two-body"), impulsive=False)
+    >>> import lunarcap
+    >>> plan = lunarcap.load_plan("two-burn-8h", dynamics="two-body")
+    >>> res = lunarcap.solve(plan, impulsive=False)
     >>> res.verified, round(res.totals()["total_delta_v_mps"], 2)
     (True, 890.25)
     >>> res.to_frame()[["burn", "delta_v_mps", "burn_duration_min"]].round(1)
@@ -326,10 +351,12 @@ def solve_burn(plan, burn: int = 1, *, start=None, previous_starts=None,
     --------
     The second burn of the plan of :func:`solve`'s example (its first read from the cache):
 
-    >>> b = solve_burn(load_plan("two-burn-8h", dynamics="two-body"), 2, impulsive=False)
+    >>> import lunarcap
+    >>> plan = lunarcap.load_plan("two-burn-8h", dynamics="two-body")
+    >>> b = lunarcap.solve_burn(plan, 2, impulsive=False)
     >>> b.verified, round(b.row()["delta_v_mps"], 2), b.document()["target_orbit"]
     (True, 454.83, 'circle')
-    >>> solve_burn("two-burn-8h", 3)
+    >>> lunarcap.solve_burn("two-burn-8h", 3)
     Traceback (most recent call last):
     ...
     lunarcap.errors.InputError: --burn 3: plan two-burn-8h has burns 1 to 2

@@ -68,13 +68,14 @@ def load_plan(source, *, thrust_N=None, isp_s=None, mass_kg=None, hemisphere=Non
 
     Examples
     --------
-    >>> plan = load_plan("two-burn-8h", thrust_N=440, isp_s=321, mass_kg=900,
-    ...                  dynamics="two-body")
+    >>> import lunarcap
+    >>> plan = lunarcap.load_plan("two-burn-8h", thrust_N=440, isp_s=321, mass_kg=900,
+    ...                           dynamics="two-body")
     >>> plan.name, plan.engine.thrust_N, plan.arrival.mass_kg, plan.dynamics
     ('two-burn-8h', 440.0, 900.0, 'two-body')
-    >>> load_plan(plan, targets=[{"target_period_h": 6}, None]).burns[0].describe()
+    >>> lunarcap.load_plan(plan, targets=[{"target_period_h": 6}, None]).burns[0].describe()
     'ellipse, 6 h'
-    >>> load_plan("two-burn-8h", mass_kg=-5)
+    >>> lunarcap.load_plan("two-burn-8h", mass_kg=-5)
     Traceback (most recent call last):
     ...
     lunarcap.mission.plan_checks.PlanError: arrival.mass_kg: must be positive (kg), got -5
@@ -133,10 +134,11 @@ def paper_plan(thrust_N: float = 150.0, isp_s: float = 200.0, starts=None,
 
     Examples
     --------
-    >>> p = paper_plan(300, 250)
+    >>> import lunarcap
+    >>> p = lunarcap.paper_plan(300, 250)
     >>> p.name, [b.start_min for b in p.burns]
     ('song2011-300N', [-4.0, -3.0, -2.0])
-    >>> paper_plan(200, 230).burns[0].start_min
+    >>> lunarcap.paper_plan(200, 230).burns[0].start_min
     'free'
     """
     return _paper_plan(thrust_N, isp_s, starts=starts, dynamics=dynamics)
@@ -155,7 +157,8 @@ def available() -> dict:
 
     Examples
     --------
-    >>> a = available()
+    >>> import lunarcap
+    >>> a = lunarcap.available()
     >>> a["studies"], a["export_formats"][:2], a["dynamics"]["presets"]
     (['study', 'burns', 'missed', 'dispersions'], ['oem', 'spk'], ['full', 'j2', 'two-body'])
     >>> "two-burn-8h" in a["plans"], "degree" in a["dynamics"]["keys"]

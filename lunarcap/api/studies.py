@@ -18,7 +18,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 
-from lunarcap.api.plans import load_plan
 from lunarcap.api.results import Result
 from lunarcap.errors import InputError
 
@@ -153,15 +152,19 @@ def run_study(name: str, plan=None, *, workers: int = 2, scheduler: str | None =
 
     Examples
     --------
-    >>> run_study("missed", "two-burn-8h", fractions=[1.5])
+    Bad input is refused before any work, with the command line's message:
+
+    >>> import lunarcap
+    >>> lunarcap.run_study("missed", "two-burn-8h", fractions="0.5,1.5")
     Traceback (most recent call last):
     ...
-    lunarcap.errors.InputError: --fractions[1]: 1.5 is above the largest allowed, 1
-    >>> run_study("landing", "two-burn-8h")  # doctest: +ELLIPSIS
+    lunarcap.errors.InputError: --fractions: 1.5 is above the largest allowed, 1
+    >>> lunarcap.run_study("landing", "two-burn-8h")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
     lunarcap.errors.InputError: study 'landing': not a registered study (study, burns, ...)
     """
+    from lunarcap.api.plans import load_plan
     from lunarcap.studies.registry import studies
 
     known = studies()
@@ -204,13 +207,20 @@ def missed(plan, *, burn: int | None = None, fractions=None, delays_min=None, la
 
     Examples
     --------
-    A half-way cut-off of the first burn, recovered at once (two-body: seconds, cached):
+    A half-way cut-off of the first burn, the recovery window open at once. Not run as a
+    doctest (skipped): a local Dask cluster starts and the case re-plans the capture, 10 to
+    40 s (tests/api/test_api_cli.py runs it):
 
-    >>> plan = load_plan("two-burn-8h", dynamics="two-body")
-    >>> r = missed(plan, fractions=[0.5], delays_min=[0], workers=1)  # doctest: +SKIP
+    >>> import lunarcap
+    >>> plan = lunarcap.load_plan("two-burn-8h", dynamics="two-body")
+    >>> r = lunarcap.missed(plan, fractions=[0.5], delays_min=[0], workers=1)  # doctest: +SKIP
     >>> r.to_frame()[["fraction", "delay_min", "status"]]  # doctest: +SKIP
        fraction  delay_min     status
     0       0.5        0.0  recovered
+    >>> lunarcap.missed(plan, burn=3)
+    Traceback (most recent call last):
+    ...
+    lunarcap.errors.InputError: --burn 3: plan two-burn-8h has burns 1 to 2
     """
     return run_study("missed", plan, **_given(burn=burn, fractions=fractions,
                                               delays_min=delays_min, late_min=late_min,
@@ -229,7 +239,11 @@ def burns(plan, *, counts=None, max_period_h: float | None = None,
 
     Examples
     --------
-    >>> burns("two-burn-8h", counts=[0])
+    Not run here (a Dask cluster and N solves, minutes): ``lunarcap.burns(plan,
+    counts=[1, 2, 3]).to_frame()`` gives one row per count. Bad input:
+
+    >>> import lunarcap
+    >>> lunarcap.burns("two-burn-8h", counts=[0])
     Traceback (most recent call last):
     ...
     lunarcap.errors.InputError: --counts: must be an integer >= 1, got 0
@@ -256,7 +270,15 @@ def dispersions(plan, *, samples: int | None = None, seed: int | None = None, **
 
     Examples
     --------
-    >>> dispersions("two-burn-8h", samples=0)
+    Not run here (skipped: a Dask cluster and re-planned burns per sample, 10 to 40 s;
+    tests/api/test_api_cli.py runs two samples):
+
+    >>> import lunarcap
+    >>> plan = lunarcap.load_plan("two-burn-8h", dynamics="two-body")
+    >>> d = lunarcap.dispersions(plan, samples=2, thrust_sigma_pct=1)  # doctest: +SKIP
+    >>> d.to_dict()["summary"]["nominal_delta_v_mps"]  # doctest: +SKIP
+    890.2529...
+    >>> lunarcap.dispersions(plan, samples=0)
     Traceback (most recent call last):
     ...
     lunarcap.errors.InputError: --samples: must be an integer >= 1, got 0
@@ -278,7 +300,11 @@ def engine_trade(*, thrust_min_N: float | None = None, thrust_max_N: float | Non
 
     Examples
     --------
-    >>> engine_trade(points=1)
+    Not run here (a Dask cluster and four solves per engine, minutes in full dynamics):
+    ``lunarcap.engine_trade(points=6, dynamics="two-body").plot()``. Bad input:
+
+    >>> import lunarcap
+    >>> lunarcap.engine_trade(points=1)
     Traceback (most recent call last):
     ...
     lunarcap.errors.InputError: --points: must be an integer >= 2, got 1
