@@ -204,7 +204,7 @@ class CaptureResult(Result):
 
 
 def solve(plan, *, impulsive: bool = True, after_days: float | None = None,
-          verbose: bool = False, on_burn=None) -> CaptureResult:
+          verbose: bool = False, on_burn=None, use_cache: bool = True) -> CaptureResult:
     """Solve and verify every burn of a plan, in order (``lunarcap plan``).
 
     Parameters
@@ -219,6 +219,8 @@ def solve(plan, *, impulsive: bool = True, after_days: float | None = None,
         Progress lines on stderr.
     on_burn : callable(BurnResult), optional
         Called as each burn is verified (what is done is kept if a later one fails).
+    use_cache : bool
+        False: every burn solved again, the earlier ones included (``--no-cache``).
 
     Returns
     -------
@@ -250,9 +252,19 @@ def solve(plan, *, impulsive: bool = True, after_days: float | None = None,
                                                   positive=True)
     from lunarcap.capture.chain import after_capture, plan_result
 
-    res = plan_result(plan, impulsive=impulsive, verbose=verbose, on_burn=on_burn)
-    after = after_capture(res, days) if days and res.totals()["all_verified"] else None
+    with _cache(use_cache):
+        res = plan_result(plan, impulsive=impulsive, verbose=verbose, on_burn=on_burn)
+        after = after_capture(res, days) if days and res.totals()["all_verified"] else None
     return CaptureResult(plan, res.burns, after, days)
+
+
+def _cache(use_cache: bool):
+    """The cache switch off for the block if ``use_cache`` is False, else left as it is."""
+    import contextlib
+
+    from lunarcap.repro.cache import caching
+
+    return caching(False) if use_cache is False else contextlib.nullcontext()
 
 
 class BurnSolution(Result):
@@ -324,7 +336,7 @@ class BurnSolution(Result):
 
 def solve_burn(plan, burn: int = 1, *, start=None, previous_starts=None,
                steering: str = "optimal", impulsive: bool = True,
-               verbose: bool = False) -> BurnSolution:
+               verbose: bool = False, use_cache: bool = True) -> BurnSolution:
     """Solve and verify one burn of a plan (``lunarcap solve``); earlier burns first.
 
     Parameters
@@ -338,7 +350,7 @@ def solve_burn(plan, burn: int = 1, *, start=None, previous_starts=None,
         The earlier burns' ignitions (default the plan's).
     steering : {"optimal", "inertial", "antivelocity"}
         This burn's steering law (the earlier burns keep the plan's).
-    impulsive, verbose : bool
+    impulsive, verbose, use_cache : bool
         As :func:`solve`.
 
     Raises
@@ -378,7 +390,8 @@ def solve_burn(plan, burn: int = 1, *, start=None, previous_starts=None,
         plan = plan.with_start(n - 1, start)
     if steering != "optimal":
         plan = plan.with_steering(n - 1, steering)
-    return BurnSolution(plan, n, _solved_burn(plan, n, impulsive, verbose))
+    with _cache(use_cache):
+        return BurnSolution(plan, n, _solved_burn(plan, n, impulsive, verbose))
 
 
 def _solved_burn(plan, n: int, impulsive: bool, verbose: bool):
@@ -451,12 +464,21 @@ class GmatFlight(Result):
         t = self.to_frame()
         fig, ax = plt.subplots(figsize=(FIG_WIDTH_IN, 3.6), layout="constrained")
         for k, (kind, g) in enumerate(t.groupby("flown", sort=False)):
-            ax.plot([f"{b} {e}" for b, e in zip(g.burn, g.event)],
+            ax.plot([_event_name(b, e) for b, e in zip(g.burn, g.event)],
                     g.position_diff_m.clip(lower=1e-6), "o", color=OTHER_COLOURS[k], label=kind)
         ax.set_yscale("log")
         ax.set_ylabel("GMAT − lunarcap position (m)")
-        ax.set_xlabel("burn and event")
+        ax.set_xlabel("event (arrival, each burn's ignition and cut-off, the end)")
         ax.tick_params(axis="x", rotation=60)
         ax.legend()
         ax.grid(alpha=0.3)
         return fig
+
+
+def _event_name(burn: int, event: int) -> str:
+    """An event of a GMAT report in words: "arrival", "2 ignition", "2 cut-off", "end"."""
+    from lunarcap.exchange.gmat import CUTOFF, END, IGNITION
+
+    if burn == 0 and event == IGNITION:
+        return "arrival"
+    return {IGNITION: f"{burn} ignition", CUTOFF: f"{burn} cut-off", END: "end"}[event]
