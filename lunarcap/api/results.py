@@ -69,7 +69,11 @@ class Result:
         raise NotImplementedError
 
     def plot(self):
-        """The result's figure (matplotlib), in the book's palette."""
+        """The result's figure (matplotlib), in the book's palette.
+
+        Drawn by the book's figure modules (:mod:`lunarcap.report.figures`), whose style
+        module sets matplotlib's font sizes (10 pt text, 9 pt ticks) when first imported.
+        """
         raise NotImplementedError
 
     def export(self, directory) -> dict:

@@ -11,6 +11,10 @@ address). A study added to the registry is run here with no change. :func:`misse
 :func:`burns`, :func:`dispersions` and :func:`engine_trade` name the options of the
 packaged studies. The command line runs a study the same way
 (:func:`run_prepared`), so the API and ``lunarcap <study> --json`` give the same document.
+
+In a notebook a study runs as it is; in a script, call it under ``if __name__ ==
+"__main__":``, since the local cluster's worker processes import the script's main module
+(without the guard each would run the script again and the cluster would not start).
 """
 
 from __future__ import annotations
