@@ -477,7 +477,8 @@ def write_files(flown: FlownCapture, writers: dict | None = None) -> dict:
 
 def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFAULT_OBJECT_ID,
                 coast_step_s: float = COAST_STEP_S, burn_step_s: float = BURN_STEP_S,
-                approach_min: float = APPROACH_MIN, after=None) -> Export:
+                approach_min: float = APPROACH_MIN, after=None, writers: dict | None = None
+                ) -> Export:
     """Write the files of every registered writer for a solved plan into ``out_dir``.
 
     The writers (:data:`lunarcap.capture.writers.WRITERS`, in order: OEM, SPK, attitude,
@@ -499,6 +500,8 @@ def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFA
         The final orbit's evolution from the last cut-off
         (:func:`lunarcap.capture.chain.after_capture`): the files then go on to its end
         (:func:`after_segment`).
+    writers : dict, optional
+        ``{name: write}``, a selection of the registered writers (default all).
 
     Raises
     ------
@@ -514,7 +517,7 @@ def export_plan(result, out_dir, time_system: str = "TDB", object_id: int = DEFA
     start = time.perf_counter()
     flown = flown_capture(result, out, time_system, object_id, (coast_step_s, burn_step_s),
                           approach_min, after)
-    files = write_files(flown)
+    files = write_files(flown, writers)
     seconds = time.perf_counter() - start
     sizes = {k: Path(p).stat().st_size for k, p in files.items()}
     return Export(files, sizes, seconds, object_id, flown.time_system, flown.report)

@@ -25,6 +25,16 @@ from lunarcap.cli.plans import cmd_plans
 from lunarcap.cli.solve import cmd_solve
 from lunarcap.errors import InputError, LunarcapError, SolveError
 
+#: The exit status of each error type, the first the error is an instance of: bad input 2,
+#: a solve that did not converge or failed verification 3 (the API raises the same types).
+EXIT_STATUS = ((InputError, 2), (SolveError, 3), (LunarcapError, 2))
+
+
+def exit_status(exc: LunarcapError) -> int:
+    """The command line's exit status for ``exc`` (:data:`EXIT_STATUS`)."""
+    return next(code for cls, code in EXIT_STATUS if isinstance(exc, cls))
+
+
 #: lunarcap's own commands (the studies' follow them, :mod:`lunarcap.studies.registry`).
 COMMANDS = {"plan": cmd_plan, "solve": cmd_solve, "impulsive": cmd_impulsive,
             "plans": cmd_plans, "bench": cmd_bench}
@@ -112,15 +122,9 @@ def _run(args) -> int:
         import os
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
-    except InputError as exc:
+    except LunarcapError as exc:   # bad input or a failed solve: one line, its status
         print(f"lunarcap: error: {exc}", file=sys.stderr)
-        return 2
-    except SolveError as exc:
-        print(f"lunarcap: error: {exc}", file=sys.stderr)
-        return 3
-    except LunarcapError as exc:
-        print(f"lunarcap: error: {exc}", file=sys.stderr)
-        return 2
+        return exit_status(exc)
     except KeyboardInterrupt:  # Ctrl-C (a study's says how to resume: _resumable)
         print("lunarcap: interrupted", file=sys.stderr)
         return 130

@@ -1,38 +1,24 @@
 """What every command does with its parsed arguments: the plan they name, the JSON it prints.
 
 :func:`plan_from_args` reads the plan (a file or a packaged name, or the paper's capture)
-and applies the options that override its fields; :func:`print_json` prints a document
-with NaN and infinities as null (strict JSON) and numpy scalars as numbers.
+and applies the options that override its fields, through the public API's
+:func:`lunarcap.api.load_plan`; :func:`print_json` prints a document as the API's results
+write it (:func:`lunarcap.api.results.dumps`: NaN and infinities as null, numpy scalars as
+numbers).
 """
 
 from __future__ import annotations
 
-import json
-import math
-from dataclasses import replace
-from pathlib import Path
+from lunarcap.api.results import dumps
 
 #: The plan field each overriding option sets, to name the option when the plan refuses it.
 _OVERRIDES = {"--thrust": ("thrust", "engine.thrust_N"), "--isp": ("isp", "engine.isp_s"),
               "--mass": ("mass", "arrival.mass_kg"), "--starts": ("starts", "burns[")}
 
 
-def jsonable(obj):
-    """``obj`` with numpy scalars as Python numbers and non-finite floats as None."""
-    if isinstance(obj, dict):
-        return {k: jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [jsonable(v) for v in obj]
-    if hasattr(obj, "item"):
-        obj = obj.item()
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
-
-
 def print_json(doc: dict) -> None:
-    """Print a ``--json`` document (2-space indent, strict JSON: see :func:`jsonable`)."""
-    print(json.dumps(jsonable(doc), indent=2))
+    """Print a ``--json`` document (2-space indent, strict JSON)."""
+    print(dumps(doc))
 
 
 def plan_from_args(args):
@@ -41,12 +27,20 @@ def plan_from_args(args):
     A value the plan refuses because of an option is reported with the option first:
     ``--mass (arrival.mass_kg): 700000 kg is above ...``.
     """
-    from lunarcap.mission.plan import PlanError, load_plan
+    from lunarcap.api import load_plan, paper_plan
+    from lunarcap.mission.plan import PlanError
 
     source = getattr(args, "plan", None)
     plan = None if source is None else load_plan(source)
     try:
-        return _with_overrides(plan, args)
+        if plan is None:   # the paper's capture, with the engine asked
+            plan, thrust, isp = paper_plan(args.thrust or 150.0, args.isp or 200.0), None, None
+        else:
+            thrust, isp = args.thrust, args.isp
+        return load_plan(plan, thrust_N=thrust, isp_s=isp, mass_kg=args.mass,
+                         hemisphere=args.hemisphere, dynamics=args.dynamics,
+                         ephemeris=args.ephemeris, lunar_pole=args.lunar_pole,
+                         starts=getattr(args, "starts", None))
     except PlanError as exc:
         msg = str(exc)
         for opt, (dest, field) in _OVERRIDES.items():
@@ -54,30 +48,3 @@ def plan_from_args(args):
                 raise PlanError(f"{opt} ({msg.split(': ', 1)[0]}): {msg.split(': ', 1)[1]}") \
                     from None
         raise
-
-
-def _with_overrides(plan, args):
-    """``plan`` (None: the paper's, with the engine asked) with the options' values set."""
-    from lunarcap.mission.plan import paper_plan
-
-    if plan is None:
-        plan = paper_plan(args.thrust or 150.0, args.isp or 200.0)
-    elif args.thrust is not None or args.isp is not None:
-        plan = plan.with_engine(args.thrust or plan.engine.thrust_N,
-                                args.isp or plan.engine.isp_s, name=plan.name)
-    arrival = plan.arrival
-    if args.mass is not None:
-        arrival = replace(arrival, mass_kg=args.mass)
-    if args.hemisphere is not None:
-        arrival = replace(arrival, hemisphere=args.hemisphere)
-    if arrival != plan.arrival:
-        plan = replace(plan, arrival=arrival)
-    if args.dynamics is not None:
-        plan = plan.with_dynamics(args.dynamics)
-    if args.ephemeris is not None:
-        plan = replace(plan, ephemeris=str(Path(args.ephemeris).expanduser().resolve()))
-    if args.lunar_pole is not None:
-        plan = plan.with_lunar_pole(args.lunar_pole)
-    if getattr(args, "starts", None) is not None:
-        plan = plan.with_starts(args.starts)
-    return plan

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import sys
 
-from lunarcap.cli.args import plan_from_args, print_json
+from lunarcap.cli.args import plan_from_args
 from lunarcap.physics.constants import R_MOON
 
 
@@ -74,14 +74,14 @@ def print_totals(tot: dict) -> None:
 
 def cmd_plan(args) -> int:
     """Solve and verify every burn of a capture plan; print each burn and the totals."""
-    from lunarcap.capture.chain import PlanResult, after_capture, plan_result
+    from lunarcap.api import CaptureResult, solve
 
     plan = plan_from_args(args)
     if args.export:   # before any solve: a directory that cannot be written is refused
         from lunarcap.capture.export import check_export_dir
 
         check_export_dir(args.export, "--export")
-    done, after = [], None
+    done, res = [], None
 
     def on_burn(b):
         done.append(b)
@@ -91,27 +91,19 @@ def cmd_plan(args) -> int:
     if not args.json:
         print_plan_header(plan)
     try:
-        res = plan_result(plan, impulsive=not args.no_impulsive, verbose=not args.quiet,
-                          on_burn=on_burn)
-        if args.after_days and res.totals()["all_verified"]:
-            after = after_capture(res, args.after_days)
+        res = solve(plan, impulsive=not args.no_impulsive, after_days=args.after_days,
+                    verbose=not args.quiet, on_burn=on_burn)
     finally:
-        if args.json:
-            partial = PlanResult(plan, done)
-            out = {"plan": plan.to_dict(), "complete": len(done) == plan.n_burns,
-                   "burns": [b.row() | {"target_orbit": plan.burns[i].describe()}
-                             for i, b in enumerate(done)],
-                   "totals": partial.totals() if done else None}
-            if args.after_days:
-                out["after"] = after.to_dict() if after is not None else None
-            print_json(out)
+        if args.json:   # what was done, even if a solve failed
+            print(res.to_json() if res is not None else
+                  CaptureResult(plan, done, None, args.after_days).to_json())
     if not args.json:
         print_totals(res.totals())
-        if after is not None:
-            _print_after(after)
+        if res.after is not None:
+            _print_after(res.after)
     if args.export:
         if all(b.solution.verification.passed for b in res.burns):
-            _export_plan(res, args, after)
+            _export_plan(res, args)
         else:
             print("lunarcap: error: not exported: a burn failed verification", file=sys.stderr)
             return 3
@@ -132,15 +124,12 @@ def _print_after(after) -> None:
               f"{after.inclination_deg[j]:.4f} deg")
 
 
-def _export_plan(res, args, after=None) -> None:
+def _export_plan(res, args) -> None:
     """Write the plan's OEM, SPK, attitude and maneuver files (``--export DIR``).
 
-    With ``after`` (``--after-days``), the OEM and the SPK go on to its end.
+    With ``--after-days``, the OEM and the SPK go on to the evolution's end.
     """
-    from lunarcap.capture.export import export_plan
-
-    ex = export_plan(res, args.export, time_system=args.time_system, object_id=args.spk_id,
-                     after=after)
+    ex = res.export(args.export, time_system=args.time_system, object_id=args.spk_id)
     out = sys.stderr if args.json else sys.stdout
     print(f"Exported in {ex.seconds:.2f} s ({ex.time_system}, SPK object ID {ex.object_id}; "
           f"OEM interpolation within {ex.max_interpolation_error_m:.2g} m):", file=out)

@@ -2,16 +2,18 @@
 
 Every study (:data:`lunarcap.studies.registry.STUDIES`) becomes a command through
 :func:`command`: the plan its arguments name (overrides applied), the run its
-``prepare`` makes of them, then :func:`report`: the run (Ctrl-C is one line, status 130,
-the finished cases kept in its table), its ``--json`` document or its text, and status 0
-when every case has an answer, 3 otherwise.
+``prepare`` makes of them, then :func:`report`: the run, through the public API's
+:func:`lunarcap.api.studies.run_prepared` as :func:`lunarcap.run_study` runs it (Ctrl-C
+is one line, status 130, the finished cases kept in its table), the result's ``--json``
+document or its text, and status 0 when every case has an answer, 3 otherwise.
 """
 
 from __future__ import annotations
 
 import sys
 
-from lunarcap.cli.args import plan_from_args, print_json
+from lunarcap.api.studies import run_prepared
+from lunarcap.cli.args import plan_from_args
 from lunarcap.studies.registry import StudyRun
 
 
@@ -29,16 +31,16 @@ def _resumable(run, unit: str):
         return None, 130
 
 
-def report(args, study_run: StudyRun) -> int:
-    """Run ``study_run`` and report it (``--json`` or text); the exit status."""
-    res, status = _resumable(study_run.run, study_run.units)
+def report(args, study_run: StudyRun, name: str | None = None, plan=None) -> int:
+    """Run ``study_run`` and report it (``--json`` or text); the exit status.
+
+    ``name``, ``plan``: the study's command and plan, kept with the result.
+    """
+    res, status = _resumable(lambda: run_prepared(study_run, name, plan), study_run.units)
     if status:
         return status
-    if getattr(args, "json", False):
-        print_json(study_run.document(res))
-    else:
-        print(study_run.text(res))
-    return 0 if study_run.answered(res) else 3
+    print(res.to_json() if getattr(args, "json", False) else res.text())
+    return 0 if res.answered else 3
 
 
 def run_study(args, study, run, head: dict | None = None, extra=None, **context) -> int:
@@ -55,7 +57,7 @@ def command(study):
     """The function running the registered ``study`` (a ``StudyCommand``) from its arguments."""
     def run(args) -> int:
         plan = plan_from_args(args) if study.plan else None
-        return report(args, study.prepare(args, plan))
+        return report(args, study.prepare(args, plan), study.name, plan)
 
     run.__doc__ = f"``lunarcap {study.name}``: {study.help}."
     return run

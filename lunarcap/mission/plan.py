@@ -392,6 +392,33 @@ class CapturePlan:
         """
         return replace(self, dynamics=dynamics)
 
+    def with_mass(self, mass_kg: float) -> "CapturePlan":
+        """The same plan with another mass at the arrival, kg (checked like the file's).
+
+        A plan that starts from a known state (:class:`Start`) keeps that state's mass.
+        """
+        return replace(self, arrival=replace(self.arrival, mass_kg=mass_kg))
+
+    def with_targets(self, targets) -> "CapturePlan":
+        """The same plan with the orbit each burn must reach replaced (one per burn).
+
+        Each target is written as in a plan file's burn, without ``start_min``:
+        ``{"target_period_h": 8}``, ``{"target_apolune_altitude_km": 3000}``,
+        ``{"target": "circular"}`` (``coast_min`` optional), or ``{"target":
+        {"perilune_altitude_km": 100, "apolune_altitude_km": 300}}``; None keeps the burn's.
+        Read by the plan file's reader, so an error names the field as a file would
+        (``burns[2].target_period_h: ...``); ignitions and steering are kept.
+        """
+        from lunarcap.mission.plan_io import burn_with_target
+
+        targets = list(targets)
+        if len(targets) != self.n_burns:
+            raise err("burns", f"{self.n_burns} targets expected (one per burn), got "
+                                f"{len(targets)}")
+        burns = tuple(b if t is None else burn_with_target(i, b, t)
+                      for i, (b, t) in enumerate(zip(self.burns, targets)))
+        return replace(self, burns=burns)
+
     def with_start(self, i: int, start_min) -> "CapturePlan":
         """The same plan with burn ``i`` (0-based) igniting at ``start_min`` (or 'free')."""
         self._index(i)

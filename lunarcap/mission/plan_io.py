@@ -359,6 +359,23 @@ def _arrival_dict(plan) -> dict:
     return out | ref
 
 
+#: The keys of a plan file's burn that say its target (the rest: ignition and steering).
+TARGET_KEYS = ("target", "target_period_h", "target_apolune_altitude_km", "coast_min")
+
+
+def burn_with_target(i: int, b, target: dict):
+    """Burn ``i`` (0-based) ``b`` with the target keys of ``target`` instead of its own.
+
+    ``target``: a plan file burn's target keys (:data:`TARGET_KEYS`); read by the file's
+    reader (:func:`_burn`), so errors name ``burns[i].<key>``.
+    """
+    if not isinstance(target, dict) or not target or set(target) - set(TARGET_KEYS):
+        raise err(f"burns[{i + 1}]", f"a target is a mapping of {', '.join(TARGET_KEYS)}, "
+                                     f"got {target!r}")
+    row = {k: v for k, v in _burn_dict(b).items() if k not in TARGET_KEYS}
+    return _burn(i, row | target)
+
+
 def _burn_dict(b) -> dict:
     row = {}
     if b.target == CIRCULAR:
