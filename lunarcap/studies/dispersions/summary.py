@@ -140,8 +140,11 @@ def _first(df, column: str) -> float:
 
 
 def _interval(sorted_values: np.ndarray, q: float, level: float, antithetic: bool) -> tuple:
-    """The distribution-free interval of the q-quantile (-inf/inf: unbounded; NaN:
-    antithetic samples, which order statistics do not cover)."""
+    """The distribution-free interval of the q-quantile of sorted values.
+
+    -inf/inf where a side is unbounded; NaN on antithetic samples, which order statistics
+    do not cover.
+    """
     n = sorted_values.size
     if antithetic or not n:
         return (math.nan, math.nan)
