@@ -453,6 +453,35 @@ def _show_budget(page: Page, budget, tables: dict, samples: int, seed: int,
         "Every sample not captured or not corrected, with its reason."), floatfmt=".0f")
 
 
+def _counts_note(page: Page, bounded: bool) -> str:
+    """What this run's sample counts support (the 99 % point, or the count it needs)."""
+    t = page.text
+    if bounded:
+        return (f"{t('n_samples', '.0f')} samples per engine bound the 99 % point: its "
+                f"distribution-free 95 % interval from order statistics has both ends from "
+                f"{t('samples_needed_p99', '.0f')} samples on, and the page prints it.")
+    return (f"{t('n_samples', '.0f')} samples per engine bound no 99 % point: its "
+            f"distribution-free 95 % interval needs {t('samples_needed_p99', '.0f')} samples "
+            f"before it has an upper end, so the page prints the mean and the costliest "
+            f"sample instead and says what the percentile needs.")
+
+
+def _budget_note(page: Page, bounded: bool) -> str:
+    """The budget's sentence: the 99 % points with and without the trim, or the largest."""
+    engines = [(n, f"{n} N") for n in (150, 300, 450)]
+    if bounded:
+        with_trim = page.listing([(f"p99_above_{n}N", lab) for n, lab in engines], ".2f",
+                                 " m/s")
+        burns = page.listing([(f"p99_burns_above_{n}N", lab) for n, lab in engines], ".2f",
+                             " m/s")
+        return (f"The 99 % point of the ΔV above the nominal, trim included, is {with_trim}; "
+                f"the burns alone would read {burns}, a budget that leaves the final "
+                f"orbit's error uncorrected.")
+    worst = page.listing([(f"max_above_{n}N", lab) for n, lab in engines], ".2f", " m/s")
+    return (f"The costliest sample, trim included, lies {worst} above the nominal: not a "
+            f"99 % budget, which needs {page.text('samples_needed_p99', '.0f')} samples.")
+
+
 def _values(page: Page, model, sig: dict, rows: list, budget, tables: dict, runs: list,
             samples: int, seed: int, dynamics: str) -> None:
     """The numbers the page's prose quotes (glue)."""
@@ -480,8 +509,10 @@ def _values(page: Page, model, sig: dict, rows: list, budget, tables: dict, runs
         page.value(f"trim_median_{tag}", r["trim_p50_mps"])
         page.value(f"final_max_rp_{tag}", r["final_max_abs_rp_error_km"])
         page.value(f"final_rms_rp_{tag}", r["final_rms_rp_error_km"])
-    page.value("trim_top_what", "the 99 % point" if all(r["samples"] >= need for r in rows)
-               else "the largest sample")
+    bounded = all(r["samples"] >= need for r in rows)
+    page.value("trim_top_what", "the 99 % point" if bounded else "the largest sample")
+    page.note("counts_note", _counts_note(page, bounded))
+    page.note("budget_note", _budget_note(page, bounded))
     page.value("median_sample_s", float(budget.median_sample_s.median()))
     page.value("median_sample_cpu_s", float(budget.median_sample_cpu_s.median()))
     every = pd.concat(tables.values())
