@@ -26,8 +26,11 @@ with any direction (RTN components), placed and sized for the least total delta-
 2. *Correction, in the plan's dynamics.* The two impulses are flown (coast from ``t0``,
    impulse, coast, impulse, coast to the check epoch) with the plan's force model and
    CVODES (rtol 1e-13), and corrected by a chord iteration that keeps the design's
-   Jacobian (each step again the least |dv1| + |dv2| meeting the linearised
-   conditions), until the orbit at the check epoch passes the verification gate
+   Jacobian (each step the smallest change of the impulses that cancels the residual to
+   first order: a correction of a few tenths of m/s, so the pair stays the least
+   delta-V to second order; re-optimising the split at each step instead let a pair at
+   one place a revolution apart trade delta-V back and forth, 10 steps short of the
+   gate), until the orbit at the check epoch passes the verification gate
    (:mod:`lunarcap.optim.gate`: perilune and apolune radii within 10 m, 50 m for an
    ellipse's apolune, its period within 0.5 s, the inclination within 1e-4 deg), or
    :data:`MAX_ITERATIONS` steps fail (an error with the residuals, never a number).
@@ -365,9 +368,6 @@ def trim_orbit(model, target: Target, t0_s: float, x0, reference, isp_s: float) 
                         float(x0[MASS] - xc[MASS]), ((t1, x[:3].copy()), (t2, x[3:].copy())),
                         t_c, {k: err[k] for k in ("rp_error_m", "ra_error_m", "inc_error_deg",
                                                   "period_error_s")}, it)
-        x_new, _ = least_delta_v(A, A @ x - conditions(xc, ref, circular), start=x)
-        if x_new is None:
-            break
-        x = x_new
+        x = x + np.linalg.lstsq(A, -conditions(xc, ref, circular), rcond=None)[0]
     raise TrimFailed(f"the trim to the final orbit misses it after {MAX_ITERATIONS} "
                      f"corrections in the plan's dynamics: " + "; ".join(fails))
