@@ -152,7 +152,8 @@ def budget_row(plan, table: pd.DataFrame) -> dict:
 def _final_orbit_fields(s: dict) -> dict:
     """The final orbit before the trim and the trim's distribution, for the trim table."""
     out = {k: s[k] for k in s if k.startswith(("final_rms_", "final_max_abs_", "trim",
-                                               "trimmed_"))}
+                                               "trimmed_")) and k != "trim_p99_ci_mps"}
+    out["trim_p99_ci_lo_mps"], out["trim_p99_ci_hi_mps"] = s["trim_p99_ci_mps"]
     for c, unit, fmt in (("rp", "km", ".2f"), ("ra", "km", ".2f"), ("inc", "deg", ".4f")):
         rms, top = s[f"final_rms_{c}_error_{unit}"], s[f"final_max_abs_{c}_error_{unit}"]
         out[f"{c}_text"] = f"{rms:{fmt}} / {top:{fmt}}"

@@ -5,45 +5,46 @@ it (the last burn's own errors are not re-planned). An operations team trims it;
 budget must pay for that trim, or a sample that delivered less delta-V than planned (a
 weak last burn, an apolune kilometres high) would count as cheaper than the nominal.
 
-**The trim modelled: two impulses, in the plan's dynamics.** Two impulses half a
-revolution apart (the Hohmann-like pair that corrects the orbit's size and shape), each
-with any direction (RTN components), placed and sized for the least total delta-V
-|dv1| + |dv2|:
+**The trim modelled: two impulses, in the plan's dynamics.** Two impulses (the
+Hohmann-like pair that corrects the orbit's size and shape), each with any direction (RTN
+components), placed and sized for the least total delta-V |dv1| + |dv2|:
 
 1. *Design, two-body, linear.* From the osculating orbit at the end of the plan's last
    coast (epoch ``t0``), an impulse at ``t1`` changes the elements by B(x(t1)) dv (Gauss's
    equations in modified equinoctial elements, Song et al. 2011 Eq. (2) and (A2)-(A4),
    the same as :func:`lunarcap.physics.dynamics.mee_rates`; in two-body only L moves
    between impulses, so the orbit's shape after both impulses is linear in them to first
-   order). For ``t1`` on a grid of :data:`CANDIDATES` epochs over one revolution (then
-   refined between the best grid neighbours) and ``t2 = t1`` plus half a revolution,
-   the least |dv1| + |dv2| that meets the final orbit's conditions (a second-order cone
-   problem, solved by SLSQP) is found; the best ``t1`` is kept. Apsides are the best
-   places for the size and shape alone, but on the paper's polar orbit its apsides can
-   lie anywhere, and there a plane change costs v di / |cos u| (u the argument of
-   latitude): at an apsis 3 deg from a pole, 20 times its cost at a node. The search
-   over ``t1`` lets the pair move towards the nodes when the plane error dominates.
+   order). For ``t1`` at each of :data:`CANDIDATES` epochs over one revolution and ``t2``
+   half a revolution later, the least |dv1| + |dv2| that meets the final orbit's
+   conditions (a second-order cone problem, :func:`least_delta_v`) is found; the best
+   pair's two epochs are then refined together (Nelder-Mead, ``t2`` within a revolution
+   of ``t1``). Apsides are the best places for the size and shape alone, but on the
+   paper's polar orbit the apsides can lie anywhere, and there a plane change costs
+   v di / |cos u| (u the argument of latitude): at an apsis 3 deg from a pole, 20 times
+   its cost at a node. Searching the epochs lets the pair move towards the nodes when the
+   plane error dominates.
 2. *Correction, in the plan's dynamics.* The two impulses are flown (coast from ``t0``,
    impulse, coast, impulse, coast to the check epoch) with the plan's force model and
-   CVODES (rtol 1e-13), and corrected by a chord iteration that keeps the design's
-   Jacobian (each step the smallest change of the impulses that cancels the residual to
-   first order: a correction of a few tenths of m/s, so the pair stays the least
-   delta-V to second order; re-optimising the split at each step instead let a pair at
-   one place a revolution apart trade delta-V back and forth, 10 steps short of the
-   gate), until the orbit at the check epoch passes the verification gate
-   (:mod:`lunarcap.optim.gate`: perilune and apolune radii within 10 m, 50 m for an
-   ellipse's apolune, its period within 0.5 s, the inclination within 1e-4 deg), or
-   :data:`MAX_ITERATIONS` steps fail (an error with the residuals, never a number).
+   CVODES (rtol 1e-13), and corrected by a chord iteration on the design's Jacobian,
+   each step the least change of the impulses that cancels the residual to first order
+   (a few tenths of m/s, so the pair stays the least delta-V to second order; re-solving
+   the split at each step would wander along the cost's flat directions, e.g. one
+   impulse shared between two passes of one apsis), until the orbit at the check epoch
+   passes the verification gate (:mod:`lunarcap.optim.gate`: perilune and apolune radii
+   within 10 m, 50 m for an ellipse's apolune, its period within 0.5 s, the inclination
+   within 1e-4 deg), or :data:`MAX_ITERATIONS` steps fail (an error with the residuals,
+   never a number).
 
 **What it must reach.** In full dynamics the osculating elements of the nominal's own
 final orbit wander over a revolution (about 1 km in perilune radius in the Moon's J2
 field) and drift from one revolution to the next (1e-3 deg of inclination in two):
 "the plan's final orbit" is therefore the nominal's final state flown on in the plan's
 dynamics to the **check epoch** ``t_c``, a whole number of the plan's final-orbit
-periods after the nominal's end (its own phase of that wander), the first at least one
-and a half revolutions after ``t0``; the trimmed orbit's osculating perilune and apolune
-radii (for a circle: the elements p, f, g) and inclination there must be the nominal's
-within the gate. In two-body it is the plan's target itself. Phase and node are free.
+periods after the nominal's end (its own phase of that wander), the first at least
+:data:`CHECK_AFTER_REV` revolutions after ``t0``; the trimmed orbit's osculating
+perilune and apolune radii (for a circle: the elements p, f, g) and inclination there
+must be the nominal's within the gate. In two-body it is the plan's target itself.
+Phase and node are free.
 
 **Not trimmed**: an orbit already within the gate at the end of the plan's last coast
 (the target's own conditions, on the shape only: the re-plan was verified there) has a
@@ -51,8 +52,8 @@ trim of exactly 0, and the sample's numbers are those of the study without a tri
 
 Why impulses and not a finite burn: a trim of a few m/s lasts m dv / T, 11 s for 5 m/s
 with the 150 N engine at 336 kg, while the orbit turns n t_b = 0.01 rad; the finite
-burn's loss over the impulse is second order in that angle, about 1e-5 of the trim, and
-an impulse pair needs no NLP. The trim's propellant is the rocket equation at the plan's
+burn's loss over the impulse is second order in that angle (of order 1e-4 of the trim),
+and an impulse pair needs no NLP. The trim's propellant is the rocket equation at the plan's
 nominal Isp; the trim's own execution errors (a 1 % error of 5 m/s is 5 cm/s) are not
 modelled.
 """
@@ -238,15 +239,15 @@ def _period_s(x) -> float:
 
 
 # ====================================================================== least delta-V
-def least_delta_v(A, b, start=None):
+def least_delta_v(A, b):
     """(x, cost): the least |x[:3]| + |x[3:]| (m/s) with A x = b, or (None, inf).
 
     A second-order cone problem (two impulses) solved on its null space: A x = b is
     x = x_p + N z (x_p its least-squares solution, N a basis of A's null space from the
     SVD), so the cost |y1(z)| + |y2(z)| is a convex function of the few numbers z,
     minimised by Newton's method on the norms smoothed by 1e-6 m/s, with a backtracking
-    line search (from ``start``'s z if given). None when A x = b has no solution (a pair
-    that cannot change what is asked, e.g. the inclination at two points over the poles).
+    line search from z = 0. None when A x = b has no solution (a pair that cannot change
+    what is asked, e.g. the inclination at two points over the poles).
     """
     A, b = np.asarray(A, float), np.asarray(b, float)
     scale = 1.0 / np.maximum(np.linalg.norm(A, axis=1), 1e-300)
@@ -257,7 +258,7 @@ def least_delta_v(A, b, start=None):
     xp = Vt[:len(s)].T @ ((U.T @ b) / s)
     N = Vt[len(s):].T
     y0, N0 = xp.reshape(2, 3), N.reshape(2, 3, -1)   # the two impulses' affine maps of z
-    z = np.zeros(N.shape[1]) if start is None else N.T @ (np.asarray(start, float) - xp)
+    z = np.zeros(N.shape[1])
     eps2 = 1e-12
 
     def cost(z):
