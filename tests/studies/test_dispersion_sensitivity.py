@@ -122,6 +122,17 @@ def test_a_failed_sample_or_a_negative_mean_has_no_law_and_says_why():
 
 
 def test_draws_needed_scale_as_the_square_of_the_standard_error():
-    assert S.draws_needed(10, 0.1) == 40        # twice the target: four times the draws
-    assert S.draws_needed(10, 0.05) == 10
+    assert S.draws_needed(10, 0.1, target=0.05) == 40   # twice the target: 4 times the draws
+    assert S.draws_needed(10, 0.05, target=0.05) == 10
     assert S.draws_needed(1, 0.1) is None and S.draws_needed(10, math.nan) is None
+    # and met: the exponent's error over the draws it asks for is the target (synthetic
+    # y = 0.4 sigma z1^2 + 0.3 sigma^3 z2^2, whose exponent has a spread of its own)
+    def y(n, seed):
+        z = np.random.default_rng(seed).standard_normal((n, 2))
+        return np.array([[0.4 * s * a ** 2 + 0.3 * s ** 3 * b ** 2 for s in SIGMAS]
+                         for a, b in z])
+
+    pilot = S.power_law(SIGMAS, y(8, 3))["exponent_se"]
+    n = S.draws_needed(8, pilot)
+    ses = [S.power_law(SIGMAS, y(n, 100 + k))["exponent_se"] for k in range(40)]
+    assert np.median(ses) == pytest.approx(S.TARGET_EXPONENT_SE, rel=0.5)

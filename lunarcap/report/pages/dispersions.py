@@ -346,6 +346,8 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: in
 
 def _show_sensitivity(page: Page, srows: list, laws: list, factors, n_samples: int) -> None:
     """One figure per engine of each source's sensitivity, and the table of their laws."""
+    from lunarcap.studies.dispersions import sensitivity as sens
+
     for label in dict.fromkeys(r["engine"] for r in srows):
         tag = label.split(" N")[0]
         fig = draw.plot_sensitivity(srows, label, SOURCE_LABELS)
@@ -363,7 +365,7 @@ def _show_sensitivity(page: Page, srows: list, laws: list, factors, n_samples: i
         columns={"engine": "engine", "source": "error source", "sigma": "example sigma",
                  "draws": "pairs", "mean_text": "mean above nominal ± s.e. (m/s)",
                  "exponent_text": "exponent b ± s.e.",
-                 "draws_needed": "pairs for ± 0.05"},
+                 "draws_needed": f"pairs for ± {sens.TARGET_EXPONENT_SE:g}"},
         show_columns=["engine", "source", "sigma", "draws", "mean_text", "exponent_text",
                       "draws_needed"],
         floatfmt={"mean_above_nominal_mps": ".4f", "draws_needed": ".0f"})

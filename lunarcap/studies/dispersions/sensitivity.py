@@ -44,8 +44,10 @@ from lunarcap.studies.dispersions.summary import pair_means, summarise
 #: Multiples of each given sigma run by default.
 FACTORS = (0.5, 1.0, 2.0)
 #: The standard error of an exponent the draws are sized for (:func:`draws_needed`): a
-#: twentieth of the distance between a linear law and a quadratic one.
-TARGET_EXPONENT_SE = 0.05
+#: mean scaled to a sigma twice (or half) the one run is then off by at most
+#: 0.1 ln 2 = 7 % through the exponent, less than the mean's own standard error at the
+#: few pairs a sensitivity affords, and a linear law is told from a quadratic one by 10.
+TARGET_EXPONENT_SE = 0.1
 
 
 def sensitivity_models(model: ErrorModel, factors=FACTORS) -> list:
