@@ -398,25 +398,23 @@ def _checks(page: Page, tables: dict, sensitivity: pd.DataFrame, rows: list) -> 
 def _headline(page: Page, rows: list) -> str:
     """The page's finding: the 99 % budgets with the trim where bounded, else the largest."""
     t = page.text
-    bounded = all(r["samples"] >= r["samples_needed_p99"] for r in rows)
-    if bounded:
-        budget = page.listing([(f"p99_above_{n}N", f"{n} N") for n in (150, 300, 450)],
-                              ".1f", " m/s")
-        what = (f"the 99 % ΔV budget with the trim to the final orbit lies {budget} above "
-                f"the nominal")
+    engines = [(n, f"{n} N") for n in (150, 300, 450)]
+    trim = page.listing([(f"trim_top_{n}N", lab) for n, lab in engines], ".2f", " m/s")
+    flown = (f"*{capture_name('fixed')}*, re-planned after each burn from an estimate of "
+             f"the state and trimmed to the plan's final orbit after the last")
+    if all(r["samples"] >= r["samples_needed_p99"] for r in rows):
+        budget = page.listing([(f"p99_above_{n}N", lab) for n, lab in engines], ".1f",
+                              " m/s")
+        what = f"the 99 % ΔV budget lies {budget} above the nominal ({flown})"
     else:
-        worst = page.listing([(f"max_above_{n}N", f"{n} N") for n in (150, 300, 450)],
-                             ".2f", " m/s")
-        what = (f"the costliest of {t('n_samples', '.0f')} samples per engine, trim "
-                f"included, lies {worst} above the nominal (a 99 % budget needs "
-                f"{t('samples_needed_p99', '.0f')} samples)")
-    trim = page.listing([(f"trim_top_{n}N", f"{n} N") for n in (150, 300, 450)], ".2f",
-                        " m/s")
-    return (f"With the page's example error model (assumed sigmas), {what} "
-            f"(*{capture_name('fixed')}*, re-planned after each burn from an estimate of "
-            f"the state); the trim that returns the final orbit to the plan's costs up to "
-            f"{trim} ({t('trim_top_what')}); {t('n_failed', '.0f')} samples not captured "
-            f"or not corrected.")
+        worst = page.listing([(f"max_above_{n}N", lab) for n, lab in engines], ".2f",
+                             " m/s")
+        what = (f"the costliest of {t('n_samples', '.0f')} samples per engine lies {worst} "
+                f"above the nominal ({flown}); a 99 % budget needs "
+                f"{t('samples_needed_p99', '.0f')} samples")
+    return (f"With the page's example error model (assumed sigmas), {what}; the trim "
+            f"alone costs up to {trim} at {t('trim_top_what')}; "
+            f"{t('n_failed', '.0f')} samples not captured or not corrected.")
 
 
 def _show_budget(page: Page, budget, tables: dict, samples: int, seed: int,
