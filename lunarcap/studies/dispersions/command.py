@@ -99,8 +99,8 @@ def _sensitivity(args, plan, samples: int, seed: int, model) -> StudyRun:
     """``--sensitivity``: each non-zero sigma alone at 0.5, 1, 2 times its value.
 
     The run's result is ``(models, campaign result)``; the document and the text give one
-    row per source and sigma (:func:`.sensitivity.sensitivity_rows`) and the laws fitted
-    to them (:func:`.sensitivity.slopes`).
+    row per source and sigma (:func:`.sensitivity.sensitivity_rows`) and each source's
+    law with its standard error, or why it has none (:func:`.sensitivity.laws`).
     """
     from lunarcap.studies.dispersions import samples as disp
     from lunarcap.studies.dispersions import sensitivity as sens
@@ -110,15 +110,17 @@ def _sensitivity(args, plan, samples: int, seed: int, model) -> StudyRun:
         return sens.sensitivity_rows(res.table, models)
 
     def document(out) -> dict:
-        r = rows(out)
         return {"plan": plan.to_dict(), "seed": seed, "table": str(out[1].path),
-                "run": out[1].run, "sensitivity": r, "laws": sens.slopes(r)}
+                "run": out[1].run, "sensitivity": rows(out),
+                "laws": sens.laws(out[1].table, out[0])}
 
     return StudyRun(
         lambda: sens.run_sensitivity(plan, samples, seed, model, out=args.out,
                                      workers=args.workers, scheduler=args.scheduler,
                                      progress=not args.no_progress),
-        "samples", document, lambda out: sens.format_sensitivity(plan, rows(out), out[1]),
+        "samples", document,
+        lambda out: sens.format_sensitivity(plan, rows(out), out[1],
+                                            sens.laws(out[1].table, out[0])),
         lambda out: all(s in disp.OK_STATUSES for s in out[1].table.status))
 
 
@@ -140,10 +142,15 @@ RECORDS = {
           for k, u in (("delta_v", "_ci_mps"), ("samples_needed", ""))],
         "mean_above_nominal_mps", "mean_above_nominal_se_mps",
         "budget_p99_above_nominal_mps", "budget_p99_ci_mps", "budget_p99_ci_ranks",
+        "budget_p99_burns_above_nominal_mps", "budget_p99_burns_ci_mps", "antithetic",
         "ci_level", "p_not_captured", "p_not_captured_upper95", "p_correction_failed",
         "p_correction_failed_upper95", {"failures": "failed_sample"},
         *[f"final_{s}_{e}" for e in ("rp_error_km", "ra_error_km", "inc_error_deg")
-          for s in ("rms", "max_abs")]],
+          for s in ("rms", "max_abs")],
+        "trim_p50_mps", "trim_p90_mps", "trim_p99_mps", "trim_p99_ci_mps", "trim_mean_mps",
+        "trim_mean_se_mps", "trim_max_mps", "trimmed_share", "trim_propellant_p99_kg",
+        "trimmed_max_abs_rp_error_m", "trimmed_max_abs_ra_error_m",
+        "trimmed_max_abs_inc_error_deg"],
     "failed_sample": ["sample", "status", "reason"],
     "dispersions_sample": ["plan", "plan_id", "thrust_N", "isp_s", "dynamics", "seed",
                            "sample", "antithetic", "thrust_sigma_pct", "isp_sigma_pct",
@@ -159,16 +166,21 @@ RECORDS = {
                            "knowledge_sigma_mps", "knowledge_cov", "gates_magnitude_pct",
                            "gates_magnitude_mps", "gates_pointing_deg", "gates_pointing_mps",
                            "bplane_cov", "arrival_db_km", "arrival_dt_s",
-                           {"burns": "dispersed_burn"}],
+                           "burns_delta_v_mps", "trim_delta_v_mps", "trim_propellant_kg",
+                           "trimmed_rp_error_m", "trimmed_ra_error_m", "trimmed_inc_error_deg",
+                           {"burns": "dispersed_burn"}, {"trim": "trim_impulse"}],
     "dispersed_burn": ["burn", "delta_v_mps", "planned_delta_v_mps", "ignition_min",
                        "duration_min", "thrust_error_pct", "isp_error_pct",
                        "pointing_error_deg", "ignition_error_s", "knowledge_dr_km",
                        "knowledge_dv_mps"],
+    "trim_impulse": ["after_end_min", "delta_v_mps", "radial_mps", "transverse_mps",
+                     "normal_mps"],
 }
 
 COMMAND = StudyCommand(
     "dispersions", "the capture's delta-V budget under execution and arrival errors (Monte "
                    "Carlo, closed loop)", options, prepare, dask="sample",
     signed=("--samples", "--seed", *(opt for opt, _, _ in SIGMA_OPTIONS)), records=RECORDS,
-    arrays=frozenset({"dispersions_sample", "dispersed_burn", "failed_sample"}),
+    arrays=frozenset({"dispersions_sample", "dispersed_burn", "failed_sample",
+                      "trim_impulse"}),
     glossary="glossary.yaml")

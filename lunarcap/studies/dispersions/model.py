@@ -75,9 +75,10 @@ class ErrorModel:
       (``gates_magnitude_mps``) part, its direction by a proportional part (an angle,
       ``gates_pointing_deg`` per axis) and a fixed part (a transverse velocity,
       ``gates_pointing_mps`` per axis, i.e. an angle of that over the burn's planned
-      delta-V). A finite burn realises them as factors on thrust and Isp alike (the
-      acceleration scaled at the planned propellant flow: the delta-V flown scales
-      exactly) and a tilt added to the per-quantity one;
+      delta-V). A finite burn realises the magnitude error as a thrust error at the
+      nominal Isp (the mass flow scales with the thrust, so the delta-V delivered costs
+      its propellant; :func:`gates_errors`) and the pointing error as a tilt added to
+      the per-quantity one;
     * **arrival**: the arrival perilune state in error in RTN (per axis or a 6x6
       covariance), and/or the B-plane target in error (B.R, B.T and, with a 3x3
       covariance, the time of closest approach);
@@ -87,8 +88,9 @@ class ErrorModel:
 
     Not modelled: errors of the dynamics model (gravity field, ephemeris, solar pressure),
     an attitude that wanders during a burn, correlations between burns or between error
-    sources, knowledge errors of the mass, thrust or Isp estimate, and a trim burn after
-    the last one (its error stays in the final orbit).
+    sources, knowledge errors of the mass, thrust or Isp estimate, and the execution
+    errors of the trim that follows the last burn (the trim itself is flown:
+    :mod:`lunarcap.studies.dispersions.trim`).
 
     Attributes
     ----------
@@ -337,13 +339,22 @@ def knowledge_error(z: np.ndarray, model: ErrorModel, i: int) -> np.ndarray:
 
 
 def gates_errors(z: np.ndarray, model: ErrorModel, i: int, planned_delta_v_mps: float,
-                 base: ExecutionErrors) -> ExecutionErrors:
+                 base: ExecutionErrors, exhaust_speed_mps: float) -> ExecutionErrors:
     """Burn ``i``'s execution errors: ``base`` with its Gates errors added (Gates 1963).
 
-    Magnitude: the delta-V flown is (1 + eps_p + eps_f / dV) times the planned dV, by a
-    factor on thrust and Isp alike (the same propellant flow); pointing: tilts of
-    sigma_p z + sigma_f z' / dV rad about the two axes of the per-quantity tilt.
-    ``base`` itself when every Gates sigma is 0.
+    Magnitude: the delta-V flown is (1 + eps) dV with eps = eps_p + eps_f / dV (dV the
+    planned delta-V, ``exhaust_speed_mps`` the engine's g0 Isp), realised as a thrust
+    error at the nominal Isp over the planned duration: the mass flow T / (g0 Isp) scales
+    with the thrust, so the propellant is the rocket equation's for the delta-V delivered.
+    The factor f on thrust and mass flow that delivers exactly (1 + eps) dV follows from
+    dV = g0 Isp ln(m0 / (m0 - mdot t)): f = (1 - exp(-(1 + eps) dV / c)) /
+    (1 - exp(-dV / c)), c = g0 Isp (the start mass cancels). A timer cut-off with a thrust
+    error and a delta-V cut-off with a sensor error both spend that propellant; scaling
+    thrust and Isp alike instead would deliver the delta-V at the planned propellant.
+    Pointing: tilts of sigma_p z + sigma_f z' / dV rad about the two axes of the
+    per-quantity tilt (the fixed part a transverse delta-V over the planned one).
+    ``base`` itself when every Gates sigma is 0; InputError when a draw leaves 5 % of the
+    burn or less.
     """
     m = model
     if not any((m.gates_magnitude_pct, m.gates_magnitude_mps, m.gates_pointing_deg,
@@ -351,14 +362,16 @@ def gates_errors(z: np.ndarray, model: ErrorModel, i: int, planned_delta_v_mps: 
         return base
     b = np.asarray(z, float)[GATES + PER_GATES * i: GATES + PER_GATES * (i + 1)]
     dv = float(planned_delta_v_mps)
-    f = 1.0 + m.gates_magnitude_pct / 100 * b[0] + m.gates_magnitude_mps * b[1] / dv
-    if f <= 0.05:
-        raise InputError(f"a Gates magnitude draw leaves {100 * f:.1f} % of burn {i + 1}'s "
+    ratio = 1.0 + m.gates_magnitude_pct / 100 * b[0] + m.gates_magnitude_mps * b[1] / dv
+    if ratio <= 0.05:
+        raise InputError(f"a Gates magnitude draw leaves {100 * ratio:.1f} % of burn {i + 1}'s "
                          f"{dv:.1f} m/s: the fixed magnitude sigma is too large for it")
+    c = float(exhaust_speed_mps)
+    flow = -math.expm1(-ratio * dv / c) / -math.expm1(-dv / c)
     tilt = tuple(t + math.radians(m.gates_pointing_deg) * b[2 + a] +
                  m.gates_pointing_mps * b[4 + a] / dv
                  for a, t in enumerate(base.tilt_rad))
-    return ExecutionErrors(base.thrust_factor * f, base.isp_factor * f, tilt, base.ignition_s)
+    return ExecutionErrors(base.thrust_factor * flow, base.isp_factor, tilt, base.ignition_s)
 
 
 def bplane_error(z: np.ndarray, model: ErrorModel, plan=None) -> np.ndarray:

@@ -35,18 +35,29 @@ A Monte Carlo of the whole capture, corrected in closed loop. In one **sample**:
    own errors, and so on. Burns are solved one at a time, as the plan is (each burn's
    optimum depends on its own state only, so re-solving the later burns at every step
    would be discarded work).
-4. **Final orbit.** After the last burn, the coast to the plan's end is flown and the
-   final orbit compared with the target (perilune and apolune radius, inclination: the
-   target's own error functions, :meth:`lunarcap.mission.targets.Target.errors`).
+4. **Final orbit and trim.** After the last burn, the coast to the plan's end is flown
+   and the final orbit compared with the target (perilune and apolune radius,
+   inclination: the target's own error functions,
+   :meth:`lunarcap.mission.targets.Target.errors`): the errors *before* the trim. Then
+   the **trim** returns it to the plan's final orbit: two impulses of least total
+   delta-V placed within two revolutions, corrected in the plan's dynamics until the
+   trimmed orbit passes the verification gate on the re-flown state
+   (:mod:`lunarcap.studies.dispersions.trim`, where the choice of impulses over a
+   re-planned finite burn is argued). Its delta-V is counted in the sample's total and
+   its propellant in the propellant, so a sample that delivered less than planned does
+   not count as cheaper than the nominal by what it left undone; an orbit already
+   within the gate needs none (a trim of exactly 0).
 
 **Not modelled**: errors of the dynamics (gravity field, ephemeris, solar pressure), an
 attitude that wanders during a burn, correlations between burns or error sources, the
 estimate's error in mass, thrust or Isp, a knowledge error before burn 1 (its
-re-plan), and a trim burn after the last (its error stays in the final orbit).
+re-plan), and the execution and knowledge errors of the trim itself (a 1 % error of a
+5 m/s trim is 5 cm/s).
 
 A sample that cannot be corrected (the re-plan has no verified solution, a re-plan that
-the plan's rules refuse) or that is not captured is a row with the reason in physical
-terms, counted in the failure probability; it is never dropped.
+the plan's rules refuse, a trim that does not reach the gate) or that is not captured is
+a row with the reason in physical terms, counted in the failure probability; it is never
+dropped.
 
 **Common random numbers.** Sample ``k`` of seed ``s`` draws a fixed block of
 :data:`BLOCK` standard normals from ``numpy.random.default_rng([s, k])`` (PCG64, seeded
@@ -55,9 +66,10 @@ any sigmas (doubling a sigma doubles every error), locally and on a cluster, wha
 order samples run in. ``antithetic`` pairs sample 2j+1 with the negated numbers of 2j.
 
 The **budget** is what the tanks must hold: the delta-V flown (the quadrature of T/m
-along every re-propagated burn) and the propellant used, summarised by percentiles and a
-distribution-free confidence interval on the 99 % quantile from order statistics
-(:func:`quantile_ci`).
+along every re-propagated burn, plus the trim's impulses) and the propellant used,
+summarised by percentiles and a distribution-free confidence interval on the 99 %
+quantile from order statistics (:func:`quantile_ci`); the burns alone
+(``burns_delta_v_mps``) and the trim (``trim_delta_v_mps``) are kept apart in the table.
 
 The error model and the draws are in :mod:`lunarcap.studies.dispersions.model`, the answer
 from a table in :mod:`lunarcap.studies.dispersions.summary`; their public names are imported
@@ -121,6 +133,7 @@ from lunarcap.studies.dispersions.summary import (  # noqa: F401
     settled_after,
     summarise,
 )
+from lunarcap.studies.dispersions.trim import TrimFailed, trim_orbit
 from lunarcap.studies.study import Study, check_workers, json_list, plan_columns
 
 #: Mean Earth-Moon distance, km (IAU 2009 / JPL: 384,400 km), for the Moon's sphere of
@@ -142,7 +155,7 @@ OK_STATUSES = ("ok", "not captured", "correction failed")
 #: The study's modules, relative to the package: its tables' and cached cases' code
 #: version is :func:`lunarcap.repro.cache.code_version` of the numerical code and these.
 _MODULES = ("studies/dispersions/samples.py", "studies/dispersions/model.py",
-            "studies/dispersions/summary.py")
+            "studies/dispersions/summary.py", "studies/dispersions/trim.py")
 
 
 # ====================================================================== the orbit reached
@@ -344,8 +357,8 @@ def _burn_record(i: int, sol, flown: Flown, e: ExecutionErrors, t_ref: float,
     return rec
 
 
-def _final_orbit(sol, flown: Flown) -> dict:
-    """The final orbit's errors after the last burn, at the end of the plan's last coast."""
+def _final_orbit(sol, flown: Flown) -> tuple:
+    """(errors, state): the final orbit at the end of the plan's last coast, before a trim."""
     end = coast(sol.problem.model, flown.end, sol.problem.t_end_s).end
     err = sol.problem.target.errors(end.mee)
     o = orbit_summary(end.x, C.MU_MOON)
@@ -354,7 +367,60 @@ def _final_orbit(sol, flown: Flown) -> dict:
                                   else math.nan),
             "final_inc_error_deg": err["inc_error_deg"],
             "final_rp_altitude_km": o["rp_km"] - C.R_MOON,
-            "final_ra_altitude_km": o["ra_km"] - C.R_MOON}
+            "final_ra_altitude_km": o["ra_km"] - C.R_MOON}, end
+
+
+# ====================================================================== the trim
+_TRIM_MODELS: dict = {}
+
+
+def trim_model(plan: CapturePlan):
+    """(model, reference): the plan's coast dynamics for a trim and its final orbit.
+
+    ``model``: the plan's forces with an ephemeris fit from 6 h before the nominal's end
+    to 6 h after four final-orbit periods (a trim and its check lie within two);
+    ``reference(t_s)``: (t_c, state): the nominal's final state flown on to the first
+    whole number of final-orbit periods after its end at or after ``t_s``
+    (:mod:`lunarcap.studies.dispersions.trim`). Memoised per process and plan.
+    """
+    from lunarcap.physics.dynamics import Model, fit_for
+
+    key = (plan.key(), enabled())
+    if key not in _TRIM_MODELS:
+        last = nominal(plan)[-1]
+        t_end, x_end = last.problem.t_end_s, np.asarray(last.end_state, float)
+        period = plan.coast_s(plan.n_burns - 1)
+        fit = fit_for(plan.dynamics, plan.ephemeris_model(), t_end - 6 * 3600.0,
+                      t_end + 4 * period + 6 * 3600.0)
+        model = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit)
+        flown: dict = {}
+
+        def reference(t_s: float) -> tuple:
+            n = max(0, math.ceil((t_s - t_end) / period - 1e-9))
+            if n not in flown:
+                t_c = t_end + n * period
+                flown[n] = (t_c, coast(model, State(t_end, x_end), t_c).end.x if n else x_end)
+            return flown[n]
+
+        _TRIM_MODELS[key] = (model, reference)
+    return _TRIM_MODELS[key]
+
+
+def _trimmed(plan: CapturePlan, sol, end: State) -> dict:
+    """The trim's columns of a sample whose final orbit at the plan's end is ``end``.
+
+    ``trimmed_*``: the trimmed orbit against the plan's final orbit at the trim's check
+    epoch (no trim needed: the orbit as reached against the plan's target). TrimFailed
+    (its message the residuals) if the trim does not pass the gate.
+    """
+    model, reference = trim_model(plan)
+    tr = trim_orbit(model, sol.problem.target, end.t_s, end.x, reference, plan.engine.isp_s)
+    ra = tr.errors["ra_error_m"]
+    return {"trim_delta_v_mps": tr.delta_v_mps, "trim_propellant_kg": tr.propellant_kg,
+            "trim_json": json.dumps(tr.record(end.t_s)),
+            "trimmed_rp_error_m": tr.errors["rp_error_m"],
+            "trimmed_ra_error_m": math.nan if ra is None else ra,
+            "trimmed_inc_error_deg": tr.errors["inc_error_deg"]}
 
 
 def fly_sample(plan: CapturePlan, z, model: ErrorModel) -> dict:
@@ -385,7 +451,8 @@ def fly_sample(plan: CapturePlan, z, model: ErrorModel) -> dict:
                 out["burns_json"] = json.dumps(burns)
                 return _fail(out, "correction failed", why)
         try:
-            e = gates_errors(z, model, i, sol.delta_v_mps, errs[i])
+            e = gates_errors(z, model, i, sol.delta_v_mps, errs[i],
+                             plan.engine.exhaust_speed_mps)
         except InputError as exc:
             out["burns_json"] = json.dumps(burns)
             return _fail(out, "not captured", f"burn {i + 1} is not flown: {exc}")
@@ -394,6 +461,7 @@ def fly_sample(plan: CapturePlan, z, model: ErrorModel) -> dict:
         out["burns_flown"] = i + 1
         out["propellant_kg"] = float(plan.initial_mass_kg - flown.end.mass_kg)
         out["total_delta_v_mps"] = float(sum(b["delta_v_mps"] for b in burns))
+        out["burns_delta_v_mps"] = out["total_delta_v_mps"]
         out["burns_json"] = json.dumps(burns)
         why = orbit_check(flown.end.x)
         if why:
@@ -407,8 +475,15 @@ def fly_sample(plan: CapturePlan, z, model: ErrorModel) -> dict:
                 return _fail(out, "correction failed",
                              f"the perilune after burn {i + 1} is not found within 6 h of the "
                              f"plan's ({exc})")
-        else:   # the final orbit, at the end of the plan's last coast
-            out.update(_final_orbit(sol, flown))
+        else:   # the final orbit, at the end of the plan's last coast, and its trim
+            errors, end = _final_orbit(sol, flown)
+            out.update(errors)
+            try:
+                out.update(_trimmed(plan, sol, end))
+            except TrimFailed as exc:
+                return _fail(out, "correction failed", f"after burn {i + 1}, {exc}")
+            out["total_delta_v_mps"] += out["trim_delta_v_mps"]
+            out["propellant_kg"] += out["trim_propellant_kg"]
     out["sample_wall_s"] = time.perf_counter() - out.pop("_t0")
     out["sample_cpu_s"] = time.process_time() - out.pop("_c0")
     return out
@@ -426,7 +501,9 @@ COLUMNS = ("plan", "plan_id", "thrust_N", "isp_s", "dynamics", "seed", "sample",
            "completed_utc", "error",
            "knowledge_sigma_km", "knowledge_sigma_mps", "knowledge_cov",
            "gates_magnitude_pct", "gates_magnitude_mps", "gates_pointing_deg",
-           "gates_pointing_mps", "bplane_cov", "arrival_db_km", "arrival_dt_s")
+           "gates_pointing_mps", "bplane_cov", "arrival_db_km", "arrival_dt_s",
+           "burns_delta_v_mps", "trim_delta_v_mps", "trim_propellant_kg",
+           "trimmed_rp_error_m", "trimmed_ra_error_m", "trimmed_inc_error_deg", "trim_json")
 KEY = ("plan_id", "seed", "sample", "antithetic", "thrust_sigma_pct", "isp_sigma_pct",
        "pointing_sigma_deg", "ignition_sigma_s", "arrival_sigma_km", "arrival_sigma_mps",
        "arrival_cov", "knowledge_sigma_km", "knowledge_sigma_mps", "knowledge_cov",
@@ -503,6 +580,7 @@ def format_report(result, plan: CapturePlan, model: ErrorModel) -> str:
 STUDY = Study(
     "dispersions", TableFormat(KEY, COLUMNS, text_columns=(
         "plan", "plan_id", "dynamics", "reason", "arrival_cov", "knowledge_cov", "bplane_cov",
-        "burns_json"), name="dispersions table"),
+        "burns_json", "trim_json"), name="dispersions table"),
     sample_row, STATUSES, OK_STATUSES, "sample", "dispersions", _MODULES,
-    decoders=(("burns_json", "burns", json_list),), rows_key="samples", text=format_report)
+    decoders=(("burns_json", "burns", json_list), ("trim_json", "trim", json_list)),
+    rows_key="samples", text=format_report)
