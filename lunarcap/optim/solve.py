@@ -20,6 +20,7 @@ from lunarcap.optim.correction import meshes_for, nlp_shape, solve_in_model
 from lunarcap.optim.guess import make_guess
 from lunarcap.optim.nlp import describe_shape, is_built, shape_of
 from lunarcap.optim.nlp import prebuild as _prebuild_nlps
+from lunarcap.optim.nlp import use_store as use_nlp_store  # noqa: F401  (for the capture service)
 from lunarcap.optim.problem import BurnProblem
 from lunarcap.optim.solution import Solution
 from lunarcap.optim.verify import verify
