@@ -256,6 +256,9 @@ class RawSolution:
     max_defect: float
     u_inertial: np.ndarray | None = None
     w: np.ndarray | None = None        # the NLP's solution vector (a warm start)
+    lam_x: np.ndarray | None = None    # its multipliers of the variables' bounds
+    lam_g: np.ndarray | None = None    # and of the constraints (a warm start's too)
+    nlp_shape: tuple | None = None     # the NLP solved (shape_of), whose multipliers these are
     t_pre: np.ndarray | None = None    # epochs of the pre-ignition coast (start + points), s
     x_pre: np.ndarray | None = None    # (7, N_PRE*d+1), free start only
     corrections: int = 0               # outer corrections of a field (optim.correction)
@@ -369,13 +372,16 @@ def nlp_for(prob: BurnProblem, mesh: Mesh, mode=None, correction: bool = False) 
 
 
 def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess, mode=None, accel: dict | None = None,
-              w0: np.ndarray | None = None, fractions: tuple | None = None) -> RawSolution:
+              w0: np.ndarray | None = None, fractions: tuple | None = None,
+              multipliers: RawSolution | None = None) -> RawSolution:
     """Solve the burn's NLP on one mesh from a guess; no verification here.
 
     ``mode`` and ``accel`` (the per-phase corrections, ``{"accel_burn": (3, N), ...}``):
     an NLP carrying other forces than the problem's plus a tabulated acceleration
     (:mod:`lunarcap.optim.correction`); ``w0`` and ``fractions`` (burn and coast mesh
-    fractions): start from a previous solution of the same NLP.
+    fractions): start from a previous solution of the same NLP. ``multipliers``: a
+    solution of the same NLP whose multipliers IPOPT starts from (:func:`same_nlp`;
+    ignored otherwise), the primal point still the guess's.
     """
     nlp = nlp_for(prob, mesh, mode, accel is not None)
     lay = nlp.compiled.layout
@@ -395,10 +401,13 @@ def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess, mode=None, accel: dic
     pvec = lay.params(x_start=xs, t_ref=ts, t_end=prob.t_end_s, dynamics=prob.model.params(),
                       mesh_burn=mb, mesh_coast=mc, target=prob.target.values(LU),
                       **(accel or {}))
+    warm = None
+    if multipliers is not None and same_nlp(multipliers, prob, mesh, mode, accel is not None):
+        warm = (multipliers.lam_x, multipliers.lam_g)
     t0 = time.perf_counter()
-    res = nlp.compiled.solve(x0=w0, p=pvec, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
+    res = nlp.compiled.solve(warm, x0=w0, p=pvec, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
     solve_s = time.perf_counter() - t0
-    stats = nlp.compiled.solver.stats()
+    stats = nlp.compiled.stats()
     w = np.asarray(res["x"]).ravel()
     gval = np.asarray(res["g"]).ravel()
     defect = np.char.startswith(np.array(lay.g_kinds, dtype=str), "defect")
@@ -407,4 +416,18 @@ def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess, mode=None, accel: dic
                        success=bool(stats["success"]), iterations=int(stats["iter_count"]),
                        solve_s=solve_s, build_s=nlp.compiled.build_s,
                        max_defect=float(np.max(np.abs(gval[defect]))), w=w,
+                       lam_x=np.asarray(res["lam_x"]).ravel(),
+                       lam_g=np.asarray(res["lam_g"]).ravel(),
+                       nlp_shape=shape_of(mesh, prob, mode, accel is not None),
                        **leg_solution(lay, "", w, prob, mesh, mb, mc, S))
+
+
+def same_nlp(raw: RawSolution, prob: BurnProblem, mesh: Mesh, mode=None,
+             correction: bool = False) -> bool:
+    """Whether ``raw`` solved the NLP that ``prob`` on ``mesh`` solves (with its multipliers).
+
+    The same shape (:func:`shape_of`: mesh, target, start and end modes, steering,
+    forces), so its multipliers are a starting point of the same length and meaning.
+    """
+    return (raw.lam_x is not None and raw.lam_g is not None
+            and raw.nlp_shape == shape_of(mesh, prob, mode, correction))

@@ -206,10 +206,24 @@ class CompiledNLP:
     derivatives: str = "CasADi's"
     origin: str = "built"
     _warm: ca.Function | None = field(default=None, repr=False, compare=False)
+    _last: ca.Function | None = field(default=None, repr=False, compare=False)
 
-    def solve(self, **args) -> dict:
-        """``solver(**args)`` (IPOPT), off the main thread so that Ctrl-C acts at once."""
-        return off_main_thread(self.solver, **args)
+    def solve(self, multipliers: tuple | None = None, **args) -> dict:
+        """``solver(**args)`` (IPOPT), off the main thread so that Ctrl-C acts at once.
+
+        ``multipliers``: (lam_x0, lam_g0) of a neighbouring solution of this NLP: IPOPT
+        then starts from them as well as from ``x0`` (:meth:`warm_solver`).
+        """
+        solver = self.solver
+        if multipliers is not None:
+            solver = self.warm_solver()
+            args = {**args, "lam_x0": multipliers[0], "lam_g0": multipliers[1]}
+        self._last = solver
+        return off_main_thread(solver, **args)
+
+    def stats(self) -> dict:
+        """IPOPT's statistics of the last :meth:`solve`."""
+        return (self._last or self.solver).stats()
 
     def warm_solver(self) -> ca.Function:
         """The same NLP's solver with IPOPT warm-started from given multipliers.
