@@ -398,7 +398,8 @@ class StudyCluster:
     kernel alone, :func:`execute_entry`); its workers keep the NLPs they built from one
     study to the next. A study is an entry whose manifest parameters set ``workers``.
     Not started when no study is executed (a rerun with nothing changed), nor when that
-    variable names a scheduler already.
+    variable names a scheduler already (an existing cluster's: the kernels are given
+    that address instead, see ``--scheduler`` in :mod:`lunarcap.bookbuild.build`).
     """
 
     def __init__(self, workers: int):
@@ -409,13 +410,13 @@ class StudyCluster:
     def start(self) -> dict:
         """Start the cluster (once); the environment naming it, for a study's kernel.
 
-        Empty if this process's environment names a scheduler already: the kernels inherit
-        that one.
+        If this process's environment names a scheduler already (``make book
+        SCHEDULER=...``, ``build --scheduler``), that one, and no cluster is started.
         """
         from lunarcap.studies.campaign import SCHEDULER_ENV, dask_client
 
         if os.environ.get(SCHEDULER_ENV):
-            return {}
+            return {SCHEDULER_ENV: os.environ[SCHEDULER_ENV]}
         if self._client is None:
             self._client = self._stack.enter_context(dask_client(self.workers, None, True))
         return {SCHEDULER_ENV: self._client.scheduler.address}

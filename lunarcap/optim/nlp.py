@@ -88,7 +88,10 @@ def stored(kind: str, shape: tuple, build) -> CompiledNLP:
     compile_fn = cc if cc is not None else None
     if store is None:
         return build(compile_fn)
-    parts = (kind, repr(shape), ca_version(), cc.tag if cc is not None else "vm")
+    from lunarcap.optim import transcription
+
+    parts = (kind, repr(shape), ca_version(), cc.tag if cc is not None else "vm",
+             "nodes" if transcription.NODE_DERIVATIVES else "casadi")
     t0 = time.perf_counter()
     decode = lambda data: CompiledNLP.from_bytes(data, time.perf_counter() - t0)  # noqa: E731
     hit = store.load(parts, decode)

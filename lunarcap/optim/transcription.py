@@ -170,7 +170,8 @@ class NLPBuilder:
         """
         t0 = time.perf_counter()
         w, p, g = ca.vertcat(*self._w), ca.vertcat(*self._p), ca.vertcat(*self._g)
-        derivatives = off_main_thread(exact_derivatives, w, p, objective, g, compile_fn)
+        derivatives = off_main_thread(exact_derivatives, w, p, objective, g, compile_fn) \
+            if NODE_DERIVATIVES else None
         opts = {"expand": expand, "print_time": False, "ipopt": IPOPT_OPTIONS}
         if derivatives is not None:
             opts.update(expand=False, hess_lag=derivatives[0], jac_g=derivatives[1])
@@ -183,6 +184,10 @@ class NLPBuilder:
         return CompiledNLP(solver, self.layout, g_fun, time.perf_counter() - t0, funs,
                            "CasADi's" if derivatives is None else how)
 
+
+#: Whether :meth:`NLPBuilder.compile` assembles the derivatives node by node (False: CasADi's
+#: own AD of the expanded NLP, as ``lunarcap bench --studies`` compares).
+NODE_DERIVATIVES = True
 
 #: Version of the serialized form of a :class:`CompiledNLP` (:meth:`CompiledNLP.to_bytes`).
 SERIAL_VERSION = 1
