@@ -240,12 +240,16 @@ class NodeCompiler:
                              .encode()).hexdigest()[:32]
         lib = self.store.file(f"node-{key}", ".so")
         try:
-            if not lib.is_file():
-                with self.store.locked(f"node-{key}"):
-                    if not lib.is_file():
-                        self._compile(source, lib)
-            loaded = ca.external(fun.name(), str(lib))
-        except (OSError, RuntimeError, subprocess.CalledProcessError) as exc:
+            loaded = self._load(fun.name(), source, lib, key)
+        except (OSError, RuntimeError):   # a damaged library: compiled again, once
+            lib.unlink(missing_ok=True)
+            try:
+                loaded = self._load(fun.name(), source, lib, key)
+            except (OSError, RuntimeError, subprocess.CalledProcessError) as exc:
+                _warn(f"node function {fun.name()} not compiled ({_first_line(exc)}); it "
+                      f"runs in CasADi's virtual machine")
+                return fun
+        except subprocess.CalledProcessError as exc:
             _warn(f"node function {fun.name()} not compiled ({_first_line(exc)}); it runs "
                   f"in CasADi's virtual machine")
             return fun
@@ -254,6 +258,14 @@ class NodeCompiler:
                   f"the virtual machine is used")
             return fun
         return loaded
+
+    def _load(self, name: str, source: str, lib, key: str) -> ca.Function:
+        """The library ``lib`` of ``source`` loaded, compiled first if absent (locked)."""
+        if not lib.is_file():
+            with self.store.locked(f"node-{key}"):
+                if not lib.is_file():
+                    self._compile(source, lib)
+        return ca.external(name, str(lib))
 
     def _compile(self, source: str, lib) -> None:
         """Gcc ``source`` into ``lib`` (written under a temporary name, then moved)."""

@@ -23,6 +23,12 @@ position explicitly (:func:`enabled` at submission, ``caching(...)`` in the task
 environment puts it: ``LUNARCAP_NO_CACHE=1`` for a whole process (the test suite, the book's
 executed notebooks); lunarcap itself never edits the environment.
 
+The optimiser's compiled NLPs are kept apart from the results, in :class:`NLPStore`
+(``.cache/nlp``, keyed by :func:`code_version` too): built once per machine and loaded by
+every later process and Dask worker. A loaded NLP computes the same bits as the one
+built, so it is not a result and follows its own switch (:func:`nlp_store`), not
+:func:`caching`.
+
 Examples
 --------
 >>> from lunarcap.repro.cache import cached
@@ -261,6 +267,10 @@ def clear() -> None:
 #: Format of a stored NLP file (a new format ignores the files of the old).
 NLP_STORE_FORMAT = 1
 
+#: How many code versions' NLP folders a store keeps (the newest; :meth:`NLPStore.prune`):
+#: an edit of the numerical code starts a new folder (0.5 MB per shape).
+NLP_VERSIONS_KEPT = 4
+
 #: ``LUNARCAP_NLP_CACHE=0`` (or false, no) keeps NLPs in memory only: every process builds
 #: its own (:func:`nlp_store`).
 NLP_CACHE_ENV = "LUNARCAP_NLP_CACHE"
@@ -275,7 +285,7 @@ def nlp_store() -> NLPStore | None:
     """
     if os.environ.get(NLP_CACHE_ENV, "").strip().lower() in ("0", "false", "no", "off"):
         return None
-    return NLPStore(paths.CACHE / "nlp")
+    return NLPStore(paths.NLP_CACHE)
 
 
 class NLPStore:
@@ -333,12 +343,26 @@ class NLPStore:
         """Store ``data`` for ``parts`` (atomically); its path, or None if it cannot be written."""
         path = self.path(parts)
         body = zlib.compress(data, 1)
+        fresh = not path.parent.exists()
         try:
             with paths.atomic_path(path) as tmp:
                 tmp.write_bytes(hashlib.sha256(body).hexdigest().encode() + body)
         except OSError:
             return None   # a read-only cache: the NLP stays in this process
+        if fresh:
+            self.prune()
         return path
+
+    def prune(self, keep: int = NLP_VERSIONS_KEPT) -> list:
+        """Delete all but the ``keep`` most recently written code versions' folders."""
+        import shutil
+
+        folders = sorted((f for f in self.directory.iterdir()
+                          if f.is_dir() and f.name != "nodes"),
+                         key=lambda f: f.stat().st_mtime, reverse=True)
+        for old in folders[keep:]:
+            shutil.rmtree(old, ignore_errors=True)
+        return folders[keep:]
 
     @contextmanager
     def locked(self, parts) -> Iterator[None]:

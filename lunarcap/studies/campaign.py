@@ -665,12 +665,32 @@ def _task_error_row(key: dict, message: str) -> dict:
     return dict(key, status="task error", error=message)
 
 
+#: Whether this process has given the optimiser the machine's NLP store (:func:`_worker_setup`).
+_SET_UP: list = []
+
+
+def _worker_setup() -> None:
+    """Once per worker process: the optimiser keeps its NLPs in the machine's store.
+
+    A worker then loads every NLP shape built before on this machine (by the command, the
+    book's kernels or another worker: :func:`lunarcap.optim.nlp.stored`) instead of
+    building it, whichever study's module it imports first.
+    """
+    if not _SET_UP:
+        from lunarcap.optim.solve import use_nlp_store
+        from lunarcap.repro.cache import nlp_store
+
+        use_nlp_store(nlp_store())
+        _SET_UP.append(True)
+
+
 def _run_task(task, key: dict, args: tuple, guard: tuple | None = None) -> dict | list[dict]:
     """In a worker: the task's row (or rows) with key, timing and worker recorded.
 
     ``guard``: ``(use_cache,)``: the task runs inside :func:`guarded` (the cache switch at
     that position; an exception is the error row).
     """
+    _worker_setup()
     t0 = time.perf_counter()
     if guard is None:
         out = task(*args)

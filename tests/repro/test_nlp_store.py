@@ -88,7 +88,8 @@ def test_another_code_version_builds_again(tmp_path):
     assert again["origin"] == "loaded"
 
 
-@pytest.mark.parametrize("damage", ["truncated", "garbage with a valid checksum"])
+@pytest.mark.parametrize("damage", ["truncated", "garbage with a valid checksum",
+                                    "node library truncated"])
 def test_a_damaged_file_is_built_again_with_one_line(tmp_path, damage):
     import hashlib
     import zlib
@@ -98,9 +99,15 @@ def test_a_damaged_file_is_built_again_with_one_line(tmp_path, damage):
     raw = path.read_bytes()
     if damage == "truncated":
         path.write_bytes(raw[: len(raw) // 2])
-    else:   # a file whose checksum holds but whose content is no NLP
+    elif damage == "garbage with a valid checksum":   # no NLP inside
         body = zlib.compress(b"not an NLP")
         path.write_bytes(hashlib.sha256(body).hexdigest().encode() + body)
+    else:   # the NLP refers to a compiled node function that no longer loads
+        libs = sorted(tmp_path.glob("nlp/nodes/*.so"))
+        if not libs:
+            pytest.skip("no C compiler: no node library")
+        for lib in libs:
+            lib.write_bytes(lib.read_bytes()[:100])
     second, err = _solve(tmp_path)
     lines = [ln for ln in err.splitlines() if ln.strip()]
     assert second["origin"] == "built" and second["w"] == first["w"]
@@ -136,3 +143,16 @@ def test_store_round_trip_and_refusals(tmp_path, capfd):
     assert store.load(parts, refuse) is None and not path.exists()
     err = capfd.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "(deserialization failed)" in err[0]
+
+
+def test_the_store_keeps_the_newest_code_versions(tmp_path, monkeypatch):
+    import lunarcap.repro.cache as cache
+
+    store = NLPStore(tmp_path)
+    for k in range(cache.NLP_VERSIONS_KEPT + 2):
+        monkeypatch.setattr(cache, "code_version", lambda *a, k=k, **kw: f"v{k:015d}")
+        store.save(("burn", "shape"), b"x")
+        os.utime(store.path(("burn", "shape")).parent, (1e9 + k, 1e9 + k))
+    left = sorted(f.name for f in tmp_path.iterdir() if f.is_dir())
+    assert left == [f"v{k:015d}" for k in range(2, cache.NLP_VERSIONS_KEPT + 2)]
+    assert store.load(("burn", "shape"), bytes) == b"x"   # the current version's file
