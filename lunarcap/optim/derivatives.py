@@ -88,7 +88,8 @@ class _Block:
     sp_h: ca.Sparsity    # one node's triu H
 
 
-#: Node derivative functions made in this process: {(digest of F, variable inputs): (D, DJ)}.
+#: Node derivative functions made in this process: {(digest of F, variable inputs, compiler):
+#: (D, DJ)}.
 _NODE_FUNS: dict = {}
 
 
@@ -99,7 +100,7 @@ def node_functions(base: ca.Function, var: tuple, compile_fn=None) -> tuple:
     on the NLP's variables). ``compile_fn(Function) -> Function`` (a library of the same
     function) or None for the virtual machine. Made once per process.
     """
-    key = (hashlib.sha256(base.serialize().encode()).hexdigest(), var, compile_fn is None)
+    key = (hashlib.sha256(base.serialize().encode()).hexdigest(), var, compile_fn)
     if key not in _NODE_FUNS:
         xin = [ca.SX.sym(f"i{i}", base.size1_in(i), base.size2_in(i))
                for i in range(base.n_in())]
