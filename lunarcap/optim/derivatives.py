@@ -225,14 +225,18 @@ class NodeCompiler:
     def __init__(self, store, cc: str):
         self.store, self.cc = store, cc
         self.compiled = 0   # libraries compiled by this process
+        self._arcs: dict = {}   # propagators' right-hand sides, by digest
 
     @property
     def tag(self) -> str:
         """What the NLPs built with this compiler are keyed by (the compiler and flags)."""
         return f"c:{os.path.basename(self.cc)}:{' '.join(CFLAGS)}"
 
-    def __call__(self, fun: ca.Function) -> ca.Function:
-        """The library of ``fun`` (compiled here or loaded), or ``fun`` itself if none."""
+    def __call__(self, fun: ca.Function, opts: dict | None = None) -> ca.Function:
+        """The library of ``fun`` (compiled here or loaded), or ``fun`` itself if none.
+
+        ``opts``: options of the loaded function (CasADi's ``external``).
+        """
         name = f"lc_{fun.name()}"
         gen = ca.CodeGenerator(name)
         gen.add(fun)
@@ -241,11 +245,11 @@ class NodeCompiler:
                              .encode()).hexdigest()[:32]
         lib = self.store.file(f"node-{key}", ".so")
         try:
-            loaded = self._load(fun.name(), source, lib, key)
+            loaded = self._load(fun.name(), source, lib, key, opts)
         except (OSError, RuntimeError):   # a damaged library: compiled again, once
             lib.unlink(missing_ok=True)
             try:
-                loaded = self._load(fun.name(), source, lib, key)
+                loaded = self._load(fun.name(), source, lib, key, opts)
             except (OSError, RuntimeError, subprocess.CalledProcessError) as exc:
                 _warn(f"node function {fun.name()} not compiled ({_first_line(exc)}); it "
                       f"runs in CasADi's virtual machine")
@@ -260,13 +264,33 @@ class NodeCompiler:
             return fun
         return loaded
 
-    def _load(self, name: str, source: str, lib, key: str) -> ca.Function:
+    def arc(self, dae: dict):
+        """A propagator's DAE (x, t, p, ode) as a compiled function, or ``dae`` itself.
+
+        :data:`lunarcap.physics.propagate.ARC_COMPILER`: CVODES (Adams, functional
+        iteration) calls only the right-hand side, which compiled runs a 12 h coast in
+        full dynamics 2.1x faster (2.8 ms against 5.8 ms of CPU, 618 evaluations, the same
+        bits); its derivatives, never asked for, are left to finite differences.
+        """
+        ins = {"t": dae["t"], "x": dae["x"], "z": ca.SX(0, 1), "p": dae["p"],
+               "u": ca.SX(0, 1)}
+        outs = {"ode": dae["ode"]}
+        fun = ca.Function(f"arc_{len(self._arcs)}", [ins[k] for k in ca.dyn_in()],
+                          [outs.get(k, ca.SX(0, 1)) for k in ca.dyn_out()],
+                          ca.dyn_in(), ca.dyn_out())
+        key = hashlib.sha256(fun.serialize().encode()).hexdigest()
+        if key not in self._arcs:
+            self._arcs[key] = self(fun, {"enable_fd": True})
+        got = self._arcs[key]
+        return dae if got is fun else got
+
+    def _load(self, name: str, source: str, lib, key: str, opts=None) -> ca.Function:
         """The library ``lib`` of ``source`` loaded, compiled first if absent (locked)."""
         if not lib.is_file():
             with self.store.locked(f"node-{key}"):
                 if not lib.is_file():
                     self._compile(source, lib)
-        return ca.external(name, str(lib))
+        return ca.external(name, str(lib), opts or {})
 
     def _compile(self, source: str, lib) -> None:
         """Gcc ``source`` into ``lib`` (written under a temporary name, then moved)."""

@@ -13,6 +13,7 @@ Eq. (9): the burn's delta-V plus the speed at the end of the coast.
 from __future__ import annotations
 
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -66,14 +67,17 @@ def use_store(store) -> None:
     ``store`` has ``load(parts, decode)``, ``save(parts, data)``, ``locked(parts)`` and
     ``file(name, suffix)`` (:class:`lunarcap.repro.cache.NLPStore`, keyed there by the
     code's version as well). With a C compiler (:func:`lunarcap.optim.derivatives.compiler`)
-    the node functions of the NLPs' derivatives are compiled into it too. The optimiser
-    caches nothing itself: the capture service installs the store.
+    the node functions of the NLPs' derivatives are compiled into it too, and so are the
+    propagators' right-hand sides (:data:`lunarcap.physics.propagate.ARC_COMPILER`). The
+    optimiser caches nothing itself: the capture service installs the store.
     """
     global _STORE, _COMPILER
     from lunarcap.optim.derivatives import NodeCompiler, compiler
+    from lunarcap.physics import propagate as prop
 
     cc = compiler() if store is not None else None
     _STORE, _COMPILER = store, (NodeCompiler(store, cc) if cc else None)
+    prop.ARC_COMPILER = _COMPILER.arc if _COMPILER is not None else None
 
 
 def stored(kind: str, shape: tuple, build) -> CompiledNLP:
@@ -104,6 +108,21 @@ def stored(kind: str, shape: tuple, build) -> CompiledNLP:
                 return nlp
     hit.build_s = time.perf_counter() - t0
     return hit
+
+
+@contextmanager
+def node_derivatives(on: bool):
+    """Within the block, NLPs built take their derivatives node by node (``on``) or not.
+
+    Not: CasADi's AD of the expanded NLP, what ``lunarcap bench --studies`` compares.
+    """
+    from lunarcap.optim import transcription
+
+    old, transcription.NODE_DERIVATIVES = transcription.NODE_DERIVATIVES, bool(on)
+    try:
+        yield
+    finally:
+        transcription.NODE_DERIVATIVES = old
 
 
 def ca_version() -> str:

@@ -259,7 +259,6 @@ def derivative_options(out=print) -> list[dict]:
 
     from lunarcap.capture.chain import arrival_for
     from lunarcap.mission.plan import load_plan
-    from lunarcap.optim import transcription
     from lunarcap.optim.collocation import DEFAULT_MESHES
     from lunarcap.optim.derivatives import compiler
     from lunarcap.optim.guess import make_guess
@@ -277,8 +276,7 @@ def derivative_options(out=print) -> list[dict]:
     for label, nodes, store in ways:
         with tempfile.TemporaryDirectory() as tmp, \
                 _nlp_store(tmp if store else None) as N:
-            old, transcription.NODE_DERIVATIVES = transcription.NODE_DERIVATIVES, nodes
-            try:
+            with N.node_derivatives(nodes):
                 t0 = time.perf_counter()
                 nlp = N.nlp_for(prob, mesh)
                 build = time.perf_counter() - t0
@@ -286,8 +284,6 @@ def derivative_options(out=print) -> list[dict]:
                 c0 = time.process_time()
                 raw = N.solve_nlp(prob, mesh, guess)
                 cpu = time.process_time() - c0
-            finally:
-                transcription.NODE_DERIVATIVES = old
             s = nlp.compiled.solver
             row = {"derivatives": label, "build_s": build,
                    "hess_l_ms": _eval_ms(s.get_function("nlp_hess_l")),
