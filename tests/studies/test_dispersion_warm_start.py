@@ -4,10 +4,10 @@ A re-plan (:func:`lunarcap.studies.dispersions.samples._replan`) solves the burn
 the nominal's steering flown from the state reached; IPOPT may also start from the
 nominal's multipliers (``warm_start_init_point``). That must not change which optimum is
 found: the same re-plan warm and cold ends on the same burn (delta-V within 1e-6 m/s, far
-inside the verification gate's 0.01 m/s), both verified, the warm one in no more IPOPT
-iterations. Cases: the paper's 150 N plan in full dynamics (burn 2 from a perilune reached
-1 km and 1 m/s off, the paper's fixed timeline) and a generated two-burn plan (35 deg,
-260 N, 900 kg, its orbit asked) in two-body dynamics.
+inside the verification gate's 0.01 m/s), both verified, the warm one in fewer IPOPT
+iterations (3-4 against 9-13 here). Cases: the paper's 150 N plan in full dynamics (burn 2
+from a perilune reached 1 km and 1 m/s off, the paper's fixed timeline) and a generated
+two-burn plan (35 deg, 260 N, 900 kg, its orbit asked) in two-body dynamics.
 """
 
 import numpy as np
@@ -54,7 +54,7 @@ def test_a_warm_replan_ends_on_the_cold_one(which):
     assert abs(warm.delta_v_mps - cold.delta_v_mps) < 1e-6
     assert abs(warm.delta_v_mps - nom.delta_v_mps) > 1e-3   # a real re-plan, not the nominal
     it = [sum(a["iterations"] for a in s.attempts) for s in (cold, warm)]
-    assert it[1] <= it[0], it
+    assert it[1] < it[0], it   # the multipliers carry what the primal guess does not
 
 
 def test_multipliers_of_another_nlp_are_not_used():
