@@ -390,13 +390,13 @@ class StudyCluster:
     """The Dask cluster the book's studies share, started when the first study runs.
 
     Every study of the book (trade study, burn count, missed thrust, dispersions) would
-    otherwise start a local cluster of its own, whose worker processes import lunarcap and
-    build each NLP shape they need again: for the all-burns NLPs of the studies, 1.6 s of
-    CPU for one leg up to 14 s for five, per worker and study. This one is started once
-    (``jobs`` workers, one thread each) and named to the notebooks' kernels by the
-    environment variable :data:`lunarcap.studies.campaign.SCHEDULER_ENV` (set for that
-    kernel alone, :func:`execute_entry`); its workers keep the NLPs they built from one
-    study to the next. A study is an entry whose manifest parameters set ``workers``.
+    otherwise start a local cluster of its own, whose worker processes start, import
+    lunarcap and load each NLP shape they need again (from the machine's NLP store:
+    :func:`lunarcap.optim.nlp.stored`). This one is started once (``jobs`` workers, one
+    thread each) and named to the notebooks' kernels by the environment variable
+    :data:`lunarcap.studies.campaign.SCHEDULER_ENV` (set for that kernel alone,
+    :func:`execute_entry`); its workers keep the NLPs they hold from one study to the
+    next. A study is an entry whose manifest parameters set ``workers``.
     Not started when no study is executed (a rerun with nothing changed), nor when that
     variable names a scheduler already (an existing cluster's: the kernels are given
     that address instead, see ``--scheduler`` in :mod:`lunarcap.bookbuild.build`).
