@@ -665,16 +665,13 @@ def _task_error_row(key: dict, message: str) -> dict:
     return dict(key, status="task error", error=message)
 
 
-#: Whether this process has given the optimiser the machine's NLP store (:func:`_worker_setup`).
-_SET_UP: list = []
+_SET_UP: list = []   # whether this process has set the optimiser's NLP store
 
 
 def _worker_setup() -> None:
-    """Once per worker process: the optimiser keeps its NLPs in the machine's store.
+    """Once per worker: the optimiser's NLP store, whichever study module comes first.
 
-    A worker then loads every NLP shape built before on this machine (by the command, the
-    book's kernels or another worker: :func:`lunarcap.optim.nlp.stored`) instead of
-    building it, whichever study's module it imports first.
+    NLPs built on this machine are then loaded, not built (:func:`lunarcap.optim.nlp.stored`).
     """
     if not _SET_UP:
         from lunarcap.optim.solve import use_nlp_store
