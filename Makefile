@@ -3,6 +3,7 @@
 #                 the import contracts), run the test suite (unit + slow optimisation tests
 #                 + papermill quick runs + a quick book in book/_build/quick)
 #   make book   - create .venv likewise, execute every notebook of the manifest, build the HTML book
+#                 (SCHEDULER=tcp://host:port: the book's studies on that Dask cluster)
 #   make lock   - regenerate environment-lock.txt from pyproject.toml (needs network to PyPI)
 #   make lint   - ruff and the import-linter contracts of pyproject.toml
 #   make screenshots - built pages in headless Chromium at 1280/1024 px, offline; fails on overflow
@@ -64,8 +65,10 @@ endif
 test: lint chromium
 	$(PY) -m pytest
 
+# SCHEDULER=tcp://host:port runs the book's studies on that existing Dask cluster (its
+# workers need lunarcap importable) instead of two local worker processes.
 book: $(STAMP)
-	$(PY) -m lunarcap.bookbuild.build build
+	$(PY) -m lunarcap.bookbuild.build build $(if $(SCHEDULER),--scheduler $(SCHEDULER))
 
 book-quick: $(STAMP)
 	$(PY) -m lunarcap.bookbuild.build build --quick

@@ -3,7 +3,7 @@
 Usage::
 
     python -m lunarcap.bookbuild.build build [--quick] [--jobs N] [--only NAME ...] [--force]
-                                             [--no-build]
+                                             [--no-build] [--scheduler tcp://host:port]
     python -m lunarcap.bookbuild.build check   # validate the pages and the table of contents
 
 What runs is the manifest: one entry per execution of a notebook, declared by the page
@@ -23,6 +23,10 @@ glued numbers), with the table of contents generated from the pages in ``_build/
 separate book in ``book/_build/quick/`` (:func:`lunarcap.repro.paths.stage_quick_book`),
 so ``make test`` never replaces the full book. SIGINT or SIGTERM stop the run within
 seconds, leaving nothing half-written (:mod:`lunarcap.bookbuild.execution`).
+
+The book's studies (entries whose parameters set ``workers``) share one local Dask cluster
+of ``--jobs`` workers, or run on an existing cluster with ``--scheduler`` (``make book
+SCHEDULER=tcp://host:port``), checked before any entry runs.
 
 Exit status: 0 success, 1 an entry or the book build failed, 2 invalid manifest or usage,
 130 interrupted by SIGINT, 143 interrupted by SIGTERM.
@@ -140,6 +144,42 @@ def build_book(entries: list[Entry], log=print) -> bool:
 
 
 # ====================================================================== CLI
+def use_scheduler(address: str, timeout_s: float = 20.0) -> str:
+    """Run the book's studies on the Dask cluster at ``address`` (checked before any work).
+
+    The address goes to every study's kernel as
+    :data:`lunarcap.studies.campaign.SCHEDULER_ENV` (as the CLI's ``--scheduler``): the
+    book's own local cluster is not started. ManifestError (exit 2) if it is no address,
+    or no scheduler with at least one worker answers there within ``timeout_s``.
+    """
+    from lunarcap.errors import InputError
+    from lunarcap.studies.campaign import SCHEDULER_ENV, check_scheduler
+
+    try:
+        address = check_scheduler(address)
+    except InputError as exc:
+        raise ManifestError(f"--scheduler: {exc}") from None
+    address = address.strip()
+    from dask.distributed import Client
+
+    try:
+        with Client(address, timeout=f"{timeout_s:g}s") as client:
+            workers = len(client.scheduler_info().get("workers", {}))
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        raise ManifestError(f"--scheduler {address}: no Dask scheduler answers there "
+                            f"({_one_line(exc)})") from None
+    if not workers:
+        raise ManifestError(f"--scheduler {address}: the scheduler has no worker to run "
+                            f"the studies")
+    os.environ[SCHEDULER_ENV] = address
+    return address
+
+
+def _one_line(exc) -> str:
+    text = " ".join(str(exc).split()) or type(exc).__name__
+    return text[:200]
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser."""
     p = argparse.ArgumentParser(prog="python -m lunarcap.bookbuild.build",
@@ -155,6 +195,10 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--no-build", action="store_true", help="execute only; skip jupyter-book")
     b.add_argument("--timeout", type=float, default=None,
                    help="per-cell execution timeout, s (default: none)")
+    b.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="run the book's studies on this existing Dask cluster "
+                        "(tcp://host:port; its workers need lunarcap importable) instead of "
+                        "local worker processes")
     sub.add_parser("check", help="validate the pages (or manifest) and the table of contents")
     return p
 
@@ -172,6 +216,8 @@ def main(argv=None) -> int:
         if args.jobs < 1:
             raise ManifestError("--jobs must be at least 1")
         chosen = select(entries, args.only)
+        if args.scheduler is not None:
+            use_scheduler(args.scheduler)
     except ManifestError as exc:
         print(f"lunarcap.bookbuild.build: error: {exc}", file=sys.stderr)
         return 2

@@ -390,15 +390,16 @@ class StudyCluster:
     """The Dask cluster the book's studies share, started when the first study runs.
 
     Every study of the book (trade study, burn count, missed thrust, dispersions) would
-    otherwise start a local cluster of its own, whose worker processes import lunarcap and
-    build each NLP shape they need again: for the all-burns NLPs of the studies, 1.6 s of
-    CPU for one leg up to 14 s for five, per worker and study. This one is started once
-    (``jobs`` workers, one thread each) and named to the notebooks' kernels by the
-    environment variable :data:`lunarcap.studies.campaign.SCHEDULER_ENV` (set for that
-    kernel alone, :func:`execute_entry`); its workers keep the NLPs they built from one
-    study to the next. A study is an entry whose manifest parameters set ``workers``.
+    otherwise start a local cluster of its own, whose worker processes start, import
+    lunarcap and load each NLP shape they need again (from the machine's NLP store:
+    :func:`lunarcap.optim.nlp.stored`). This one is started once (``jobs`` workers, one
+    thread each) and named to the notebooks' kernels by the environment variable
+    :data:`lunarcap.studies.campaign.SCHEDULER_ENV` (set for that kernel alone,
+    :func:`execute_entry`); its workers keep the NLPs they hold from one study to the
+    next. A study is an entry whose manifest parameters set ``workers``.
     Not started when no study is executed (a rerun with nothing changed), nor when that
-    variable names a scheduler already.
+    variable names a scheduler already (an existing cluster's: the kernels are given
+    that address instead, see ``--scheduler`` in :mod:`lunarcap.bookbuild.build`).
     """
 
     def __init__(self, workers: int):
@@ -409,13 +410,13 @@ class StudyCluster:
     def start(self) -> dict:
         """Start the cluster (once); the environment naming it, for a study's kernel.
 
-        Empty if this process's environment names a scheduler already: the kernels inherit
-        that one.
+        If this process's environment names a scheduler already (``make book
+        SCHEDULER=...``, ``build --scheduler``), that one, and no cluster is started.
         """
         from lunarcap.studies.campaign import SCHEDULER_ENV, dask_client
 
         if os.environ.get(SCHEDULER_ENV):
-            return {}
+            return {SCHEDULER_ENV: os.environ[SCHEDULER_ENV]}
         if self._client is None:
             self._client = self._stack.enter_context(dask_client(self.workers, None, True))
         return {SCHEDULER_ENV: self._client.scheduler.address}

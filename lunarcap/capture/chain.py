@@ -28,10 +28,12 @@ from lunarcap.mission.arrival import Arrival, ArrivalSpec
 from lunarcap.mission.plan import CapturePlan, paper_plan, plan_ephemeris
 from lunarcap.optim.problem import burn_fit, burn_problem
 from lunarcap.optim.solution import Solution
-from lunarcap.optim.solve import solve_burn_problem
+from lunarcap.optim.solve import solve_burn_problem, use_nlp_store
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.frames import DEFAULT_LUNAR_POLE
-from lunarcap.repro.cache import cached, enabled
+from lunarcap.repro.cache import cached, enabled, nlp_store
+
+use_nlp_store(nlp_store())   # NLPs built once per machine, loaded by every later process
 
 
 def _log(msg: str) -> None:

@@ -34,6 +34,7 @@ from lunarcap.optim.nlp import (
     initial_point,
     leg_bounds,
     leg_solution,
+    stored,
 )
 from lunarcap.optim.problem import END_WINDOW_FRACTION, burn_problem
 from lunarcap.optim.solution import Solution
@@ -46,7 +47,7 @@ from lunarcap.physics.rocket import rocket_delta_v_mps
 
 @dataclass
 class JointNLP:
-    """A compiled all-burns NLP and its legs."""
+    """A compiled all-burns NLP and its legs' outputs (functions of w, p: LEG_OUTPUTS)."""
 
     compiled: object
     legs: list
@@ -66,6 +67,21 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
                     expand: bool = False) -> JointNLP:
     """The NLP of N legs (one per target kind), each with a free ignition, linked end to start.
 
+    Built once per machine and loaded by later processes where the optimiser has a store
+    (:func:`lunarcap.optim.nlp.stored`), once per process otherwise; see :func:`_build`.
+    """
+    key = (mesh, tuple(target_kinds), force_model(mode).key, tuple(free_coasts),
+           bool(period_rows), bool(expand))
+    compiled = stored("joint", key, lambda compile_fn: _build(
+        mesh, target_kinds, mode, free_coasts, period_rows, expand, compile_fn))
+    return JointNLP(compiled, [compiled.outputs.get(f"leg{k}")
+                               for k in range(len(target_kinds))])
+
+
+def _build(mesh: Mesh, target_kinds: tuple, mode, free_coasts: tuple, period_rows: bool,
+           expand: bool, compile_fn=None):
+    """The all-burns NLP (a CompiledNLP) of :func:`build_joint_nlp`.
+
     Parameters (by name): ``x_start`` (the state at the first nominal perilune, physical),
     ``t_ref`` (the N+1 nominal perilune epochs), and per leg ``leg<k>.dynamics``,
     ``leg<k>.mesh_burn``, ``leg<k>.mesh_coast``, ``leg<k>.target``.
@@ -82,11 +98,9 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
     osculating orbit at the perilune where its target holds); the solver bounds it above
     to bound that orbit's period.
 
-    ``expand`` (:meth:`NLPBuilder.compile`): expanding an all-burns NLP costs 3-14 s of
-    CPU against 0.1-1.6 s unexpanded, and its solves then run about 2x faster: worth it
-    only for a shape solved many times in one process (the missed-thrust recoveries), not
-    for a nominal solved once nor the burns study. Either way the same optimum to the
-    solver's tolerance.
+    ``expand`` (:meth:`NLPBuilder.compile`) applies only where the derivatives are not
+    assembled node by node: expanding an all-burns NLP then cost 3-14 s of CPU against
+    0.1-1.6 s unexpanded, for solves about 2x faster. ``compile_fn``: the node compiler.
     """
     nb, nc = mesh.n_burn, mesh.n_coast
     n = len(target_kinds)
@@ -131,7 +145,8 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
     tag = "" if not any(free) else "_free" + "".join("1" if f else "0" for f in free)
     tag += "_period" if period_rows and any(free) else ""
     name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{force_model(mode).key}{tag}".replace("-", "_")
-    return JointNLP(nlp.compile(J, name, expand=expand), legs)
+    return nlp.compile(J, name, expand=expand, compile_fn=compile_fn,
+                       outputs={f"leg{k}": leg.outputs() for k, leg in enumerate(legs)})
 
 
 @dataclass
@@ -251,7 +266,7 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
     res = nlp.compiled.solve(x0=w0, p=lay.params(**params), lbx=lbx, ubx=ubx, lbg=lbg,
                               ubg=ubg)
     solve_s = time.perf_counter() - t0
-    stats = nlp.compiled.solver.stats()
+    stats = nlp.compiled.stats()
     if not stats["success"]:
         raise SolveError(f"all-burns NLP{_of(plan)}: IPOPT "
                          f"{stats['return_status']}", status=stats["return_status"])

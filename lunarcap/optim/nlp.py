@@ -13,6 +13,7 @@ Eq. (9): the burn's delta-V plus the speed at the end of the coast.
 from __future__ import annotations
 
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -34,7 +35,7 @@ from lunarcap.optim.collocation import (
 from lunarcap.optim.guess import Guess
 from lunarcap.optim.interrupt import map_in_threads
 from lunarcap.optim.problem import BurnProblem
-from lunarcap.optim.transcription import CompiledNLP, Leg, NLPBuilder, add_leg
+from lunarcap.optim.transcription import CompiledNLP, NLPBuilder, add_leg
 from lunarcap.physics import constants as C
 from lunarcap.physics.dynamics import force_model
 from lunarcap.physics.elements import rv_from_mee
@@ -44,28 +45,108 @@ from lunarcap.physics.rocket import rocket_delta_v_mps
 
 @dataclass
 class BurnNLP:
-    """A compiled single-burn NLP and its leg."""
+    """A compiled single-burn NLP and its leg's outputs (a function of w, p: LEG_OUTPUTS)."""
 
     compiled: CompiledNLP
-    leg: Leg
+    leg: object
 
 
-#: The NLPs built in this process, by shape (the arguments of :func:`build_burn_nlp`).
+#: The NLPs built or loaded in this process, by shape (the arguments of :func:`build_burn_nlp`).
 _NLPS: dict = {}
+
+#: Where NLPs and compiled node functions are kept between processes (None: nowhere, every
+#: process builds its own): set by the layer above the optimiser (:func:`use_store`).
+_STORE = None
+#: The node compiler of that store (:class:`lunarcap.optim.derivatives.NodeCompiler`).
+_COMPILER = None
+
+
+def use_store(store) -> None:
+    """Keep NLPs in ``store`` (or None): built once per machine, loaded by later processes.
+
+    ``store`` has ``load(parts, decode)``, ``save(parts, data)``, ``locked(parts)`` and
+    ``file(name, suffix)`` (:class:`lunarcap.repro.cache.NLPStore`, keyed there by the
+    code's version as well). With a C compiler (:func:`lunarcap.optim.derivatives.compiler`)
+    the node functions of the NLPs' derivatives are compiled into it too, and so are the
+    propagators' right-hand sides (:data:`lunarcap.physics.propagate.ARC_COMPILER`). The
+    optimiser caches nothing itself: the capture service installs the store.
+    """
+    global _STORE, _COMPILER
+    from lunarcap.optim.derivatives import NodeCompiler, compiler
+    from lunarcap.physics import propagate as prop
+
+    cc = compiler() if store is not None else None
+    _STORE, _COMPILER = store, (NodeCompiler(store, cc) if cc else None)
+    prop.ARC_COMPILER = _COMPILER.arc if _COMPILER is not None else None
+
+
+def stored(kind: str, shape: tuple, build) -> CompiledNLP:
+    """The compiled NLP of ``shape``: loaded from the store, else ``build()`` and saved.
+
+    ``kind`` ("burn", "joint") and ``shape`` key it, with how its node functions run. Two
+    processes asking for the same shape at once: one builds and saves it under the
+    store's lock, the other waits and loads it. ``build(compile_fn)`` returns the
+    CompiledNLP; a store that fails to read or write leaves the NLP built in memory.
+    """
+    store, cc = _STORE, _COMPILER
+    compile_fn = cc if cc is not None else None
+    if store is None:
+        return build(compile_fn)
+    from lunarcap.optim import transcription
+
+    parts = (kind, repr(shape), ca_version(), cc.tag if cc is not None else "vm",
+             "nodes" if transcription.NODE_DERIVATIVES else "casadi")
+    t0 = time.perf_counter()
+    decode = lambda data: CompiledNLP.from_bytes(data, time.perf_counter() - t0)  # noqa: E731
+    hit = store.load(parts, decode)
+    if hit is None:
+        with store.locked(parts):
+            hit = store.load(parts, decode)   # saved by another process meanwhile
+            if hit is None:
+                nlp = build(compile_fn)
+                store.save(parts, nlp.to_bytes())
+                return nlp
+    hit.build_s = time.perf_counter() - t0
+    return hit
+
+
+@contextmanager
+def node_derivatives(on: bool):
+    """Within the block, NLPs built take their derivatives node by node (``on``) or not.
+
+    Not: CasADi's AD of the expanded NLP, what ``lunarcap bench --studies`` compares.
+    """
+    from lunarcap.optim import transcription
+
+    old, transcription.NODE_DERIVATIVES = transcription.NODE_DERIVATIVES, bool(on)
+    try:
+        yield
+    finally:
+        transcription.NODE_DERIVATIVES = old
+
+
+def ca_version() -> str:
+    """CasADi's version (a serialized NLP is read by the version that wrote it)."""
+    import casadi
+
+    return casadi.__version__
 
 
 def build_burn_nlp(mesh: Mesh, target_kind: str, free_start: bool = False,
                    steering: str = "optimal", mode: str = "full",
                    free_end: bool = False, correction: bool = False) -> BurnNLP:
-    """The NLP of one shape, built on first use (once per process; see :func:`_build`)."""
+    """The NLP of one shape: built (or loaded, :func:`stored`) on first use in a process."""
     shape = (mesh, target_kind, free_start, steering, mode, free_end, correction)
     if shape not in _NLPS:
-        _NLPS[shape] = _build(*shape)
+        key = (mesh, target_kind, free_start, steering, force_model(mode).key, free_end,
+               correction)
+        compiled = stored("burn", key, lambda compile_fn: _build(*shape, compile_fn))
+        _NLPS[shape] = BurnNLP(compiled, compiled.outputs.get("leg"))
     return _NLPS[shape]
 
 
 def _build(mesh: Mesh, target_kind: str, free_start: bool, steering: str, mode: str,
-           free_end: bool, correction: bool = False) -> BurnNLP:
+           free_end: bool, correction: bool = False, compile_fn=None) -> CompiledNLP:
     """Build (once per mesh shape, target kind, start mode, steering law, dynamics) the NLP.
 
     Parameters (by name): ``x_start`` (7, physical: the state at ignition, or at the
@@ -76,7 +157,8 @@ def _build(mesh: Mesh, target_kind: str, free_start: bool, steering: str, mode: 
     With ``free_end`` the coast ends at ``t_end`` plus a variable ``te`` (TU): the
     epoch of the perilune where an ellipse target holds is optimised. With ``correction``
     the parameters ``accel_pre``, ``accel_burn``, ``accel_coast`` add an acceleration at
-    each collocation point (:mod:`lunarcap.optim.correction`).
+    each collocation point (:mod:`lunarcap.optim.correction`). ``compile_fn``: the node
+    compiler of the derivatives (:meth:`NLPBuilder.compile`).
     """
     nb, nc = mesh.n_burn, mesh.n_coast
     nlp = NLPBuilder()
@@ -96,7 +178,8 @@ def _build(mesh: Mesh, target_kind: str, free_start: bool, steering: str, mode: 
     name = (f"burn_{nb}_{nc}_{mesh.degree}_{target_kind}{'_free' if free_start else ''}"
             f"{'_end' if free_end else ''}_{steering}_{force_model(mode).key}"
             f"{'_corr' if correction else ''}").replace("-", "_")
-    return BurnNLP(nlp.compile(leg.dv + leg.v_end, name), leg)
+    return nlp.compile(leg.dv + leg.v_end, name, compile_fn=compile_fn,
+                       outputs={"leg": leg.outputs()})
 
 
 def describe_shape(mesh: Mesh, target_kind: str, free_start: bool = False,
@@ -111,7 +194,7 @@ def describe_shape(mesh: Mesh, target_kind: str, free_start: bool = False,
 
 
 def is_built(mesh: Mesh, prob: BurnProblem, mode=None, correction: bool = False) -> bool:
-    """True if this process has built the NLP of ``prob``'s shape on ``mesh``."""
+    """True if this process holds the NLP of ``prob``'s shape on ``mesh`` (built or loaded)."""
     return shape_of(mesh, prob, mode, correction) in _NLPS
 
 
@@ -126,12 +209,12 @@ def shape_of(mesh: Mesh, prob: BurnProblem, mode=None, correction: bool = False)
 
 
 def clear_nlps() -> None:
-    """Forget every NLP built in this process (the next use builds it again)."""
+    """Forget every NLP this process holds (the next use builds or loads it again)."""
     _NLPS.clear()
 
 
 def n_built() -> int:
-    """How many NLP shapes this process holds built."""
+    """How many NLP shapes this process holds (built or loaded)."""
     return len(_NLPS)
 
 
@@ -139,25 +222,27 @@ def prebuild(shapes, progress=None) -> None:
     """Build several NLP shapes before the first solve, one after the other.
 
     ``shapes``: iterable of (mesh, target kind, free start, steering, dynamics[, free end])
-    tuples, the arguments of :func:`build_burn_nlp`; each is built once per process, here
-    or later. The builds run off the main thread so that Ctrl-C acts at once
+    tuples, the arguments of :func:`build_burn_nlp`; each is built once per machine (or
+    per process without a store, :func:`use_store`) and loaded by later processes, here or
+    later. The builds run off the main thread so that Ctrl-C acts at once
     (:func:`lunarcap.optim.interrupt.map_in_threads`), but never two at once: creating
     CasADi's symbolic expressions is not thread-safe (shared reference counts; concurrent
     builds can crash the process). ``progress(str)``: a line before the builds, one per
-    shape built (what, how long) and the total.
+    shape (what, built or loaded, how long) and the total.
     """
     shapes = [s for s in dict.fromkeys(_normal(*s) for s in shapes) if s not in _NLPS]
     if not shapes:
         return
     if progress:
-        progress(f"building {len(shapes)} NLP{'s' * (len(shapes) > 1)} (once per process):")
+        progress(f"building {len(shapes)} NLP{'s' * (len(shapes) > 1)} (once per "
+                 f"{'machine, loaded if built before' if _STORE is not None else 'process'}):")
     t0 = time.perf_counter()
 
     def build(shape):
         t = time.perf_counter()
-        build_burn_nlp(*shape)
+        origin = build_burn_nlp(*shape).compiled.origin
         if progress:
-            progress(f"  {describe_shape(*shape)}: {time.perf_counter() - t:.1f} s")
+            progress(f"  {describe_shape(*shape)}: {origin} in {time.perf_counter() - t:.1f} s")
 
     map_in_threads(build, shapes, workers=1)
     if progress and len(shapes) > 1:
@@ -193,6 +278,9 @@ class RawSolution:
     max_defect: float
     u_inertial: np.ndarray | None = None
     w: np.ndarray | None = None        # the NLP's solution vector (a warm start)
+    lam_x: np.ndarray | None = None    # its multipliers of the variables' bounds
+    lam_g: np.ndarray | None = None    # and of the constraints (a warm start's too)
+    nlp_shape: tuple | None = None     # the NLP solved (shape_of), whose multipliers these are
     t_pre: np.ndarray | None = None    # epochs of the pre-ignition coast (start + points), s
     x_pre: np.ndarray | None = None    # (7, N_PRE*d+1), free start only
     corrections: int = 0               # outer corrections of a field (optim.correction)
@@ -306,13 +394,16 @@ def nlp_for(prob: BurnProblem, mesh: Mesh, mode=None, correction: bool = False) 
 
 
 def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess, mode=None, accel: dict | None = None,
-              w0: np.ndarray | None = None, fractions: tuple | None = None) -> RawSolution:
+              w0: np.ndarray | None = None, fractions: tuple | None = None,
+              multipliers: RawSolution | None = None) -> RawSolution:
     """Solve the burn's NLP on one mesh from a guess; no verification here.
 
     ``mode`` and ``accel`` (the per-phase corrections, ``{"accel_burn": (3, N), ...}``):
     an NLP carrying other forces than the problem's plus a tabulated acceleration
     (:mod:`lunarcap.optim.correction`); ``w0`` and ``fractions`` (burn and coast mesh
-    fractions): start from a previous solution of the same NLP.
+    fractions): start from a previous solution of the same NLP. ``multipliers``: a
+    solution of the same NLP whose multipliers IPOPT starts from (:func:`same_nlp`;
+    ignored otherwise), the primal point still the guess's.
     """
     nlp = nlp_for(prob, mesh, mode, accel is not None)
     lay = nlp.compiled.layout
@@ -332,10 +423,13 @@ def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess, mode=None, accel: dic
     pvec = lay.params(x_start=xs, t_ref=ts, t_end=prob.t_end_s, dynamics=prob.model.params(),
                       mesh_burn=mb, mesh_coast=mc, target=prob.target.values(LU),
                       **(accel or {}))
+    warm = None
+    if multipliers is not None and same_nlp(multipliers, prob, mesh, mode, accel is not None):
+        warm = (multipliers.lam_x, multipliers.lam_g)
     t0 = time.perf_counter()
-    res = nlp.compiled.solve(x0=w0, p=pvec, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
+    res = nlp.compiled.solve(warm, x0=w0, p=pvec, lbx=lbx, ubx=ubx, lbg=lbg, ubg=ubg)
     solve_s = time.perf_counter() - t0
-    stats = nlp.compiled.solver.stats()
+    stats = nlp.compiled.stats()
     w = np.asarray(res["x"]).ravel()
     gval = np.asarray(res["g"]).ravel()
     defect = np.char.startswith(np.array(lay.g_kinds, dtype=str), "defect")
@@ -344,4 +438,18 @@ def solve_nlp(prob: BurnProblem, mesh: Mesh, guess: Guess, mode=None, accel: dic
                        success=bool(stats["success"]), iterations=int(stats["iter_count"]),
                        solve_s=solve_s, build_s=nlp.compiled.build_s,
                        max_defect=float(np.max(np.abs(gval[defect]))), w=w,
+                       lam_x=np.asarray(res["lam_x"]).ravel(),
+                       lam_g=np.asarray(res["lam_g"]).ravel(),
+                       nlp_shape=shape_of(mesh, prob, mode, accel is not None),
                        **leg_solution(lay, "", w, prob, mesh, mb, mc, S))
+
+
+def same_nlp(raw: RawSolution, prob: BurnProblem, mesh: Mesh, mode=None,
+             correction: bool = False) -> bool:
+    """Whether ``raw`` solved the NLP that ``prob`` on ``mesh`` solves (with its multipliers).
+
+    The same shape (:func:`shape_of`: mesh, target, start and end modes, steering,
+    forces), so its multipliers are a starting point of the same length and meaning.
+    """
+    return (raw.lam_x is not None and raw.lam_g is not None
+            and raw.nlp_shape == shape_of(mesh, prob, mode, correction))

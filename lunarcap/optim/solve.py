@@ -18,8 +18,9 @@ import numpy as np
 from lunarcap.errors import SolveError
 from lunarcap.optim.correction import meshes_for, nlp_shape, solve_in_model
 from lunarcap.optim.guess import make_guess
-from lunarcap.optim.nlp import describe_shape, is_built, shape_of
+from lunarcap.optim.nlp import describe_shape, is_built, shape_of, solve_nlp
 from lunarcap.optim.nlp import prebuild as _prebuild_nlps
+from lunarcap.optim.nlp import use_store as use_nlp_store  # noqa: F401  (for the capture service)
 from lunarcap.optim.problem import BurnProblem
 from lunarcap.optim.solution import Solution
 from lunarcap.optim.verify import verify
@@ -27,7 +28,7 @@ from lunarcap.physics.elements import period
 
 
 def solve_burn_problem(prob: BurnProblem, meshes=None, guess=None,
-                       progress=None) -> Solution:
+                       progress=None, multipliers=None) -> Solution:
     """Optimal finite burn for ``prob``, verified by re-propagation.
 
     Parameters
@@ -40,6 +41,10 @@ def solve_burn_problem(prob: BurnProblem, meshes=None, guess=None,
         Initial guess (default: :func:`lunarcap.optim.guess.make_guess`).
     progress : callable(str) or None
         Receives one line per attempt.
+    multipliers : RawSolution or None
+        A solved neighbour of this burn (the nominal of a re-planned burn): on a mesh
+        where it solved the same NLP, IPOPT starts from its multipliers too
+        (:func:`lunarcap.optim.nlp.solve_nlp`). Not in a field carried by corrections.
 
     Raises
     ------
@@ -49,7 +54,7 @@ def solve_burn_problem(prob: BurnProblem, meshes=None, guess=None,
     t0 = time.perf_counter()
     meshes = meshes or meshes_for(prob.model.forces)
     try:
-        return _solve_on_meshes(prob, meshes, guess, progress, t0)
+        return _solve_on_meshes(prob, meshes, guess, progress, t0, multipliers)
     except SolveError as exc:
         wider = widened(prob)
         if wider is None:
@@ -102,15 +107,19 @@ def widened(prob: BurnProblem) -> BurnProblem | None:
     return replace(prob, start_bounds_min=new)
 
 
-def _solve_on_meshes(prob: BurnProblem, meshes, guess, progress, t0: float) -> Solution:
+def _solve_on_meshes(prob: BurnProblem, meshes, guess, progress, t0: float,
+                     multipliers=None) -> Solution:
     """The mesh loop of :func:`solve_burn_problem` (see there)."""
     guess = guess or make_guess(prob)
     attempts = []
     for mesh in meshes:
         carried = nlp_shape(prob.model.forces)
-        if progress and not is_built(mesh, prob, *carried):   # seconds, once per process
+        if progress and not is_built(mesh, prob, *carried):   # once per machine or process
             progress(f"  building the NLP ({describe_shape(*shape_of(mesh, prob, *carried))})")
-        raw = solve_in_model(prob, mesh, guess)
+        if multipliers is not None and not carried[1]:
+            raw = solve_nlp(prob, mesh, guess, multipliers=multipliers)
+        else:
+            raw = solve_in_model(prob, mesh, guess)
         rec = {"mesh": mesh.label(), "ipopt_status": raw.status,
                "iterations": raw.iterations, "nlp_solve_s": raw.solve_s,
                "delta_v_mps": raw.delta_v_mps}

@@ -32,6 +32,7 @@ from lunarcap.optim.collocation import (
     Mesh,
     collocation_defects,
 )
+from lunarcap.optim.derivatives import exact_derivatives
 from lunarcap.optim.interrupt import off_main_thread
 from lunarcap.optim.problem import steering_law_expr
 from lunarcap.physics.dynamics import P_THRUST, P_VEX, force_model
@@ -49,6 +50,12 @@ IPOPT_OPTIONS = {
     "acceptable_constr_viol_tol": 1e-9, "acceptable_obj_change_tol": 1e-10, "max_iter": 400,
     "linear_solver": "mumps", "mu_strategy": "adaptive", "nlp_scaling_method": "gradient-based",
     "max_hessian_perturbation": 1e8}
+
+#: IPOPT's warm start (:meth:`CompiledNLP.warm_solver`): the initial point's multipliers
+#: as given, and the primal point and multipliers pushed inside their bounds by little.
+WARM_START_OPTIONS = {"warm_start_init_point": "yes", "warm_start_bound_push": 1e-9,
+                      "warm_start_bound_frac": 1e-9, "warm_start_slack_bound_push": 1e-9,
+                      "warm_start_slack_bound_frac": 1e-9, "warm_start_mult_bound_push": 1e-9}
 
 
 @dataclass
@@ -150,33 +157,118 @@ class NLPBuilder:
         self.layout.g_lb += [lb] * n
         self.layout.g_ub += [ub] * n
 
-    def compile(self, objective, name: str, expand: bool = True) -> "CompiledNLP":
+    def compile(self, objective, name: str, expand: bool = True, compile_fn=None,
+                outputs: dict | None = None) -> "CompiledNLP":
         """The IPOPT solver of everything added.
 
-        ``expand``: CasADi rewrites the graph in SX before differentiating it; its
-        evaluations are about 2x faster, its construction several times slower.
+        Its derivatives are assembled node by node (:mod:`lunarcap.optim.derivatives`),
+        the node function compiled by ``compile_fn`` (None: CasADi's virtual machine);
+        where that does not apply, CasADi's own: ``expand`` then rewrites the graph in
+        SX before differentiating it (evaluations about 2x faster, construction several
+        times slower). ``outputs``: named lists of expressions of the variables and
+        parameters, made functions of (w, p) (:attr:`CompiledNLP.outputs`).
         """
         t0 = time.perf_counter()
         w, p, g = ca.vertcat(*self._w), ca.vertcat(*self._p), ca.vertcat(*self._g)
+        derivatives = off_main_thread(exact_derivatives, w, p, objective, g, compile_fn) \
+            if NODE_DERIVATIVES else None
+        opts = {"expand": expand, "print_time": False, "ipopt": IPOPT_OPTIONS}
+        if derivatives is not None:
+            opts.update(expand=False, hess_lag=derivatives[0], jac_g=derivatives[1])
         solver = off_main_thread(   # seconds in C++: Ctrl-C must not wait for it
-            ca.nlpsol, name, "ipopt", {"x": w, "p": p, "f": objective, "g": g},
-            {"expand": expand, "print_time": False, "ipopt": IPOPT_OPTIONS})
+            ca.nlpsol, name, "ipopt", {"x": w, "p": p, "f": objective, "g": g}, opts)
         g_fun = ca.Function(f"{name}_g", [w, p], [g])
-        return CompiledNLP(solver, self.layout, g_fun, time.perf_counter() - t0)
+        funs = {key: ca.Function(f"{name}_{key}", [w, p], list(exprs))
+                for key, exprs in (outputs or {}).items()}
+        how = "node by node" if derivatives is None or compile_fn is None else "compiled nodes"
+        return CompiledNLP(solver, self.layout, g_fun, time.perf_counter() - t0, funs,
+                           "CasADi's" if derivatives is None else how)
+
+
+#: Whether :meth:`NLPBuilder.compile` assembles the derivatives node by node (False: CasADi's
+#: own AD of the expanded NLP, as ``lunarcap bench --studies`` compares).
+NODE_DERIVATIVES = True
+
+#: Version of the serialized form of a :class:`CompiledNLP` (:meth:`CompiledNLP.to_bytes`).
+SERIAL_VERSION = 1
 
 
 @dataclass
 class CompiledNLP:
-    """A compiled solver with its layout, the constraint function and its build time."""
+    """A compiled solver with its layout, the constraint function and its build time.
+
+    ``build_s``: what making it took, built or loaded (``origin``: "built" or "loaded");
+    ``outputs``: named functions of (w, p) (a leg's delta-V, end speed, ...);
+    ``derivatives``: how IPOPT's derivatives are computed ("compiled nodes", "node by
+    node" in the virtual machine, or "CasADi's" own).
+    """
 
     solver: ca.Function
     layout: Layout
     g: ca.Function
     build_s: float
+    outputs: dict = field(default_factory=dict)
+    derivatives: str = "CasADi's"
+    origin: str = "built"
+    _warm: ca.Function | None = field(default=None, repr=False, compare=False)
+    _last: ca.Function | None = field(default=None, repr=False, compare=False)
 
-    def solve(self, **args) -> dict:
-        """``solver(**args)`` (IPOPT), off the main thread so that Ctrl-C acts at once."""
-        return off_main_thread(self.solver, **args)
+    def solve(self, multipliers: tuple | None = None, **args) -> dict:
+        """``solver(**args)`` (IPOPT), off the main thread so that Ctrl-C acts at once.
+
+        ``multipliers``: (lam_x0, lam_g0) of a neighbouring solution of this NLP: IPOPT
+        then starts from them as well as from ``x0`` (:meth:`warm_solver`).
+        """
+        solver = self.solver
+        if multipliers is not None:
+            solver = self.warm_solver()
+            args = {**args, "lam_x0": multipliers[0], "lam_g0": multipliers[1]}
+        self._last = solver
+        return off_main_thread(solver, **args)
+
+    def stats(self) -> dict:
+        """IPOPT's statistics of the last :meth:`solve`."""
+        return (self._last or self.solver).stats()
+
+    def warm_solver(self) -> ca.Function:
+        """The same NLP's solver with IPOPT warm-started from given multipliers.
+
+        Made once from this solver's functions (no derivative is built again): IPOPT's
+        ``warm_start_init_point`` with :data:`WARM_START_OPTIONS`; the caller passes
+        ``lam_x0`` and ``lam_g0``.
+        """
+        if self._warm is None:
+            s = self.solver
+            opts = {"expand": False, "print_time": False,
+                    "ipopt": {**IPOPT_OPTIONS, **WARM_START_OPTIONS}}
+            for opt, fun in (("hess_lag", "nlp_hess_l"), ("jac_g", "nlp_jac_g"),
+                             ("grad_f", "nlp_grad_f")):
+                opts[opt] = s.get_function(fun)
+            self._warm = off_main_thread(ca.nlpsol, f"{s.name()}_warm", "ipopt", s.oracle(),
+                                         opts)
+        return self._warm
+
+    def to_bytes(self) -> bytes:
+        """The NLP serialized (CasADi's serialization of each function, the layout)."""
+        import pickle
+
+        return pickle.dumps({"version": SERIAL_VERSION, "solver": self.solver.serialize(),
+                             "g": self.g.serialize(), "layout": self.layout,
+                             "outputs": {k: f.serialize() for k, f in self.outputs.items()},
+                             "derivatives": self.derivatives}, protocol=5)
+
+    @classmethod
+    def from_bytes(cls, data: bytes, load_s: float = 0.0) -> "CompiledNLP":
+        """The NLP of :meth:`to_bytes` (``origin`` "loaded", ``build_s`` ``load_s``)."""
+        import pickle
+
+        d = pickle.loads(data)
+        if d.get("version") != SERIAL_VERSION:
+            raise ValueError(f"serialized NLP of version {d.get('version')}, not "
+                             f"{SERIAL_VERSION}")
+        load = ca.Function.deserialize
+        return cls(load(d["solver"]), d["layout"], load(d["g"]), load_s,
+                   {k: load(v) for k, v in d["outputs"].items()}, d["derivatives"], "loaded")
 
 
 @dataclass
@@ -197,6 +289,16 @@ class Leg:
     def name(self, part: str) -> str:
         """Layout name of one of the leg's variables or constraint kinds."""
         return f"{self.prefix}{part}"
+
+    def outputs(self) -> list:
+        """What the leg yields, in the order of :data:`LEG_OUTPUTS` (see there)."""
+        return [self.dv, self.v_end, self.xf, self.t_ign, self.t1]
+
+
+#: The outputs of a leg as a function of the NLP's (w, p) (:meth:`Leg.outputs`): the burn's
+#: delta-V (VU), the speed at the end of the coast (VU), the scaled state there (7), the
+#: ignition epoch (s past J2000) and the burn's duration (s).
+LEG_OUTPUTS = ("dv", "v_end", "xf", "t_ign", "t1")
 
 
 def add_leg(nlp: NLPBuilder, prefix: str, mesh: Mesh, target_kind: str, x_start, t_ref,

@@ -38,6 +38,10 @@ from lunarcap.physics.steering import COAST, Steering, constant
 RTOL = 1e-13
 ATOL = 1e-13
 
+#: Turns an arc's DAE (a dict of SX: x, t, p, ode) into a compiled function of the same bits,
+#: or returns it; set with the optimiser's store (:func:`lunarcap.optim.nlp.use_store`).
+ARC_COMPILER = None
+
 #: Output points of a dense arc (the Hermite interpolant's knots), per arc.
 DENSE_POINTS = 240
 
@@ -157,7 +161,8 @@ def _integrator(mode: str, steering: Steering, quadrature: bool, grid: tuple, rt
     y, tau, p, ode = _arc_rhs(mode, steering, quadrature)
     opts = {"abstol": atol, "reltol": rtol, "max_num_steps": 200000,
             "linear_multistep_method": "adams", "nonlinear_solver_iteration": "functional"}
-    integ = ca.integrator("arc", "cvodes", {"x": y, "t": tau, "p": p, "ode": ode}, 0.0,
+    dae = {"x": y, "t": tau, "p": p, "ode": ode}
+    integ = ca.integrator("arc", "cvodes", ARC_COMPILER(dae) if ARC_COMPILER else dae, 0.0,
                           list(grid), opts)
     rhs = ca.Function("arc_rhs", [y, tau, p], [ode])
     return integ, rhs.map(len(grid) + 1)

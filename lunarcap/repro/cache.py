@@ -23,6 +23,12 @@ position explicitly (:func:`enabled` at submission, ``caching(...)`` in the task
 environment puts it: ``LUNARCAP_NO_CACHE=1`` for a whole process (the test suite, the book's
 executed notebooks); lunarcap itself never edits the environment.
 
+The optimiser's compiled NLPs are kept apart from the results, in :class:`NLPStore`
+(``.cache/nlp``, keyed by :func:`code_version` too): built once per machine and loaded by
+every later process and Dask worker. A loaded NLP computes the same bits as the one
+built, so it is not a result and follows its own switch (:func:`nlp_store`), not
+:func:`caching`.
+
 Examples
 --------
 >>> from lunarcap.repro.cache import cached
@@ -39,6 +45,7 @@ import functools
 import hashlib
 import inspect
 import os
+import zlib
 from collections import OrderedDict
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -254,3 +261,140 @@ def cached(func=None, *, ignore=()):
 def clear() -> None:
     """Delete every cached result."""
     get_memory().clear(warn=False)
+
+
+# ====================================================================== the NLP store
+#: Format of a stored NLP file (a new format ignores the files of the old).
+NLP_STORE_FORMAT = 1
+
+#: How many code versions' NLP folders a store keeps (the newest; :meth:`NLPStore.prune`):
+#: an edit of the numerical code starts a new folder (0.5 MB per shape).
+NLP_VERSIONS_KEPT = 4
+
+#: ``LUNARCAP_NLP_CACHE=0`` (or false, no) keeps NLPs in memory only: every process builds
+#: its own (:func:`nlp_store`).
+NLP_CACHE_ENV = "LUNARCAP_NLP_CACHE"
+
+
+def nlp_store() -> NLPStore | None:
+    """The machine's NLP store (:class:`NLPStore` at ``.cache/nlp``), or None if disabled.
+
+    Independent of the results' switch (:func:`caching`): a stored NLP is compiled code,
+    not a result; a loaded one computes the same bits as the one built, so ``--no-cache``
+    (recompute every result) still loads it. :data:`NLP_CACHE_ENV` turns it off.
+    """
+    if os.environ.get(NLP_CACHE_ENV, "").strip().lower() in ("0", "false", "no", "off"):
+        return None
+    return NLPStore(paths.NLP_CACHE)
+
+
+class NLPStore:
+    """The optimiser's compiled NLPs and node libraries on disk, once per machine.
+
+    An NLP (:meth:`save`, :meth:`load`) is a file ``<code version>/<key>.nlp`` below
+    ``directory``, the key a SHA-256 of its description (kind, shape, CasADi version, how
+    its derivatives run) and of :func:`code_version`: an edit of the numerical code
+    builds every NLP again, in a new folder. A file is the SHA-256 of its content followed
+    by that content (zlib): written to a temporary file and moved into place, so a
+    reader sees a whole file or none; one that fails its checksum or its decoding is
+    deleted with one line on stderr, and the caller builds the NLP again.
+    :meth:`locked` lets one process build what another waits for. :meth:`file` is a
+    plain path in the store for the optimiser's compiled node functions (``nodes/``,
+    named by their C source's hash, whatever the code version).
+    """
+
+    def __init__(self, directory: str | os.PathLike):
+        self.directory = Path(directory)
+
+    def _key(self, parts) -> str:
+        if isinstance(parts, str):
+            return parts
+        text = repr((NLP_STORE_FORMAT, code_version(), *parts))
+        return hashlib.sha256(text.encode()).hexdigest()[:32]
+
+    def path(self, parts) -> Path:
+        """The file of the NLP described by ``parts``."""
+        return self.directory / code_version() / f"{self._key(parts)}.nlp"
+
+    def load(self, parts, decode):
+        """``decode(bytes)`` of the stored NLP, or None (absent, or unreadable: deleted)."""
+        path = self.path(parts)
+        try:
+            raw = path.read_bytes()
+        except FileNotFoundError:
+            return None
+        except OSError as exc:
+            _store_warning(f"the stored NLP {path} cannot be read ({exc.strerror}); building "
+                           f"it in this process")
+            return None
+        try:
+            digest, body = raw[:64], raw[64:]
+            if hashlib.sha256(body).hexdigest().encode() != digest:
+                raise ValueError("its checksum does not match: truncated or damaged")
+            return decode(zlib.decompress(body))
+        except Exception as exc:   # any failure to read it back: build it again
+            why = str(exc).strip().splitlines()[0][:160] if str(exc).strip() else \
+                type(exc).__name__
+            _store_warning(f"the stored NLP {path} is unreadable ({why}); building it again")
+            path.unlink(missing_ok=True)
+            return None
+
+    def save(self, parts, data: bytes) -> Path | None:
+        """Store ``data`` for ``parts`` (atomically); its path, or None if it cannot be written."""
+        path = self.path(parts)
+        body = zlib.compress(data, 1)
+        fresh = not path.parent.exists()
+        try:
+            with paths.atomic_path(path) as tmp:
+                tmp.write_bytes(hashlib.sha256(body).hexdigest().encode() + body)
+        except OSError:
+            return None   # a read-only cache: the NLP stays in this process
+        if fresh:
+            self.prune()
+        return path
+
+    def prune(self, keep: int = NLP_VERSIONS_KEPT) -> list:
+        """Delete all but the ``keep`` most recently written code versions' folders."""
+        import shutil
+
+        folders = sorted((f for f in self.directory.iterdir()
+                          if f.is_dir() and f.name != "nodes"),
+                         key=lambda f: f.stat().st_mtime, reverse=True)
+        for old in folders[keep:]:
+            shutil.rmtree(old, ignore_errors=True)
+        return folders[keep:]
+
+    @contextmanager
+    def locked(self, parts) -> Iterator[None]:
+        """Hold an exclusive lock on ``parts`` (an NLP's, or a name) while in the block.
+
+        A lock file that cannot be created (a read-only cache) does not stop the caller,
+        which then builds without waiting for anyone.
+        """
+        import fcntl
+
+        folder = self.directory / ("nodes" if isinstance(parts, str) else code_version())
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            fh = open(folder / f".{self._key(parts)}.lock", "w")
+        except OSError:
+            yield
+            return
+        try:
+            fcntl.flock(fh, fcntl.LOCK_EX)
+            yield
+        finally:
+            fh.close()
+
+    def file(self, name: str, suffix: str) -> Path:
+        """A path ``nodes/<name><suffix>`` in the store (its folder created)."""
+        folder = self.directory / "nodes"
+        folder.mkdir(parents=True, exist_ok=True)
+        return folder / f"{name}{suffix}"
+
+
+def _store_warning(msg: str) -> None:
+    """One line on the process's stderr (a terminal, or a notebook kernel's log)."""
+    import sys
+
+    print(f"lunarcap: {msg}", file=sys.__stderr__ or sys.stderr, flush=True)

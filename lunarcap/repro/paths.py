@@ -20,6 +20,9 @@ Layout::
                 generated/    with its own outputs
                 _build/html/  and its own site
         .cache/joblib/        cached solutions (:mod:`lunarcap.repro.cache`)
+        .cache/nlp/           compiled NLPs by code version, and the compiled node
+                              functions of their derivatives (``nodes/``)
+                              (:class:`lunarcap.repro.cache.NLPStore`)
 
 The cache directory may be moved with the environment variable ``LUNARCAP_CACHE_DIR``,
 the book being built with ``LUNARCAP_BOOK_DIR``, the whole tree with ``LUNARCAP_ROOT``.
@@ -141,9 +144,11 @@ def stage_quick_book() -> Path:
             shutil.copy2(src, dest / name)
     return dest
 
-#: Cache of expensive results (git-ignored).
+#: Cache of expensive results and compiled NLPs (git-ignored).
 CACHE = Path(os.environ.get("LUNARCAP_CACHE_DIR", ROOT / ".cache"))
 JOBLIB_CACHE = CACHE / "joblib"
+#: The optimiser's compiled NLPs, once per machine (:func:`lunarcap.repro.cache.nlp_store`).
+NLP_CACHE = CACHE / "nlp"
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
 

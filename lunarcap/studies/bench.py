@@ -10,24 +10,27 @@ distinct earlier burn is solved once per run (in memory,
 ``reuse=False``. NLP builds (once per shape and process) are part of the total.
 
 ``lunarcap bench --studies`` (:func:`studies`) prints where the time goes instead: the
-build of each NLP shape with the size and call time of IPOPT's derivative functions,
-cold and cached ``lunarcap plan`` in fresh processes, one trade-study engine split into
-NLP builds, NLP solves and the rest, and the last logged wall of each study.
+ways of computing IPOPT's derivatives on one solve, the build and load of each NLP shape
+with the size and call time of IPOPT's derivative functions, cold, NLPs-stored and
+cached ``lunarcap plan`` in fresh processes, one trade-study engine split into NLP builds,
+NLP solves and the rest, dispersion samples per CPU second with and without warm
+multipliers, and the last logged wall of each study.
 
-Why NLPs are built per process and not loaded from disk (measured with CasADi 3.8.2 on
-the 2-core machine): the expanded IPOPT solver of the 8x16 LGR-5 shape serialises to
-103 MB and loads in 1.4 s, no faster than building it (1.0-1.5 s of CPU); the
-non-expanded one loads in 0.3 s but solves 3x slower (its derivatives run in the MX
-virtual machine), and compiling its generated C takes 27 s at -O0. So the build is made
-cheaper instead (a smaller expression graph: 32 % fewer Hessian instructions) and is
-never paid for a result already in the disk cache.
+What was measured before the NLP store (CasADi 3.8.2, the 2-core machine): the expanded
+IPOPT solver of the 8x16 LGR-5 shape, its derivatives made by CasADi's AD, serialised to
+88-103 MB and loaded in 1.1-1.4 s, no faster than building it (1.7 s); its generated C
+compiled in 242 s at -O1. Assembling the derivatives node by node
+(:mod:`lunarcap.optim.derivatives`) makes the same NLP in 0.4-0.6 s, stored in 0.5 MB
+and loaded in 0.2-0.4 s, and its one node function compiles in seconds.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
 import statistics
 import time
+from pathlib import Path
 
 from lunarcap.mission.scenario import paper_engines
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_STARTS_MIN
@@ -166,50 +169,198 @@ def _median_wall(cmd, env, repeats: int) -> float:
 
 
 def _eval_ms(fun, repeats: int = 20) -> float:
-    """Median wall (ms) of one call of ``fun`` at a fixed random point."""
+    """Median CPU time (ms) of one call of ``fun`` at a fixed random point.
+
+    CPU, not wall: on a machine shared with other work, a call's wall time is mostly the
+    time the process waits for a core.
+    """
     import numpy as np
 
     rng = np.random.default_rng(0)
     args = [rng.random(fun.size1_in(i)) for i in range(fun.n_in())]
     fun(*args)
-    walls = []
+    cpus = []
     for _ in range(repeats):
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         fun(*args)
-        walls.append(time.perf_counter() - t0)
-    return 1e3 * statistics.median(walls)
+        cpus.append(time.process_time() - t0)
+    return 1e3 * statistics.median(cpus)
+
+
+@contextlib.contextmanager
+def _nlp_store(directory):
+    """The optimiser's NLP store at ``directory`` (None: none) for the block; then the old."""
+    from lunarcap.optim import nlp as N
+    from lunarcap.repro.cache import NLPStore
+
+    old = N._STORE
+    N.use_store(NLPStore(directory) if directory is not None else None)
+    N.clear_nlps()
+    try:
+        yield N
+    finally:
+        N.use_store(old)
+        N.clear_nlps()
 
 
 def nlp_builds(dynamics: str = "full", out=print) -> list[dict]:
-    """Build each NLP shape of the paper's plans afresh; print its build time and sizes.
+    """Build each NLP shape of the paper's plans in an empty store, then load it from there.
 
     The shapes: ellipse (``perilune``) and ``circular`` targets, fixed and free ignition,
-    on the first default mesh. Per shape: build wall (s), instructions of IPOPT's two
-    derivative functions (Hessian of the Lagrangian, constraint Jacobian) and the median
-    wall of one call of each (ms).
+    on the first default mesh. Per shape: build wall and CPU (s; the first shape's wall
+    includes compiling the node functions it needs, once per machine, in a compiler
+    process whose CPU is not this one's), the wall and CPU of loading it from the store
+    in this process (s), the stored file's size, IPOPT's two derivative
+    functions (Hessian of the Lagrangian, constraint Jacobian): instructions of their
+    outer graph and the median CPU time of one call (ms).
     """
+    import tempfile
+
     from lunarcap.optim.collocation import DEFAULT_MESHES
-    from lunarcap.optim.nlp import build_burn_nlp, clear_nlps
 
     mesh, rows = DEFAULT_MESHES[0], []
-    out(f"{'NLP shape':<44} {'build s':>7} {'vars':>5} {'hess_l instr':>12} "
-        f"{'hess_l ms':>9} {'jac_g instr':>11} {'jac_g ms':>8}")
-    for kind in ("perilune", "circular"):
-        for free in (False, True):
-            clear_nlps()
-            nlp = build_burn_nlp(mesh, kind, free, "optimal", dynamics)
+    out(f"{'NLP shape':<40} {'build s':>7} {'CPU':>5} {'load s':>6} {'CPU':>5} {'kB':>5} "
+        f"{'vars':>5} {'hess_l instr':>12} {'hess_l ms':>9} {'jac_g instr':>11} "
+        f"{'jac_g ms':>8}  derivatives")
+    with tempfile.TemporaryDirectory() as tmp, _nlp_store(tmp) as N:
+        for kind in ("perilune", "circular"):
+            for free in (False, True):
+                N.clear_nlps()
+                c0 = time.process_time()
+                nlp = N.build_burn_nlp(mesh, kind, free, "optimal", dynamics)
+                c1 = time.process_time()
+                N.clear_nlps()
+                loaded = N.build_burn_nlp(mesh, kind, free, "optimal", dynamics)
+                c2 = time.process_time()
+                s = loaded.compiled.solver
+                h, j = s.get_function("nlp_hess_l"), s.get_function("nlp_jac_g")
+                row = {"shape": f"{mesh.n_burn}x{mesh.n_coast} LGR-{mesh.degree} {kind}"
+                                f"{' free start' if free else ''} {dynamics}",
+                       "build_s": nlp.compiled.build_s, "load_s": loaded.compiled.build_s,
+                       "build_cpu_s": c1 - c0, "load_cpu_s": c2 - c1,
+                       "loaded": loaded.compiled.origin == "loaded",
+                       "stored_kB": sum(f.stat().st_size for f in Path(tmp).glob("*/*.nlp"))
+                       / 1e3 - sum(r["stored_kB"] for r in rows),
+                       "n_vars": nlp.compiled.layout.nv,
+                       "derivatives": nlp.compiled.derivatives,
+                       "hess_l_instructions": h.n_instructions(), "hess_l_ms": _eval_ms(h),
+                       "jac_g_instructions": j.n_instructions(), "jac_g_ms": _eval_ms(j)}
+                rows.append(row)
+                out(f"{row['shape']:<40} {row['build_s']:7.2f} {row['build_cpu_s']:5.2f} "
+                    f"{row['load_s']:6.2f} {row['load_cpu_s']:5.2f} "
+                    f"{row['stored_kB']:5.0f} {row['n_vars']:5d} "
+                    f"{row['hess_l_instructions']:12,d} {row['hess_l_ms']:9.2f} "
+                    f"{row['jac_g_instructions']:11,d} {row['jac_g_ms']:8.2f}  "
+                    f"{row['derivatives']}")
+    return rows
+
+
+def derivative_options(out=print) -> list[dict]:
+    """What each way of computing IPOPT's derivatives gives on one solve, built afresh.
+
+    The first burn of ``song2011-150N`` (full dynamics, ignition 10 min before perilune,
+    mesh 8x16 LGR-5) solved from the same guess with the NLP built three ways: CasADi's AD
+    of the expanded NLP (what lunarcap did before), the node-by-node assembly with the
+    node function in CasADi's virtual machine, and with it compiled to C (built in an empty
+    store: the compilation is part of that build). Per way: build wall (s), one call of
+    the Hessian and of the Jacobian (CPU ms), IPOPT's iterations, the solve's CPU (s) and
+    its CPU per iteration (ms), and the optimum (m/s).
+    """
+    import tempfile
+
+    from lunarcap.capture.chain import arrival_for
+    from lunarcap.mission.plan import load_plan
+    from lunarcap.optim.collocation import DEFAULT_MESHES
+    from lunarcap.optim.derivatives import compiler
+    from lunarcap.optim.guess import make_guess
+    from lunarcap.optim.problem import burn_problem
+
+    plan = load_plan("song2011-150N")
+    x = arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole).state
+    prob = burn_problem(plan, 0, x, plan.ephemeris_model())
+    guess, mesh, rows = make_guess(prob), DEFAULT_MESHES[0], []
+    out(f"{'derivatives':<28} {'build s':>7} {'hess_l ms':>9} {'jac_g ms':>8} {'it':>3} "
+        f"{'solve CPU s':>11} {'ms/it':>6} {'dV m/s':>12}")
+    ways = [("CasADi's AD, expanded NLP", False, None), ("node by node, VM", True, None)]
+    if compiler():
+        ways.append(("node by node, compiled C", True, "store"))
+    for label, nodes, store in ways:
+        with tempfile.TemporaryDirectory() as tmp, \
+                _nlp_store(tmp if store else None) as N:
+            with N.node_derivatives(nodes):
+                t0 = time.perf_counter()
+                nlp = N.nlp_for(prob, mesh)
+                build = time.perf_counter() - t0
+                N.solve_nlp(prob, mesh, guess)          # once, so that nothing is first
+                c0 = time.process_time()
+                raw = N.solve_nlp(prob, mesh, guess)
+                cpu = time.process_time() - c0
             s = nlp.compiled.solver
-            h, j = s.get_function("nlp_hess_l"), s.get_function("nlp_jac_g")
-            row = {"shape": f"{mesh.n_burn}x{mesh.n_coast} LGR-{mesh.degree} {kind}"
-                            f"{' free start' if free else ''} {dynamics}",
-                   "build_s": nlp.compiled.build_s, "n_vars": nlp.compiled.layout.nv,
-                   "hess_l_instructions": h.n_instructions(), "hess_l_ms": _eval_ms(h),
-                   "jac_g_instructions": j.n_instructions(), "jac_g_ms": _eval_ms(j)}
+            row = {"derivatives": label, "build_s": build,
+                   "hess_l_ms": _eval_ms(s.get_function("nlp_hess_l")),
+                   "jac_g_ms": _eval_ms(s.get_function("nlp_jac_g")),
+                   "iterations": raw.iterations, "solve_cpu_s": cpu,
+                   "ms_per_iteration": 1e3 * cpu / max(raw.iterations, 1),
+                   "delta_v_mps": raw.delta_v_mps}
             rows.append(row)
-            out(f"{row['shape']:<44} {row['build_s']:7.2f} {row['n_vars']:5d} "
-                f"{row['hess_l_instructions']:12,d} {row['hess_l_ms']:9.2f} "
-                f"{row['jac_g_instructions']:11,d} {row['jac_g_ms']:8.2f}")
-    clear_nlps()
+            out(f"{label:<28} {build:7.2f} {row['hess_l_ms']:9.2f} {row['jac_g_ms']:8.2f} "
+                f"{raw.iterations:3d} {cpu:11.3f} {row['ms_per_iteration']:6.2f} "
+                f"{raw.delta_v_mps:12.6f}")
+    return rows
+
+
+def dispersion_rate(plan: str = "song2011-150N", samples: int = 8, out=print) -> list[dict]:
+    """Dispersion samples per second of one core, with and without warm multipliers.
+
+    The nominal solved first (not counted), one sample flown to build or load the NLPs,
+    then ``samples`` samples of the book's error model (seed 2011) in this process: CPU
+    seconds per sample, samples per CPU second, IPOPT iterations per re-plan, and the
+    largest difference in total delta-V between the two (m/s).
+    """
+    import lunarcap.optim.nlp as N
+    from lunarcap.mission.plan import load_plan
+    from lunarcap.studies.dispersions import samples as disp
+
+    p = load_plan(plan)
+    model = disp.ErrorModel(thrust_sigma_pct=1.0, isp_sigma_pct=0.5, pointing_sigma_deg=0.3,
+                            ignition_sigma_s=1.0, arrival_sigma_km=1.0,
+                            arrival_sigma_mps=1.0, knowledge_sigma_km=0.1,
+                            knowledge_sigma_mps=0.1)
+    disp.nominal(p)
+    disp.sample_row(p, 2011, 0, model)
+    rows, totals, old = [], {}, disp.WARM_MULTIPLIERS
+    plain = N.solve_nlp
+    iters = []
+
+    def counted(*args, **kwargs):
+        raw = plain(*args, **kwargs)
+        iters.append(raw.iterations)
+        return raw
+
+    out(f"{'re-plans':<34} {'CPU s/sample':>12} {'samples/CPU s':>13} {'it/re-plan':>10}")
+    import lunarcap.optim.correction as correction
+    import lunarcap.optim.solve as solve
+
+    try:
+        solve.solve_nlp, correction.solve_nlp = counted, counted
+        for warm in (False, True):
+            disp.WARM_MULTIPLIERS = warm
+            iters.clear()
+            c0 = time.process_time()
+            got = [disp.sample_row(p, 2011, k, model) for k in range(1, samples + 1)]
+            cpu = (time.process_time() - c0) / samples
+            totals[warm] = [r.get("total_delta_v_mps", float("nan")) for r in got]
+            label = "warm (nominal's multipliers)" if warm else "cold (primal guess only)"
+            rows.append({"plan": plan, "warm": warm, "cpu_s_per_sample": cpu,
+                         "samples_per_cpu_s": 1.0 / cpu,
+                         "iterations_per_replan": statistics.mean(iters) if iters else 0.0})
+            out(f"{label:<34} {cpu:12.3f} {1.0 / cpu:13.2f} "
+                f"{rows[-1]['iterations_per_replan']:10.2f}")
+    finally:
+        disp.WARM_MULTIPLIERS = old
+        solve.solve_nlp, correction.solve_nlp = plain, plain
+    diff = max(abs(a - b) for a, b in zip(totals[False], totals[True]))
+    out(f"{plan}, {samples} samples: total delta-V warm vs cold within {diff:.1e} m/s")
     return rows
 
 
@@ -218,9 +369,12 @@ def plan_walls(plan: str = "song2011-150N", repeats: int = 3, cold: bool = True,
     """Wall of ``lunarcap plan PLAN`` (and with free starts) in fresh processes.
 
     Cold: an empty cache directory (every burn and impulsive limit solved, every NLP shape
-    built); cached: the same command again (median of ``repeats``). Also the wall of
-    importing the CLI and the heavy packages its import pulls in (none should be).
+    built, the node functions compiled); NLPs stored: the results deleted, the NLP store
+    kept (every burn solved again, every NLP loaded: what a process after the first one of
+    a machine pays); cached: the same command again (median of ``repeats``). Also the wall
+    of importing the CLI and the heavy packages its import pulls in (none should be).
     """
+    import shutil
     import subprocess
     import sys
     import tempfile
@@ -230,6 +384,7 @@ def plan_walls(plan: str = "song2011-150N", repeats: int = 3, cold: bool = True,
     with tempfile.TemporaryDirectory() as tmp:
         env = {**os.environ, "LUNARCAP_CACHE_DIR": tmp}
         env.pop("LUNARCAP_NO_CACHE", None)
+        env.pop("LUNARCAP_NLP_CACHE", None)
         imp = _median_wall([py, "-c", "import lunarcap.cli, lunarcap.capture.chain"], env,
                            repeats)
         heavy = subprocess.run(
@@ -239,14 +394,24 @@ def plan_walls(plan: str = "song2011-150N", repeats: int = 3, cold: bool = True,
             env=env, capture_output=True, text=True).stdout.strip()
         out(f"import of the CLI and the chain: {imp:.2f} s (median of {repeats}); heavy "
             f"packages imported: {heavy or 'none'}")
-        for extra in ([], ["--starts", "free,free,free"]):
+    for extra in ([], ["--starts", "free,free,free"]):
+        with tempfile.TemporaryDirectory() as tmp:
+            env = {**os.environ, "LUNARCAP_CACHE_DIR": tmp}
+            env.pop("LUNARCAP_NO_CACHE", None)
+            env.pop("LUNARCAP_NLP_CACHE", None)
             cmd = [py, "-m", "lunarcap", "plan", plan, *extra]
             label = " ".join(["lunarcap plan", plan, *extra])
-            c = _median_wall(cmd, env, 1) if cold else None
+            c = stored = None
+            if cold:
+                c = _median_wall(cmd, env, 1)
+                shutil.rmtree(Path(tmp) / "joblib", ignore_errors=True)
+                stored = _median_wall(cmd, env, 1)
             w = _median_wall(cmd, env, repeats)
-            rows.append({"command": label, "cold_s": c, "cached_s": w})
-            out(f"{label:<52} cold {'-' if c is None else f'{c:.1f}':>5} s   cached "
-                f"{w:.2f} s (median of {repeats})")
+            rows.append({"command": label, "cold_s": c, "nlps_stored_s": stored,
+                         "cached_s": w})
+            out(f"{label:<52} cold {'-' if c is None else f'{c:.1f}':>5} s   NLPs stored "
+                f"{'-' if stored is None else f'{stored:.1f}':>5} s   cached {w:.2f} s "
+                f"(median of {repeats})")
     return rows
 
 
@@ -282,7 +447,7 @@ def engine_profile(engines=((300.0, 250.0), (420.0, 250.0)), dynamics: str = "fu
         t0 = time.perf_counter()
         raw = plain(prob, mesh, guess)
         acc["ipopt_s"] = acc.get("ipopt_s", 0.0) + time.perf_counter() - t0
-        st = nlp.compiled.solver.stats()
+        st = nlp.compiled.stats()
         for k in ("nlp_hess_l", "nlp_jac_g"):
             acc[k] = acc.get(k, 0.0) + st.get(f"t_wall_{k}", 0.0)
         acc["solves"] = acc.get("solves", 0) + 1
@@ -347,17 +512,24 @@ def study_walls(out=print) -> list[dict]:
 def studies(out=print, cold: bool = True, repeats: int = 3) -> dict:
     """``lunarcap bench --studies``: figures on where the time goes (not a timed test).
 
-    NLP build per shape, cold and cached ``lunarcap plan`` walls, one trade-study engine
-    profiled, and the last recorded wall of each study. Wall times on a shared machine are
-    noisy: compare ratios, rerun for medians.
+    The ways of computing IPOPT's derivatives on one solve, NLP build against load per
+    shape, cold / NLPs-stored / cached ``lunarcap plan`` walls, one trade-study engine
+    profiled, dispersion samples per CPU second, and the last recorded wall of each study.
+    Wall times on a shared machine are noisy: compare ratios, rerun for medians.
     """
     out(f"machine: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} (1 min)")
-    out("\n== NLP build per shape (this process, full dynamics)")
+    out("\n== IPOPT's derivatives, three ways (LOI 1 of song2011-150N, full dynamics)")
+    options = derivative_options(out=out)
+    out("\n== NLP build and load per shape (full dynamics, an empty store)")
     builds = nlp_builds(out=out)
     out("\n== lunarcap plan in fresh processes")
     plans = plan_walls(repeats=repeats, cold=cold, out=out)
     out("\n== one trade-study engine (engine_trade.trade.solve_engine), empty cache")
     engines = engine_profile(out=out)
+    out("\n== dispersion samples (song2011-150N, full dynamics, the book's sigmas)")
+    rate = dispersion_rate(out=out)
     out("\n== studies, as last recorded")
     walls = study_walls(out=out)
-    return {"builds": builds, "plans": plans, "engines": engines, "studies": walls}
+    out(f"load average at the end {os.getloadavg()[0]:.2f} (1 min)")
+    return {"derivatives": options, "builds": builds, "plans": plans, "engines": engines,
+            "dispersions": rate, "studies": walls}

@@ -665,12 +665,29 @@ def _task_error_row(key: dict, message: str) -> dict:
     return dict(key, status="task error", error=message)
 
 
+_SET_UP: list = []   # whether this process has set the optimiser's NLP store
+
+
+def _worker_setup() -> None:
+    """Once per worker: the optimiser's NLP store, whichever study module comes first.
+
+    NLPs built on this machine are then loaded, not built (:func:`lunarcap.optim.nlp.stored`).
+    """
+    if not _SET_UP:
+        from lunarcap.optim.solve import use_nlp_store
+        from lunarcap.repro.cache import nlp_store
+
+        use_nlp_store(nlp_store())
+        _SET_UP.append(True)
+
+
 def _run_task(task, key: dict, args: tuple, guard: tuple | None = None) -> dict | list[dict]:
     """In a worker: the task's row (or rows) with key, timing and worker recorded.
 
     ``guard``: ``(use_cache,)``: the task runs inside :func:`guarded` (the cache switch at
     that position; an exception is the error row).
     """
+    _worker_setup()
     t0 = time.perf_counter()
     if guard is None:
         out = task(*args)

@@ -538,3 +538,91 @@ def test_entries_share_a_kernel_but_not_its_namespace(tmp_path):
         assert sorted(counts) == list(range(1, len(counts) + 1)), (n, counts)
         assert not any("%reset" in c.source for c in nb.cells)
     assert not [f.name for f in gen.rglob(".*") if f.is_file()]
+
+
+@pytest.mark.notebooks
+def test_studies_run_on_an_existing_cluster_given_by_address(tmp_path, dask_cluster):
+    """``build --scheduler ADDR`` (``make book SCHEDULER=ADDR``): the book's studies run on
+    that cluster (a loopback scheduler and one worker started by the fixture), no local
+    cluster is started, and an entry without ``workers`` gets no address.
+
+    The study entry runs a real campaign (one dispersion sample of the 150 N plan in
+    two-body dynamics): its run record names the given scheduler and its one worker, and
+    the sample is flown there ("ok", a total delta-V above the nominal's impulsive 353 m/s).
+    """
+    root = tmp_path / "tree"
+    nbdir = _book_tree(root)
+    study = textwrap.dedent("""
+        import os
+        import pandas as pd
+        from dask.distributed import Client
+        from lunarcap.mission.plan import load_plan
+        from lunarcap.repro import paths
+        from lunarcap.studies.dispersions import samples as disp
+        addr = os.environ.get("LUNARCAP_DASK_SCHEDULER", "")
+        with Client(addr, timeout="30s") as c:
+            n = len(c.scheduler_info()["workers"])
+        plan = load_plan("song2011-150N").with_dynamics("two-body")
+        res = disp.run_dispersions(plan, 1, 2011, disp.ErrorModel(thrust_sigma_pct=1.0),
+                                   out=paths.GENERATED / "disp.csv", workers=workers,
+                                   progress=False)
+        row = res.table.iloc[0]
+        paths.write_csv(pd.DataFrame({"addr": [addr], "n": [n],
+                                      "run_scheduler": [res.run["scheduler"]],
+                                      "run_workers": [res.run["workers"]],
+                                      "status": [row.status],
+                                      "dv": [row.total_delta_v_mps]}), output_name)
+        """)
+    plain = textwrap.dedent("""
+        import os
+        import pandas as pd
+        from lunarcap.repro import paths
+        addr = os.environ.get("LUNARCAP_DASK_SCHEDULER", "") or "none"
+        paths.write_csv(pd.DataFrame({"addr": [addr]}), output_name)
+        """)
+    _notebook(nbdir / "study.ipynb", params="workers = 2\nquick = False\noutput_name = 'n'",
+              body=study)
+    _notebook(nbdir / "page.ipynb", body=plain)
+    (nbdir / "manifest.yml").write_text(yaml.safe_dump({"entries": [
+        _entry("s1", "study.ipynb", parameters={"workers": 2}, outputs=["tables/s1.csv"]),
+        _entry("plain", "page.ipynb", outputs=["tables/plain.csv"])]}))
+    (root / "book" / "_toc.yml").write_text(yaml.safe_dump({
+        "format": "jb-book", "root": "intro",
+        "chapters": [{"file": f"generated/{n}"} for n in ("s1", "plain")]}))
+    env = dict(os.environ, LUNARCAP_ROOT=str(root), LUNARCAP_NO_CACHE="1")
+    env.pop("LUNARCAP_DASK_SCHEDULER", None)
+    cmd = [sys.executable, "-m", "lunarcap.bookbuild.build", "build", "--no-build",
+           "--jobs", "2"]
+    run = subprocess.run(cmd + ["--scheduler", dask_cluster], env=env, capture_output=True,
+                         text=True, timeout=900)
+    assert run.returncode == 0, run.stdout + run.stderr
+    tables = root / "book" / "generated" / "tables"
+    s1 = (tables / "s1.csv").read_text().splitlines()[1].split(",")
+    assert s1[0] == dask_cluster and s1[1] == "1", s1        # the fixture's one worker
+    assert s1[2] == dask_cluster and s1[3] == "1", s1        # the campaign ran there
+    assert s1[4] == "ok" and float(s1[5]) > 353.0, s1
+    assert (tables / "plain.csv").read_text().splitlines()[1] == "none"
+
+
+def test_a_scheduler_that_does_not_answer_is_refused_before_any_work(tmp_path):
+    root = tmp_path / "tree"
+    nbdir = _book_tree(root)
+    _notebook(nbdir / "page.ipynb", body="raise SystemExit('must not run')")
+    (nbdir / "manifest.yml").write_text(yaml.safe_dump({"entries": [
+        _entry("plain", "page.ipynb")]}))
+    (root / "book" / "_toc.yml").write_text(yaml.safe_dump({
+        "format": "jb-book", "root": "intro", "chapters": [{"file": "generated/plain"}]}))
+    env = dict(os.environ, LUNARCAP_ROOT=str(root), LUNARCAP_NO_CACHE="1")
+    import socket
+
+    with socket.socket() as s:   # a port nobody listens on
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    cmd = [sys.executable, "-m", "lunarcap.bookbuild.build", "build", "--no-build",
+           "--scheduler", f"tcp://127.0.0.1:{port}"]
+    run = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=120)
+    lines = [ln for ln in run.stderr.splitlines() if ln.strip()]
+    assert run.returncode == 2, run.stdout + run.stderr
+    assert len(lines) == 1 and "--scheduler tcp://127.0.0.1:" in lines[0] and \
+        "no Dask scheduler answers there" in lines[0], run.stderr
+    assert not (root / "book" / "generated" / "plain.ipynb").exists()

@@ -102,7 +102,9 @@ def test_gmat_writes_its_states_next_to_the_script(flown):
     last = list(list(OrbitEphemerisMessage.open(path).segments)[-1].states)[-1]
     end = gmat.read_report(script.with_name(script.stem + "_gmat_capture.txt"))[-1]
     assert end.event == gmat.END
-    assert np.max(np.abs(np.asarray(last.position) - end.r_km)) < 1e-9
+    # (to 1 mm: GMAT writes the OEM's states by its order-7 Lagrange interpolator, which
+    # meets the report's integrator state exactly only when the end falls on a step)
+    assert np.max(np.abs(np.asarray(last.position) - end.r_km)) < 1e-6
     utc = seconds_from_calendar(last.epoch.isot + " UTC")
     assert abs(utc - end.epoch_s) < 1e-3
 
