@@ -15,7 +15,8 @@ import pandas as pd
 from lunarcap.mission.impulsive import capture_total_mps
 from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
-from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.contents import (BookPage, Execution, figure_files,
+                                      includes, one_of, table_files)
 from lunarcap.report.figures import burn_count as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
@@ -27,8 +28,8 @@ BOOK = BookPage(NOTEBOOK, "Beyond the paper", 90, (
     Execution(
         "burn_count", "How many capture burns",
         parameters=dict(
-            plans=["song2011-150N", "lro-like-5burn"],  # the paper's 150 N and one not its
-            counts=[1, 2, 3, 4],  # `lunarcap burns PLAN --counts ...` runs any plan, count
+            plans=["song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5burn"],
+            counts=[1, 2, 3, 4, 5],  # the five burns of LRO, SELENE and Chang'e
             max_period_h=12.235, max_days=3.0,
             dynamics=None,  # each plan's own (full)
             workers=2),
@@ -36,7 +37,14 @@ BOOK = BookPage(NOTEBOOK, "Beyond the paper", 90, (
                               workers=1),
         expected_s=60,
         outputs=(table_files("burn_count", "counts", "burns")
-                 + figure_files("burn_count", "loss"))),
+                 + figure_files("burn_count", "loss")),
+        floors=dict(
+            plans=includes(["song2011-150N", "song2011-300N", "song2011-450N",
+                            "lro-like-5burn"], "the paper's three engines and the LRO-like "
+                                               "plan"),
+            counts=includes([1, 2, 3, 4, 5], "one to five burns, as LRO, SELENE and Chang'e "
+                                             "flew"),
+            dynamics=one_of([None], "each plan's own (full) dynamics"))),
 ))
 
 COUNT_SHOWN = ["plan", "n_burns", "status", "periods_h", "total_delta_v_mps",
