@@ -69,7 +69,7 @@ def plot_burn_count(counts):
         a.set_xticks(sorted(set(counts.n_burns.astype(int))))
     for status, marker in NO_CAPTURE_MARKERS.items():
         if (bad.status == status).any():
-            ax.plot([], [], ls="none", marker=marker, color="0.4", mew=2, ms=9, label=NO_CAPTURE_LABELS[status]
-                    + " (hatched; colour: its plan)")
+            ax.plot([], [], ls="none", marker=marker, color="0.4", mew=2, ms=9,
+                    label=NO_CAPTURE_LABELS[status] + " (hatched; colour: its plan)")
     fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncols=1)
     return fig

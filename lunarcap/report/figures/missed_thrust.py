@@ -11,8 +11,11 @@ import numpy as np
 
 
 def _luminance(rgba) -> float:
-    """Relative luminance (0 black, 1 white) of a colour: the cell's text is white below
-    0.45, black above (Rec. 601 weights: 0.299 R + 0.587 G + 0.114 B)."""
+    """Relative luminance of a colour, 0 black to 1 white.
+
+    The cell's text is white below 0.45, black above (Rec. 601 weights: 0.299 R +
+    0.587 G + 0.114 B).
+    """
     r, g, b = rgba[:3]
     return 0.299 * r + 0.587 * g + 0.114 * b
 

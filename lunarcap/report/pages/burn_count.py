@@ -15,8 +15,14 @@ import pandas as pd
 from lunarcap.mission.impulsive import capture_total_mps
 from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
-from lunarcap.report.contents import (BookPage, Execution, figure_files,
-                                      includes, one_of, table_files)
+from lunarcap.report.contents import (
+    BookPage,
+    Execution,
+    figure_files,
+    includes,
+    one_of,
+    table_files,
+)
 from lunarcap.report.figures import burn_count as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths

@@ -22,8 +22,15 @@ import pandas as pd
 
 from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
-from lunarcap.report.contents import (BookPage, Execution, at_least, figure_files,
-                                      includes, one_of, table_files)
+from lunarcap.report.contents import (
+    BookPage,
+    Execution,
+    at_least,
+    figure_files,
+    includes,
+    one_of,
+    table_files,
+)
 from lunarcap.report.figures import dispersions as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths

@@ -14,8 +14,14 @@ import pandas as pd
 
 from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
-from lunarcap.report.contents import (BookPage, Execution, figure_files,
-                                      includes, one_of, table_files)
+from lunarcap.report.contents import (
+    BookPage,
+    Execution,
+    figure_files,
+    includes,
+    one_of,
+    table_files,
+)
 from lunarcap.report.figures import missed_thrust as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths

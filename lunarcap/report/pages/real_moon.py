@@ -31,8 +31,15 @@ from lunarcap.physics.ephemeris import default_ephemeris
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 from lunarcap.physics.forces import force_model
 from lunarcap.physics.frames import rotation_313
-from lunarcap.report.contents import (BookPage, Execution, at_least, figure_files, includes,
-                                      one_of, table_files)
+from lunarcap.report.contents import (
+    BookPage,
+    Execution,
+    at_least,
+    figure_files,
+    includes,
+    one_of,
+    table_files,
+)
 from lunarcap.report.figures import real_moon as draw
 from lunarcap.report.page import Page, solver_description
 
