@@ -171,9 +171,10 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
         "ΔV, its impulsive limit and loss (m/s), verification."),
         show_columns=BURN_SHOWN, floatfmt=".3f", columns={"n_burns": "N"})
     page.figure("loss", draw.plot_burn_count(table), caption=(
-        "Top: total finite-burn loss against the number of burns; bottom: time from the "
-        "arrival perilune to the end of the last burn. One line per plan; a cross on the "
-        "axis marks a count with no capture."),
+        "Total finite-burn loss against the number of burns, then the time from the "
+        "arrival perilune to the end of the last burn; one line per plan. A count with no "
+        "capture has no value: it is marked in the strip above them, in its plan's colour "
+        "(× infeasible, ! the solver failed; the table says why)."),
         alt="Total loss and time to the final orbit against the number of burns")
     # ---- numbers the prose quotes (the first plan is the reference)
     ref = table[table.plan_id == plan_id(ps[0])]
