@@ -41,7 +41,7 @@ BOOK = BookPage(NOTEBOOK, "Beyond the paper", 100, (
             workers=2),
         quick_parameters=dict(fractions=[0.5, 1.0], delays_min=[0.0, 30.0], late_min=[5.0],
                               dynamics="two-body", workers=1),
-        expected_s=80,
+        expected_s=125,  # 242 s of CPU measured (2 workers): 14.4 min wall at load 6-23
         outputs=(table_files("missed_thrust", "cases", "late", "recovery")
                  + figure_files("missed_thrust", "penalty")),
         floors=dict(
