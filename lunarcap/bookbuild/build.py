@@ -21,7 +21,10 @@ off (``--all`` whenever the generated notebooks changed, since pages quote each 
 glued numbers), with the table of contents generated from the pages in ``_build/_toc.yml``
 (beside it ``_build/manifest.yml``, what the build executed). ``--quick`` builds a
 separate book in ``book/_build/quick/`` (:func:`lunarcap.repro.paths.stage_quick_book`),
-so ``make test`` never replaces the full book. SIGINT or SIGTERM stop the run within
+so ``make test`` never replaces the full book. A full build refuses, before running
+anything, a page whose parameters are below the floors its page declares (the sizes its
+claims need, :func:`lunarcap.bookbuild.manifest.check_floors`); the quick book is exempt
+and says so at the top of each of its pages. SIGINT or SIGTERM stop the run within
 seconds, leaving nothing half-written (:mod:`lunarcap.bookbuild.execution`).
 
 The book's studies (entries whose parameters set ``workers``) share one local Dask cluster
@@ -69,6 +72,7 @@ from lunarcap.bookbuild.manifest import (  # noqa: F401  (the API of this module
     STAMP_VERSION,
     Entry,
     ManifestError,
+    check_floors,
     check_toc,
     find_cycle,
     is_up_to_date,
@@ -211,11 +215,15 @@ def main(argv=None) -> int:
         entries = load_manifest()
         check_toc(entries)
         if args.command == "check":
-            print(f"manifest ok: {len(entries)} entries; table of contents matches")
+            check_floors(entries)
+            print(f"manifest ok: {len(entries)} entries; table of contents matches; every "
+                  f"page at or above its floors")
             return 0
         if args.jobs < 1:
             raise ManifestError("--jobs must be at least 1")
         chosen = select(entries, args.only)
+        if not args.quick:  # the quick book may stay small: each of its pages says so
+            check_floors(chosen)
         if args.scheduler is not None:
             use_scheduler(args.scheduler)
     except ManifestError as exc:

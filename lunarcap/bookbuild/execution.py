@@ -32,10 +32,12 @@ _DISPLAY_TAGS = {"remove-cell", "remove-input", "remove-output", "hide-cell", "h
                  "hide-output", "show-input"}
 
 
-def prepare_for_book(nb, title: str) -> None:
+def prepare_for_book(nb, title: str, quick_note: str | None = None) -> None:
     """Adapt an executed notebook for its page (in place).
 
     * ``# title`` (the manifest's) becomes the first heading, replacing the source's H1;
+    * ``quick_note`` (:func:`quick_note`), if given, stands right under it: a page of the
+      quick book says first that it is a reduced run;
     * the set-up (parameters, build call, provenance) moves to the end of the page, after
       the results (:func:`move_setup_to_end`);
     * papermill's ``injected-parameters`` cell is removed from the page (the provenance
@@ -56,6 +58,10 @@ def prepare_for_book(nb, title: str) -> None:
                 break
         nb.cells.insert(0, nbformat.v4.new_markdown_cell(f"# {title}"))
         break
+    if quick_note:
+        first = next(i for i, c in enumerate(nb.cells) if c.cell_type == "markdown")
+        heading, _, rest = nb.cells[first].source.partition("\n")
+        nb.cells[first].source = f"{heading}\n\n{quick_note}\n{rest}"
     move_setup_to_end(nb)
     for cell in nb.cells:
         if cell.cell_type != "code":
@@ -68,6 +74,39 @@ def prepare_for_book(nb, title: str) -> None:
         elif not _DISPLAY_TAGS & set(tags):
             tags.append("remove-input" if only_shows(cell.source) else "hide-input")
         cell.metadata["tags"] = tags
+
+
+def quick_note(parameters: dict, quick_parameters: dict) -> str | None:
+    """What a page of the quick book says under its title: its reduced parameters.
+
+    ``build --quick`` (run by ``make test``) runs each page with its quick parameters,
+    below the floors of the full book; the page says which and what the book runs
+    instead, so no number of it is taken for the book's. None when the quick run
+    changes nothing.
+
+    >>> print(quick_note({"samples": 368}, {"samples": 2}))
+    ```{admonition} Quick book: a reduced run, not the book's numbers
+    :class: warning
+    This page ran with samples = 2 (the book: 368), for the tests (`make test`).
+    ```
+    """
+    changed = {k: v for k, v in quick_parameters.items() if parameters.get(k) != v}
+    if not changed:
+        return None
+    said = "; ".join(f"{k} = {_value_text(v)} (the book: {_value_text(parameters.get(k))})"
+                     for k, v in changed.items())
+    return ("```{admonition} Quick book: a reduced run, not the book's numbers\n"
+            ":class: warning\n"
+            f"This page ran with {said}, for the tests (`make test`).\n```")
+
+
+def _value_text(v) -> str:
+    """A parameter as the quick note prints it: lists without quotes, None as "default"."""
+    if v is None:
+        return "its default"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_value_text(x) for x in v) + "]"
+    return f"{v:g}" if isinstance(v, float) else str(v)
 
 
 #: A line that only shows an item of the page (``page.show("dv")``, ``page.glue()``...).
@@ -337,7 +376,9 @@ def _execute(entry, parameters, stamp, timeout, tmp, t0, errlog, env) -> dict:
                             request_save_on_cell_execute=False, execution_timeout=timeout)
         nb = nbformat.read(str(tmp), as_version=4)
         kernels.drop_prelude(nb)
-        prepare_for_book(nb, entry.title)
+        prepare_for_book(nb, entry.title,
+                         quick_note(entry.parameters, entry.quick_parameters)
+                         if parameters.get("quick") else None)
         nbformat.write(nb, str(tmp))
         missing = [o for o in entry.outputs if not (paths.GENERATED / o).is_file()
                    or (paths.GENERATED / o).stat().st_size == 0

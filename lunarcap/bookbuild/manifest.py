@@ -25,7 +25,7 @@ from lunarcap.report import contents
 from lunarcap.repro import paths
 
 ENTRY_KEYS = {"name", "title", "notebook", "parameters", "quick_parameters", "depends_on",
-              "outputs", "expected_s"}
+              "outputs", "expected_s", "floors"}
 REQUIRED_KEYS = {"name", "title", "notebook"}
 #: Parameters every notebook declares and the book injects.
 INJECTED = ("quick", "output_name")
@@ -49,6 +49,7 @@ class Entry:
     depends_on: tuple
     outputs: tuple
     expected_s: float = 0.0
+    floors: dict = dataclasses.field(default_factory=dict)
 
     def effective_parameters(self, quick: bool) -> dict:
         """Parameters papermill injects: parameters, quick overrides, ``quick``, ``output_name``."""
@@ -221,6 +222,8 @@ def _entry(raw: dict, where: str, notebooks_dir: Path, check_notebooks: bool,
         errors.append(f"{where}: expected_s must be a number of seconds >= 0, got "
                       f"{expected_s!r}")
         expected_s = 0.0
+    floors, more = _floors(where, raw.get("floors") or {}, params)
+    errors += more
     if nb is None:
         return None, errors
     if check_notebooks and isinstance(params, dict) and isinstance(quick, dict):
@@ -228,7 +231,26 @@ def _entry(raw: dict, where: str, notebooks_dir: Path, check_notebooks: bool,
     return Entry(raw["name"], str(raw["title"]).strip(), nb,
                  dict(params) if isinstance(params, dict) else {},
                  dict(quick) if isinstance(quick, dict) else {},
-                 tuple(deps), tuple(outputs), float(expected_s)), errors
+                 tuple(deps), tuple(outputs), float(expected_s), floors), errors
+
+
+def _floors(where: str, raw, params) -> tuple[dict, list[str]]:
+    """An entry's ``floors`` (parameter -> :class:`lunarcap.report.contents.Floor`), problems.
+
+    Each names a parameter the entry gives, with one kind, its value and why.
+    """
+    if not isinstance(raw, dict):
+        return {}, [f"{where}: floors must be a mapping of parameter -> floor"]
+    floors, errors = {}, []
+    for name, spec in raw.items():
+        try:
+            floors[name] = contents.Floor.from_dict(spec)
+        except contents.ContentsError as exc:
+            errors.append(f"{where}: floor of {name!r}: {exc}")
+            continue
+        if not isinstance(params, dict) or name not in params:
+            errors.append(f"{where}: floor of {name!r}: no such parameter in its parameters")
+    return floors, errors
 
 
 def _dependency_problems(entries: list[Entry], seen: set[str]) -> list[str]:
@@ -428,6 +450,26 @@ def write_contents(directory: Path) -> Path | None:
         if not path.is_file() or path.read_text(encoding="utf-8") != text:
             paths.write_text_atomic(path, text)
     return toc
+
+
+def check_floors(entries: list[Entry]) -> None:
+    """Refuse a full book whose pages run below their floors, before any of them runs.
+
+    Each entry's parameters (the full book's, never the quick ones) must meet the floors
+    its page declares (:class:`lunarcap.report.contents.Floor`): the sizes the page's
+    claims need.
+
+    Raises
+    ------
+    ManifestError
+        Naming each entry, parameter and floor missed, with the floor's reason.
+    """
+    errors = [f"{e.name}: {p}" for e in entries
+              for p in contents.below_floors(e.parameters, e.floors)]
+    if errors:
+        raise ManifestError("pages below their floors (the size their claims need; "
+                            "`build --quick` runs the small book):\n  - "
+                            + "\n  - ".join(errors))
 
 
 def select(entries: list[Entry], only: list[str] | None) -> list[Entry]:

@@ -57,6 +57,11 @@ class Execution:
         Files below ``book/generated`` the notebook writes (checked after the run).
     expected_s : float, optional
         About how long a fresh run takes on 2 cores, s: the long ones start first.
+    floors : dict of str to Floor
+        The least each named parameter may be in the full book (:class:`Floor`): the
+        size the page's claims need. The build refuses to run a page below them
+        (:func:`lunarcap.bookbuild.manifest.check_floors`); the quick book is exempt and
+        says so on the page.
     """
 
     name: str
@@ -66,6 +71,7 @@ class Execution:
     depends_on: tuple = ()
     outputs: tuple = ()
     expected_s: float | None = None
+    floors: dict = field(default_factory=dict)
 
     @property
     def output(self) -> Path:
@@ -76,6 +82,128 @@ class Execution:
     def toc_file(self) -> str:
         """Its file in the table of contents (no extension)."""
         return f"generated/{self.name}"
+
+
+#: The kinds of :class:`Floor`: what a parameter of the full book must be.
+FLOOR_KINDS = ("at_least", "at_most", "includes", "one_of")
+
+
+@dataclass(frozen=True)
+class Floor:
+    """The least a page's parameter may be in the full book, and why.
+
+    A study page's claims hold at a size: a 99 % point needs 368 samples to be bounded
+    with 95 % confidence, a convergence in degree needs the degree-50 field. The page
+    declares that size once, beside its parameters (``Execution.floors``), and the build
+    checks it before the page runs, so an edit that shrinks a grid fails instead of
+    printing weaker numbers.
+
+    Attributes
+    ----------
+    kind : {"at_least", "at_most", "includes", "one_of"}
+        ``at_least``/``at_most``: the parameter, a number, is >= / <= ``value``;
+        ``includes``: the parameter, a list, holds every element of ``value`` (numbers
+        compared as floats); ``one_of``: the parameter is one of ``value``.
+    value : number or list
+    why : str
+        What the floor is for, in the page's terms (quoted when a run is refused).
+    """
+
+    kind: str
+    value: object
+    why: str
+
+    def __post_init__(self):
+        if self.kind not in FLOOR_KINDS:
+            raise ContentsError(f"unknown floor kind {self.kind!r}; the kinds: "
+                                f"{list(FLOOR_KINDS)}")
+        if self.kind in ("includes", "one_of") and not isinstance(self.value, (list, tuple)):
+            raise ContentsError(f"a floor {self.kind!r} needs a list, got {self.value!r}")
+        if self.kind in ("at_least", "at_most") and not _is_number(self.value):
+            raise ContentsError(f"a floor {self.kind!r} needs a number, got {self.value!r}")
+
+    def shortfall(self, value) -> str | None:
+        """How ``value`` falls short of the floor (a phrase), or None if it meets it."""
+        if self.kind in ("at_least", "at_most"):
+            if not _is_number(value):
+                return f"is {value!r}, not a number"
+            low = self.kind == "at_least"
+            if (value < self.value) if low else (value > self.value):
+                return (f"is {value:g}, {'below' if low else 'above'} its floor "
+                        f"{'>=' if low else '<='} {self.value:g}")
+            return None
+        if self.kind == "one_of":
+            ok = any(_same(value, v) for v in self.value)
+            return None if ok else f"is {value!r}, not one of {list(self.value)!r}"
+        have = value if isinstance(value, (list, tuple)) else []
+        missing = [v for v in self.value if not any(_same(v, h) for h in have)]
+        return (f"lacks {missing!r} (has {value!r})" if missing else None)
+
+    def as_dict(self) -> dict:
+        """``{kind: value, "why": why}``, as the build's manifest lists it."""
+        return {self.kind: list(self.value) if isinstance(self.value, tuple) else self.value,
+                "why": self.why}
+
+    @classmethod
+    def from_dict(cls, raw) -> "Floor":
+        """The inverse of :meth:`as_dict`; ContentsError naming what is wrong."""
+        if not isinstance(raw, dict):
+            raise ContentsError(f"a floor must be a mapping, got {raw!r}")
+        kinds = [k for k in raw if k != "why"]
+        if len(kinds) != 1 or not isinstance(raw.get("why"), str) or not raw["why"].strip():
+            raise ContentsError(f"a floor is one of {list(FLOOR_KINDS)} with its value and "
+                                f"a non-empty 'why', got {raw!r}")
+        return cls(kinds[0], raw[kinds[0]], raw["why"])
+
+
+def _is_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def _same(a, b) -> bool:
+    """Equal, numbers compared as floats (a list of 0.5 meets a floor of 0.50)."""
+    if _is_number(a) and _is_number(b):
+        return float(a) == float(b)
+    return type(a) is type(b) and a == b
+
+
+def at_least(value, why: str) -> Floor:
+    """The parameter (a number) may not be below ``value`` in the full book."""
+    return Floor("at_least", value, why)
+
+
+def at_most(value, why: str) -> Floor:
+    """The parameter (a number) may not be above ``value`` in the full book."""
+    return Floor("at_most", value, why)
+
+
+def includes(values, why: str) -> Floor:
+    """The parameter (a list) must hold every one of ``values`` in the full book."""
+    return Floor("includes", tuple(values), why)
+
+
+def one_of(values, why: str) -> Floor:
+    """The parameter must be one of ``values`` in the full book."""
+    return Floor("one_of", tuple(values), why)
+
+
+def below_floors(parameters: dict, floors: dict) -> list[str]:
+    """Each floor ``parameters`` miss, as ``"<parameter> <shortfall> (<why>)"``.
+
+    A floored parameter the page does not give is missing, not met.
+
+    >>> below_floors({"samples": 4}, {"samples": at_least(368, "the 99 % point")})
+    ['samples is 4, below its floor >= 368 (the 99 % point)']
+    """
+    out = []
+    for name, floor in floors.items():
+        if name not in parameters:
+            out.append(f"{name} is not given, so its floor is not met ({floor.why})")
+            continue
+        short = floor.shortfall(parameters[name])
+        if short:
+            out.append(f"{name} {short} ({floor.why})")
+    return out
 
 
 @dataclass(frozen=True)
@@ -180,6 +308,10 @@ def problems(pages: list[tuple[str, BookPage]], notebooks_dir: Path | None = Non
             errors.append(f"page {module}: executions must be a non-empty tuple of Execution")
         if book.part not in PARTS:
             errors.append(f"page {module}: unknown part {book.part!r}; the parts: {list(PARTS)}")
+        for x in book.executions if isinstance(book.executions, tuple) else ():
+            if isinstance(x, Execution):
+                errors += [f"page {module}: execution {x.name!r}: {e}"
+                           for e in _floor_declaration_problems(x)]
     for nb in sorted(Path(notebooks_dir or paths.NOTEBOOKS).glob("*.ipynb")):
         if nb.resolve() not in owner:
             errors.append(f"notebook {nb.name} has no page: declare BOOK in its page module "
@@ -190,6 +322,17 @@ def problems(pages: list[tuple[str, BookPage]], notebooks_dir: Path | None = Non
             errors.append(f"{what} and {places[part, order]} both stand at order {order} "
                           f"of part {part!r}")
         places.setdefault((part, order), what)
+    return errors
+
+
+def _floor_declaration_problems(x: Execution) -> list[str]:
+    """Floors that are not :class:`Floor` or name no parameter of the execution."""
+    errors = []
+    for name, floor in x.floors.items():
+        if not isinstance(floor, Floor):
+            errors.append(f"floor of {name!r} must be a Floor (at_least, includes...)")
+        elif name not in x.parameters:
+            errors.append(f"floor of {name!r}: no such parameter in its parameters")
     return errors
 
 
@@ -225,6 +368,8 @@ def manifest(pages: list[tuple[str, BookPage]], notebooks_dir: Path | None = Non
                  "depends_on": list(x.depends_on), "outputs": list(x.outputs)}
             if x.expected_s is not None:
                 e["expected_s"] = x.expected_s
+            if x.floors:
+                e["floors"] = {k: f.as_dict() for k, f in x.floors.items()}
             entries.append(e)
     return {"entries": entries}
 

@@ -124,8 +124,8 @@ SOURCE_COLOURS = ("#0072b2", "#e69f00", "#009e73", "#d55e00", "#cc79a7", "#56b4e
                   "#000000", "#8c2d04", "#7f7f7f", "#bcbd22", "#9467bd", "#17becf")
 SOURCE_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*", "<", ">", "h", "p")
 #: The Moon's gravity models of the real-Moon page: the paper's J2 first, then a lunar
-#: field cut to increasing degrees (2x2, 8x8, 20x20, 50x50, ...), darker as it deepens.
-MODEL_COLOURS = ("#000000", "#e69f00", "#56b4e9", "#0072b2", "#cc79a7", "#d55e00")
+#: field cut to increasing degrees (2x2, 8x8, 20x20, 50x50, ...), each a different hue.
+MODEL_COLOURS = ("#000000", "#e69f00", "#009e73", "#0072b2", "#d55e00", "#cc79a7")
 
 
 def model_colour(k: int) -> str:

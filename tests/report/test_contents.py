@@ -133,3 +133,17 @@ def test_the_book_keeps_no_manifest_or_toc_in_its_sources():
     # generated beside the build only: no copy to keep in step by hand, and a stale
     # notebooks/manifest.yml would be executed instead of the registered pages
     assert not paths.MANIFEST.exists() and not paths.TOC.exists()
+
+
+def test_a_floor_must_be_a_floor_on_a_parameter_of_its_execution(tmp_path):
+    nb = _notebook(tmp_path / "toy.ipynb")
+    x = contents.Execution("toy", "Toy", parameters=dict(samples=368),
+                           floors=dict(samples=contents.at_least(368, "the 99 % point"),
+                                       seed=contents.at_least(1, "a seed"), workers=2))
+    page = ("toybook.floored", contents.BookPage(str(nb), "Beyond the paper", 66, (x,)))
+    errors = contents.problems([page], tmp_path / "none")
+    assert errors == [
+        "page toybook.floored: execution 'toy': floor of 'seed': no such parameter in its "
+        "parameters",
+        "page toybook.floored: execution 'toy': floor of 'workers' must be a Floor "
+        "(at_least, includes...)"]

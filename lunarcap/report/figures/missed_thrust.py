@@ -10,6 +10,16 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 
+def _luminance(rgba) -> float:
+    """Relative luminance of a colour, 0 black to 1 white.
+
+    The cell's text is white below 0.45, black above (Rec. 601 weights: 0.299 R +
+    0.587 G + 0.114 B).
+    """
+    r, g, b = rgba[:3]
+    return 0.299 * r + 0.587 * g + 0.114 * b
+
+
 def plot_missed_penalty(cases):
     """Penalty map of a missed burn: fraction flown × delay, the penalty written in each cell.
 
@@ -43,8 +53,8 @@ def plot_missed_penalty(cases):
                if r.status == "recovered" else "none")
         if r.cutoff_orbit == "escape":
             txt += "\nesc."
-        ax.text(j, i, txt, ha="center", va="center", fontsize=9,
-                color="k" if r.status != "recovered" or grid[i, j] < vmax / 3 else "w")
+        dark = r.status == "recovered" and _luminance(im.cmap(im.norm(shown[i, j]))) < 0.45
+        ax.text(j, i, txt, ha="center", va="center", fontsize=9, color="w" if dark else "k")
     ax.set_xticks(range(len(de)), [f"{d:g}" for d in de])
     ax.set_yticks(range(len(fr)), [f"{f:g}" for f in fr])
     ax.set_xlabel("delay before the recovery (min)")

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import matplotlib.pyplot as plt
 
-from lunarcap.report.figstyle import FIG_WIDTH_IN, model_colour
+from lunarcap.report.figstyle import FIG_WIDTH_IN, ISP_MARKERS, model_colour
 
 
 def plot_evolution(histories: dict):
@@ -25,7 +25,9 @@ def plot_evolution(histories: dict):
     -------
     matplotlib.figure.Figure
         Above: perilune (solid) and apolune (dashed) altitudes; below: the inclination;
-        the models' colours and the two line styles in one legend below the axes.
+        the models' colours and the two line styles in one legend below the axes. Each
+        model has its hue and a marker every eighth of its revolutions, so neighbouring
+        degrees (8x8, 20x20) are told apart in print as on screen.
     """
     from matplotlib.lines import Line2D
 
@@ -34,9 +36,12 @@ def plot_evolution(histories: dict):
     handles = []
     for k, (label, h) in enumerate(histories.items()):
         c = model_colour(k)
+        mark = dict(marker=ISP_MARKERS[k % len(ISP_MARKERS)], ms=5,
+                    markevery=max(1, len(h["days"]) // 8))
         ax.plot(h["days"], h["apolune_km"], "--", color=c, lw=1.2)
-        handles += ax.plot(h["days"], h["perilune_km"], "-", color=c, lw=1.6, label=label)
-        bx.plot(h["days"], h["inc_deg"], "-", color=c, lw=1.6)
+        handles += ax.plot(h["days"], h["perilune_km"], "-", color=c, lw=1.6, label=label,
+                           **mark)
+        bx.plot(h["days"], h["inc_deg"], "-", color=c, lw=1.6, **mark)
     handles += [Line2D([], [], color="0.3", ls="-", lw=1.6, label="perilune"),
                 Line2D([], [], color="0.3", ls="--", lw=1.2, label="apolune")]
     ax.set_ylabel("altitude (km)")

@@ -34,7 +34,9 @@ def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict,
     it
         is to be drawn
     paper : DataFrame of the paper's engines (``thrust_N``, ``isp_s``, ``thrust_to_weight``,
-        ``part``, ``paper_delta_v_loss_percent``), drawn as stars
+        ``part``, ``paper_delta_v_loss_percent``), drawn as stars in their Isp's colour and
+        named in the legend (labels beside the stars collide: the 300 N and 450 N engines
+        are half a decade of loss apart at most)
     isp_s : the specific impulses (s), one colour each
     part_titles : ``{part: panel title}``, in panel order (four panels, 2 x 2)
     newton_per_ratio : thrust (N) of a thrust-to-weight ratio of 1 (top axis)
@@ -60,9 +62,6 @@ def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict,
         for r in paper[paper.part == part].itertuples(index=False):
             ax.plot(r.thrust_to_weight, r.paper_delta_v_loss_percent, marker="*", ms=13, ls="none",
                     color=colours.get(float(r.isp_s), "black"), mec="black", mew=0.7)
-            ax.annotate(f"{r.thrust_N:g} N / {r.isp_s:g} s",
-                        (r.thrust_to_weight, r.paper_delta_v_loss_percent), xytext=(6, 3),
-                        textcoords="offset points", fontsize=9)
         _trade_axes(ax, newton_per_ratio)
         ax.set_yscale("log")
         ax.set_ylim(*ylim)
@@ -71,8 +70,10 @@ def plot_trade_study_loss(ok, theory, paper, isp_s, part_titles: dict,
     for ax in axes[1]:
         ax.set_xlabel("thrust-to-weight ratio T / (m₀ g₀)")
     handles, labels = axes[0, 0].get_legend_handles_labels()
-    handles.append(plt.Line2D([], [], marker="*", ms=11, ls="none", color="0.6", mec="black"))
-    labels.append("paper, Table B1 (colour: its Isp)")
+    for (t, isp), _ in paper.groupby(["thrust_N", "isp_s"], sort=True):
+        handles.append(plt.Line2D([], [], marker="*", ms=11, ls="none", mec="black",
+                                  color=colours.get(float(isp), "black")))
+        labels.append(f"paper, Table B1: {t:g} N / {isp:g} s")
     fig.legend(handles, labels, loc="outside lower center", ncol=2)
     return fig
 

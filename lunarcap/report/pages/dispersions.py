@@ -26,7 +26,15 @@ import pandas as pd
 
 from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
-from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.contents import (
+    BookPage,
+    Execution,
+    at_least,
+    figure_files,
+    includes,
+    one_of,
+    table_files,
+)
 from lunarcap.report.figures import dispersions as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
@@ -34,25 +42,40 @@ from lunarcap.studies.dispersions import samples as disp
 from lunarcap.studies.study import plan_id
 
 NOTEBOOK = "notebooks/dispersions.ipynb"
+#: The paper's three engines, the plans of the page's budget and sensitivities.
+PAPER_PLANS = ("song2011-150N", "song2011-300N", "song2011-450N")
 BOOK = BookPage(NOTEBOOK, "Beyond the paper", 110, (
     Execution(
         "dispersions", "Delta-V budget under dispersions",
         parameters=dict(
             plans=["song2011-150N", "song2011-300N", "song2011-450N"],
-            samples=4,  # per engine, full dynamics (about 0.3 s of CPU each)
+            samples=368,  # per engine: bounds the 99 % point with a 95 % interval
             seed=2011,
             sigmas=dict(thrust_sigma_pct=1.0, isp_sigma_pct=0.5, pointing_sigma_deg=0.3,
                         ignition_sigma_s=1.0, arrival_sigma_km=1.0, arrival_sigma_mps=1.0,
                         knowledge_sigma_km=0.1, knowledge_sigma_mps=0.1),
             dynamics=None,  # the plans' own (full)
             workers=2,
-            sensitivity_samples=2,  # one antithetic pair per engine, source and sigma
-            sensitivity_factors=[1.0, 2.0],
-            sensitivity_plans=["song2011-150N"]),  # `lunarcap dispersions --sensitivity`: any
-        quick_parameters=dict(samples=2, dynamics="two-body", workers=1, sensitivity_samples=2),
-        expected_s=700,  # 1398 s of CPU measured (2 workers): 44 min wall at load 9-21
+            sensitivity_samples=16,  # 8 antithetic pairs: 8 independent draws per level
+            sensitivity_factors=[0.5, 1.0, 2.0],
+            sensitivity_plans=["song2011-150N", "song2011-300N", "song2011-450N"]),
+        quick_parameters=dict(samples=2, dynamics="two-body", workers=1, sensitivity_samples=2,
+                              sensitivity_factors=[1.0, 2.0],
+                              sensitivity_plans=["song2011-150N"]),
+        expected_s=700,  # 1398 s of CPU measured (2 workers, 2256 samples)
         outputs=(table_files("dispersions", "budget", "failures", "sensitivity")
-                 + figure_files("dispersions", "cdf", "sensitivity_150N"))),
+                 + figure_files("dispersions", "cdf", "sensitivity_150N")),
+        floors=dict(
+            plans=includes(PAPER_PLANS, "a budget for each of the paper's three engines"),
+            samples=at_least(368, "the 99 % point bounded on both sides by order statistics "
+                                  "at 95 % confidence (samples_needed(0.99))"),
+            sensitivity_plans=includes(PAPER_PLANS, "each engine's sensitivity to each source"),
+            sensitivity_factors=includes([0.5, 1.0, 2.0], "each source's law from three levels "
+                                                          "of its sigma"),
+            sensitivity_samples=at_least(16, "8 independent draws (antithetic pairs) per "
+                                             "level and source: each exponent with its "
+                                             "standard error"),
+            dynamics=one_of([None], "the plans' own (full) dynamics"))),
 ))
 
 #: The example error model of the page (1 sigma), assumed: see the page's assumptions.

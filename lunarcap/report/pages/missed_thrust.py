@@ -14,7 +14,14 @@ import pandas as pd
 
 from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
-from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.contents import (
+    BookPage,
+    Execution,
+    figure_files,
+    includes,
+    one_of,
+    table_files,
+)
 from lunarcap.report.figures import missed_thrust as draw
 from lunarcap.report.page import Page, solver_description
 from lunarcap.repro import paths
@@ -26,16 +33,27 @@ BOOK = BookPage(NOTEBOOK, "Beyond the paper", 100, (
         "missed_thrust", "Missed thrust and late ignition: a capture burn gone wrong",
         parameters=dict(
             plan="song2011-150N", burn=1,
-            # 2 x 3 cut-offs and 2 late ignitions (`lunarcap missed` runs any grid)
-            fractions=[0.5, 0.9], delays_min=[0.0, 30.0, 720.0], late_min=[1.0, 5.0],
+            # 4 x 4 cut-offs and 3 late ignitions: 19 cases (the floors below)
+            fractions=[0.25, 0.5, 0.75, 0.9], delays_min=[0.0, 30.0, 120.0, 720.0],
+            late_min=[1.0, 5.0, 10.0],
             max_period_h=24.0,  # the orbit after burn 1, recovery and nominal alike
             dynamics=None,  # the plan's own (full)
             workers=2),
         quick_parameters=dict(fractions=[0.5, 1.0], delays_min=[0.0, 30.0], late_min=[5.0],
                               dynamics="two-body", workers=1),
-        expected_s=80,
+        expected_s=125,  # 242 s of CPU measured (2 workers): 14.4 min wall at load 6-23
         outputs=(table_files("missed_thrust", "cases", "late", "recovery")
-                 + figure_files("missed_thrust", "penalty"))),
+                 + figure_files("missed_thrust", "penalty")),
+        floors=dict(
+            plan=one_of(["song2011-150N"], "the paper's 150 N plan, the longest first burn"),
+            burn=one_of([1], "the first burn, the one whose failure can leave a hyperbola"),
+            fractions=includes([0.25, 0.5, 0.75, 0.9], "cut-offs from a quarter of the burn "
+                                                       "to nine tenths"),
+            delays_min=includes([0.0, 30.0, 120.0, 720.0], "recoveries at once, after half "
+                                                           "an hour, two hours, half a day"),
+            late_min=includes([1.0, 5.0, 10.0], "late ignitions to 10 min, the upper end "
+                                                "of the KPLO study the page cites"),
+            dynamics=one_of([None], "the plan's own (full) dynamics"))),
 ))
 
 #: Shown (the rest in the CSV: e at cut-off, the partial burn's ΔV, the make-up orbit's

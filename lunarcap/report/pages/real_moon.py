@@ -31,31 +31,47 @@ from lunarcap.physics.ephemeris import default_ephemeris
 from lunarcap.physics.epochs import calendar_from_seconds, seconds_from_calendar
 from lunarcap.physics.forces import force_model
 from lunarcap.physics.frames import rotation_313
-from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.contents import (
+    BookPage,
+    Execution,
+    at_least,
+    figure_files,
+    includes,
+    one_of,
+    table_files,
+)
 from lunarcap.report.figures import real_moon as draw
 from lunarcap.report.page import Page, solver_description
 
 NOTEBOOK = "notebooks/real_moon.ipynb"
-# The book flies the fields to 20x20 and re-designs without the impulsive limits: a fresh
-# run with 50x50 and the limits took 51 s of CPU (the limits 10 s, 50x50 16 s); the page
-# says what it left out and which parameters add it.
 BOOK = BookPage(NOTEBOOK, "Beyond the paper", 130, (
     Execution(
         "real_moon", "The real Moon: the capture in the lunar gravity field",
         parameters=dict(
             plan="song2011-150N",  # the J2 design
-            degrees=[2, 8, 20],  # LP165P cut to these degrees, the design flown open loop
+            # LP165P cut to these degrees (x the same order; "2x0": C20 alone), the design
+            # flown open loop in each
+            degrees=["2x0", 2, 8, 20, 50],
             compare_degree=20,
             design_degree=20,  # designed again in LP165P 20x20 (its burns)
-            redesign_limits=False,  # True: also its impulsive limits and losses in the field
-            after_days=7.0, evolve_degrees=[2, 8, 20], approach_min=60.0),
-        quick_parameters=dict(degrees=[2, 20],
+            redesign_limits=True,  # its impulsive limits and losses in the field
+            after_days=7.0, evolve_degrees=[2, 8, 20, 50], approach_min=60.0),
+        quick_parameters=dict(degrees=["2x0", 2, 20],
                               design_degree=None,  # quick: no re-design (NLPs and solves)
                               after_days=1.0, evolve_degrees=[20]),
         depends_on=("table3",),  # the design's impulsive limits are table3's chain's
-        expected_s=15,  # measured 14.5 s wall, 13.9 s CPU (the 150 N chain cached)
+        expected_s=75,  # measured alone: 166 s wall, 73 s CPU at load 6-12 (50x50: 22 s)
         outputs=(table_files("real_moon", "miss", "opens", "redesign", "after")
-                 + figure_files("real_moon", "evolution"))),
+                 + figure_files("real_moon", "evolution")),
+        floors=dict(
+            degrees=includes(["2x0", 2, 8, 20, 50], "the miss converged in degree, and C20 "
+                                                     "alone beside the whole degree 2"),
+            evolve_degrees=includes([2, 8, 20, 50], "the days after the capture converged "
+                                                    "in degree"),
+            design_degree=at_least(20, "the capture designed again in the field the page "
+                                       "quotes"),
+            redesign_limits=one_of([True], "the losses in the field"),
+            after_days=at_least(7.0, "a week of the final orbit"))),
 ))
 #: The packaged lunar field and the third bodies every model of the page carries.
 FIELD, THIRD_BODIES = "LP165P", ["earth", "sun"]
@@ -66,9 +82,30 @@ HOLD_NAMES = {"rtn": "RTN", "inertial": "inertial"}
 EVOLUTION_RTOL = 1e-10
 
 
-def field(degree: int) -> dict:
-    """The plan ``dynamics`` of LP165P to ``degree`` x ``degree`` with the Earth and the Sun."""
-    return {"gravity": FIELD, "degree": int(degree), "order": int(degree),
+def degree_order(spec) -> tuple[int, int]:
+    """``(degree, order)`` of a field as the page's parameters name it.
+
+    An integer ``n`` is the field to degree and order ``n``; ``"NxM"`` to degree N and
+    order M (``"2x0"``: C20 alone, the oblateness about the body's pole).
+
+    >>> degree_order(20), degree_order("2x0")
+    ((20, 20), (2, 0))
+    """
+    if isinstance(spec, str):
+        deg, sep, order = spec.partition("x")
+        if not (sep and deg.isdigit() and order.isdigit()) or int(order) > int(deg):
+            raise ValueError(f"a field is a degree (20) or degree x order (\"2x0\"), the "
+                             f"order at most the degree; got {spec!r}")
+        return int(deg), int(order)
+    if isinstance(spec, bool) or not isinstance(spec, (int, np.integer)) or spec < 2:
+        raise ValueError(f"a field's degree is an integer >= 2; got {spec!r}")
+    return int(spec), int(spec)
+
+
+def field(spec) -> dict:
+    """The plan ``dynamics`` of LP165P cut to ``spec`` (:func:`degree_order`), Earth and Sun."""
+    degree, order = degree_order(spec)
+    return {"gravity": FIELD, "degree": degree, "order": order,
             "third_bodies": THIRD_BODIES}
 
 
@@ -114,18 +151,23 @@ def miss_row(label: str, ol, start: str) -> dict:
 
 
 def miss_table(plan, models, holds=("rtn", "inertial"), approach_s: float = 3600.0,
-               start: str = "arrival") -> pd.DataFrame:
+               start: str = "arrival", flights: dict | None = None) -> pd.DataFrame:
     """The design flown open loop in each model (rows), each hold: final orbit and miss.
 
     ``models``: plan ``dynamics`` (None: the design's own); ``start``: "arrival" (the
-    design's state ``approach_s`` before its first ignition) or "first ignition".
+    design's state ``approach_s`` before its first ignition) or "first ignition";
+    ``flights``: if given, filled with ``{(model label, hold): OpenLoop}`` (the flights'
+    end states, compared without flying them again).
     """
     app = approach_s if start == "arrival" else 0.0
     rows = []
     for dyn in models:
         label = model_name(plan.dynamics if dyn is None else dyn)
         for hold in holds:
-            rows.append(miss_row(label, open_loop(plan, dyn, hold, app), start))
+            ol = open_loop(plan, dyn, hold, app)
+            if flights is not None:
+                flights[(label, hold)] = ol
+            rows.append(miss_row(label, ol, start))
     return pd.DataFrame(rows)
 
 
@@ -249,7 +291,10 @@ def build(plan: str = "song2011-150N", degrees=(2, 8, 20, 50), compare_degree: i
     output_name, quick : the tables' prefix; recorded in the provenance
     """
     p = load_plan(plan)
-    degrees = [int(d) for d in degrees]
+    degrees = list(degrees)
+    for d in list(degrees) + list(evolve_degrees) + [compare_degree] + (
+            [] if design_degree is None else [design_degree]):
+        degree_order(d)  # each field named right, before anything is flown
     page = Page(NOTEBOOK, dict(plan=plan, degrees=degrees, compare_degree=compare_degree,
                                design_degree=design_degree, after_days=after_days,
                                evolve_degrees=list(evolve_degrees), approach_min=approach_min,
@@ -277,7 +322,8 @@ def _frames(page: Page, design) -> None:
 
 def _misses(page: Page, p, degrees, compare: int, approach_s: float) -> None:
     models = [None] + [field(d) for d in degrees]
-    miss = miss_table(p, models, approach_s=approach_s)
+    flights: dict = {}
+    miss = miss_table(p, models, approach_s=approach_s, flights=flights)
     fmt = {"final_rp_altitude_km": ".3f", "final_ra_altitude_km": ".3f",
            "open_loop_inc_change_deg": "+.4f", "open_loop_miss_km": ".3f",
            "open_loop_miss_mps": ".2f"}
@@ -324,18 +370,47 @@ def _misses(page: Page, p, degrees, compare: int, approach_s: float) -> None:
                 "verified flight", j2[HOLD_NAMES["rtn"]] < 1.0, f"{j2[HOLD_NAMES['rtn']]:.3g} m")
     page.value("compare_model", c)
     inertial = miss[miss.hold == HOLD_NAMES["inertial"]].set_index("model").open_loop_miss_km
-    page.value("share_2x2_percent", 100.0 * inertial.get(model_name(field(2)), np.nan)
-               / inertial[c], why="2x2 not flown")
-    top = max(degrees)
-    if top != compare:
-        a = open_loop(p, field(compare), "inertial", approach_s)
-        b = open_loop(p, field(top), "inertial", approach_s)
+    page.note("degree2_text", degree2_text(page, inertial, c))
+    top = max(degrees, key=degree_order)
+    if degree_order(top) != degree_order(compare):
+        a = flights[(c, "inertial")]
+        b = flights[(model_name(field(top)), "inertial")]
         page.value("top_vs_compare_km", end_distance_km(a, b))
         page.note("deeper", f"{c} and {model_name(field(top))} end "
                             f"{page.text('top_vs_compare_km', '.2f', ' km')} apart there.")
     else:
         page.value("top_vs_compare_km", None, why="no deeper field flown")
         page.note("deeper", f"no field deeper than {c} was flown in this run.")
+
+
+def degree2_text(page: Page, inertial: pd.Series, compare: str) -> str:
+    """How much of the compared field's miss degree 2 makes, C20 alone and with C22.
+
+    ``inertial``: the open-loop miss (km) held in inertial axes, by model label. LP165P
+    2x0 is C20 alone about the body's pole: against the design's J2 it moves the axis
+    (the pole of the principal axes, of date, instead of the design's fixed pole) and
+    takes LP165P's C20 and reference radius. 2x2 adds the other degree-2 terms, in the
+    principal axes chiefly the C22 ellipticity. The shares are of the compared field's
+    miss (the misses are distances, not additive vectors: the shares say how far each
+    field alone takes the capture, not a sum). The sentence's comparison is computed.
+    """
+    share = {}
+    for key, spec in (("2x0", "2x0"), ("2x2", 2)):
+        name = model_name(field(spec))
+        v = 100.0 * inertial[name] / inertial[compare] if name in inertial.index else None
+        page.value(f"share_{key}_percent", v, why=f"{name} not flown in this run")
+        share[key] = v
+    t = page.text
+    if share["2x0"] is None or share["2x2"] is None:
+        flown = [k for k, v in share.items() if v is not None]
+        return (f"LP165P {flown[0]} alone makes {t(f'share_{flown[0]}_percent', '.0f', ' %')} "
+                "of that miss." if flown else "")
+    more = ("most of degree 2's share comes with C22" if share["2x2"] - share["2x0"]
+            > share["2x0"] else "most of degree 2's share is C20's alone")
+    return (f"C20 alone about the body's pole (LP165P 2x0: the design's J2 moved to the "
+            f"pole of the field's frame, with LP165P's C20 and radius) makes "
+            f"{t('share_2x0_percent', '.1f', ' %')} of that miss, the whole degree 2 (2x2, "
+            f"adding the C22 ellipticity) {t('share_2x2_percent', '.0f', ' %')}: {more}.")
 
 
 def no_limit_text(page: Page, redesign) -> str:
@@ -467,8 +542,9 @@ def scope_text(page: Page, degrees, evolve_degrees, design_degree, limits: bool,
                days: float) -> str:
     """What this run flew and what it left out, with the parameters that add it.
 
-    The book's build keeps the page within its time budget (fields to degree 20, no
-    re-design limits); the deeper fields and the limits are parameters of the notebook.
+    The book flies the fields to 50x50 and computes the re-design's limits (its floors);
+    a run with less (the quick book, or a reader's) says what it left out and which
+    parameters add it.
     """
     text = (f"This run ({'the quick book' if page.quick else 'the book'}'s parameters) flies "
             f"the design in LP165P {_degrees(degrees)}, follows its final orbit {_days(days)} "
@@ -479,16 +555,16 @@ def scope_text(page: Page, degrees, evolve_degrees, design_degree, limits: bool,
         text += (f"designs it again in {model_name(field(design_degree))}"
                  + ("" if limits else ", without that design's impulsive limits") + ".")
     left = []
-    if max(list(degrees) + list(evolve_degrees)) < 50:
-        left.append("`-y \"degrees: [2, 8, 20, 50]\" -y \"evolve_degrees: [2, 8, 20, 50]\"` "
-                    "adds the 50x50 field")
+    if max(degree_order(d)[0] for d in list(degrees) + list(evolve_degrees)) < 50:
+        left.append("`-y \"degrees: [2x0, 2, 8, 20, 50]\" -y \"evolve_degrees: [2, 8, 20, "
+                    "50]\"` adds the 50x50 field")
     if design_degree is not None and not limits:
         left.append("`-p redesign_limits true` the re-design's limits and losses")
     if not left:
         return text
     return (text + " Deeper fields and the limits cost most of the page's time and are left "
-            "out of the book's build; run the notebook with papermill (as in *Reproduce*): "
-            + "; ".join(left) + ".")
+            "out of this run; the book runs them, as does the notebook run with papermill "
+            "(as in *Reproduce*): " + "; ".join(left) + ".")
 
 
 def _evolution(page: Page, p, days: float, degrees) -> None:
@@ -524,8 +600,8 @@ def _evolution(page: Page, p, days: float, degrees) -> None:
 
 
 def _degrees(degrees) -> str:
-    """Fields as prose lists them: "2x2, 8x8 and 20x20"."""
-    names = [f"{d}x{d}" for d in degrees]
+    """Fields as prose lists them: "2x0, 2x2, 8x8 and 20x20"."""
+    names = ["{}x{}".format(*degree_order(d)) for d in degrees]
     return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 

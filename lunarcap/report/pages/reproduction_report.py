@@ -97,8 +97,8 @@ WIDE_NAMES = {
     ("excess", "difference"): "loss_vs_paper_impulse_diff_percent"}
 #: Headers of the wide form (the CSV keeps the column names); ``row`` is the start with the
 #: best mark, shown instead of ``start`` and ``best`` (one column less: it fits at 1024 px).
-WIDE_LABELS = {"source": "source", "start": "start (min)", "best": "best",
-               "row": "start (min), best",
+WIDE_LABELS = {"source": "source", "thrust_N": "thrust (N)", "isp_s": "Isp (s)",
+               "start": "start (min)", "best": "best", "row": "start (min), best",
                **{WIDE_NAMES[stem, who]: f"{head}, {who_head}"
                   for stem, head in (("duration", "duration (min)"), ("delta_v", "ΔV (m/s)"),
                                      ("excess", "ΔV above impulsive (%)"))
@@ -109,19 +109,28 @@ WIDE_LABELS = {"source": "source", "start": "start (min)", "best": "best",
 def tables_wide(long: pd.DataFrame) -> pd.DataFrame:
     """Part (a) in wide form: one row per row of the paper's tables, as the paper prints them.
 
-    Columns ``source``, ``start`` (the ignition offset, min, or "impulse, LOI n (ours:
-    two-body)" for the paper's impulsive delta-Vs, which go in the ΔV columns), ``best``
-    (paper / ours / both), then paper, ours and ours − paper for the duration (min), the
-    ΔV (m/s) and the ΔV above the impulsive one (%). A third as many rows as the long
-    form, and every number of a row side by side.
+    Columns ``source`` (Table B1's rows name their engine: "Table B1, 300 N"),
+    ``thrust_N``, ``isp_s`` (NaN for the impulsive rows, which hold for every engine),
+    ``start`` (the ignition offset, min, or "impulse, LOI n (ours: two-body)" for the
+    paper's impulsive delta-Vs, which go in the ΔV columns), ``best`` (paper / ours /
+    both), then paper, ours and ours − paper for the duration (min), the ΔV (m/s) and
+    the ΔV above the impulsive one (%). A third as many rows as the long form, and every
+    number of a row side by side. A row is keyed by its source, engine, LOI and start:
+    Table B1 repeats the best row of each engine's tables, and two engines may share a
+    start (300 N and 450 N LOI 3 both ignite 2 min before perilune).
     """
     rows: dict = {}
     for r in long.itertuples(index=False):
         impulsive = r.quantity == rep.IMPULSE_ROW_TWO_BODY
         start = f"impulse, LOI {r.loi} (ours: two-body)" if impulsive else f"{r.start_min:g}"
         source = r.source.replace(" (impulsive)", "")
-        row = rows.setdefault((source, r.loi, start),
-                              {"source": source, "start": start, "best": ""})
+        thrust = float(r.thrust_N)
+        if source == "Table B1":
+            source = f"Table B1, {thrust:g} N"
+        engine = (None, None) if impulsive else (thrust, float(r.isp_s))
+        row = rows.setdefault((source, engine, r.loi, start),
+                              {"source": source, "thrust_N": engine[0], "isp_s": engine[1],
+                               "start": start, "best": ""})
         stem, _ = WIDE_QUANTITIES[r.quantity]
         for who, v in (("paper", r.paper), ("ours", r.ours), ("difference", r.difference)):
             row[WIDE_NAMES[stem, who]] = v
@@ -223,8 +232,9 @@ def _add_part_a_tables(page: Page, long: pd.DataFrame, dynamics: str,
                  f"{_link(f'{output_name}_tables_data')}."),
         columns=WIDE_LABELS,
         floatfmt={c: ("+.3f" if "difference" in c else ".3f") for c in WIDE_LABELS
-                  if c not in ("source", "start", "best", "row")},
-        show_columns=[c for c in WIDE_LABELS if c not in ("start", "best")])
+                  if c not in ("source", "thrust_N", "isp_s", "start", "best", "row")},
+        show_columns=[c for c in WIDE_LABELS
+                      if c not in ("thrust_N", "isp_s", "start", "best")])
     page.table("tables_data", long,
                caption="Every number of Tables 1–5 and B1 beside ours, all columns.")
     page.table(
@@ -251,6 +261,12 @@ def _part_a(page: Page, engines, dynamics: str, output_name: str):
         page.value(k, x)
     page.expect("every case of part (a) passes the verification gate",
                 bool(long.verified.all()), gate_text(long))
+    b1 = paper.paper_table_b1()
+    n_b1 = int(b1.thrust_N.isin([int(t) for t, _ in engines]).sum())
+    wide = page.items["tables"].df
+    shown = int(wide.source.str.startswith("Table B1").sum())
+    page.expect("the wide table holds every row of Table B1 of this run's engines, each once",
+                shown == n_b1, f"{shown} rows for Table B1's {n_b1}")
     if dynamics == "full":  # the paper's dynamics: the agreement is the reproduction
         b1 = values["b1_max_dv_diff_percent"]
         page.expect("Table B1: our delta-Vs within 0.25 % of the paper's",

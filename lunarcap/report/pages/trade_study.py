@@ -18,7 +18,16 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.quantities import capture_name
-from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
+from lunarcap.report.contents import (
+    BookPage,
+    Execution,
+    at_least,
+    at_most,
+    figure_files,
+    includes,
+    one_of,
+    table_files,
+)
 from lunarcap.report.display import markdown_table
 from lunarcap.report.figures import trade_study as draw
 from lunarcap.report.page import Page
@@ -30,17 +39,27 @@ BOOK = BookPage(NOTEBOOK, "Beyond the paper", 20, (
     Execution(
         "trade_study", "Engine trade study: loss against thrust-to-weight",
         parameters=dict(thrust_min_N=50.0, thrust_max_N=2000.0,
-                        points=6,  # 18 engines (the CLI's study takes any grid)
+                        points=30,  # 90 engines (the floors below)
                         isp_s=[200.0, 250.0, 300.0], workers=2, dynamics="full"),
         quick_parameters=dict(points=4, isp_s=[250.0], workers=1),
-        expected_s=100,
+        expected_s=250,  # 503 s of CPU measured (2 workers): 34 min wall at load 20-35
         outputs=(table_files("trade_study", "grid", "paper_engines", "runs")
-                 + figure_files("trade_study", "loss", "duration"))),
+                 + figure_files("trade_study", "loss", "duration")),
+        floors=dict(
+            points=at_least(30, "30 log-spaced thrusts: curves read between engines"),
+            thrust_min_N=at_most(50.0, "from 50 N, a third of the paper's weakest engine"),
+            thrust_max_N=at_least(2000.0, "to 2000 N, where the loss has all but vanished"),
+            isp_s=includes([200.0, 250.0, 300.0], "the paper's three Isp, so its engines "
+                                                  "are solved directly"),
+            dynamics=one_of(["full"], "the paper's dynamics"))),
 ))
 
 #: Panel titles of the parts of the chain (the study's ``part`` values), in panel order.
 PART_TITLES = {"LOI1": "LOI 1: hyperbola → 12.235 h", "LOI2": "LOI 2: 12.235 h → 3.525 h",
                "LOI3": "LOI 3: 3.525 h → 100 km circle", "sequence": "whole sequence"}
+#: The same, short enough for the duration figure's narrower panels (": duration" follows).
+BURN_TITLES = {"LOI1": "LOI 1 → 12.235 h", "LOI2": "LOI 2 → 3.525 h",
+               "LOI3": "LOI 3 → 100 km circle"}
 
 #: Loss axis of the loss figure, % of the impulsive delta-V (logarithmic).
 LOSS_AXIS_PERCENT = (0.003, 40.0)
@@ -249,7 +268,7 @@ def _add_loss(page: Page, ok, valid, paper, spec, newton_per_ratio: float,
                  "from Eq. (19) and ω_s the Schuler rate at the perilune, drawn where "
                  f"ω_s t_b ≤ {ROBBINS_VALID_OMEGA_T:g} rad (for the sequence: every burn). "
                  "Stars: the paper's three engines with their Table B1 losses (against the "
-                 "paper's own impulsive ΔVs)."),
+                 "paper's own impulsive ΔVs), each in its Isp's colour."),
         alt="Finite-burn loss against thrust-to-weight ratio, per LOI and for the sequence")
     at_paper = paper_engines_table(ok, paper, direct)
     page.table(
@@ -278,7 +297,7 @@ def _add_duration_grid_runs(page: Page, loi_ok, wide, spec, newton_per_ratio: fl
     loss_def = LOSS_DEFINITION
     page.figure(
         "duration", draw.plot_trade_study_duration(
-            loi_ok, spec.isp_s, {p: PART_TITLES[p] for p in study.PARTS[:3]},
+            loi_ok, spec.isp_s, {p: BURN_TITLES[p] for p in study.PARTS[:3]},
             newton_per_ratio),
         caption=("One row per burn. Left: optimal burn duration divided by the Eq. (19) "
                  "estimate (from the "

@@ -82,13 +82,22 @@ def test_histories_and_evolution_table():
 @pytest.mark.slow
 def test_page_on_a_small_case(tmp_path):
     with paths.using_book(tmp_path):
-        page = real_moon.build(degrees=[2], compare_degree=2, design_degree=None,
+        page = real_moon.build(degrees=["2x0", 2], compare_degree=2, design_degree=None,
                                after_days=0.25, evolve_degrees=[2], quick=True,
                                output_name="real_moon_test")
     miss = page.items["miss"].df
     own = miss[miss.model == "J2 (the design's)"].set_index("hold").open_loop_miss_km
     assert own["RTN"] < 1e-3 and own["inertial"] < 0.01
     assert (miss[miss.model == "LP165P 2x2"].open_loop_miss_km > 1.0).all()
+    # C20 alone about the body's pole is a field of its own: the design's J2 moved to the
+    # pole of the field's frame misses too, by another distance than the whole degree 2
+    inertial = miss[miss.hold == "inertial"].set_index("model").open_loop_miss_km
+    assert inertial["LP165P 2x0"] > 10 * own["inertial"]
+    assert abs(inertial["LP165P 2x0"] - inertial["LP165P 2x2"]) > 0.1
+    assert page.values["share_2x2_percent"] == pytest.approx(100.0)
+    assert page.values["share_2x0_percent"] == pytest.approx(
+        100.0 * inertial["LP165P 2x0"] / inertial["LP165P 2x2"])
+    assert "LP165P 2x0" in page.notes["degree2_text"]
     # the open loop from the first ignition misses less than from the arrival
     opens = page.items["opens"].df.set_index(["start", "hold"]).open_loop_miss_km
     assert opens[("first ignition", "RTN")] < opens[("arrival", "RTN")]
@@ -101,6 +110,43 @@ def test_page_on_a_small_case(tmp_path):
     assert (shown.limit_shown == "not run in the quick book").all()
     assert "not run in the quick book" in page.notes["headline"]
     page.check()
+
+
+def test_fields_are_named_by_degree_or_degree_and_order():
+    assert real_moon.degree_order(20) == (20, 20)
+    assert real_moon.degree_order("2x0") == (2, 0)
+    assert real_moon.field("2x0")["order"] == 0 and real_moon.field(8)["order"] == 8
+    assert real_moon.model_name(real_moon.field("2x0")) == "LP165P 2x0"
+    for bad in ("2x3", "x2", "twenty", 1, True, 2.5):
+        with pytest.raises(ValueError, match="degree"):
+            real_moon.degree_order(bad)
+    assert real_moon._degrees(["2x0", 2, 50]) == "2x0, 2x2 and 50x50"
+
+
+def _shares(m2x0, m2x2, compare="LP165P 20x20"):
+    from lunarcap.report.page import Page
+
+    page = Page("nb", {}, "x")
+    miss = pd.Series({"LP165P 2x0": m2x0, "LP165P 2x2": m2x2, compare: 40.0})
+    return page, real_moon.degree2_text(page, miss, compare)
+
+
+def test_the_degree_2_sentence_says_what_the_shares_show():
+    """The page once asserted "the degree-2 terms, the C22 ellipticity above all" without a
+    row to show it; the sentence is now computed from C20 alone (2x0) and the whole
+    degree 2 (2x2), whichever way they fall."""
+    page, text = _shares(4.0, 30.0)          # 10 % from C20, 75 % with C22
+    assert page.values["share_2x0_percent"] == pytest.approx(10.0)
+    assert page.values["share_2x2_percent"] == pytest.approx(75.0)
+    assert "comes with C22" in text and "10 %" in text and "75 %" in text
+    _, text = _shares(24.0, 30.0)            # 60 % from C20 alone
+    assert "is C20's alone" in text
+    from lunarcap.report.page import Page
+
+    page = Page("nb", {}, "x", quick=True)   # 2x0 not flown: said so, not a number
+    text = real_moon.degree2_text(page, pd.Series({"LP165P 2x2": 3.0, "LP165P 20x20": 6.0}),
+                                  "LP165P 20x20")
+    assert is_missing(page.values["share_2x0_percent"]) and "50 %" in text
 
 
 def test_no_limit_text_says_why_with_the_gap():
@@ -140,6 +186,7 @@ def test_scope_text_names_what_the_run_left_out_and_how_to_add_it():
     from lunarcap.report.page import Page
 
     book = real_moon.scope_text(Page("nb", {}, "x"), [2, 8, 20], [2, 8, 20], 20, False, 7.0)
+    assert "degrees: [2x0, 2, 8, 20, 50]" in book
     assert "LP165P 2x2, 8x8 and 20x20, follows its final orbit 7 days in J2 and" in book
     assert "without that design's impulsive limits" in book
     assert "evolve_degrees: [2, 8, 20, 50]" in book and "-p redesign_limits true" in book
