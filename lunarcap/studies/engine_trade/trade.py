@@ -570,8 +570,9 @@ def format_summary(result: StudyResult) -> str:
     """The CLI's text: one line per engine, failures, and the wall time."""
     w = result.wide()
     lines = [f"Engine trade study: {len(w)} engines, free ignition for every LOI, "
-             f"{study_dynamics(result.run['grid']['dynamics'])} dynamics; loss (objective, Eq. 9) vs the "
-             f"impulsive limit in the same dynamics; T/W = T / (524.895 kg x 9.80665 m/s^2)",
+             f"{study_dynamics(result.run['grid']['dynamics'])} dynamics; loss (objective, "
+             f"Eq. 9) vs the impulsive limit in the same dynamics; T/W = T / (524.895 kg x "
+             f"9.80665 m/s^2)",
              f"{'thrust N':>9} {'Isp s':>6} {'T/W':>7} | {'loss %: LOI1':>12} {'LOI2':>6} "
              f"{'LOI3':>6} {'seq':>6} {'seq m/s':>8} | {'burn/Eq.19 LOI1':>15} | status"]
     for r in w.itertuples(index=False):
