@@ -583,6 +583,11 @@ def format_summary(result: StudyResult) -> str:
             f"{_f(r.objective_loss_percent_loi3, 6)} {_f(r.objective_loss_percent_sequence, 6)} "
             f"{_f(r.objective_loss_mps_sequence, 8)} | {_f(ratio, 15)} | "
             + (r.status if r.status == "ok" else f"{r.status}: {r.failed_part}"))
+    t = result.table
+    for r in t[(t.part == "sequence") & (t.impulsive_limit_reason.fillna("") != "")] \
+            .itertuples(index=False):   # in a gravity field: a burn no impulse reaches
+        lines.append(f"no loss at {r.thrust_N:g} N / {r.isp_s:g} s: "
+                     f"{r.impulsive_limit_reason}")
     n_bad = int((w.status != "ok").sum()) if len(w) else 0
     return "\n".join(lines + STUDY.run_lines(result, failed=n_bad))
 
