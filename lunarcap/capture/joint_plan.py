@@ -36,11 +36,17 @@ class JointComparison:
 
 
 def solve_plan_jointly(plan: CapturePlan, mesh: Mesh = Mesh(8, 16, 5),
-                       verbose: bool = False) -> JointComparison:
-    """Solve ``plan`` (ignitions set free) as one NLP, warm-started burn by burn."""
+                       verbose: bool = False, whole_field: bool = False) -> JointComparison:
+    """Solve ``plan`` (ignitions set free) as one NLP, warm-started burn by burn.
+
+    In a gravity field the NLP carries the field as :func:`lunarcap.optim.joint.solve_joint`
+    does (cut, plus an outer correction; ``whole_field``: whole, for bounding what the
+    correction leaves out).
+    """
     free = plan.with_starts(["free"] * plan.n_burns)
     seq = solve_plan(free, verbose=verbose)
-    return JointComparison(solve_joint(free, seq, plan.ephemeris_model(), mesh), seq)
+    return JointComparison(solve_joint(free, seq, plan.ephemeris_model(), mesh,
+                                       whole_field=whole_field), seq)
 
 
 @cached

@@ -11,6 +11,17 @@ previous solution as the initial point), until the difference moves by less than
 dynamics, and the verification (:mod:`lunarcap.optim.verify`) re-flies it in that field
 as it does every solution.
 
+The all-burns NLP (:mod:`lunarcap.optim.joint`) is corrected the same way, at every
+collocation point of every leg.
+
+What the correction's optimum is: a point that satisfies the whole field's dynamics and
+every target (the verification re-flies it there), optimal for the NLP in which the
+higher-degree acceleration is a fixed table. The table is a parameter, so the NLP's
+multipliers never see its gradient: the optimum is a feasible point of the whole field,
+not shown to be its optimum. The gap is bounded where a field fits in the NLP whole
+(:func:`whole`): LP165P 4x4 carried whole and 2x0 plus the correction give the same burn
+within 1 mm/s (tests/optim/test_field_gap.py).
+
 Why not the whole field in the NLP: the exact Hessian of the expanded NLP grows with the
 square of the field's terms. Measured on the first burn of the paper's arrival as asked
 (mesh 8x16 LGR-5, free ignition, this machine, CPU seconds of build + solve and peak
@@ -21,6 +32,8 @@ of the field at the points (see the book for the timings of whole plans).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -49,6 +62,32 @@ MAX_ITERATIONS = 10
 FIELD_MESHES = (Mesh(8, 32, 5), Mesh(12, 48, 5), Mesh(18, 72, 6))
 
 
+@dataclass(frozen=True)
+class Carried:
+    """What an NLP carries, decided: these forces, and whether it takes corrections.
+
+    Hashable, so a compiled NLP is shared by every model whose NLP is the same (LP165P of
+    any degree above 2x0 carries the same 2x0 plus corrections): :func:`carried` gives it
+    for a model, :func:`whole` for a field carried whole (no correction, whatever its
+    degree: its exact optimum, at a build cost that grows with the square of the field's
+    terms; what bounds the correction's gap, see the module docstring).
+    """
+
+    forces: ForceModel
+    correction: bool = False
+
+
+def carried(forces) -> Carried:
+    """What the NLP of ``forces`` (a preset word, a plan's mapping, a ForceModel) carries."""
+    low, corrected = nlp_shape(forces)
+    return Carried(force_model(low), corrected)
+
+
+def whole(forces) -> Carried:
+    """``forces`` carried whole by the NLP, with no outer correction."""
+    return Carried(force_model(forces), False)
+
+
 def needs_correction(forces) -> bool:
     """True if a model's NLP needs the outer correction: a field beyond what the NLP carries.
 
@@ -56,11 +95,15 @@ def needs_correction(forces) -> bool:
     above :data:`NLP_DEGREE` x :data:`NLP_ORDER` has terms the NLP leaves to the correction;
     the callers outside the optimiser ask it where a burn may have no impulsive limit.
     """
+    if isinstance(forces, Carried):
+        return forces.correction
     return force_model(forces).beyond(NLP_DEGREE, NLP_ORDER)
 
 
 def nlp_forces(forces) -> ForceModel | None:
     """The forces the NLP carries for a model, or None if it carries the model itself."""
+    if isinstance(forces, Carried):
+        return forces.forces if forces.correction else None
     if not needs_correction(forces):
         return None
     return force_model(forces).truncated(NLP_DEGREE, NLP_ORDER)
@@ -73,7 +116,12 @@ def nlp_of(prob: BurnProblem, mesh: Mesh) -> BurnNLP:
 
 
 def nlp_shape(forces) -> tuple:
-    """(the forces the NLP carries, whether it takes corrections) for a model's NLPs."""
+    """(the forces the NLP carries, whether it takes corrections) for a model's NLPs.
+
+    ``forces``: a preset word, a plan's mapping, a ForceModel, or a :class:`Carried`.
+    """
+    if isinstance(forces, Carried):
+        return forces.forces, forces.correction
     low = nlp_forces(forces)
     return (forces, False) if low is None else (low, True)
 
@@ -81,6 +129,17 @@ def nlp_shape(forces) -> tuple:
 def meshes_for(forces) -> tuple:
     """The meshes tried in turn for a burn in these forces."""
     return FIELD_MESHES if needs_correction(forces) else DEFAULT_MESHES
+
+
+def field_mesh(mesh: Mesh, forces) -> Mesh:
+    """``mesh`` as a leg in these forces needs it: twice the coast intervals in a corrected field.
+
+    The reason of :data:`FIELD_MESHES` (the field's short wavelengths under the perilune),
+    for a caller that names a mesh of :data:`~lunarcap.optim.collocation.DEFAULT_MESHES`.
+    """
+    if not needs_correction(forces):
+        return mesh
+    return Mesh(mesh.n_burn, 2 * mesh.n_coast, mesh.degree)
 
 
 def _phases(raw: RawSolution) -> dict:
@@ -98,11 +157,24 @@ def _accel(forces: ForceModel, prm, t, x) -> np.ndarray:
     return np.vstack([np.broadcast_to(np.asarray(c, float), (np.size(t),)) for c in a])
 
 
+def field_difference(forces: ForceModel, low: ForceModel, prm, phases: dict) -> dict:
+    """Per phase, the acceleration of ``forces`` minus that of ``low``, RTN km/s^2.
+
+    ``phases``: ``{name: (epochs (N,) s, states (7, N))}`` at the collocation points;
+    ``prm``: the model's parameter vector (the ephemeris fit the body frame reads).
+    """
+    return {name: _accel(forces, prm, t, x) - _accel(low, prm, t, x)
+            for name, (t, x) in phases.items()}
+
+
 def corrections(raw: RawSolution, prob: BurnProblem, low: ForceModel) -> dict:
     """Per phase, the full field's acceleration minus the NLP's at the solution's points."""
-    prm = prob.model.params()
-    return {name: _accel(prob.model.forces, prm, t, x) - _accel(low, prm, t, x)
-            for name, (t, x) in _phases(raw).items()}
+    return field_difference(prob.model.forces, low, prob.model.params(), _phases(raw))
+
+
+def largest_change(new: dict, old: dict) -> float:
+    """The largest change of a correction between two solves, km/s^2."""
+    return max(float(np.abs(new[n] - old[n]).max()) for n in new)
 
 
 def zero_corrections(prob: BurnProblem, mesh: Mesh) -> dict:
@@ -134,7 +206,7 @@ def solve_corrected(prob: BurnProblem, mesh: Mesh, guess: Guess) -> RawSolution:
         if not raw.success:
             break
         new = corrections(raw, prob, low)
-        change = max(float(np.abs(new[n] - accel[n]).max()) for n in new)
+        change = largest_change(new, accel)
         accel, w0, fractions = new, raw.w, (raw.mesh_burn, raw.mesh_coast)
         if change < TOL_KMPS2:
             break

@@ -114,6 +114,21 @@ def guess_arcs(prob: BurnProblem, t1: float, coast: bool = True) -> Guess:
     return Guess(t1, u_of_t, burn, arc)
 
 
+def _trial_burn(prob: BurnProblem, tmax: float, halvings: int = 4) -> tuple:
+    """(the anti-velocity burn of ``tmax`` s, tmax), or of the longest tmax / 2^k that flies.
+
+    In a gravity field a trial burn long enough to take the orbit into the Moon does not
+    propagate (the field's terms grow as r^-(n+1) below its surface: CVODES stops); the
+    semi-major axis asked is reached before that on any orbit that can be flown.
+    """
+    for _ in range(halvings):
+        try:
+            return guess_arcs(prob, tmax, coast=False).burn, tmax
+        except RuntimeError:
+            tmax /= 2.0
+    return guess_arcs(prob, tmax, coast=False).burn, tmax
+
+
 def guess_orbit_as_asked(prob: BurnProblem, t1: float) -> Guess | None:
     """Guess for an ellipse as asked (free end epoch): its semi-major axis, then its perilune.
 
@@ -128,7 +143,7 @@ def guess_orbit_as_asked(prob: BurnProblem, t1: float) -> Guess | None:
     a_target = prob.target.semi_major_axis_km
     lo_end = prob.t_end_s + prob.end_window_s[0]
     tmax = min(3.0 * t1, 0.9 * (lo_end - prob.t_ign_s), speed_stop_s(prob))
-    burn = guess_arcs(prob, tmax, coast=False).burn
+    burn, tmax = _trial_burn(prob, tmax)
     ts = np.linspace(0.05 * t1, tmax, 400)
     xs = burn(prob.t_ign_s + ts)
     e2 = xs[1] ** 2 + xs[2] ** 2

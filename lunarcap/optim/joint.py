@@ -22,11 +22,30 @@ from functools import lru_cache
 import casadi as ca
 import numpy as np
 
-from lunarcap.errors import InputError, SolveError
+from lunarcap.errors import SolveError
 from lunarcap.mission.plan import CapturePlan
 from lunarcap.mission.targets import N_VALUES
-from lunarcap.optim.collocation import LU, N_X, TU, Mesh, state_scale
-from lunarcap.optim.correction import NLP_DEGREE, nlp_forces
+from lunarcap.optim.collocation import (
+    FIELD_PERILUNE_POWER,
+    LU,
+    N_PRE,
+    N_X,
+    TU,
+    Mesh,
+    node_epochs,
+    state_scale,
+    sundman_fractions,
+)
+from lunarcap.optim.correction import (
+    MAX_ITERATIONS,
+    TOL_KMPS2,
+    carried,
+    field_difference,
+    field_mesh,
+    largest_change,
+    nlp_shape,
+    whole,
+)
 from lunarcap.optim.flight import BurnPlan
 from lunarcap.optim.guess import Guess
 from lunarcap.optim.nlp import (
@@ -101,7 +120,13 @@ def _build(mesh: Mesh, target_kinds: tuple, mode, free_coasts: tuple, period_row
     ``expand`` (:meth:`NLPBuilder.compile`) applies only where the derivatives are not
     assembled node by node: expanding an all-burns NLP then cost 3-14 s of CPU against
     0.1-1.6 s unexpanded, for solves about 2x faster. ``compile_fn``: the node compiler.
+
+    ``mode`` in a gravity field beyond what the NLP carries: each leg carries the field cut
+    as a single burn's NLP does (:func:`lunarcap.optim.correction.nlp_shape`) plus the
+    parameters ``leg<k>.accel_pre``, ``leg<k>.accel_burn``, ``leg<k>.accel_coast`` of the
+    outer correction; :func:`lunarcap.optim.correction.whole` of a field carries it whole.
     """
+    in_nlp, correction = nlp_shape(mode)
     nb, nc = mesh.n_burn, mesh.n_coast
     n = len(target_kinds)
     free = tuple(bool(f) for f in free_coasts) or (False,) * n
@@ -124,10 +149,10 @@ def _build(mesh: Mesh, target_kinds: tuple, mode, free_coasts: tuple, period_row
     for k, kind in enumerate(target_kinds):
         pre = f"leg{k}."
         leg = add_leg(nlp, pre, mesh, kind, x_start, t[k], t[k + 1],
-                      dynamics_params(nlp, pre + "dynamics", mode),
+                      dynamics_params(nlp, pre + "dynamics", in_nlp),
                       nlp.param(pre + "mesh_burn", nb + 1),
                       nlp.param(pre + "mesh_coast", nc + 1), nlp.param(pre + "target", N_VALUES), S,
-                      mode, free_start=True)
+                      in_nlp, free_start=True, correction=correction)
         legs.append(leg)
         x_start = leg.xf
         J = J + leg.dv
@@ -144,7 +169,8 @@ def _build(mesh: Mesh, target_kinds: tuple, mode, free_coasts: tuple, period_row
                               -np.inf, np.inf)
     tag = "" if not any(free) else "_free" + "".join("1" if f else "0" for f in free)
     tag += "_period" if period_rows and any(free) else ""
-    name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{force_model(mode).key}{tag}".replace("-", "_")
+    tag += "_corr" if correction else ""
+    name = f"joint_{n}_{nb}_{nc}_{mesh.degree}_{force_model(in_nlp).key}{tag}".replace("-", "_")
     return nlp.compile(J, name, expand=expand, compile_fn=compile_fn,
                        outputs={f"leg{k}": leg.outputs() for k, leg in enumerate(legs)})
 
@@ -173,10 +199,15 @@ def warm_start(sol: Solution) -> tuple:
     return sol.problem, guess, sol.raw.mesh_coast
 
 
-def _legs_start(lay, warm: list, mesh: Mesh, fit, S, vectors: tuple, params: dict) -> list:
+def _legs_start(lay, warm: list, mesh: Mesh, fit, S, vectors: tuple, params: dict,
+                corrected: bool = False) -> list:
     """Write each leg's guess, bounds and parameters; return its (burn, coast) meshes.
 
     ``vectors``: (w0, lbx, ubx, lbg, ubg), filled in place; ``params`` updated in place.
+    A warm start's coast mesh of another size is replaced by one uniform in time, or in a
+    ``corrected`` field by one spaced in the Sundman variable of the guess's coast,
+    weighted towards the perilune (as a single burn's there:
+    :data:`~lunarcap.optim.collocation.FIELD_PERILUNE_POWER`).
     """
     w0, lbx, ubx, lbg, ubg = vectors
     meshes = []
@@ -187,7 +218,10 @@ def _legs_start(lay, warm: list, mesh: Mesh, fit, S, vectors: tuple, params: dic
             prob = replace(prob, model=replace(prob.model, fit=fit))
         pre = f"leg{k}."
         mb = np.linspace(0, 1, mesh.n_burn + 1)
-        mc = mc if len(mc) == mesh.n_coast + 1 else np.linspace(0, 1, mesh.n_coast + 1)
+        if len(mc) != mesh.n_coast + 1:
+            mc = sundman_fractions(guess.coast.t, guess.coast.x, mesh.n_coast,
+                                   FIELD_PERILUNE_POWER) if corrected else \
+                np.linspace(0, 1, mesh.n_coast + 1)
         meshes.append((mb, mc))
         initial_point(lay, pre, prob, mesh, guess, w0, mb, mc, S)
         leg_bounds(lay, pre, prob, lbx, ubx, lbg, ubg)
@@ -200,7 +234,7 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
                 free_coasts: tuple = (), coast_bounds_s: tuple | None = None,
                 max_time_s: float | None = None, fit=None, max_period_s: float | None = None,
                 warm: list | None = None, expand: bool = False,
-                min_period_s: float | None = None) -> JointResult:
+                min_period_s: float | None = None, whole_field: bool = False) -> JointResult:
     """Solve all burns of ``plan`` as one NLP, warm-started from a one-at-a-time chain.
 
     Parameters
@@ -210,6 +244,8 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         The plan's burns solved one at a time with free ignition (the warm start).
     eph : Ephemeris
     mesh : Mesh
+        In a gravity field beyond what the NLP carries (whole or not), each leg has twice
+        its coast intervals (:func:`lunarcap.optim.correction.field_mesh`).
     free_coasts : tuple of bool, optional
         Per burn, whether its coast is optimised (see the module docstring; the plan's
         coasts are the initial values). The coast of an ellipse as asked
@@ -234,24 +270,34 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         burn is one).
     expand : bool, optional
         Expand the NLP to SX (see :func:`build_joint_nlp`): for a shape solved many times.
+    whole_field : bool, optional
+        Carry the plan's gravity field whole in the NLP, with no outer correction
+        (:func:`lunarcap.optim.correction.whole`): the exact optimum, whose build grows
+        with the square of the field's terms; what bounds the correction's gap.
+
+    Notes
+    -----
+    In a gravity field beyond what the NLP carries, the NLP is solved again with the
+    field's higher-degree acceleration at every collocation point of every leg, evaluated
+    at the previous solution (:mod:`lunarcap.optim.correction`), until it moves by less
+    than :data:`~lunarcap.optim.correction.TOL_KMPS2`; each leg is then verified by
+    re-flight in the whole field.
 
     Raises
     ------
     SolveError
-        If IPOPT fails or a leg fails verification.
+        If IPOPT fails, the correction does not converge or a leg fails verification.
     """
-    if nlp_forces(plan.dynamics) is not None:
-        raise InputError(f"dynamics: the all-burns NLP carries gravity fields up to degree "
-                         f"{NLP_DEGREE}; {force_model(plan.dynamics)} is solved burn by burn "
-                         f"(lunarcap plan)")
+    shape = whole(plan.dynamics) if whole_field else carried(plan.dynamics)
+    mesh = field_mesh(mesh, plan.dynamics)
     kinds = tuple(t.kind for t in plan.targets)
     asked = tuple(bool(f) for f in free_coasts) or (False,) * plan.n_burns
     orbit = tuple(t.free_epoch for t in plan.targets)
     free = tuple(a or o for a, o in zip(asked, orbit))
     warm = warm if warm is not None else [warm_start(s) for s in sequential]
     period_rows = any(asked) and max_period_s is not None
-    nlp = build_joint_nlp(mesh, kinds, plan.dynamics, free if any(free) else (), period_rows,
-                          expand)
+    nlp = build_joint_nlp(mesh, kinds, shape if shape.correction or whole_field else
+                          plan.dynamics, free if any(free) else (), period_rows, expand)
     lay = nlp.compiled.layout
     S = state_scale(warm[0][0].x_ref[6])
     w0 = np.zeros(lay.nv)
@@ -261,20 +307,109 @@ def solve_joint(plan: CapturePlan, sequential: list, eph, mesh: Mesh = Mesh(8, 1
         _free_coast_bounds(plan, lay, warm, asked, orbit, (w0, lbx, ubx, lbg, ubg),
                            coast_bounds_s, max_time_s,
                            (min_period_s, max_period_s) if period_rows else None)
-    meshes = _legs_start(lay, warm, mesh, fit, S, (w0, lbx, ubx, lbg, ubg), params)
-    t0 = time.perf_counter()
-    res = nlp.compiled.solve(x0=w0, p=lay.params(**params), lbx=lbx, ubx=ubx, lbg=lbg,
-                              ubg=ubg)
-    solve_s = time.perf_counter() - t0
-    stats = nlp.compiled.stats()
-    if not stats["success"]:
-        raise SolveError(f"all-burns NLP{_of(plan)}: IPOPT "
-                         f"{stats['return_status']}", status=stats["return_status"])
-    w = np.asarray(res["x"]).ravel()
+    meshes = _legs_start(lay, warm, mesh, fit, S, (w0, lbx, ubx, lbg, ubg), params,
+                         shape.correction)
+    w, stats, solve_s, run = _solve_corrected(plan, nlp, shape, (w0, lbx, ubx, lbg, ubg),
+                                              params, meshes, mesh, free, S)
     plan, t_ref = _optimal_coasts(plan, lay, w, free, asked)
     legs = _verified_legs(plan, lay, w, warm, meshes, mesh, S, eph, fit, t_ref,
-                          (stats, solve_s, nlp.compiled.build_s))
-    return JointResult(legs, stats["return_status"], int(stats["iter_count"]), solve_s, plan)
+                          (stats, solve_s, nlp.compiled.build_s, run))
+    return JointResult(legs, stats["return_status"], run["iterations"], solve_s, plan)
+
+
+def _solve_corrected(plan: CapturePlan, nlp: JointNLP, shape, vectors: tuple, params: dict,
+                     meshes: list, mesh: Mesh, free: tuple, S) -> tuple:
+    """IPOPT on the all-burns NLP; in a corrected field, again until the correction holds.
+
+    Returns (solution vector, IPOPT stats of the last solve, solve time s, run): ``run``
+    has ``iterations`` (IPOPT's, summed), ``corrections`` (solves) and ``change`` (the
+    correction's last largest change, km/s^2). SolveError if a solve fails or the
+    correction moves by more than :data:`~lunarcap.optim.correction.TOL_KMPS2` after
+    :data:`~lunarcap.optim.correction.MAX_ITERATIONS` solves.
+    """
+    w0, lbx, ubx, lbg, ubg = vectors
+    lay = nlp.compiled.layout
+    accel = _zero_corrections(lay, plan.n_burns) if shape.correction else {}
+    solve_s, iterations, change = 0.0, 0, 0.0
+    for k in range(1, (MAX_ITERATIONS if shape.correction else 1) + 1):
+        t0 = time.perf_counter()
+        res = nlp.compiled.solve(x0=w0, p=lay.params(**params, **accel), lbx=lbx, ubx=ubx,
+                                 lbg=lbg, ubg=ubg)
+        solve_s += time.perf_counter() - t0
+        stats = nlp.compiled.stats()
+        iterations += int(stats["iter_count"])
+        if not stats["success"]:
+            after = f" (correction {k})" if shape.correction else ""
+            raise SolveError(f"all-burns NLP{_of(plan)}: IPOPT {stats['return_status']}"
+                             f"{after}", status=stats["return_status"])
+        w0 = np.asarray(res["x"]).ravel()
+        if not shape.correction:
+            break
+        new = _joint_corrections(lay, w0, params, meshes, mesh, free, S,
+                                 force_model(plan.dynamics), shape.forces)
+        change = largest_change(new, accel)
+        accel = new
+        if change < TOL_KMPS2:
+            break
+    if shape.correction and not change < TOL_KMPS2:
+        raise SolveError(f"all-burns NLP{_of(plan)}: the field's correction did not converge "
+                         f"in {MAX_ITERATIONS} solves (last change {change:.2e} km/s^2, "
+                         f"tolerance {TOL_KMPS2:g})", status="Correction_Not_Converged")
+    return w0, stats, solve_s, {"iterations": iterations, "corrections": k, "change": change}
+
+
+def _zero_corrections(lay, n_legs: int) -> dict:
+    """The correction parameters of a first solve: none, shaped as the NLP's."""
+    return {f"leg{k}.{phase}": np.zeros(lay.par_shapes[f"leg{k}.{phase}"])
+            for k in range(n_legs) for phase in ("accel_pre", "accel_burn", "accel_coast")}
+
+
+def _leg_epochs(lay, w, params: dict, free: tuple) -> list:
+    """The N+1 epochs the legs of solution ``w`` start from and end at, s (as the NLP has them).
+
+    :func:`build_joint_nlp`'s: from ``t_ref``, a free leg's coast a variable, a fixed one
+    the parameter's (its difference once a free coast came before it).
+    """
+    t_ref = np.asarray(params["t_ref"], float)
+    t = [float(t_ref[0])]
+    for k in range(len(t_ref) - 1):
+        if free and free[k]:
+            t.append(t[k] + float(lay.get(w, f"leg{k}.coast")[0]) * TU)
+        elif not any(free[:k]):
+            t.append(float(t_ref[k + 1]))
+        else:
+            t.append(t[k] + float(t_ref[k + 1] - t_ref[k]))
+    return t
+
+
+def _joint_corrections(lay, w, params: dict, meshes: list, mesh: Mesh, free: tuple, S,
+                       forces, low) -> dict:
+    """Every leg's correction at the collocation points of solution ``w`` (NLP parameters).
+
+    Per leg and phase (pre-ignition coast, burn, coast): the whole field's acceleration
+    minus the NLP's, RTN km/s^2, at each point's epoch and state
+    (:func:`lunarcap.optim.correction.field_difference`), with the leg's parameters (its
+    ephemeris fit: the body frame).
+    """
+    d = mesh.degree
+    t = _leg_epochs(lay, w, params, free)
+    out = {}
+    for k, (mb, mc) in enumerate(meshes):
+        pre = f"leg{k}."
+        prm = params[pre + "dynamics"]
+        ts = float(lay.get(w, pre + "ts")[0]) * TU
+        t1 = float(lay.get(w, pre + "t1")[0]) * TU
+        t_ign = t[k] + ts
+        phases = {
+            "accel_pre": (node_epochs(t[k], ts, np.linspace(0, 1, N_PRE + 1), d)[1:],
+                          (lay.get(w, pre + "X0") * S[:, None])[:, 1:]),
+            "accel_burn": (node_epochs(t_ign, t1, mb, d)[1:],
+                           (lay.get(w, pre + "Xb") * S[:, None])[:, 1:]),
+            "accel_coast": (node_epochs(t_ign + t1, t[k + 1] - t_ign - t1, mc, d)[1:],
+                            lay.get(w, pre + "Xc") * S[:, None])}
+        diff = field_difference(forces, low, prm, phases)
+        out.update({pre + name: a for name, a in diff.items()})
+    return out
 
 
 def _optimal_coasts(plan: CapturePlan, lay, w, free: tuple, asked: tuple) -> tuple:
@@ -340,9 +475,11 @@ def _verified_legs(plan: CapturePlan, lay, w, warm: list, meshes: list, mesh: Me
     perilune reached ``t_ref[k]``, its coast ending at ``t_ref[k + 1]``. ``run``: (IPOPT
     stats, solve time s, build time s). SolveError if a leg fails verification, with the
     converged solution (``unverified``: the plan and every leg's RawSolution, those after
-    the failed one from the NLP's own state at their perilune).
+    the failed one from the NLP's own state at their perilune). ``run`` ends with the
+    correction's record (:func:`_solve_corrected`): each leg's RawSolution carries its
+    solves and last change.
     """
-    stats, solve_s, build_s = run
+    stats, solve_s, build_s, record = run
     legs, raws, x_peri, failure = [], [], warm[0][0].x_ref, None
     for k, (prob0, guess, _) in enumerate(warm):
         pre = f"leg{k}."
@@ -359,7 +496,9 @@ def _verified_legs(plan: CapturePlan, lay, w, warm: list, meshes: list, mesh: Me
         raw = RawSolution(mesh=mesh, mesh_burn=mb, mesh_coast=mc, objective_kmps=J_leg,
                           status=stats["return_status"], success=True,
                           iterations=int(stats["iter_count"]), solve_s=solve_s,
-                          build_s=build_s, max_defect=float("nan"), **fixed)
+                          build_s=build_s, max_defect=float("nan"),
+                          corrections=record["corrections"] if record["change"] else 0,
+                          correction_change=record["change"], **fixed)
         raws.append(raw)
         if failure is not None:   # the rest of the converged solution, unverified
             x_peri = xf

@@ -39,29 +39,37 @@ def plan_of(burns, dynamics="two-body", inclination=90.0, formulation="orbit", t
         "engine": {"thrust_N": thrust, "isp_s": isp}, "burns": burns})
 
 
-def random_plan(rng, index, dynamics="two-body", mass_kg=(400, 1200), formulations=("orbit",)):
+def field_dynamics(degree: int) -> dict:
+    """The plan mapping of LP165P of ``degree`` x ``degree`` with the Earth and the Sun."""
+    return {"gravity": "LP165P", "degree": int(degree), "third_bodies": ["earth", "sun"]}
+
+
+def random_plan(rng, index, dynamics="two-body", mass_kg=(400, 1200), formulations=("orbit",),
+                burns=(2, 5), degrees=None):
     """A plan drawn from the ranges an analyst might write (may be refused at load).
 
-    2-5 burns; intermediate ellipses of 2.5-14 h, each asked by its period or by its
-    apolune (drawn with equal odds, so both kinds of target are exercised); the last a
-    circle or a 100 x 150-600 km ellipse; 20-170 deg; 100-600 N; ``mass_kg`` (kg). With
-    more than one ``formulations`` one is drawn per plan, after the other draws, so that
-    a family drawn with the default keeps its plans; the paper's (``song2011``, Eq. 17
-    targets) ends on a circle, the only final orbit it can name.
+    ``burns`` (2-5 by default) burns; intermediate ellipses of 2.5-14 h, each asked by its
+    period or by its apolune (drawn with equal odds, so both kinds of target are
+    exercised); the last a circle or a 100 x 150-600 km ellipse; 20-170 deg; 100-600 N;
+    ``mass_kg`` (kg). With more than one ``formulations`` one is drawn per plan, after the
+    other draws, so that a family drawn with the default keeps its plans; the paper's
+    (``song2011``, Eq. 17 targets) ends on a circle, the only final orbit it can name.
+    ``degrees`` (lo, hi): the plan's dynamics is LP165P of a degree drawn in that range
+    (:func:`field_dynamics`), drawn last for the same reason; ``dynamics`` is then unused.
     """
-    n = int(rng.integers(2, 6))
+    n = int(rng.integers(burns[0], burns[1] + 1))
     periods = np.sort(rng.uniform(2.5, 14.0, n - 1))[::-1]
-    burns = []
+    asked = []
     for p in periods:
         if rng.random() < 0.5:
-            burns.append({"target_period_h": float(round(p, 3)), "start_min": "free"})
+            asked.append({"target_period_h": float(round(p, 3)), "start_min": "free"})
         else:   # the apolune of that period's ellipse at 100 km perilune
             a = (C.MU_MOON * (p * 3600 / (2 * math.pi)) ** 2) ** (1 / 3)
-            burns.append({"target_apolune_altitude_km": float(round(2 * a - 2 * (C.R_MOON + 100)
+            asked.append({"target_apolune_altitude_km": float(round(2 * a - 2 * (C.R_MOON + 100)
                                                                     + 100, 1)),
                           "start_min": "free"})
     last = rng.choice(["circular", "ellipse"])
-    burns.append({"target": "circular", "start_min": "free"} if last == "circular" else
+    asked.append({"target": "circular", "start_min": "free"} if last == "circular" else
                  {"target": {"perilune_altitude_km": 100,
                              "apolune_altitude_km": float(round(rng.uniform(150, 600)))},
                   "start_min": "free"})
@@ -72,8 +80,10 @@ def random_plan(rng, index, dynamics="two-body", mass_kg=(400, 1200), formulatio
     if len(formulations) > 1:
         formulation = str(rng.choice(formulations))
         if formulation == "song2011":
-            burns[-1] = {"target": "circular", "start_min": "free"}
-    return plan_of(burns, dynamics, inclination=inclination, thrust=thrust, mass=mass,
+            asked[-1] = {"target": "circular", "start_min": "free"}
+    if degrees is not None:
+        dynamics = field_dynamics(rng.integers(degrees[0], degrees[1] + 1))
+    return plan_of(asked, dynamics, inclination=inclination, thrust=thrust, mass=mass,
                    name=f"family-{index}", formulation=formulation)
 
 

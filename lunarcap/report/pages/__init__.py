@@ -32,6 +32,7 @@ PAGES = (
     "missed_thrust",
     "dispersions",
     "capture_plan",
+    "kplo_capture",
     "exchange",
     "real_moon",
     "gmat_flight",

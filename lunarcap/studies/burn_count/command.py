@@ -24,12 +24,19 @@ def options(p) -> None:
 
 
 def prepare(args, plan) -> StudyRun:
-    """The burns study of ``plan``: counts and bounds checked (InputError) first."""
+    """The burns study of ``plan``: counts and bounds checked (InputError) first.
+
+    Any force model the plan names is accepted (in a gravity field the all-burns NLP
+    carries it: :func:`lunarcap.optim.joint.solve_joint`); what is refused is refused here,
+    before the cluster starts: a count whose capture could outlast the ephemeris fit its
+    dynamics read (:func:`.counts.check_counts`).
+    """
     from lunarcap.studies.burn_count import counts as burns
 
     counts = burns.parse_counts(args.counts)
     max_period_h = number("--max-period-h", args.max_period_h, "h", positive=True)
     max_days = number("--max-days", args.max_days, "days", positive=True)
+    burns.check_counts(plan, counts, max_period_h * 3600.0, max_days * 86400.0)
     return StudyRun.of(burns.STUDY, lambda: burns.run_burns(
         [plan], counts, max_period_h, max_days, out=args.out, workers=args.workers,
         scheduler=args.scheduler, progress=not args.no_progress),

@@ -126,21 +126,37 @@ def count_guess(plan: CapturePlan, n: int, max_period_s: float) -> CapturePlan:
     return plan.with_burn_count(periods)
 
 
-def _fit_for(plan: CapturePlan, n: int, max_period_s: float, max_time_s: float):
-    """One Earth/Sun fit covering every epoch the free coasts allow (None if not needed).
+def fit_span_s(plan: CapturePlan, n: int, max_period_s: float, max_time_s: float) -> float:
+    """The span (s) of the fit a count needs, InputError beyond what one fit covers.
 
-    Only full dynamics need one: two-body and J2 use no ephemeris, so neither the span
-    check nor a fit applies to them (see :func:`_without_fit`).
+    Only dynamics that read the ephemeris (the Earth and the Sun, a field's body frame)
+    need a fit: 0 for the others (see :func:`_without_fit`). The span depends on the
+    bounds and the plan's last coast alone, so the command checks every count before any
+    solve (:func:`check_counts`).
     """
     if not force_model(plan.dynamics).needs_fit:
-        return None
-    t0 = plan.nominal_perilunes_s[0]
+        return 0.0
     horizon = min(max_time_s, (n - 1) * max_period_s) + plan.coast_s(plan.n_burns - 1)
     span = horizon + 2 * FIT_MARGIN_S
     if span > MAX_FIT_SPAN_S:
-        raise InputError(f"the capture may last {horizon / 86400:.2f} days: an ephemeris fit "
-                         f"covers at most {MAX_FIT_SPAN_S / 86400 - 0.5:g} days; lower "
-                         f"--max-days or --max-period-h")
+        raise InputError(f"the capture in {n} burns may last {horizon / 86400:.2f} days: an "
+                         f"ephemeris fit covers at most {MAX_FIT_SPAN_S / 86400 - 0.5:g} days; "
+                         f"lower --max-days or --max-period-h")
+    return span
+
+
+def check_counts(plan: CapturePlan, counts, max_period_s: float, max_time_s: float) -> None:
+    """InputError (before any solve) if a count's capture could outlast an ephemeris fit."""
+    for n in counts:
+        fit_span_s(plan, n, max_period_s, max_time_s)
+
+
+def _fit_for(plan: CapturePlan, n: int, max_period_s: float, max_time_s: float):
+    """One Earth/Sun fit covering every epoch the free coasts allow (None if not needed)."""
+    span = fit_span_s(plan, n, max_period_s, max_time_s)
+    if not span:
+        return None
+    t0 = plan.nominal_perilunes_s[0]
     return fit_for(plan.dynamics, plan.ephemeris_model(), t0 - FIT_MARGIN_S,
                    t0 + span - FIT_MARGIN_S)
 
@@ -290,7 +306,9 @@ def _impulsive_limits(res, x_arrival, verbose: bool) -> tuple:
     """Each burn's impulsive limit from its verified pre-burn state at its nominal perilune.
 
     Returns ``(limits, reason)``: the list of :func:`lunarcap.capture.chain.impulsive_limit`
-    dicts and "", or None and why one of them could not be computed.
+    dicts and "", or None and why one of them could not be computed. In a gravity field a
+    burn may have no limit (no impulse reaches its orbit): its dict's delta-V is None, and
+    the reason says which burn and why (the count's totals then have no loss).
     """
     opt, imps = res.plan, []
     t = opt.nominal_perilunes_s
@@ -301,7 +319,9 @@ def _impulsive_limits(res, x_arrival, verbose: bool) -> tuple:
             imps.append(impulsive_limit(rest.key(1), verbose=verbose))
     except (SolveError, PlanError) as exc:
         return None, f"impulsive limit of burn {len(imps) + 1}: {exc}"
-    return imps, ""
+    none = [f"burn {k + 1}: {imp['reason']}" for k, imp in enumerate(imps)
+            if imp["delta_v_mps"] is None]
+    return imps, "; ".join(none)
 
 
 def _totals(res, imps: list | None) -> dict:
@@ -309,7 +329,8 @@ def _totals(res, imps: list | None) -> dict:
     opt = res.plan
     rows = _burn_rows(opt, res.legs, imps)
     dv = sum(r["delta_v_mps"] for r in rows)
-    imp_total = None if imps is None else sum(r["impulsive_limit_mps"] for r in rows)
+    limits = [r["impulsive_limit_mps"] for r in rows]
+    imp_total = None if imps is None or None in limits else sum(limits)
     last = res.legs[-1]
     t0 = opt.nominal_perilunes_s[0]
     return dict(
@@ -389,6 +410,8 @@ def run_burns(plans, counts, max_period_h: float = DEFAULT_MAX_PERIOD_H,
     counts = parse_counts(counts)
     check_bounds(_hours(max_period_h) * 3600.0, _days(max_days) * 86400.0)
     workers = check_workers(workers)
+    for plan in plans:
+        check_counts(plan, counts, _hours(max_period_h) * 3600.0, _days(max_days) * 86400.0)
     cases = []
     for plan in plans:
         for n in counts:
@@ -455,6 +478,8 @@ def format_rows(result, plan: CapturePlan) -> str:
             f"after arrival; periods "
             + (", ".join(f"{float(p):.3f}" for p in periods.split(";")) + " h" if periods
                else "none"))
+        if isinstance(r["reason"], str) and r["reason"]:   # an impulsive limit in a field
+            lines.append(f"    no loss where a burn has no impulsive limit: {r['reason']}")
         for b in STUDY.decode(r, "burns"):
             lines.append(f"    burn {b['burn']}: {b['target_orbit']:<20} ignition "
                          f"{b['ignition_epoch']}"

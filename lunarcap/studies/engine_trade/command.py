@@ -29,8 +29,11 @@ def options(p) -> None:
     p.add_argument("--out", default=None, metavar="PATH",
                    help="CSV table, appended as engines finish and resumed on rerun "
                         "(default: .cache/study/engine_trade.csv)")
-    p.add_argument("--dynamics", choices=list(PRESETS), default="full",
-                   help="perturbations (default full)")
+    p.add_argument("--dynamics", default="full", metavar="DYNAMICS",
+                   help=f"perturbations: {', '.join(PRESETS)}, or the forces as a plan's "
+                        "dynamics mapping, e.g. '{gravity: LP165P, degree: 8}' (a gravity "
+                        "field: each burn solved in it, the loss against its impulsive limit "
+                        "there, or its row says why there is none) (default full)")
     p.add_argument("--retry-failed", action="store_true",
                    help="recompute engines that failed in an earlier run")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")

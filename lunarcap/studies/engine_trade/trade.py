@@ -111,7 +111,7 @@ COLUMNS = (
     "thrust_to_weight", "thrust_to_lunar_weight",
     "start_min", "burn_duration_min", "eq19_duration_min", "burn_to_eq19_ratio",
     "delta_v_mps", "impulsive_limit_mps", "objective_loss_mps", "objective_loss_percent",
-    "delta_v_loss_mps", "delta_v_loss_percent", "impulsive_verified",
+    "delta_v_loss_mps", "delta_v_loss_percent", "impulsive_verified", "impulsive_limit_reason",
     "analytic_eq19_duration_min", "analytic_loss_mps", "analytic_loss_percent",
     "m_start_kg", "m_end_kg", "fuel_kg",
     "ipopt_status", "ipopt_iterations", "verified", "mesh", "solve_wall_s",
@@ -127,7 +127,8 @@ STATUSES = ("ok", "failed", "not run", "error", "task error", "incomplete")
 #: rows per case told apart by ``part``.
 TABLE = _campaign.TableFormat(
     key=("thrust_N", "isp_s", "dynamics"), columns=COLUMNS,
-    text_columns=("dynamics", "part", "ipopt_status", "mesh"), row_key=("part",),
+    text_columns=("dynamics", "part", "ipopt_status", "mesh", "impulsive_limit_reason"),
+    row_key=("part",),
     name="study table")
 
 
@@ -174,7 +175,9 @@ class StudySpec:
     isp_s : tuple of float
         Specific impulses, s (a list, or text "200,250,300").
     dynamics : str
-        "full", "j2" or "two-body".
+        "full", "j2" or "two-body", or the forces named as a plan's ``dynamics`` mapping
+        (a dict, or its JSON or YAML text: ``{gravity: LP165P, degree: 8}``), kept as the
+        canonical JSON of that mapping (:func:`dynamics_key`).
     """
 
     thrust_min_N: float = DEFAULT_THRUST_MIN_N
@@ -189,9 +192,7 @@ class StudySpec:
         object.__setattr__(self, "thrust_max_N", grid[-1])
         object.__setattr__(self, "points", len(grid))
         object.__setattr__(self, "isp_s", parse_isp_list(self.isp_s))
-        if self.dynamics not in DYNAMICS:
-            raise InputError(f"dynamics must be one of {', '.join(DYNAMICS)}, "
-                             f"got {self.dynamics!r}")
+        object.__setattr__(self, "dynamics", dynamics_key(self.dynamics))
 
     @property
     def thrusts_N(self) -> tuple:
@@ -208,6 +209,48 @@ class StudySpec:
         d = asdict(self)
         d["isp_s"] = list(self.isp_s)
         return d
+
+
+def dynamics_key(spec) -> str:
+    """The trade study's dynamics as its table keeps it: a preset word or a mapping's JSON.
+
+    ``spec``: "full", "j2", "two-body", a plan's ``dynamics`` mapping, or its text (JSON or
+    YAML flow, ``{gravity: LP165P, degree: 8}``). The mapping is checked as a plan's is
+    (InputError naming ``--dynamics``) and written back in full
+    (:meth:`lunarcap.physics.forces.ForceModel.to_plan`, keys sorted), so one model is one
+    key whatever its spelling.
+    """
+    import json
+
+    import yaml
+
+    from lunarcap.physics.forces import force_model
+
+    if isinstance(spec, str) and spec in DYNAMICS:
+        return spec
+    if isinstance(spec, str):
+        try:
+            spec = yaml.safe_load(spec)
+        except yaml.YAMLError as exc:
+            raise InputError(f"--dynamics: one of {', '.join(DYNAMICS)} or a mapping of the "
+                             f"forces, got {spec!r} ({exc.problem})") from None
+    if not isinstance(spec, dict):
+        raise InputError(f"--dynamics: one of {', '.join(DYNAMICS)} or a mapping of the "
+                         f"forces ({{gravity: LP165P, degree: 8}}), got {spec!r}")
+    try:
+        model = force_model(spec)
+    except InputError as exc:
+        raise InputError(f"--{exc}") from None
+    return json.dumps(model.to_plan(), sort_keys=True)
+
+
+def study_dynamics(key: str):
+    """The dynamics of a :func:`dynamics_key`: the preset word, or its ForceModel."""
+    import json
+
+    from lunarcap.physics.forces import force_model
+
+    return key if key in DYNAMICS else force_model(json.loads(key))
 
 
 def _case(thrust_N, isp_s, dynamics) -> dict:
@@ -250,8 +293,7 @@ def engine_rows(thrust_N: float, isp_s: float, dynamics: str, summaries: list,
                    analytic_eq19_duration_min=theory[i]["eq19_duration_min"],
                    analytic_loss_mps=theory[i]["analytic_loss_mps"],
                    analytic_loss_percent=theory[i]["analytic_loss_percent"], ipopt_status="",
-                   mesh="",
-                   error="")
+                   mesh="", impulsive_limit_reason="", error="")
         if i < len(summaries):
             s = summaries[i]
             row.update({k: s[k] for k in ("start_min", "burn_duration_min", "eq19_duration_min",
@@ -262,8 +304,11 @@ def engine_rows(thrust_N: float, isp_s: float, dynamics: str, summaries: list,
                                           "fuel_kg", "ipopt_status", "ipopt_iterations", "mesh",
                                           "solve_wall_s")})
             row["burn_to_eq19_ratio"] = s["burn_duration_min"] / s["eq19_duration_min"]
-            row["impulsive_verified"] = bool(s["impulsive_verified"])
-            row["verified"] = bool(s["verification"]["passed"] and s["impulsive_verified"])
+            # in a gravity field a burn may have no impulsive limit (its reason kept): no loss
+            row["impulsive_verified"] = s["impulsive_verified"]
+            row["impulsive_limit_reason"] = s.get("impulsive_limit_reason", "")
+            row["verified"] = bool(s["verification"]["passed"]
+                                   and s["impulsive_verified"] is not False)
             row["status"] = "ok" if row["verified"] else "failed"
         elif failure is not None and (failure.get("loi") in (None, i + 1)):
             row.update(status=failure["status"], ipopt_status=failure.get("ipopt_status", ""),
@@ -279,7 +324,8 @@ def engine_rows(thrust_N: float, isp_s: float, dynamics: str, summaries: list,
 def _sequence_row(base: dict, theory: list, rows: list) -> dict:
     """The sequence row of :func:`engine_rows`: sums of the three LOI rows, or why not."""
     seq = dict.fromkeys(COLUMNS, np.nan)
-    seq.update(base, part="sequence", ipopt_status="", mesh="", error="")
+    seq.update(base, part="sequence", ipopt_status="", mesh="", impulsive_limit_reason="",
+               error="")
     seq.update(analytic_eq19_duration_min=sum(t["eq19_duration_min"] for t in theory),
                analytic_loss_mps=sum(t["analytic_loss_mps"] for t in theory))
     # Robbins' estimate is relative to the two-body impulses it is built on
@@ -288,13 +334,16 @@ def _sequence_row(base: dict, theory: list, rows: list) -> dict:
     if all(r["status"] == "ok" for r in rows):
         for k in ("burn_duration_min", "eq19_duration_min", "delta_v_mps", "objective_loss_mps",
                   "delta_v_loss_mps", "impulsive_limit_mps", "fuel_kg", "ipopt_iterations",
-                  "solve_wall_s"):
-            seq[k] = sum(r[k] for r in rows)
+                  "solve_wall_s"):   # a burn without an impulsive limit leaves no total loss
+            seq[k] = np.nan if any(r[k] is None for r in rows) else sum(r[k] for r in rows)
+        seq["impulsive_limit_reason"] = "; ".join(
+            f"{r['part']}: {r['impulsive_limit_reason']}" for r in rows
+            if r["impulsive_limit_reason"])
         seq["objective_loss_percent"] = \
             100.0 * seq["objective_loss_mps"] / seq["impulsive_limit_mps"]
         seq["delta_v_loss_percent"] = 100.0 * seq["delta_v_loss_mps"] / seq[
             "impulsive_limit_mps"]
-        seq["impulsive_verified"] = True
+        seq["impulsive_verified"] = not any(r["impulsive_verified"] is False for r in rows)
         seq["burn_to_eq19_ratio"] = seq["burn_duration_min"] / seq["eq19_duration_min"]
         seq.update(m_start_kg=rows[0]["m_start_kg"], m_end_kg=rows[-1]["m_end_kg"],
                    verified=True, status="ok")
@@ -325,7 +374,7 @@ def solve_engine(thrust_N: float, isp_s: float, dynamics: str = "full") -> list[
 
     t0 = time.perf_counter()
     summaries, failure = [], None
-    plan = paper_plan(thrust_N, isp_s, starts=("free",) * 3, dynamics=dynamics)
+    plan = paper_plan(thrust_N, isp_s, starts=("free",) * 3, dynamics=study_dynamics(dynamics))
     for loi in (1, 2, 3):
         try:
             sol = solve_burn(plan.key(loi))
@@ -345,7 +394,8 @@ def solve_engine(thrust_N: float, isp_s: float, dynamics: str = "full") -> list[
                  objective_loss_percent=loss["objective_loss_percent"],
                  delta_v_loss_mps=loss["delta_v_loss_mps"],
                  delta_v_loss_percent=loss["delta_v_loss_percent"],
-                 impulsive_verified=imp["verification_passed"])
+                 impulsive_verified=imp["verification_passed"],
+                 impulsive_limit_reason=imp.get("reason") or "")
         summaries.append(s)
     return engine_rows(thrust_N, isp_s, dynamics, summaries, failure,
                        task_wall_s=time.perf_counter() - t0,
@@ -520,8 +570,9 @@ def format_summary(result: StudyResult) -> str:
     """The CLI's text: one line per engine, failures, and the wall time."""
     w = result.wide()
     lines = [f"Engine trade study: {len(w)} engines, free ignition for every LOI, "
-             f"{result.run['grid']['dynamics']} dynamics; loss (objective, Eq. 9) vs the "
-             f"impulsive limit in the same dynamics; T/W = T / (524.895 kg x 9.80665 m/s^2)",
+             f"{study_dynamics(result.run['grid']['dynamics'])} dynamics; loss (objective, "
+             f"Eq. 9) vs the impulsive limit in the same dynamics; T/W = T / (524.895 kg x "
+             f"9.80665 m/s^2)",
              f"{'thrust N':>9} {'Isp s':>6} {'T/W':>7} | {'loss %: LOI1':>12} {'LOI2':>6} "
              f"{'LOI3':>6} {'seq':>6} {'seq m/s':>8} | {'burn/Eq.19 LOI1':>15} | status"]
     for r in w.itertuples(index=False):
@@ -532,6 +583,11 @@ def format_summary(result: StudyResult) -> str:
             f"{_f(r.objective_loss_percent_loi3, 6)} {_f(r.objective_loss_percent_sequence, 6)} "
             f"{_f(r.objective_loss_mps_sequence, 8)} | {_f(ratio, 15)} | "
             + (r.status if r.status == "ok" else f"{r.status}: {r.failed_part}"))
+    t = result.table
+    for r in t[(t.part == "sequence") & (t.impulsive_limit_reason.fillna("") != "")] \
+            .itertuples(index=False):   # in a gravity field: a burn no impulse reaches
+        lines.append(f"no loss at {r.thrust_N:g} N / {r.isp_s:g} s: "
+                     f"{r.impulsive_limit_reason}")
     n_bad = int((w.status != "ok").sum()) if len(w) else 0
     return "\n".join(lines + STUDY.run_lines(result, failed=n_bad))
 

@@ -34,7 +34,12 @@ def options(p) -> None:
 
 
 def prepare(args, plan) -> StudyRun:
-    """The missed-thrust study of ``plan``: every number checked (InputError) first."""
+    """The missed-thrust study of ``plan``: every number checked (InputError) first.
+
+    Any force model the plan names is accepted: in a gravity field the recoveries and their
+    nominal are solved by the all-burns NLP with the field's outer correction
+    (:func:`lunarcap.optim.joint.solve_joint`) and verified in the whole field.
+    """
     from lunarcap.studies.missed import cases as missed
 
     burn = integer("--burn", args.burn, minimum=1)
