@@ -28,6 +28,8 @@ late ignition), :func:`recovery` answers in one of four ways, in this order:
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -40,8 +42,12 @@ from lunarcap.physics.propagate import propagate
 from lunarcap.physics.state import State
 from lunarcap.studies.missed.makeup import Place
 from lunarcap.studies.missed.orbits import (
+    classify,
+    make_up_estimate,
     period_s,
     physical_bound,
+    shortest_free_period_s,
+    soi_radius_km,
     time_to_perilune_after_impulse_s,
 )
 from lunarcap.studies.missed.starts import FAILURES, attempt_at, walk
@@ -84,90 +90,257 @@ def nothing_to_make_up(legs: list, i: int, t_r: float, x_r, max_period_s: float)
     return not target_misses(prob.target, end.x, bound)
 
 
-# ---------------------------------------------------------------------- the ladder
+# ---------------------------------------------------------------------- the places
+@dataclass(frozen=True)
+class Fault:
+    """What every place of a recovery sees: the state a fault left and the study's limits.
+
+    Attributes
+    ----------
+    nplan, legs, i : the nominal's plan and Solutions, the faulty burn (0-based)
+    t_s, x : epoch (TDB s past J2000) and state the recovery starts from
+    window_min : (float, float)
+        The make-up's ignition window after ``t_s``, min.
+    max_period_s : float
+        Longest period of the orbit after burn ``i``, s (``--max-period-h``).
+    deadline_s : float
+        Epoch by which the capture must end (its last burn), s: the arrival perilune plus
+        ``--max-days``.
+    fit_for, coast : the ephemeris fit of a window (min after ``t_s``), the coast's Model
+    later : bool
+        The make-up may wait for a perilune (a cut-off; not a late ignition).
+    remaining_mps : float
+        Delta-V of the nominal burn ``i`` not flown, m/s.
+    """
+
+    nplan: CapturePlan
+    legs: list
+    i: int
+    t_s: float
+    x: object
+    window_min: tuple
+    max_period_s: float
+    deadline_s: float
+    fit_for: Callable
+    coast: Model
+    later: bool
+    remaining_mps: float
+
+
+@dataclass(frozen=True)
+class Wait:
+    """One place the make-up burn may be made, in the order :func:`recovery` tries them.
+
+    Attributes
+    ----------
+    name : str
+        The place in words ("in the window", "at the next perilune", ...).
+    place : callable(Fault) -> Place or str
+        The place (:class:`~lunarcap.studies.missed.makeup.Place`), or why it cannot be:
+        a text naming what decides it (physics, ``--max-period-h``, ``--max-days``).
+    when : callable(found, tried, Fault) -> bool
+        Whether it is tried, given the recoveries found so far (``(how, result, estimate)``)
+        and the places tried before it (their names).
+    """
+
+    name: str
+    place: Callable
+    when: Callable
+
+
+def _window(f: Fault):
+    """The make-up in its window after the fault: refused by physics or the limits."""
+    late = _too_late(f, f.t_s + 60.0 * f.window_min[0], "when the window opens")
+    if late:
+        return late
+    why = physical_bound(f.nplan, f.i, f.t_s, f.x, f.window_min, f.max_period_s, f.coast)
+    if why:
+        return why
+    return Place(f.t_s, f.x, f.window_min, f.fit_for(f.window_min), f.coast, f.deadline_s)
+
+
+def _perilune(k: int):
+    """The place of a make-up at the ``k``-th perilune after the window (:func:`_at_perilune`)."""
+    return lambda f: _at_perilune(f, k)
+
+
+def _always(found, tried, f: Fault) -> bool:
+    return True
+
+
+def _if_wanted(found, tried, f: Fault) -> bool:
+    """A cut-off whose window gave nothing verified, or a recovery dearer than the burn."""
+    return f.later and (not found or dearer_than_the_burn(found[0][1], f.legs, f.i,
+                                                          f.remaining_mps))
+
+
+def _if_the_last_failed(found, tried, f: Fault) -> bool:
+    """Nothing found yet, the perilune before tried and failed, and perturbed dynamics.
+
+    In two-body dynamics every perilune of the orbit is the same problem shifted in time,
+    so a failure at one is a failure at every one.
+    """
+    return f.later and not found and bool(tried) and tried[-1].startswith("at ") and \
+        f.nplan.dynamics != "two-body"
+
+
+#: The places of a make-up, in order: the window after the fault, then the perilunes of
+#: the orbit it left, up to :data:`LATER_PERILUNES` of them (each refused beyond the
+#: deadline; a later one tried only where the one before failed: each failure is a whole
+#: walk of the starts, minutes in full dynamics).
+LATER_PERILUNES = 3
+WAITS = (
+    Wait("in the window", _window, _always),
+    Wait("at the next perilune", _perilune(1), _if_wanted),
+) + tuple(Wait(f"at perilune {k} after the window", _perilune(k), _if_the_last_failed)
+          for k in range(2, LATER_PERILUNES + 1))
+
+
+# ---------------------------------------------------------------------- the walk
 def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min: tuple,
              max_period_s: float, fit_for, coast: Model, later: bool = True,
-             remaining_mps: float | None = None) -> tuple:
+             remaining_mps: float | None = None, deadline_s: float = math.inf) -> tuple:
     """The recovery from ``x_r`` at ``t_r`` (see the module): ``(how, result, estimate)``.
 
-    ``how``: "none" (nothing to make up: ``result`` None), "window" or "next perilune"
-    (``result`` the verified JointResult), or "no recovery" (``result`` the physical
-    reason of :func:`physical_bound` for the window). ``fit_for(window)``: the ephemeris
-    fit of a recovery whose make-up ignites in ``window`` (min after ``t_r``). ``later``:
-    the make-up at the next perilune may be tried (a cut-off, not a late ignition), if
-    that perilune comes within ``max_period_s``; where both are verified the cheaper is
-    kept (a next perilune's estimate then has ``window_delta_v_mps``: the window's
-    recovery burns, m/s). ``remaining_mps``: the delta-V of the nominal burn not flown
-    (m/s; default all of it). Raises what the window's :func:`walk` raises if the next
-    perilune gives nothing either.
+    ``how``: "none" (nothing to make up: ``result`` None), the name of the place of the
+    make-up (a :class:`Wait`'s: "in the window", "at the next perilune", ...; ``result``
+    the verified JointResult), or "no recovery" (``result`` the reasons every place gave,
+    in order). ``fit_for(window)``: the ephemeris fit of a recovery whose make-up ignites
+    in ``window`` (min after ``t_r``). ``later``: the make-up may wait for a perilune (a
+    cut-off, not a late ignition). ``deadline_s``: the epoch by which the capture must end
+    (s). Where the window's recovery and a perilune's are both verified the cheaper is
+    kept (a perilune's estimate then has ``window_delta_v_mps``: the window's recovery
+    burns, m/s; and ``window``: why the window's was not kept). ``remaining_mps``: the
+    delta-V of the nominal burn not flown (m/s; default all of it). Raises the first
+    solver failure if no place gives a recovery and one was tried.
     """
     if nothing_to_make_up(legs, i, t_r, x_r, max_period_s):
         return "none", None, None
-    why = physical_bound(nplan, i, t_r, x_r, window_min, max_period_s, coast)
-    if why:
-        return "no recovery", why, None
-    remaining = legs[i].delta_v_mps if remaining_mps is None else remaining_mps
-
-    def at(place: Place) -> tuple:
-        return walk(attempt_at(nplan, legs, i, place, max_period_s, not later, remaining))
-
-    found, first = None, None
-    try:
-        found = ("window",) + at(Place(t_r, x_r, window_min, fit_for(window_min), coast))
-    except FAILURES as exc:
-        first = exc
-    if found is not None and not (later and dearer_than_the_burn(found[1], legs, i, remaining)):
-        return found
-    place = _at_next_perilune(nplan, legs, i, t_r, x_r, window_min, max_period_s, fit_for,
-                              coast) if later else None
-    if place is None:
-        return _found_or_raise(found, first)
-    try:
-        res, est = at(place)
-    except FAILURES:
-        return _found_or_raise(found, first)
-    if found is not None:
-        if found[1].total_delta_v_mps <= res.total_delta_v_mps:
-            return found
-        est["window_delta_v_mps"] = found[1].total_delta_v_mps
-    est["first_coast_guess_s"] += place.t_s - t_r
-    return "next perilune", res, est
+    f = Fault(nplan, legs, i, t_r, x_r, window_min, max_period_s, deadline_s, fit_for, coast,
+              later, legs[i].delta_v_mps if remaining_mps is None else remaining_mps)
+    found, tried, refused, failed = [], [], [], []
+    for wait in WAITS:
+        if not wait.when(found, tried, f):
+            continue
+        place = wait.place(f)
+        if isinstance(place, str):
+            refused.append((wait.name, place))
+            if wait.name != "in the window":
+                break   # a later perilune is later still
+            continue
+        tried.append(wait.name)
+        try:
+            res, est = walk(attempt_at(nplan, legs, i, place, max_period_s, not later,
+                                       f.remaining_mps))
+        except FAILURES as exc:
+            failed.append(exc)
+            continue
+        est["first_coast_guess_s"] += place.t_s - t_r
+        found.append((wait.name, res, est))
+        if wait.name == "in the window" and not _if_wanted(found, tried, f):
+            return found[0]
+    return _outcome(found, refused, failed)
 
 
-def _at_next_perilune(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r,
-                      window_min: tuple, max_period_s: float, fit_for,
-                      coast: Model) -> Place | None:
-    """The place of a make-up at the next perilune after the window; None if none may be.
+def _outcome(found: list, refused: list, failed: list) -> tuple:
+    """The walk's answer: the cheapest place found, else no recovery or the first failure.
+
+    A recovery away from the window carries why the window's was not kept (its
+    estimate's ``window_delta_v_mps``, or the window's refusal as ``window``).
+    """
+    if found:
+        how, res, est = min(found, key=lambda r: r[1].total_delta_v_mps)
+        if how != "in the window":
+            window = next((r for r in found if r[0] == "in the window"), None)
+            if window is not None:
+                est["window_delta_v_mps"] = window[1].total_delta_v_mps
+            est["window"] = next((why for name, why in refused if name == "in the window"), "")
+        return how, res, est
+    if failed:
+        raise failed[0]
+    return "no recovery", "; ".join(
+        why if name == "in the window" else f"{name}: {why}" for name, why in refused), None
+
+
+def _too_late(f: Fault, t_ignite_s: float, when: str) -> str:
+    """Why a make-up igniting at ``t_ignite_s`` cannot end the capture by the deadline, or "".
+
+    The earliest end: the make-up at ``t_ignite_s``, the shortest free orbit after it (an
+    intermediate burn's, :func:`~lunarcap.studies.missed.orbits.shortest_free_period_s`),
+    then the nominal's coasts to the last burn.
+    """
+    end = t_ignite_s + _rest_s(f.nplan, f.i)
+    if end <= f.deadline_s:
+        return ""
+    t0 = f.nplan.nominal_perilunes_s[0]
+    return (f"a make-up {when}, {(t_ignite_s - t0) / 3600:.1f} h after the arrival perilune, "
+            f"ends the capture at least {(end - t0) / 3600:.1f} h after it, later than the "
+            f"{(f.deadline_s - t0) / 86400:g} days allowed (--max-days; at least "
+            f"{math.ceil((end - t0) / 8640.0) / 10:g} days would let it)")
+
+
+def _rest_s(nplan: CapturePlan, i: int) -> float:
+    """The shortest time from a make-up of burn ``i`` to the last burn, s (:func:`_too_late`)."""
+    shortest = shortest_free_period_s(nplan, i) or 0.0
+    return shortest + sum(nplan.coast_s(k) for k in range(i + 1, nplan.n_burns - 1))
+
+
+def _at_perilune(f: Fault, k: int):
+    """The place of a make-up at the ``k``-th perilune after the window, or why none may be.
 
     The window is +-2 burn durations (at least 30 min) about that perilune, within the 2 h
     a plan's window may span; the recovery resumes where it opens (the coast to there is
-    the same coast). None if the orbit is open, the window closes later than
-    ``max_period_s`` after ``t_r``, or physics forbids a recovery from there.
+    the same coast). Refused where the orbit is open or the spacecraft outside the Moon's
+    sphere of influence (it does not come back to a perilune), where the capture could not
+    end by the deadline (``--max-days``, :func:`_too_late`), or where physics forbids a
+    recovery from there (:func:`physical_bound`).
     """
-    half = min(max(60.0 * MIN_ORBIT_WINDOW_MIN, 2.0 * legs[i].raw.t1_s), 30.0 * MAX_START_MIN)
-    window = next_perilune_window(x_r, 60.0 * window_min[1], half)
-    if window is None or 60.0 * window[1] > max_period_s:
-        return None
-    t_b = t_r + 60.0 * window[0]
-    x_b = propagate(coast, t_r, np.asarray(x_r, float)[:7], t_b).final
+    x = np.asarray(f.x, float)[:7]
+    half = min(max(60.0 * MIN_ORBIT_WINDOW_MIN, 2.0 * f.legs[f.i].raw.t1_s),
+               30.0 * MAX_START_MIN)
+    window = next_perilune_window(x, 60.0 * f.window_min[1], half, k)
+    if window is None:
+        return ("none: on an open orbit (two-body energy >= 0) the spacecraft does not come "
+                "back to a perilune")
+    soi = soi_radius_km(f.t_s, f.nplan.ephemeris)
+    r = classify(x, f.t_s, f.nplan.ephemeris)["r_km"]
+    if r > soi:
+        return (f"{r:,.0f} km from the Moon, outside its sphere of influence ({soi:,.0f} km), "
+                f"the spacecraft's return is the Earth's to decide, not a lunar orbit's")
+    late = _too_late(f, f.t_s + 60.0 * window[0], f"{window[0] / 60:.1f} h after the fault")
+    if late:
+        return late + _waiting_cost(f, x, window)
+    t_b = f.t_s + 60.0 * window[0]
+    x_b = propagate(f.coast, f.t_s, x, t_b).final
     w_b = from_opening(window)
-    if physical_bound(nplan, i, t_b, x_b, w_b, max_period_s, coast):
-        return None
-    return Place(t_b, x_b, w_b, fit_for(window), coast)
+    why = physical_bound(f.nplan, f.i, t_b, x_b, w_b, f.max_period_s, f.coast)
+    if why:
+        return why
+    return Place(t_b, x_b, w_b, f.fit_for(window), f.coast, f.deadline_s)
 
 
-def next_perilune_window(x, after_s: float, half_width_s: float) -> tuple | None:
-    """The window (min after the state's epoch) around its next two-body perilune.
+def _waiting_cost(f: Fault, x, window: tuple) -> str:
+    """What a make-up at that perilune would cost: the two-body tangential impulse there, text."""
+    t_p = 60.0 * 0.5 * (window[0] + window[1])
+    x_p = propagate(Model("two-body", 0.0, f.coast.isp_s), 0.0, x, t_p).final
+    est = make_up_estimate(x_p, f.nplan.targets[f.i].radius_km, f.max_period_s)
+    return (f"; at that perilune an impulsive make-up would cost about "
+            f"{est['delta_v_mps']:.0f} m/s")
 
-    The first perilune later than ``after_s`` of the orbit of ``x``; half-width
-    ``half_width_s``, at most :data:`MAX_WINDOW_FRACTION` of the period and never before
-    ``after_s``. None if the orbit is open.
+
+def next_perilune_window(x, after_s: float, half_width_s: float, k: int = 1) -> tuple | None:
+    """The window (min after the state's epoch) around its ``k``-th two-body perilune.
+
+    The ``k``-th perilune later than ``after_s`` of the orbit of ``x`` (1: the first);
+    half-width ``half_width_s``, at most :data:`MAX_WINDOW_FRACTION` of the period and
+    never before ``after_s``. None if the orbit is open.
     """
     t = time_to_perilune_after_impulse_s(x, 0.0, after_s)
     if not math.isfinite(t):
         return None
     xx = np.asarray(x, float)
     a = xx[0] / (1 - xx[1] ** 2 - xx[2] ** 2)
+    t += (k - 1) * period_s(a)
     w = min(half_width_s, MAX_WINDOW_FRACTION * period_s(a), t - after_s)
     return ((t - w) / 60.0, (t + w) / 60.0)
 
@@ -179,13 +352,6 @@ def from_opening(window: tuple) -> tuple:
     floating point, which the plan's checks refuse.
     """
     return (0.0, min(window[1] - window[0], MAX_START_MIN))
-
-
-def _found_or_raise(found, first):
-    """The window's recovery if there is one, else its error (raised)."""
-    if found is None:
-        raise first
-    return found
 
 
 def dearer_than_the_burn(res, legs: list, i: int, remaining_mps: float) -> bool:
