@@ -180,6 +180,10 @@ def reading(t: pd.DataFrame, max_period_h: float | None = None) -> str:
                    f"{worst.delay_min:g} min) costs {worst.penalty_mps:.1f} m/s.")
     if len(ok) and max_period_h is not None and "make_up_period_h" in ok:
         out.append(bound_verdict(ok, max_period_h))
+    waited = ok[ok.reason.fillna("").str.startswith("make-up burn at")]
+    for r in waited.itertuples():   # the make-up waited for a perilune: the reason says why
+        out.append(f"Fraction {r.fraction:g}, {r.delay_min:g} min: recovered, the "
+                   f"{r.reason[0].lower()}{r.reason[1:]}.")
     refused = t[t.status != "recovered"]
     for r in refused.itertuples():
         out.append(f"Fraction {r.fraction:g}, {r.delay_min:g} min: {r.status}, "

@@ -222,24 +222,39 @@ def _attempt(out: dict, nominal_part: tuple, burn: int, t_r: float, x_r, window_
 
 
 def _why(how: str, out: dict, est: dict, res, burn: int) -> str:
-    """The reason of a recovered row: why the make-up waited, or a penalty below the nominal."""
-    where = f"make-up burn {how}"
-    if how != "in the window":
-        wait_h = out["recovery_burns"][0]["ignition_min_after_fault"] / 60.0
-        where += f" ({wait_h:.1f} h after the fault)"
-    if how != "in the window" and est.get("window_delta_v_mps") is not None:
-        return (f"{where}: its recovery burns need "
-                f"{est['window_delta_v_mps'] - res.total_delta_v_mps:.1f} m/s less "
-                f"than the verified recovery with it in the window "
-                f"({est['window_delta_v_mps']:.1f} m/s, a penalty above the "
-                f"nominal burn's own delta-V)")
-    if how != "in the window" and est.get("window"):
-        return f"{where}: in the window, {est['window']}"
-    if how != "in the window":
-        return f"{where}: no verified recovery with it in the window"
+    """The reason of a recovered row: why the make-up waited, and a penalty below the nominal."""
+    below = ""
     if out["penalty_mps"] < -BELOW_NOMINAL_MPS:
-        return _below_nominal(out, burn)
-    return ""
+        below = _below_nominal(out, burn) if how == "in the window" else _split(out)
+    if how == "in the window":
+        return below
+    wait_h = out["recovery_burns"][0]["ignition_min_after_fault"] / 60.0
+    where = f"make-up burn {how} ({wait_h:.1f} h after the fault)"
+    if est.get("window_delta_v_mps") is not None:
+        why = (f"{where}: its recovery burns need "
+               f"{est['window_delta_v_mps'] - res.total_delta_v_mps:.1f} m/s less "
+               f"than the verified recovery with it in the window "
+               f"({est['window_delta_v_mps']:.1f} m/s, a penalty above the "
+               f"nominal burn's own delta-V)")
+    elif est.get("window"):
+        why = f"{where}: in the window, {est['window']}"
+    else:
+        why = f"{where}: no verified recovery with it in the window"
+    return "; ".join(r for r in (why, below) if r)
+
+
+def _split(out: dict) -> str:
+    """The reason of a make-up at a later perilune cheaper than the nominal.
+
+    The partial burn and the make-up one orbit (or more) later are the nominal burn split
+    over two perilunes: each part shorter, flown nearer its perilune, loses less to
+    gravity than the one burn of the nominal (Eq. 10's finite-burn loss), a freedom the
+    nominal does not have; the price is the time to the final orbit.
+    """
+    later_h = out["time_to_final_orbit_h"] - out["nominal_time_to_final_orbit_h"]
+    return (f"{-out['penalty_mps']:.2f} m/s cheaper than the nominal: the burn split over two "
+            f"perilunes loses less to gravity than the nominal's one burn, at the price of "
+            f"{later_h:.1f} h more to the final orbit")
 
 
 def _refused(out: dict, status: str, reason: str, ipopt_status: str = "") -> dict:

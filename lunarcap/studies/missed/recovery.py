@@ -28,7 +28,7 @@ late ignition), :func:`recovery` answers in one of four ways, in this order:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable
 
 import numpy as np
@@ -259,7 +259,8 @@ def _outcome(found: list, refused: list, failed: list) -> tuple:
     if failed:
         raise failed[0]
     return "no recovery", "; ".join(
-        why if name == "in the window" else f"{name}: {why}" for name, why in refused), None
+        why if name == "in the window" else f"no make-up {name}: {why}"
+        for name, why in refused), None
 
 
 def _too_late(f: Fault, t_ignite_s: float, when: str) -> str:
@@ -300,8 +301,8 @@ def _at_perilune(f: Fault, k: int):
                30.0 * MAX_START_MIN)
     window = next_perilune_window(x, 60.0 * f.window_min[1], half, k)
     if window is None:
-        return ("none: on an open orbit (two-body energy >= 0) the spacecraft does not come "
-                "back to a perilune")
+        return ("on an open orbit (two-body energy >= 0) the spacecraft does not come back to "
+                "a perilune")
     soi = soi_radius_km(f.t_s, f.nplan.ephemeris)
     r = classify(x, f.t_s, f.nplan.ephemeris)["r_km"]
     if r > soi:
@@ -310,13 +311,17 @@ def _at_perilune(f: Fault, k: int):
     late = _too_late(f, f.t_s + 60.0 * window[0], f"{window[0] / 60:.1f} h after the fault")
     if late:
         return late + _waiting_cost(f, x, window)
+    # the window's fit covers a perilune within max_period_s of the fault; a later one
+    # is flown with the fit made for its own window
+    coast = f.coast if 60.0 * window[1] <= f.max_period_s else \
+        replace(f.coast, fit=f.fit_for(window))
     t_b = f.t_s + 60.0 * window[0]
-    x_b = propagate(f.coast, f.t_s, x, t_b).final
+    x_b = propagate(coast, f.t_s, x, t_b).final
     w_b = from_opening(window)
-    why = physical_bound(f.nplan, f.i, t_b, x_b, w_b, f.max_period_s, f.coast)
+    why = physical_bound(f.nplan, f.i, t_b, x_b, w_b, f.max_period_s, coast)
     if why:
         return why
-    return Place(t_b, x_b, w_b, f.fit_for(window), f.coast, f.deadline_s)
+    return Place(t_b, x_b, w_b, f.fit_for(window), coast, f.deadline_s)
 
 
 def _waiting_cost(f: Fault, x, window: tuple) -> str:
