@@ -397,7 +397,7 @@ def test_full_dynamics_keeps_the_continuation_only_if_it_is_the_two_body_optimum
     monkeypatch.setattr(rec, "physical_bound", lambda *a: "")
     leg = SimpleNamespace(delta_v_mps=300.0, raw=SimpleNamespace(t1_s=600.0))
     coast = Model("two-body", 0.0, plan.engine.isp_s, None)   # (read by no stand-in)
-    args = (plan, [leg] * 3, 0, 0.0, None, (0.0, 30.0), 86400.0, lambda w: None, coast)
+    args = (plan, [leg] * 3, 0, 0.0, None, (0.0, 30.0), 86400.0, lambda *w: None, coast)
     # (two-body recovery, from it in full dynamics, the other starts) -> kept, doubtful
     for two, continued, others, kept, doubtful in ((740.0, 750.0, 745.0, 750.0, False),
                                                   (700.0, 725.0, 710.0, 710.0, False),
@@ -448,7 +448,7 @@ def test_full_dynamics_failure_reports_the_verified_two_body_recovery(monkeypatc
                           legs=[SimpleNamespace(delta_v_mps=458.8,
                                                 problem=SimpleNamespace(t_ign_s=600.0))])
     coast = Model("two-body", 0.0, plan.engine.isp_s, None)   # (read by no stand-in)
-    args = (plan, [leg] * 3, 0, 0.0, None, (0.0, 30.0), 86400.0, lambda w: None, coast)
+    args = (plan, [leg] * 3, 0, 0.0, None, (0.0, 30.0), 86400.0, lambda *w: None, coast)
     for direct in (None, 1583.7):
         def recover(nplan, i, place, max_period_s, guess, *a, direct=direct, **k):
             if nplan.dynamics == "two-body":
@@ -522,7 +522,7 @@ def test_when_both_starts_fail_the_plans_guesses_start_on_the_nominals_coast(mon
             "first_coast_guess_s": guess.first_coast_s}
     monkeypatch.setattr(starts, "recover", recover)
     how, res, est = rec.recovery(plan, [leg] * 3, 0, t_r, None, window, 86400.0,
-                                 lambda w: None, None, later=False)
+                                 lambda *w: None, None, later=False)
     coast_s = plan.nominal_perilunes_s[1] - t_r
     assert how == "in the window" and res.total_delta_v_mps == 800.0
     assert calls[0] == (None, None)             # the plan's guesses, the estimate's coast
@@ -663,7 +663,7 @@ def test_a_two_body_recovery_keeps_its_first_verified_start(monkeypatch):
         return SimpleNamespace(total_delta_v_mps=900.0 - len(calls)), {"first_coast_guess_s": 0.0}
     monkeypatch.setattr(starts, "recover", recover)
     how, res, _ = rec.recovery(plan, [leg] * 3, 0, 60.0, None, (0.0, 30.0), 86400.0,
-                               lambda w: None, None, later=False)
+                               lambda *w: None, None, later=False)
     assert how == "in the window" and res.total_delta_v_mps == 899.0 and len(calls) == 1
     guess, meshes = calls[0]
     assert guess.legs is None and guess.first_coast_s is None   # the plan's guesses

@@ -34,7 +34,7 @@ from lunarcap.physics.dynamics import Model
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.propagate import propagate
 from lunarcap.repro.cache import cached
-from lunarcap.studies.missed.makeup import DEADLINE_MARGIN_S, ephemeris_fit
+from lunarcap.studies.missed.makeup import COAST_SLACK_S, ephemeris_fit
 from lunarcap.studies.missed.messages import counted
 from lunarcap.studies.missed.nominal import DEFAULT_MAX_DAYS, nominal_of
 from lunarcap.studies.missed.orbits import classify, period_s
@@ -101,7 +101,7 @@ def _missed(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
            **{f"cutoff_{k}": v for k, v in cut.items()}}
     t_r = t_cut + delay_s
     deadline_s = nplan.nominal_perilunes_s[0] + 86400.0 * max_days
-    fit_for = _fits(plan, nplan, burn, t_cut, t_r, max_period_s, deadline_s)
+    fit_for = _fits(plan, nplan, burn, t_cut, t_r, max_period_s)
     coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit_for(window_min))
     x_r = propagate(coast, t_cut, xc, t_r).final if delay_s > 0 else xc
     out["recovery_start_e"] = float(math.hypot(x_r[1], x_r[2]))
@@ -136,7 +136,7 @@ def _late(plan: CapturePlan, burn: int, late_s: float, max_period_s: float,
     t_r = prob.t_ign_s + late_s
     window = (0.0, 0.0)
     deadline_s = nplan.nominal_perilunes_s[0] + 86400.0 * max_days
-    fit_for = _fits(plan, nplan, burn, prob.t_ign_s, t_r, max_period_s, deadline_s)
+    fit_for = _fits(plan, nplan, burn, prob.t_ign_s, t_r, max_period_s)
     coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit_for(window))
     x_r = propagate(coast, prob.t_ign_s, prob.x0, t_r).final if late_s > 0 else prob.x0
     cut = classify(x_r, t_r, plan.ephemeris)
@@ -168,23 +168,21 @@ def _nominal_part(plan: CapturePlan, burn: int, max_period_s: float,
 
 
 def _fits(plan: CapturePlan, nplan: CapturePlan, burn: int, t0_s: float, t_r: float,
-          max_period_s: float, deadline_s: float = math.inf):
-    """``fit_for(window)``: the ephemeris fit from ``t0_s`` of a recovery from ``t_r``.
+          max_period_s: float):
+    """``fit_for(window, longest=max_period_s)``: the ephemeris fit from ``t0_s`` of a recovery.
 
     It covers a make-up igniting in ``window`` (min after ``t_r``), its orbit up to
-    ``max_period_s`` (+ 2 h) and the plan's later coasts, but not past the deadline
-    ``deadline_s`` (s: the last burn's end, with its final coast and an hour); one fit per
-    window, made once for the case.
+    ``longest`` (s; + 2 h) and the plan's later coasts; one fit per window and bound, made
+    once for the case.
     """
     rest = sum(nplan.coast_s(k) for k in range(burn, plan.n_burns))
-    end_by = deadline_s + nplan.coast_s(plan.n_burns - 1) + DEADLINE_MARGIN_S
     made = {}
 
-    def fit_for(window):
-        if window not in made:
-            span = t_r - t0_s + 60 * window[1] + max_period_s + 7200.0 + rest
-            made[window] = ephemeris_fit(plan, t0_s, min(span, end_by - t0_s))
-        return made[window]
+    def fit_for(window, longest=max_period_s):
+        if (window, longest) not in made:
+            made[(window, longest)] = ephemeris_fit(
+                plan, t0_s, t_r - t0_s + 60 * window[1] + longest + COAST_SLACK_S + rest)
+        return made[(window, longest)]
     return fit_for
 
 
@@ -229,7 +227,11 @@ def _why(how: str, out: dict, est: dict, res, burn: int) -> str:
     if how == "in the window":
         return below
     wait_h = out["recovery_burns"][0]["ignition_min_after_fault"] / 60.0
-    where = f"make-up burn {how} ({wait_h:.1f} h after the fault)"
+    where = f"make-up burn {how} ({wait_h:.1f} h after the fault"
+    if est.get("deadline_period_h") is not None:   # the deadline bounds its orbit
+        where += (f"; its orbit at most {est['deadline_period_h']:.1f} h, to end the capture "
+                  f"within --max-days")
+    where += ")"
     if est.get("window_delta_v_mps") is not None:
         why = (f"{where}: its recovery burns need "
                f"{est['window_delta_v_mps'] - res.total_delta_v_mps:.1f} m/s less "

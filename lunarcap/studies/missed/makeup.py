@@ -60,6 +60,9 @@ RECOVERY_MESHES = DEFAULT_MESHES + (Mesh(36, 36, 6), Mesh(36, 72, 6))
 #: The last burn's end may pass its perilune by up to this, s: the deadline enters a
 #: recovery's NLP where the longest coasts allowed end within it of the deadline.
 DEADLINE_MARGIN_S = 3600.0
+#: The make-up orbit's coast (from the fault to that orbit's perilune) may exceed the
+#: window and the longest period by this, s: the burn and the arc to the perilune.
+COAST_SLACK_S = 7200.0
 
 
 @dataclass(frozen=True)
@@ -81,6 +84,9 @@ class Place:
     deadline_s : float
         Epoch by which the capture's last burn must end, TDB s past J2000 (the arrival
         perilune plus ``--max-days``); inf: none.
+    max_period_s : float
+        Longest period of the make-up orbit the deadline leaves from here, s (inf: the
+        deadline leaves more than any bound).
     """
 
     t_s: float
@@ -89,6 +95,7 @@ class Place:
     fit: object
     coast: Model
     deadline_s: float = math.inf
+    max_period_s: float = math.inf
 
 
 @dataclass(frozen=True)
@@ -349,7 +356,7 @@ def _solve_recovery(rec_plan: CapturePlan, kind: str, i: int, nplan: CapturePlan
     if kind != PERILUNE:   # the final orbit: its coast the plan's
         return solve_joint(rec_plan, None, eph, mesh, fit=fit, warm=warm, expand=True)
     free = (True,) + (False,) * (rec_plan.n_burns - 1)
-    hi = 60.0 * window_min[1] + max_period_s + 7200.0
+    hi = 60.0 * window_min[1] + max_period_s + COAST_SLACK_S
     t0 = rec_plan.nominal_perilunes_s[0]
     later = sum(rec_plan.coast_s(k) for k in range(1, rec_plan.n_burns - 1))
     max_time_s = None

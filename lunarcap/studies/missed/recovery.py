@@ -40,7 +40,7 @@ from lunarcap.optim.problem import MIN_ORBIT_WINDOW_MIN
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.state import State
-from lunarcap.studies.missed.makeup import Place
+from lunarcap.studies.missed.makeup import COAST_SLACK_S, Place
 from lunarcap.studies.missed.orbits import (
     classify,
     make_up_estimate,
@@ -106,7 +106,8 @@ class Fault:
     deadline_s : float
         Epoch by which the capture must end (its last burn), s: the arrival perilune plus
         ``--max-days``.
-    fit_for, coast : the ephemeris fit of a window (min after ``t_s``), the coast's Model
+    fit_for, coast : the ephemeris fit of a window (min after ``t_s``) and a longest
+        make-up orbit (s), the coast's Model
     later : bool
         The make-up may wait for a perilune (a cut-off; not a late ignition).
     remaining_mps : float
@@ -150,13 +151,13 @@ class Wait:
 
 def _window(f: Fault):
     """The make-up in its window after the fault: refused by physics or the limits."""
-    late = _too_late(f, f.t_s + 60.0 * f.window_min[0], "when the window opens")
-    if late:
-        return late
-    why = physical_bound(f.nplan, f.i, f.t_s, f.x, f.window_min, f.max_period_s, f.coast)
+    why = physical_bound(f.nplan, f.i, f.t_s, f.x, f.window_min, f.max_period_s, f.coast) \
+        or _too_late(f, f.t_s, f.window_min, "in the window")
     if why:
         return why
-    return Place(f.t_s, f.x, f.window_min, f.fit_for(f.window_min), f.coast, f.deadline_s)
+    longest = _longest_s(f, f.t_s, f.window_min)
+    return Place(f.t_s, f.x, f.window_min, f.fit_for(f.window_min, longest), f.coast,
+                 f.deadline_s, longest)
 
 
 def _perilune(k: int):
@@ -229,13 +230,16 @@ def recovery(nplan: CapturePlan, legs: list, i: int, t_r: float, x_r, window_min
                 break   # a later perilune is later still
             continue
         tried.append(wait.name)
+        longest = min(max_period_s, place.max_period_s)
         try:
-            res, est = walk(attempt_at(nplan, legs, i, place, max_period_s, not later,
+            res, est = walk(attempt_at(nplan, legs, i, place, longest, not later,
                                        f.remaining_mps))
         except FAILURES as exc:
             failed.append(exc)
             continue
         est["first_coast_guess_s"] += place.t_s - t_r
+        if longest < max_period_s:
+            est["deadline_period_h"] = longest / 3600.0
         found.append((wait.name, res, est))
         if wait.name == "in the window" and not _if_wanted(found, tried, f):
             return found[0]
@@ -263,27 +267,41 @@ def _outcome(found: list, refused: list, failed: list) -> tuple:
         for name, why in refused), None
 
 
-def _too_late(f: Fault, t_ignite_s: float, when: str) -> str:
-    """Why a make-up igniting at ``t_ignite_s`` cannot end the capture by the deadline, or "".
+def _longest_s(f: Fault, t_s: float, window: tuple) -> float:
+    """The longest make-up orbit of a make-up in ``window`` (min after ``t_s``), s.
 
-    The earliest end: the make-up at ``t_ignite_s``, the shortest free orbit after it (an
-    intermediate burn's, :func:`~lunarcap.studies.missed.orbits.shortest_free_period_s`),
-    then the nominal's coasts to the last burn.
+    ``--max-period-h``, or shorter where the deadline leaves less: the orbit's coast
+    (bounded by the window's close, the orbit and :data:`~lunarcap.studies.missed.makeup.
+    COAST_SLACK_S`) and the nominal's coasts to the last burn must end by it. The last
+    burn's make-up orbit is the final orbit, not bounded by it: ``--max-period-h``.
     """
-    end = t_ignite_s + _rest_s(f.nplan, f.i)
-    if end <= f.deadline_s:
-        return ""
+    if f.i + 1 >= f.nplan.n_burns:
+        return f.max_period_s
+    later = sum(f.nplan.coast_s(k) for k in range(f.i + 1, f.nplan.n_burns - 1))
+    return min(f.max_period_s,
+               f.deadline_s - t_s - 60.0 * window[1] - COAST_SLACK_S - later)
+
+
+def _too_late(f: Fault, t_s: float, window: tuple, where: str) -> str:
+    """Why a make-up in ``window`` (min after ``t_s``) cannot end the capture in time, or "".
+
+    An intermediate burn's make-up needs room for the shortest free orbit after it
+    (:func:`~lunarcap.studies.missed.orbits.shortest_free_period_s`) within
+    :func:`_longest_s`; the last burn's, to ignite by the deadline.
+    """
     t0 = f.nplan.nominal_perilunes_s[0]
-    return (f"a make-up {when}, {(t_ignite_s - t0) / 3600:.1f} h after the arrival perilune, "
-            f"ends the capture at least {(end - t0) / 3600:.1f} h after it, later than the "
-            f"{(f.deadline_s - t0) / 86400:g} days allowed (--max-days; at least "
-            f"{math.ceil((end - t0) / 8640.0) / 10:g} days would let it)")
-
-
-def _rest_s(nplan: CapturePlan, i: int) -> float:
-    """The shortest time from a make-up of burn ``i`` to the last burn, s (:func:`_too_late`)."""
-    shortest = shortest_free_period_s(nplan, i) or 0.0
-    return shortest + sum(nplan.coast_s(k) for k in range(i + 1, nplan.n_burns - 1))
+    if f.i + 1 < f.nplan.n_burns:
+        shortest = shortest_free_period_s(f.nplan, f.i)
+        short_by = shortest - _longest_s(f, t_s, window)
+    else:
+        short_by = t_s + 60.0 * window[0] - f.deadline_s
+    if short_by <= 0:
+        return ""
+    need_days = (f.deadline_s + short_by - t0) / 86400.0
+    return (f"a make-up {where} (its window closes "
+            f"{(t_s + 60.0 * window[1] - t0) / 3600:.1f} h after the arrival perilune) cannot "
+            f"end the capture within the {(f.deadline_s - t0) / 86400:g} days allowed "
+            f"(--max-days; at least {math.ceil(need_days * 10) / 10:g} days would let it)")
 
 
 def _at_perilune(f: Fault, k: int):
@@ -308,20 +326,21 @@ def _at_perilune(f: Fault, k: int):
     if r > soi:
         return (f"{r:,.0f} km from the Moon, outside its sphere of influence ({soi:,.0f} km), "
                 f"the spacecraft's return is the Earth's to decide, not a lunar orbit's")
-    late = _too_late(f, f.t_s + 60.0 * window[0], f"{window[0] / 60:.1f} h after the fault")
+    late = _too_late(f, f.t_s, window, f"{window[0] / 60:.1f} h after the fault")
     if late:
         return late + _waiting_cost(f, x, window)
+    longest = _longest_s(f, f.t_s, window)
+    fit = f.fit_for(window, longest)
     # the window's fit covers a perilune within max_period_s of the fault; a later one
     # is flown with the fit made for its own window
-    coast = f.coast if 60.0 * window[1] <= f.max_period_s else \
-        replace(f.coast, fit=f.fit_for(window))
+    coast = f.coast if 60.0 * window[1] <= f.max_period_s else replace(f.coast, fit=fit)
     t_b = f.t_s + 60.0 * window[0]
     x_b = propagate(coast, f.t_s, x, t_b).final
     w_b = from_opening(window)
     why = physical_bound(f.nplan, f.i, t_b, x_b, w_b, f.max_period_s, coast)
     if why:
         return why
-    return Place(t_b, x_b, w_b, f.fit_for(window), coast, f.deadline_s)
+    return Place(t_b, x_b, w_b, fit, coast, f.deadline_s, longest)
 
 
 def _waiting_cost(f: Fault, x, window: tuple) -> str:
