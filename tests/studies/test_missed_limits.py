@@ -168,12 +168,12 @@ def test_solver_warnings_are_counted_and_kept_off_stderr(capfd):
 # ---------------------------------------------------------------------- --max-days
 @pytest.mark.parametrize("days, match", [
     (0.0, "positive"), (-1.0, "positive"), (math.nan, "positive"), (True, "positive"),
-    (1.0, "may last 1.23 days; give at least that"), (3.6, "at most 3.5"),
+    (1.0, "may last 1.23 days; give at least that"), (3.42, "at most 3.41 days"),
 ])
 def test_max_days_out_of_range_is_an_input_error(days, match):
     """Below the nominal's longest capture (the 150 N plan, its orbit after burn 1 up to
     24 h + 2 h: 29.5 h) or beyond one ephemeris fit (4 days less the final circle's 2 h
-    coast and 9 h of margins: 3.5 days)."""
+    coast, a 2 h window, 2 h of coast slack and 8 h of margins: 3.41 days)."""
     plan = load_plan("song2011-150N")
     with pytest.raises(InputError, match=match):
         check_max_days(plan, 1, 24.0, days)
@@ -242,11 +242,12 @@ def _mean_anomaly(x) -> float:
 
 
 def test_a_perilune_beyond_max_days_is_refused_naming_it(monkeypatch):
-    """With the deadline 1.5 days after the arrival perilune, the next perilune (37.5 h
-    after it) leaves no room for the shortest make-up orbit (3.6 h), the coast after it
-    (3.5 h) and the coast's 2 h of slack: no recovery, the reason naming --max-days, how
-    many days would let it, and what the make-up there would cost; the window's refusal
-    comes first."""
+    """With the deadline 1.5 days after the arrival perilune, a make-up at the next
+    perilune (its window opening 30 min before it, 38 h after the arrival by Kepler), the
+    shortest orbit after it (3.6 h) and the coast after that (3.5 h) end the capture 45 h
+    after the arrival: no recovery, the reason naming
+    --max-days, when the capture would end at the earliest, and what the make-up there
+    would cost; the window's refusal comes first."""
     plan, legs, t_r, x = _on_a_long_orbit()
     rec, refused = _stand_ins(monkeypatch, lambda a: pytest.fail("nothing to solve"))
     coast = Model("two-body", 0.0, plan.engine.isp_s)
@@ -255,10 +256,14 @@ def test_a_perilune_beyond_max_days_is_refused_naming_it(monkeypatch):
                                deadline_s=plan.nominal_perilunes_s[0] + 1.5 * 86400.0)
     assert how == "no recovery"
     assert why.startswith(refused + "; no make-up at the next perilune: ")
-    assert "cannot end the capture within the 1.5 days allowed (--max-days; at least" in why
+    assert "later than the 1.5 days allowed (--max-days)" in why
     assert "an impulsive make-up would cost about" in why
-    needed = float(why.split("at least ")[-1].split(" days")[0])
-    assert 1.5 < needed < 3.0
+    end_h = float(why.split("ends the capture at least ")[1].split(" h")[0])
+    n = math.sqrt(MU / ((MU * (38 * 3600.0 / (2 * math.pi)) ** 2) ** (1 / 3)) ** 3)
+    t_open = t_r + float(2 * math.pi / n - _mean_anomaly(x) / n) - 1800.0   # +-30 min
+    from lunarcap.studies.missed.orbits import shortest_free_period_s
+    end = t_open + shortest_free_period_s(plan, 0) + plan.coast_s(1)
+    assert end_h == pytest.approx((end - plan.nominal_perilunes_s[0]) / 3600.0, abs=0.051)
 
 
 @pytest.mark.parametrize("dynamics, tried", [("two-body", 1), ("full", 2)])
@@ -334,14 +339,15 @@ def test_the_book_case_at_0_9_and_720_min_waits_for_the_next_perilune():
     dynamics): its row said "no recovery ... a make-up at a later perilune or a longer
     --max-period-h could recover it". The spacecraft is bound (a 38 h orbit): the make-up
     now waits for the next perilune and is verified, the capture ending within 3 days.
-    With --max-days 2 it is refused naming --max-days, and the days it says would be
-    needed are no more than the recovered capture took."""
+    With --max-days 1.6 (38.4 h, the next perilune at 37.6 h) it is refused naming
+    --max-days, and the earliest end it states is no later than the recovered capture's
+    (a lower bound)."""
     plan = load_plan("song2011-150N").with_dynamics("two-body")
     from lunarcap.repro.cache import caching
 
     with caching(False):
         r = case_result(plan, 1, 0.9, 720.0)
-        short = case_result(plan, 1, 0.9, 720.0, max_days=2.0)
+        short = case_result(plan, 1, 0.9, 720.0, max_days=1.6)
     assert r["status"] == "recovered" and r["all_verified"], r["reason"]
     assert r["reason"].startswith("make-up burn at the next perilune (")
     assert "in the window, decided by --max-period-h (24 h)" in r["reason"]
@@ -349,6 +355,6 @@ def test_the_book_case_at_0_9_and_720_min_waits_for_the_next_perilune():
     wait_h = r["recovery_burns"][0]["ignition_min_after_fault"] / 60.0
     assert r["cutoff_period_h"] - 1.0 < wait_h + 12.0 < r["cutoff_period_h"] + 0.5
     assert short["status"] == "no recovery", short["reason"]
-    assert "within the 2 days allowed (--max-days; at least" in short["reason"]
-    needed = float(short["reason"].split("(--max-days; at least ")[1].split(" days")[0])
-    assert 2.0 < needed <= math.ceil(r["time_to_final_orbit_h"] / 2.4) / 10
+    assert "later than the 1.6 days allowed (--max-days)" in short["reason"]
+    end_h = float(short["reason"].split("ends the capture at least ")[1].split(" h")[0])
+    assert 38.4 < end_h <= r["time_to_final_orbit_h"] + 0.05, (end_h, r["time_to_final_orbit_h"])

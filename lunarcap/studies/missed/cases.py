@@ -17,13 +17,13 @@ import math
 import numpy as np
 
 from lunarcap.errors import InputError, number_list
-from lunarcap.mission.plan import CapturePlan
+from lunarcap.mission.plan import MAX_START_MIN, CapturePlan
 from lunarcap.repro.cache import caching, code_version, position
 from lunarcap.studies.burn_count.counts import MAX_FIT_SPAN_S
 from lunarcap.studies.campaign import TableFormat
 from lunarcap.studies.missed import MODULES
 from lunarcap.studies.missed.contingency import DEFAULT_WINDOW_MIN, late_case, missed_case
-from lunarcap.studies.missed.makeup import DEADLINE_MARGIN_S
+from lunarcap.studies.missed.makeup import COAST_SLACK_S
 from lunarcap.studies.missed.messages import counted
 from lunarcap.studies.missed.nominal import DEFAULT_MAX_DAYS, DEFAULT_MAX_PERIOD_H, nominal_of
 from lunarcap.studies.study import Study, check_workers, json_list, plan_columns
@@ -81,9 +81,9 @@ def check_max_days(plan: CapturePlan, burn, max_period_h, max_days) -> None:
 
     At least the longest nominal capture (the orbit after ``burn`` at ``max_period_h``,
     + 2 h, the plan's other coasts to its last burn): the penalty compares a recovery with
-    a nominal that meets the same deadline. At most what one ephemeris fit covers (4 days,
-    from an hour before the arrival perilune to an hour after the deadline, the final
-    coast and its 7 h of margins).
+    a nominal that meets the same deadline. At most what one ephemeris fit covers (4 days:
+    from an hour before the arrival perilune to the deadline, a make-up window's 2 h, the
+    make-up coast's 2 h of slack, the final coast and the fit's 7 h of margins).
     """
     if isinstance(max_days, bool) or not isinstance(max_days, (int, float)) or \
             not math.isfinite(max_days) or max_days <= 0:
@@ -98,8 +98,9 @@ def check_max_days(plan: CapturePlan, burn, max_period_h, max_days) -> None:
     nominal_s = t[plan.n_burns - 1] - t[0]
     if i < plan.n_burns - 1:
         nominal_s += 3600.0 * max_period_h + 7200.0 - plan.coast_s(i)
-    last_s = plan.coast_s(plan.n_burns - 1)
-    most = (MAX_FIT_SPAN_S - 7 * 3600.0 - 2 * DEADLINE_MARGIN_S - last_s) / 86400.0
+    last_s = plan.coast_s(plan.n_burns - 1)   # the fit's 7 h, an hour before the arrival,
+    most = (MAX_FIT_SPAN_S - 8 * 3600.0 - 60.0 * MAX_START_MIN - COAST_SLACK_S   # a window,
+            - last_s) / 86400.0                                    # the slack, the circle
     if max_days * 86400.0 < nominal_s:
         raise InputError(f"--max-days {max_days:g}: plan {plan.name}'s capture, the orbit after "
                          f"burn {burn} up to {max_period_h:g} h (--max-period-h), may last "

@@ -40,7 +40,7 @@ from lunarcap.optim.problem import MIN_ORBIT_WINDOW_MIN
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.state import State
-from lunarcap.studies.missed.makeup import COAST_SLACK_S, Place
+from lunarcap.studies.missed.makeup import Place
 from lunarcap.studies.missed.orbits import (
     classify,
     make_up_estimate,
@@ -267,41 +267,42 @@ def _outcome(found: list, refused: list, failed: list) -> tuple:
         for name, why in refused), None
 
 
+def _later_s(f: Fault) -> float:
+    """The nominal's coasts from the orbit after burn ``i`` to the last burn, s."""
+    return sum(f.nplan.coast_s(k) for k in range(f.i + 1, f.nplan.n_burns - 1))
+
+
 def _longest_s(f: Fault, t_s: float, window: tuple) -> float:
     """The longest make-up orbit of a make-up in ``window`` (min after ``t_s``), s.
 
-    ``--max-period-h``, or shorter where the deadline leaves less: the orbit's coast
-    (bounded by the window's close, the orbit and :data:`~lunarcap.studies.missed.makeup.
-    COAST_SLACK_S`) and the nominal's coasts to the last burn must end by it. The last
-    burn's make-up orbit is the final orbit, not bounded by it: ``--max-period-h``.
+    ``--max-period-h``, or shorter where the deadline leaves less: from the window's
+    opening, that orbit and the nominal's coasts to the last burn must end by it (the NLP
+    then carries the deadline itself, :func:`~lunarcap.studies.missed.makeup.
+    _solve_recovery`). The last burn's make-up orbit is the final orbit: ``--max-period-h``.
     """
     if f.i + 1 >= f.nplan.n_burns:
         return f.max_period_s
-    later = sum(f.nplan.coast_s(k) for k in range(f.i + 1, f.nplan.n_burns - 1))
-    return min(f.max_period_s,
-               f.deadline_s - t_s - 60.0 * window[1] - COAST_SLACK_S - later)
+    return min(f.max_period_s, f.deadline_s - t_s - 60.0 * window[0] - _later_s(f))
 
 
 def _too_late(f: Fault, t_s: float, window: tuple, where: str) -> str:
     """Why a make-up in ``window`` (min after ``t_s``) cannot end the capture in time, or "".
 
-    An intermediate burn's make-up needs room for the shortest free orbit after it
-    (:func:`~lunarcap.studies.missed.orbits.shortest_free_period_s`) within
-    :func:`_longest_s`; the last burn's, to ignite by the deadline.
+    The earliest end of such a capture: the make-up igniting when the window opens, the
+    shortest free orbit after it (an intermediate burn's,
+    :func:`~lunarcap.studies.missed.orbits.shortest_free_period_s`), the nominal's coasts
+    to the last burn; for the last burn, its ignition.
     """
     t0 = f.nplan.nominal_perilunes_s[0]
+    end = t_s + 60.0 * window[0]
     if f.i + 1 < f.nplan.n_burns:
-        shortest = shortest_free_period_s(f.nplan, f.i)
-        short_by = shortest - _longest_s(f, t_s, window)
-    else:
-        short_by = t_s + 60.0 * window[0] - f.deadline_s
-    if short_by <= 0:
+        end += shortest_free_period_s(f.nplan, f.i) + _later_s(f)
+    if end <= f.deadline_s:
         return ""
-    need_days = (f.deadline_s + short_by - t0) / 86400.0
-    return (f"a make-up {where} (its window closes "
-            f"{(t_s + 60.0 * window[1] - t0) / 3600:.1f} h after the arrival perilune) cannot "
-            f"end the capture within the {(f.deadline_s - t0) / 86400:g} days allowed "
-            f"(--max-days; at least {math.ceil(need_days * 10) / 10:g} days would let it)")
+    return (f"a make-up {where} (its window opens "
+            f"{(t_s + 60.0 * window[0] - t0) / 3600:.1f} h after the arrival perilune) ends "
+            f"the capture at least {(end - t0) / 3600:.1f} h after it, later than the "
+            f"{(f.deadline_s - t0) / 86400:g} days allowed (--max-days)")
 
 
 def _at_perilune(f: Fault, k: int):
