@@ -14,10 +14,15 @@ The recovery from the state the fault leaves is :func:`lunarcap.studies.missed.r
 recovery`. The **penalty** is measured on one basis: the delta-V from the state before
 burn n to the final orbit, finite burns, same dynamics: (delta-V of the partial burn + the
 recovery's) minus (the nominal burns n, n+1, ...; :mod:`lunarcap.studies.missed.nominal`,
-which has the recovery's freedoms). Statuses: "recovered" (verified), "no recovery" (the
-physical bound, or a re-plan the plan's own checks refuse, with their message), "failed"
-(any solver failure, with IPOPT's status: a solver's verdict is not a physical reason, so
-it is never reported as "no recovery").
+which has the recovery's freedoms, except splitting the burn over two perilunes: a
+make-up that waits for one may cost less, and its reason says why). The capture's last
+burn ends within ``max_days`` of the arrival perilune (``--max-days``). Statuses:
+"recovered" (verified), "no recovery" (every place of the make-up refused by physics or
+by a limit the reason names, or a re-plan the plan's own checks refuse, with their
+message), "failed" (any solver failure, with IPOPT's status: a solver's verdict is not a
+physical reason, so it is never reported as "no recovery"). The CasADi and CVODES
+warning lines a case's solves write are counted (``solver_warnings``), not printed
+(:mod:`lunarcap.studies.missed.messages`).
 """
 
 from __future__ import annotations

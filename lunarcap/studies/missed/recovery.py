@@ -1,7 +1,7 @@
 """The recovery after a cut-off or a late ignition: where the make-up burn is made.
 
 From the state a fault leaves at ``t_r`` (burn n cut off, after the delay; or burn n's
-late ignition), :func:`recovery` answers in one of four ways, in this order:
+late ignition), :func:`recovery` answers in one of three ways:
 
 1. **Nothing to make up** (:func:`nothing_to_make_up`): coasting from that state, the
    spacecraft meets burn n's target where the nominal met it, within the verification
@@ -11,18 +11,23 @@ late ignition), :func:`recovery` answers in one of four ways, in this order:
    it: the orbit left is checked with the full gate, and a burn that is not needed is no
    burn (the transcription resolves burns of 0.5 s and more,
    :data:`lunarcap.mission.plan.MIN_BURN_S`).
-2. **No recovery**, with the reason physics gives before any solve
-   (:func:`lunarcap.studies.missed.orbits.physical_bound`).
-3. **A make-up burn in the window** igniting within ``window_min`` after ``t_r`` (a late
-   ignition: exactly then), solved from the declared starts
-   (:func:`lunarcap.studies.missed.starts.walk`).
-4. **The make-up burn at the next perilune** (a cut-off only, when 3 found no verified
-   recovery or one dearer than the nominal burn itself, :func:`dearer_than_the_burn`):
-   the same re-plan with the make-up window around the spacecraft's next perilune
-   (:func:`next_perilune_window`), the cheaper of the two kept. The final orbit passes
-   only through radii between its perilune and apolune: a cut-off of the last burn
-   followed by a delay leaves the spacecraft above them until it comes back to perilune,
-   where the burn is done again.
+2. **A make-up burn** at the first of the declared places (:data:`WAITS`, each a
+   :class:`Wait`) that gives a verified recovery, solved there from the declared starts
+   (:func:`lunarcap.studies.missed.starts.walk`): **in the window** igniting within
+   ``window_min`` after ``t_r`` (a late ignition: exactly then); **at the next
+   perilune** of the orbit the fault left (a cut-off only), where the window gives no
+   verified recovery, is refused, or costs more than the nominal burn itself
+   (:func:`dearer_than_the_burn`; the cheaper of the two kept); **at a later perilune**
+   (up to :data:`LATER_PERILUNES`) in perturbed dynamics where the one before failed.
+   The final orbit passes only through radii between its perilune and apolune: a cut-off
+   of the last burn followed by a delay leaves the spacecraft above them until it comes
+   back to perilune, where the burn is done again.
+3. **No recovery**, every place refused with its reason before any solve: physics (the
+   spacecraft outside the Moon's sphere of influence; on an open orbit, with no perilune
+   to come back to) or a limit the user sets, named with what lifting it would take
+   (``--max-period-h``: :func:`lunarcap.studies.missed.orbits.physical_bound`;
+   ``--max-days``: the capture from there cannot end by the deadline, :func:`_too_late`).
+   A solver's failure at every place tried is raised, not called "no recovery".
 """
 
 from __future__ import annotations
