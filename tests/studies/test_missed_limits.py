@@ -243,9 +243,9 @@ def _mean_anomaly(x) -> float:
 
 def test_a_perilune_beyond_max_days_is_refused_naming_it(monkeypatch):
     """With the deadline 1.5 days after the arrival perilune, a make-up at the next
-    perilune (its window opening 30 min before it, 38 h after the arrival by Kepler), the
-    shortest orbit after it (3.6 h) and the coast after that (3.5 h) end the capture 45 h
-    after the arrival: no recovery, the reason naming
+    perilune (38 h after the arrival by Kepler), the shortest orbit after it (3.6 h: the
+    next burn is made at its perilune) and the coast after that (3.5 h) end the capture
+    45 h after the arrival: no recovery, the reason naming
     --max-days, when the capture would end at the earliest, and what the make-up there
     would cost; the window's refusal comes first."""
     plan, legs, t_r, x = _on_a_long_orbit()
@@ -260,9 +260,9 @@ def test_a_perilune_beyond_max_days_is_refused_naming_it(monkeypatch):
     assert "an impulsive make-up would cost about" in why
     end_h = float(why.split("ends the capture at least ")[1].split(" h")[0])
     n = math.sqrt(MU / ((MU * (38 * 3600.0 / (2 * math.pi)) ** 2) ** (1 / 3)) ** 3)
-    t_open = t_r + float(2 * math.pi / n - _mean_anomaly(x) / n) - 1800.0   # +-30 min
+    t_peri = t_r + float(2 * math.pi / n - _mean_anomaly(x) / n)
     from lunarcap.studies.missed.orbits import shortest_free_period_s
-    end = t_open + shortest_free_period_s(plan, 0) + plan.coast_s(1)
+    end = t_peri + shortest_free_period_s(plan, 0) + plan.coast_s(1)
     assert end_h == pytest.approx((end - plan.nominal_perilunes_s[0]) / 3600.0, abs=0.051)
 
 

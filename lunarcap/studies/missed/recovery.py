@@ -157,10 +157,10 @@ class Wait:
 def _window(f: Fault):
     """The make-up in its window after the fault: refused by physics or the limits."""
     why = physical_bound(f.nplan, f.i, f.t_s, f.x, f.window_min, f.max_period_s, f.coast) \
-        or _too_late(f, f.t_s, f.window_min, "in the window")
+        or _too_late(f, f.t_s + 60.0 * f.window_min[0], "in the window")
     if why:
         return why
-    longest = _longest_s(f, f.t_s, f.window_min)
+    longest = _longest_s(f, f.t_s + 60.0 * f.window_min[0])
     return Place(f.t_s, f.x, f.window_min, f.fit_for(f.window_min, longest), f.coast,
                  f.deadline_s, longest)
 
@@ -277,36 +277,36 @@ def _later_s(f: Fault) -> float:
     return sum(f.nplan.coast_s(k) for k in range(f.i + 1, f.nplan.n_burns - 1))
 
 
-def _longest_s(f: Fault, t_s: float, window: tuple) -> float:
-    """The longest make-up orbit of a make-up in ``window`` (min after ``t_s``), s.
+def _longest_s(f: Fault, t_make_s: float) -> float:
+    """The longest orbit after a make-up made at ``t_make_s``, s.
 
-    ``--max-period-h``, or shorter where the deadline leaves less: from the window's
-    opening, that orbit and the nominal's coasts to the last burn must end by it (the NLP
-    then carries the deadline itself, :func:`~lunarcap.studies.missed.makeup.
-    _solve_recovery`). The last burn's make-up orbit is the final orbit: ``--max-period-h``.
+    ``--max-period-h``, or shorter where the deadline leaves less: that orbit and the
+    nominal's coasts to the last burn must end by it (the NLP then carries the deadline
+    itself, :func:`~lunarcap.studies.missed.makeup._solve_recovery`). The last burn's
+    make-up orbit is the final orbit: ``--max-period-h``.
     """
     if f.i + 1 >= f.nplan.n_burns:
         return f.max_period_s
-    return min(f.max_period_s, f.deadline_s - t_s - 60.0 * window[0] - _later_s(f))
+    return min(f.max_period_s, f.deadline_s - t_make_s - _later_s(f))
 
 
-def _too_late(f: Fault, t_s: float, window: tuple, where: str) -> str:
-    """Why a make-up in ``window`` (min after ``t_s``) cannot end the capture in time, or "".
+def _too_late(f: Fault, t_make_s: float, where: str) -> str:
+    """Why a make-up made at ``t_make_s`` cannot end the capture in time, or "".
 
-    The earliest end of such a capture: the make-up igniting when the window opens, the
-    shortest free orbit after it (an intermediate burn's,
-    :func:`~lunarcap.studies.missed.orbits.shortest_free_period_s`), the nominal's coasts
-    to the last burn; for the last burn, its ignition.
+    The earliest end of such a capture: the make-up then, the shortest free orbit after
+    it (an intermediate burn's, :func:`~lunarcap.studies.missed.orbits.
+    shortest_free_period_s`: the next burn is made at that orbit's perilune, one period
+    after the make-up's), the nominal's coasts to the last burn; for the last burn, its
+    ignition. ``t_make_s``: the window's opening, or the perilune a make-up waits for.
     """
     t0 = f.nplan.nominal_perilunes_s[0]
-    end = t_s + 60.0 * window[0]
+    end = t_make_s
     if f.i + 1 < f.nplan.n_burns:
         end += shortest_free_period_s(f.nplan, f.i) + _later_s(f)
     if end <= f.deadline_s:
         return ""
-    return (f"a make-up {where} (its window opens "
-            f"{(t_s + 60.0 * window[0] - t0) / 3600:.1f} h after the arrival perilune) ends "
-            f"the capture at least {(end - t0) / 3600:.1f} h after it, later than the "
+    return (f"a make-up {where} ({(t_make_s - t0) / 3600:.1f} h after the arrival perilune) "
+            f"ends the capture at least {(end - t0) / 3600:.1f} h after it, later than the "
             f"{(f.deadline_s - t0) / 86400:g} days allowed (--max-days)")
 
 
@@ -332,10 +332,11 @@ def _at_perilune(f: Fault, k: int):
     if r > soi:
         return (f"{r:,.0f} km from the Moon, outside its sphere of influence ({soi:,.0f} km), "
                 f"the spacecraft's return is the Earth's to decide, not a lunar orbit's")
-    late = _too_late(f, f.t_s, window, f"{window[0] / 60:.1f} h after the fault")
+    t_peri = f.t_s + 30.0 * (window[0] + window[1])   # its centre
+    late = _too_late(f, t_peri, f"{(t_peri - f.t_s) / 3600:.1f} h after the fault")
     if late:
         return late + _waiting_cost(f, x, window)
-    longest = _longest_s(f, f.t_s, window)
+    longest = _longest_s(f, t_peri)
     fit = f.fit_for(window, longest)
     # the window's fit covers a perilune within max_period_s of the fault; a later one
     # is flown with the fit made for its own window
