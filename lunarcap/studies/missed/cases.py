@@ -214,13 +214,14 @@ def format_rows(result, plan: CapturePlan, burn: int) -> str:
     """The study's text: one line per case, then the run."""
     rows = result.table.to_dict("records")
     h = rows[0]["max_period_h"] if rows else DEFAULT_MAX_PERIOD_H
-    days = rows[0]["max_days"] if rows else DEFAULT_MAX_DAYS
+    days = rows[0].get("max_days") if rows else DEFAULT_MAX_DAYS
+    deadline = (f", the capture's last burn within {days:g} days of the arrival perilune"
+                if isinstance(days, (int, float)) and math.isfinite(days) else "")
     lines = [f"Burn {burn} of plan {plan.name} ({plan.engine.thrust_N:g} N / "
              f"{plan.engine.isp_s:g} s, {plan.dynamics} dynamics) cut off (the engine stops "
              f"after a fraction of the burn, the fault lasts the delay) or ignited late; the "
              f"rest of the capture re-optimised to the same final orbit, the orbit after "
-             f"burn {burn} at most {h:g} h in the recovery and the nominal alike, the "
-             f"capture's last burn within {days:g} days of the arrival perilune; "
+             f"burn {burn} at most {h:g} h in the recovery and the nominal alike{deadline}; "
              f"penalty = partial + recovery delta-V minus the nominal burns "
              f"{burn}..{plan.n_burns}",
              f"{'contingency':<13} {'fraction':>8} {'delay min':>9} {'late min':>8} | "
