@@ -45,7 +45,7 @@ from lunarcap.optim.problem import MIN_ORBIT_WINDOW_MIN
 from lunarcap.physics.dynamics import Model
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.state import State
-from lunarcap.studies.missed.makeup import Place
+from lunarcap.studies.missed.makeup import DEADLINE_MARGIN_S, Place
 from lunarcap.studies.missed.orbits import (
     classify,
     make_up_estimate,
@@ -298,16 +298,25 @@ def _too_late(f: Fault, t_make_s: float, where: str) -> str:
     shortest_free_period_s`: the next burn is made at that orbit's perilune, one period
     after the make-up's), the nominal's coasts to the last burn; for the last burn, its
     ignition. ``t_make_s``: the window's opening, or the perilune a make-up waits for.
+    Refused too where that end leaves less than
+    :data:`~lunarcap.studies.missed.makeup.DEADLINE_MARGIN_S` before the deadline: the
+    burns (impulses in this count) and the drift of the perilunes need it: with less,
+    the make-up orbit is squeezed to within minutes of the shortest and the NLP does not
+    converge.
     """
     t0 = f.nplan.nominal_perilunes_s[0]
     end = t_make_s
     if f.i + 1 < f.nplan.n_burns:
         end += shortest_free_period_s(f.nplan, f.i) + _later_s(f)
-    if end <= f.deadline_s:
+    if end + DEADLINE_MARGIN_S <= f.deadline_s:
         return ""
+    days = (f.deadline_s - t0) / 86400.0
     return (f"a make-up {where} ({(t_make_s - t0) / 3600:.1f} h after the arrival perilune) "
-            f"ends the capture at least {(end - t0) / 3600:.1f} h after it, later than the "
-            f"{(f.deadline_s - t0) / 86400:g} days allowed (--max-days)")
+            f"ends the capture at least {(end - t0) / 3600:.1f} h after it, "
+            + (f"later than the {days:g} days allowed (--max-days)" if end > f.deadline_s
+               else f"less than {DEADLINE_MARGIN_S / 3600:g} h before the {days:g} days "
+                    f"allowed run out (--max-days; the burns themselves, minutes each, and "
+                    f"the perilunes' drift need that room)"))
 
 
 def _at_perilune(f: Fault, k: int):

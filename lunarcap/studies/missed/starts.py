@@ -16,8 +16,8 @@ with; :func:`walk` tries them in order and keeps the cheapest verified recovery:
   lands on it. Far from the Moon on an outbound leg (a long fault after a cut-off that
   left a hyperbola) the others thrust against the velocity, which is mostly radial
   there, and remove the transverse speed a low perilune needs; the aimed one keeps it.
-  It starts on the second mesh: on the first, its converged solutions failed
-  verification by thousands of km (the 450 N plan, a 0.4 cut-off and 240 min).
+  It starts on the second mesh: on the first, where the make-up burn is long and far
+  out, a converged solution may fail verification by thousands of km.
 * any other dynamics (:data:`STARTS`): first the same recovery solved in two-body
   dynamics and flown in the plan's as the guess (a continuation in the forces), kept at
   once if it costs at most :data:`CONTINUATION_MARGIN` more than that two-body recovery
