@@ -95,7 +95,7 @@ def test_no_recovery_beats_the_nominal_with_its_freedoms(plans, cases, nominals)
     for (name, burn, f, d, late), r in cases.items():
         if r["status"] != "recovered":
             continue
-        if not r["reason"].startswith("make-up burn at the next perilune"):
+        if not r["reason"].startswith("make-up burn at"):   # not in the window
             assert r["penalty_mps"] >= -0.05, (name, burn, f, d, late, r["penalty_mps"])
             continue
         # two burns where the nominal had one: not below the two-body impulses from the
@@ -135,6 +135,43 @@ def test_the_last_burn_cut_off_half_way_with_no_delay_resumes_at_no_cost(plans, 
         r = cases[(p.name, p.n_burns, 0.5, 0.0, None)]
         assert r["status"] == "recovered" and not r["reason"], (p.name, r["reason"])
         assert abs(r["penalty_mps"]) < 0.05, (p.name, r["penalty_mps"])
+
+
+#: Long faults: burn 1 cut off late in the burn, 12 h to clear the fault (as the book's
+#: 0.9 / 720 min case).
+LONG_FAULTS = ((0.75, 720.0), (0.9, 720.0))
+#: What may decide a case without recovery: the bound on the make-up orbit, the deadline,
+#: an orbit that does not come back, the Moon's sphere of influence.
+DECIDERS = ("--max-period-h", "--max-days", "open orbit", "sphere of influence")
+
+
+@pytest.fixture(scope="module")
+def long_faults(plans, nominals):
+    """{(plan name, fraction, delay): row} of the long faults, computed once."""
+    with caching(False):
+        return {(p.name, f, d): case_result(p, 1, f, d, nominal=nominals[(p.name, 1)])
+                for p in plans for f, d in LONG_FAULTS}
+
+
+def test_a_long_fault_waits_for_a_perilune_or_names_what_decides_it(long_faults):
+    """Every long fault is recovered and verified within the 3 days, or refused with a
+    reason naming what decides each place (before issue 37 a captured spacecraft whose
+    window the bound refused was "no recovery" although its next perilune was within
+    reach). A make-up that waited ignites about the perilune of the orbit the cut-off
+    left: 12 h of fault plus the wait is that orbit's period, give or take the window
+    about the perilune (at most 1 h each way) and the burn flown before the cut-off."""
+    waited = 0
+    for key, r in long_faults.items():
+        assert r["status"] in ("recovered", "no recovery"), (key, r["status"], r["reason"])
+        if r["status"] == "no recovery":
+            assert any(d in r["reason"] for d in DECIDERS), (key, r["reason"])
+            continue
+        assert r["all_verified"] and r["time_to_final_orbit_h"] <= 72.0, key
+        if r["reason"].startswith("make-up burn at the next perilune"):
+            waited += 1
+            wait_h = r["recovery_burns"][0]["ignition_min_after_fault"] / 60.0
+            assert abs(wait_h + key[2] / 60.0 - r["cutoff_period_h"]) < 1.5, (key, wait_h)
+    assert waited, "no long fault waited for a perilune"
 
 
 def test_the_seed_24_family_is_drawn_again_as_the_histories_name_it():

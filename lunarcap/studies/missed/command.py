@@ -30,7 +30,12 @@ def options(p) -> None:
                         "(default: none)")
     p.add_argument("--max-period-h", default="24", metavar="H",
                    help="longest period of the orbit after the burn, in the recovery and "
-                        "in the nominal it is compared with, h (default 24)")
+                        "in the nominal it is compared with, h (default 24); a row it "
+                        "decides says so, and what a longer one would take")
+    p.add_argument("--max-days", default="3", metavar="D",
+                   help="the capture's last burn ends within D days of the arrival perilune; "
+                        "a make-up may wait for a later perilune within it (default 3, as "
+                        "lunarcap burns); a row it decides says so")
 
 
 def prepare(args, plan) -> StudyRun:
@@ -44,6 +49,7 @@ def prepare(args, plan) -> StudyRun:
 
     burn = integer("--burn", args.burn, minimum=1)
     max_period_h = number("--max-period-h", args.max_period_h, "h", positive=True)
+    max_days = number("--max-days", args.max_days, "days", positive=True)
     fractions = args.fractions
     if fractions is None:   # the default cut-offs, unless only late ignitions are asked
         fractions = None if args.late_min else DEFAULT_FRACTIONS
@@ -53,19 +59,22 @@ def prepare(args, plan) -> StudyRun:
     delays = number_list("--delays-min", args.delays_min, "min", minimum=0.0, distinct=True)
     late = None if args.late_min is None else \
         number_list("--late-min", args.late_min, "min", minimum=0.0, distinct=True)
+    missed.check_max_days(plan, burn, max_period_h, max_days)
     return StudyRun.of(missed.STUDY, lambda: missed.run_missed(
         plan, burn, fractions, delays, max_period_h, out=args.out,
         workers=args.workers, scheduler=args.scheduler, progress=not args.no_progress,
-        late_min=late), {"plan": plan.to_dict(), "burn": burn, "max_period_h": max_period_h},
-        plan=plan, burn=burn)
+        late_min=late, max_days=max_days),
+        {"plan": plan.to_dict(), "burn": burn, "max_period_h": max_period_h,
+         "max_days": max_days}, plan=plan, burn=burn)
 
 
 #: The ``--json`` records of ``lunarcap missed`` (see :data:`lunarcap.schemas.RECORDS`).
 RECORDS = {
-    "missed": [{"plan": "plan_file"}, "burn", "max_period_h", "table", {"run": "run"},
-               {"cases": "missed_case"}],
+    "missed": [{"plan": "plan_file"}, "burn", "max_period_h", "max_days", "table",
+               {"run": "run"}, {"cases": "missed_case"}],
     "missed_case": ["plan", "plan_id", "thrust_N", "isp_s", "dynamics", "burn", "contingency",
-                    "fraction", "delay_min", "late_min", "max_period_h", "status", "reason",
+                    "fraction", "delay_min", "late_min", "max_period_h", "max_days", "status",
+                    "reason",
                     "captured", "cutoff_orbit", "cutoff_epoch", "cutoff_min_after_ignition",
                     "nominal_burn_duration_min", "partial_delta_v_mps",
                     "nominal_burn_delta_v_mps", "cutoff_energy_km2ps2", "cutoff_e",
@@ -75,7 +84,8 @@ RECORDS = {
                     "make_up_estimate_mps", "make_up_period_h", "nominal_period_after_burn_h",
                     "first_coast_h", "make_up_estimate_h", "time_to_final_orbit_h",
                     "nominal_time_to_final_orbit_h", "all_verified", "ipopt_status",
-                    "task_wall_s", "worker", "code_version", "completed_utc", "error",
+                    "solver_warnings", "task_wall_s", "worker", "code_version", "completed_utc",
+                    "error",
                     {"recovery_burns": "recovery_burn"}],
     "recovery_burn": ["burn", "target_orbit", "ignition_epoch", "ignition_min_after_fault",
                       "burn_duration_min", "delta_v_mps", "verified"],
@@ -84,6 +94,7 @@ RECORDS = {
 COMMAND = StudyCommand(
     "missed", "missed thrust or late ignition: a burn gone wrong, the capture re-planned",
     options, prepare, dask="case",
-    signed=("--burn", "--fractions", "--delays-min", "--late-min", "--max-period-h"),
+    signed=("--burn", "--fractions", "--delays-min", "--late-min", "--max-period-h",
+            "--max-days"),
     records=RECORDS, arrays=frozenset({"missed_case", "recovery_burn"}),
-    glossary="glossary.yaml")
+    run_keys=("nominal_solver_warnings",), glossary="glossary.yaml")

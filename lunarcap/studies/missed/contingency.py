@@ -14,10 +14,15 @@ The recovery from the state the fault leaves is :func:`lunarcap.studies.missed.r
 recovery`. The **penalty** is measured on one basis: the delta-V from the state before
 burn n to the final orbit, finite burns, same dynamics: (delta-V of the partial burn + the
 recovery's) minus (the nominal burns n, n+1, ...; :mod:`lunarcap.studies.missed.nominal`,
-which has the recovery's freedoms). Statuses: "recovered" (verified), "no recovery" (the
-physical bound, or a re-plan the plan's own checks refuse, with their message), "failed"
-(any solver failure, with IPOPT's status: a solver's verdict is not a physical reason, so
-it is never reported as "no recovery").
+which has the recovery's freedoms, except splitting the burn over two perilunes: a
+make-up that waits for one may cost less, and its reason says why). The capture's last
+burn ends within ``max_days`` of the arrival perilune (``--max-days``). Statuses:
+"recovered" (verified), "no recovery" (every place of the make-up refused by physics or
+by a limit the reason names, or a re-plan the plan's own checks refuse, with their
+message), "failed" (any solver failure, with IPOPT's status: a solver's verdict is not a
+physical reason, so it is never reported as "no recovery"). The CasADi and CVODES
+warning lines a case's solves write are counted (``solver_warnings``), not printed
+(:mod:`lunarcap.studies.missed.messages`).
 """
 
 from __future__ import annotations
@@ -34,8 +39,9 @@ from lunarcap.physics.dynamics import Model
 from lunarcap.physics.epochs import calendar_from_seconds
 from lunarcap.physics.propagate import propagate
 from lunarcap.repro.cache import cached
-from lunarcap.studies.missed.makeup import ephemeris_fit
-from lunarcap.studies.missed.nominal import nominal_of
+from lunarcap.studies.missed.makeup import COAST_SLACK_S, ephemeris_fit
+from lunarcap.studies.missed.messages import counted
+from lunarcap.studies.missed.nominal import DEFAULT_MAX_DAYS, nominal_of
 from lunarcap.studies.missed.orbits import classify, period_s
 from lunarcap.studies.missed.recovery import recovery
 
@@ -49,12 +55,14 @@ DEFAULT_WINDOW_MIN = (0.0, 30.0)
 @cached(ignore=["verbose", "nominal"])
 def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
                 max_period_s: float, window_min: tuple = DEFAULT_WINDOW_MIN,
-                version: str = "", verbose: bool = False, nominal: dict | None = None) -> dict:
+                version: str = "", verbose: bool = False, nominal: dict | None = None,
+                max_days: float = DEFAULT_MAX_DAYS) -> dict:
     """A cut-off case (see the module); pass ``plan.key()``.
 
     ``nominal``: the nominal of (``plan``, ``burn``, ``max_period_s``) if the caller has
     it (:func:`~lunarcap.studies.missed.nominal.nominal_of`), else solved here; it is a
-    function of the cache key, so it is not part of it.
+    function of the cache key, so it is not part of it. ``max_days``: the capture's last
+    burn ends within this of the arrival perilune, days (``--max-days``).
 
     Returns
     -------
@@ -68,9 +76,21 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
         (partial + recovery), ``penalty_mps``, ``recovery_burns``, ``first_coast_h``,
         ``time_to_final_orbit_h`` and the nominal's
         (:func:`lunarcap.capture.chain.time_to_final_orbit_h`: from the arrival perilune
-        to the end of the last burn), ``ipopt_status``, ``all_verified``, ``wall_s``.
+        to the end of the last burn), ``ipopt_status``, ``all_verified``, ``wall_s``,
+        ``solver_warnings`` (:mod:`lunarcap.studies.missed.messages`).
     """
     t_start = time.perf_counter()
+    with counted() as tally:
+        out = _missed(plan, burn, fraction, delay_s, max_period_s, window_min, nominal,
+                      max_days)
+    out.update(wall_s=time.perf_counter() - t_start, solver_warnings=tally.count)
+    return out
+
+
+def _missed(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
+            max_period_s: float, window_min: tuple, nominal: dict | None,
+            max_days: float) -> dict:
+    """:func:`missed_case`'s work (its arguments), without its timing and tally."""
     nplan, legs, nom_cols = _nominal_part(plan, burn, max_period_s, nominal)
     i = burn - 1
     raw = legs[i].raw
@@ -85,32 +105,42 @@ def missed_case(plan: CapturePlan, burn: int, fraction: float, delay_s: float,
            **nom_cols, "captured": cut["orbit"] != "escape",
            **{f"cutoff_{k}": v for k, v in cut.items()}}
     t_r = t_cut + delay_s
+    deadline_s = nplan.nominal_perilunes_s[0] + 86400.0 * max_days
     fit_for = _fits(plan, nplan, burn, t_cut, t_r, max_period_s)
     coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit_for(window_min))
     x_r = propagate(coast, t_cut, xc, t_r).final if delay_s > 0 else xc
     out["recovery_start_e"] = float(math.hypot(x_r[1], x_r[2]))
-    out = _attempt(out, (nplan, legs), burn, t_r, x_r, window_min, max_period_s, fit_for,
-                   coast, partial)
-    out["wall_s"] = time.perf_counter() - t_start
-    return out
+    return _attempt(out, (nplan, legs), burn, t_r, x_r, window_min, max_period_s, fit_for,
+                    coast, partial, deadline_s=deadline_s)
 
 
 @cached(ignore=["verbose", "nominal"])
 def late_case(plan: CapturePlan, burn: int, late_s: float, max_period_s: float,
-              version: str = "", verbose: bool = False, nominal: dict | None = None) -> dict:
+              version: str = "", verbose: bool = False, nominal: dict | None = None,
+              max_days: float = DEFAULT_MAX_DAYS) -> dict:
     """A late-ignition case (see the module); pass ``plan.key()``.
 
     Burn n ignites ``late_s`` after the nominal's ignition, at that epoch exactly (from
     the nominal's state there), its duration and steering re-optimised, the later burns
-    re-planned. ``nominal`` as :func:`missed_case`'s. Returns the dict of
-    :func:`missed_case` (no partial burn: 0 m/s).
+    re-planned. ``nominal`` and ``max_days`` as :func:`missed_case`'s. Returns the dict
+    of :func:`missed_case` (no partial burn: 0 m/s).
     """
     t_start = time.perf_counter()
+    with counted() as tally:
+        out = _late(plan, burn, late_s, max_period_s, nominal, max_days)
+    out.update(wall_s=time.perf_counter() - t_start, solver_warnings=tally.count)
+    return out
+
+
+def _late(plan: CapturePlan, burn: int, late_s: float, max_period_s: float,
+          nominal: dict | None, max_days: float) -> dict:
+    """:func:`late_case`'s work (its arguments), without its timing and tally."""
     nplan, legs, nom_cols = _nominal_part(plan, burn, max_period_s, nominal)
     i = burn - 1
     prob = legs[i].problem
     t_r = prob.t_ign_s + late_s
     window = (0.0, 0.0)
+    deadline_s = nplan.nominal_perilunes_s[0] + 86400.0 * max_days
     fit_for = _fits(plan, nplan, burn, prob.t_ign_s, t_r, max_period_s)
     coast = Model(plan.dynamics, 0.0, plan.engine.isp_s, fit_for(window))
     x_r = propagate(coast, prob.t_ign_s, prob.x0, t_r).final if late_s > 0 else prob.x0
@@ -121,10 +151,8 @@ def late_case(plan: CapturePlan, burn: int, late_s: float, max_period_s: float,
            **nom_cols, "captured": cut["orbit"] != "escape",
            **{f"cutoff_{k}": v for k, v in cut.items()},
            "recovery_start_e": cut["e"]}
-    out = _attempt(out, (nplan, legs), burn, t_r, x_r, window, max_period_s, fit_for, coast,
-                   0.0, later=False)
-    out["wall_s"] = time.perf_counter() - t_start
-    return out
+    return _attempt(out, (nplan, legs), burn, t_r, x_r, window, max_period_s, fit_for, coast,
+                    0.0, later=False, deadline_s=deadline_s)
 
 
 def _nominal_part(plan: CapturePlan, burn: int, max_period_s: float,
@@ -146,37 +174,39 @@ def _nominal_part(plan: CapturePlan, burn: int, max_period_s: float,
 
 def _fits(plan: CapturePlan, nplan: CapturePlan, burn: int, t0_s: float, t_r: float,
           max_period_s: float):
-    """``fit_for(window)``: the ephemeris fit from ``t0_s`` of a recovery from ``t_r``.
+    """``fit_for(window, longest=max_period_s)``: the ephemeris fit from ``t0_s`` of a recovery.
 
     It covers a make-up igniting in ``window`` (min after ``t_r``), its orbit up to
-    ``max_period_s`` (+ 2 h) and the plan's later coasts; one fit per window, made once
-    for the case.
+    ``longest`` (s; + 2 h) and the plan's later coasts; one fit per window and bound, made
+    once for the case.
     """
     rest = sum(nplan.coast_s(k) for k in range(burn, plan.n_burns))
     made = {}
 
-    def fit_for(window):
-        if window not in made:
-            made[window] = ephemeris_fit(plan, t0_s, t_r - t0_s + 60 * window[1] + max_period_s
-                                         + 7200.0 + rest)
-        return made[window]
+    def fit_for(window, longest=max_period_s):
+        if (window, longest) not in made:
+            made[(window, longest)] = ephemeris_fit(
+                plan, t0_s, t_r - t0_s + 60 * window[1] + longest + COAST_SLACK_S + rest)
+        return made[(window, longest)]
     return fit_for
 
 
 # ---------------------------------------------------------------------- the outcome
 def _attempt(out: dict, nominal_part: tuple, burn: int, t_r: float, x_r, window_min: tuple,
-             max_period_s: float, fit_for, coast: Model, partial: float,
-             later: bool = True) -> dict:
+             max_period_s: float, fit_for, coast: Model, partial: float, later: bool = True,
+             deadline_s: float = math.inf) -> dict:
     """Recover from ``x_r`` at ``t_r`` (:func:`recovery`) and record the outcome in ``out``.
 
-    ``nominal_part``: (nominal plan, its legs). A plan the checks refuse is "no recovery"
-    with their message; a solver's failure is "failed" with IPOPT's status.
+    ``nominal_part``: (nominal plan, its legs); ``deadline_s``: the epoch by which the
+    capture must end (s). A plan the checks refuse is "no recovery" with their message; a
+    solver's failure is "failed" with IPOPT's status.
     """
     nplan, legs = nominal_part
     i = burn - 1
     try:
         how, res, est = recovery(nplan, legs, i, t_r, x_r, window_min, max_period_s,
-                                 fit_for, coast, later, legs[i].delta_v_mps - partial)
+                                 fit_for, coast, later, legs[i].delta_v_mps - partial,
+                                 deadline_s=deadline_s)
     except PlanError as exc:
         return _refused(out, "no recovery", f"no plan from this state: {exc}")
     except SolveError as exc:
@@ -195,18 +225,43 @@ def _attempt(out: dict, nominal_part: tuple, burn: int, t_r: float, x_r, window_
 
 
 def _why(how: str, out: dict, est: dict, res, burn: int) -> str:
-    """The reason of a recovered row: the next perilune's, or a penalty below the nominal."""
-    if how == "next perilune" and est.get("window_delta_v_mps") is not None:
-        return (f"make-up burn at the next perilune: its recovery burns need "
-                f"{est['window_delta_v_mps'] - res.total_delta_v_mps:.1f} m/s less "
-                f"than the verified recovery with it in the window "
-                f"({est['window_delta_v_mps']:.1f} m/s, a penalty above the "
-                f"nominal burn's own delta-V)")
-    if how == "next perilune":
-        return "make-up burn at the next perilune: no verified recovery with it in the window"
+    """The reason of a recovered row: why the make-up waited, and a penalty below the nominal."""
+    below = ""
     if out["penalty_mps"] < -BELOW_NOMINAL_MPS:
-        return _below_nominal(out, burn)
-    return ""
+        below = _below_nominal(out, burn) if how == "in the window" else _split(out)
+    if how == "in the window":
+        return below
+    wait_h = out["recovery_burns"][0]["ignition_min_after_fault"] / 60.0
+    where = f"make-up burn {how} ({wait_h:.1f} h after the fault"
+    if est.get("deadline_period_h") is not None:   # the deadline bounds its orbit
+        where += (f"; its orbit at most {est['deadline_period_h']:.1f} h, to end the capture "
+                  f"within --max-days")
+    where += ")"
+    if est.get("window_delta_v_mps") is not None:
+        why = (f"{where}: its recovery burns need "
+               f"{est['window_delta_v_mps'] - res.total_delta_v_mps:.1f} m/s less "
+               f"than the verified recovery with it in the window "
+               f"({est['window_delta_v_mps']:.1f} m/s, a penalty above the "
+               f"nominal burn's own delta-V)")
+    elif est.get("window"):
+        why = f"{where}: in the window, {est['window']}"
+    else:
+        why = f"{where}: no verified recovery with it in the window"
+    return "; ".join(r for r in (why, below) if r)
+
+
+def _split(out: dict) -> str:
+    """The reason of a make-up at a later perilune cheaper than the nominal.
+
+    The partial burn and the make-up one orbit (or more) later are the nominal burn split
+    over two perilunes: each part shorter, flown nearer its perilune, loses less to
+    gravity than the one burn of the nominal (Eq. 10's finite-burn loss), a freedom the
+    nominal does not have; the price is the time to the final orbit.
+    """
+    later_h = out["time_to_final_orbit_h"] - out["nominal_time_to_final_orbit_h"]
+    return (f"{-out['penalty_mps']:.2f} m/s cheaper than the nominal: the burn split over two "
+            f"perilunes loses less to gravity than the nominal's one burn, at the price of "
+            f"{later_h:.1f} h more to the final orbit")
 
 
 def _refused(out: dict, status: str, reason: str, ipopt_status: str = "") -> dict:

@@ -27,7 +27,7 @@ from lunarcap.mission.plan import CapturePlan
 from lunarcap.mission.targets import CIRCULAR, PERILUNE
 from lunarcap.optim import flight
 from lunarcap.optim.collocation import DEFAULT_MESHES, Mesh, sundman_fractions
-from lunarcap.optim.guess import guess_arcs, make_guess
+from lunarcap.optim.guess import GUESS_ATOL, GUESS_RTOL, Guess, guess_arcs, make_guess
 from lunarcap.optim.joint import solve_joint
 from lunarcap.optim.problem import burn_problem
 from lunarcap.physics import constants as C
@@ -36,6 +36,7 @@ from lunarcap.physics.elements import mean_motion_and_anomaly
 from lunarcap.physics.ephemeris import ChebyshevFit
 from lunarcap.physics.propagate import propagate
 from lunarcap.physics.rocket import burn_duration_estimate_s
+from lunarcap.physics.steering import law
 from lunarcap.studies.burn_count.counts import MAX_FIT_SPAN_S
 from lunarcap.studies.missed.orbits import (
     after_free_orbit,
@@ -56,6 +57,12 @@ SHORTEST_PERIOD_MARGIN = 1.001
 #: finest's burn intervals, then twice its coast intervals too. A make-up burn may be long
 #: and steered hard, which the solver's finest mesh resolves too coarsely to pass the gate.
 RECOVERY_MESHES = DEFAULT_MESHES + (Mesh(36, 36, 6), Mesh(36, 72, 6))
+#: The last burn's end may pass its perilune by up to this, s: the deadline enters a
+#: recovery's NLP where the longest coasts allowed end within it of the deadline.
+DEADLINE_MARGIN_S = 3600.0
+#: The make-up orbit's coast (from the fault to that orbit's perilune) may exceed the
+#: window and the longest period by this, s: the burn and the arc to the perilune.
+COAST_SLACK_S = 7200.0
 
 
 @dataclass(frozen=True)
@@ -74,6 +81,12 @@ class Place:
         The Earth/Sun fit covering the recovery (:func:`ephemeris_fit`).
     coast : Model
         The dynamics of a coast from ``x`` (no thrust).
+    deadline_s : float
+        Epoch by which the capture's last burn must end, TDB s past J2000 (the arrival
+        perilune plus ``--max-days``); inf: none.
+    max_period_s : float
+        Longest period of the make-up orbit the deadline leaves from here, s (inf: the
+        deadline leaves more than any bound).
     """
 
     t_s: float
@@ -81,6 +94,8 @@ class Place:
     window_min: tuple
     fit: object
     coast: Model
+    deadline_s: float = math.inf
+    max_period_s: float = math.inf
 
 
 @dataclass(frozen=True)
@@ -106,6 +121,10 @@ class RecoveryGuess:
     two_body_mps : float or None
         Where the guess is the same recovery solved in two-body dynamics, its delta-V
         (m/s): what the recovery from it is compared with.
+    aim_kmps : tuple of float or None
+        The make-up thrusts along this fixed M-MME2000 direction (the impulse of
+        :func:`~lunarcap.studies.missed.orbits.aimed_impulse`, km/s) for the Eq. (19)
+        duration of ``dv_mps``, instead of opposite the velocity.
     """
 
     legs: list | None = None
@@ -114,6 +133,7 @@ class RecoveryGuess:
     first_coast_s: float | None = None
     ignition_min: float | None = None
     two_body_mps: float | None = None
+    aim_kmps: tuple | None = None
 
 
 def ephemeris_fit(plan: CapturePlan, t0_s: float, span_s: float):
@@ -200,6 +220,8 @@ def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
     raws = None if guess.legs is None else [getattr(s, "raw", s) for s in guess.legs]
     if raws is not None and guess.late:
         leg_guess = flight.flown_guess(raws[0], prob)
+    elif guess.aim_kmps is not None:
+        leg_guess = _aimed_guess(prob, t1, guess.aim_kmps)
     else:
         leg_guess = make_guess(prob, t1) if est["delta_v_mps"] > 1.0 else guess_arcs(prob, t1)
     warm = [(prob, leg_guess, sundman_fractions(leg_guess.coast.t, leg_guess.coast.x,
@@ -214,6 +236,21 @@ def recovery_warm_start(rec_plan: CapturePlan, eph, fit, max_period_s: float,
         warm.append((prob, leg_guess, sundman_fractions(leg_guess.coast.t, leg_guess.coast.x,
                                                         mesh_n_coast)))
     return warm, est
+
+
+def _aimed_guess(prob, t1_s: float, aim_kmps) -> Guess:
+    """The make-up's guess thrusting ``t1_s`` along the fixed M-MME2000 ``aim_kmps``, then coasting.
+
+    The finite burn of an impulse along its direction (:class:`RecoveryGuess` ``aim_kmps``):
+    a direction fixed in inertial space, as the impulse is, rather than one that turns with
+    the velocity.
+    """
+    steer = law("inertial", np.asarray(aim_kmps, float) / np.linalg.norm(aim_kmps))
+    burn = propagate(prob.model, prob.t_ign_s, prob.x0, None, duration_s=t1_s, u=steer,
+                     rtol=GUESS_RTOL, atol=GUESS_ATOL, dense=True, dense_points=120)
+    arc = propagate(prob.model, burn.t[-1], burn.x[:, -1], prob.t_end_s, u=None, dense=True,
+                    rtol=GUESS_RTOL, atol=GUESS_ATOL)
+    return Guess(t1_s, lambda t: steer(burn(t)), burn, arc)
 
 
 def _nearest_perilune_s(x, t_s: float, mu: float = C.MU_MOON) -> float:
@@ -285,7 +322,7 @@ def recover(nplan: CapturePlan, i: int, place: Place, max_period_s: float,
             est.update(e)
         try:
             return _solve_recovery(plan, nplan.targets[i].kind, i, nplan, eph, mesh, place.fit,
-                                   warm, place.window_min, max_period_s)
+                                   warm, place.window_min, max_period_s, place.deadline_s)
         except SolveError as exc:
             if exc.unverified is not None:
                 guesses.append(_from_flight(*exc.unverified, place.t_s))
@@ -307,13 +344,26 @@ def _from_flight(plan: CapturePlan, raws: list, t_s: float) -> RecoveryGuess:
 
 
 def _solve_recovery(rec_plan: CapturePlan, kind: str, i: int, nplan: CapturePlan, eph, mesh,
-                    fit, warm: list, window_min: tuple, max_period_s: float):
-    """The all-burns NLP of a recovery (:func:`recover`) on ``mesh`` from ``warm``."""
+                    fit, warm: list, window_min: tuple, max_period_s: float,
+                    deadline_s: float = math.inf):
+    """The all-burns NLP of a recovery (:func:`recover`) on ``mesh`` from ``warm``.
+
+    The make-up orbit's coast (a free orbit) is bounded by the window, ``max_period_s``
+    and 2 h; where that coast and the plan's later ones could end the capture after
+    ``deadline_s`` (s), the NLP also carries the deadline (its time limit, and the coast
+    bounded to meet it), and only there: a bound that cannot bind is left out of the NLP.
+    """
     if kind != PERILUNE:   # the final orbit: its coast the plan's
         return solve_joint(rec_plan, None, eph, mesh, fit=fit, warm=warm, expand=True)
     free = (True,) + (False,) * (rec_plan.n_burns - 1)
-    hi = 60.0 * window_min[1] + max_period_s + 7200.0
+    hi = 60.0 * window_min[1] + max_period_s + COAST_SLACK_S
+    t0 = rec_plan.nominal_perilunes_s[0]
+    later = sum(rec_plan.coast_s(k) for k in range(1, rec_plan.n_burns - 1))
+    max_time_s = None
+    if t0 + hi + later + DEADLINE_MARGIN_S > deadline_s:
+        max_time_s = deadline_s - t0
+        hi = max(min(hi, max_time_s - later), MIN_FIRST_COAST_S)
     return solve_joint(rec_plan, None, eph, mesh, free_coasts=free,
                        coast_bounds_s=(MIN_FIRST_COAST_S, hi), fit=fit,
                        max_period_s=max_period_s, warm=warm, expand=True,
-                       min_period_s=shortest_free_period_s(nplan, i))
+                       min_period_s=shortest_free_period_s(nplan, i), max_time_s=max_time_s)

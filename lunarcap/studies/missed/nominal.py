@@ -35,6 +35,14 @@ from lunarcap.studies.missed.orbits import after_free_orbit, shortest_free_perio
 #: of influence (about 63,000 km). Both sides carry the same bound, so a penalty compares
 #: like with like (a nominal may press against it: the README's missed-thrust section).
 DEFAULT_MAX_PERIOD_H = 24.0
+#: Longest time from the arrival perilune to the end of the capture's last burn, in a
+#: recovery, days (``--max-days``): the default of ``lunarcap burns`` (one question asked of
+#: a capture by both studies). The paper's plans end their nominal capture about 27 h after
+#: the arrival perilune; 3 days leaves room for a make-up to wait a whole orbit of what a
+#: late cut-off leaves (burn 1 of the 150 N plan cut at 0.9: a 38 h orbit) and then to fly
+#: an orbit at the 24 h bound, and stays within the one ephemeris fit (4 days) a recovery
+#: is solved with.
+DEFAULT_MAX_DAYS = 3.0
 #: Two optima whose orbits after burn n differ by at most this fraction of their period
 #: end on the same orbit: the nominal's halfway start is then not solved.
 SAME_ORBIT = 0.01

@@ -107,41 +107,77 @@ def make_up_estimate(x, rp_km: float, max_period_s: float, mu: float = C.MU_MOON
             "min_period_s": period_s((rn + min(rp_km, rn)) / 2, mu)}
 
 
+def turn_radius_km(x, thrust_N: float, isp_s: float, mu: float = C.MU_MOON) -> float:
+    """The closest radius at which full thrust can stop the outward motion of state ``x``, km.
+
+    The radial equation r'' = -mu / r^2 + h^2 / r^3 + a_r, with the centrifugal term
+    (never negative) dropped and the thrust all inward (a_r = -T / m(t), the mass falling
+    at T / (g0 Isp)), and gravity at its strongest, mu / r0^2 (the radius only grows until
+    the motion stops), bounds r(t) below: r_lb(t) = r0 + int v(t) dt with
+    v(t) = v_r0 - mu t / r0^2 - g0 Isp ln(m0 / m(t)). No steering stops the spacecraft
+    closer than where v(t) = 0, and a coast (thrust 0) goes farther still. A state moving
+    inwards (or not at all) turns where it is: its own radius.
+    """
+    r, v = (np.array(a, float) for a in rv_from_mee(*np.asarray(x, float)[:6], mu))
+    r0 = float(np.linalg.norm(r))
+    vr = float(r @ v) / r0 * 1e3   # m/s
+    if vr <= 0.0:
+        return r0
+    m0 = float(np.asarray(x, float)[6])
+    ve = C.G0_MPS2 * isp_s
+    g = mu / r0 ** 2 * 1e3          # m/s^2
+
+    def speed(t):
+        return vr - g * t - ve * np.log(m0 / (m0 - thrust_N / ve * t))
+    t_hi = min(vr / g, 0.999 * m0 * ve / thrust_N)
+    lo, hi = 0.0, t_hi
+    for _ in range(60):   # bisection: speed() falls monotonically from vr > 0
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if speed(mid) > 0 else (lo, mid)
+    t = np.linspace(0.0, hi, 401)
+    return r0 + float(np.trapezoid(speed(t), t)) * 1e-3
+
+
 def physical_bound(plan: CapturePlan, i: int, t_s: float, x, window_min: tuple,
                    max_period_s: float, coast: Model) -> str:
-    """Why no recovery can start from ``x`` at ``t_s`` (empty text if one may).
+    """Why no make-up can be made from ``x`` at ``t_s`` in its window (empty text if one may).
 
     Checked at the opening and the close of the make-up burn's window: the spacecraft
-    outside the Moon's sphere of influence at both, or every orbit through its position
-    with the target's perilune radius longer than ``max_period_s`` at both. The latter holds
-    for every kind of burn ``i``'s target: the orbit after an intermediate burn is free up
-    to ``max_period_s``, and the final orbit (a circle or an ellipse as asked, shorter than
-    that) is one of those orbits too.
+    outside the Moon's sphere of influence at both, or every orbit with the target's
+    perilune radius that reaches where full thrust can first stop the spacecraft's outward
+    motion (:func:`turn_radius_km`; where it is, if it moves inwards) longer than
+    ``max_period_s`` at both: the make-up would carry the spacecraft beyond the apolune of
+    every orbit the bound allows before it could bring it onto one. The latter holds for
+    every kind of burn ``i``'s target: the orbit after an intermediate burn is free up to
+    ``max_period_s``, and the final orbit (a circle or an ellipse as asked, shorter than
+    that) is one of those orbits too. That text names the bound (``--max-period-h``) and
+    what lifting it would take: the period needed and an impulsive make-up onto it
+    (:func:`aimed_impulse`, two-body, at the window's end nearest to it).
     """
     rp = plan.targets[i].radius_km
     ends = []
     for w in sorted(set(window_min)):
         t = t_s + 60.0 * w
         xw = propagate(coast, t_s, x, t).final if t > t_s else np.asarray(x, float)
-        ends.append((w, make_up_estimate(xw, rp, max_period_s),
-                     soi_radius_km(t, plan.ephemeris)))
-    if all(e["r_km"] > soi for _, e, soi in ends):
-        w, e, soi = ends[0]
+        turn = turn_radius_km(xw, plan.engine.thrust_N, plan.engine.isp_s)
+        ends.append((xw, make_up_estimate(xw, rp, max_period_s), turn,
+                     period_s((turn + rp) / 2), soi_radius_km(t, plan.ephemeris)))
+    if all(e["r_km"] > soi for _, e, _, _, soi in ends):
+        _, e, _, _, soi = ends[0]
         return (f"the spacecraft is {e['r_km']:,.0f} km from the Moon when the window "
                 f"opens, outside its sphere of influence ({soi:,.0f} km)")
-    if all(e["min_period_s"] > max_period_s for _, e, _ in ends):
-        e = min((e for _, e, _ in ends), key=lambda e: e["min_period_s"])
-        now = orbit_summary(np.asarray(x, float), C.MU_MOON)
-        energy = now["v_kmps"] ** 2 / 2 - C.MU_MOON / now["r_km"]
-        still = ""
-        if energy < 0:   # bound: it will come back to its perilune
-            still = (f"; the spacecraft is still bound (period "
-                     f"{period_s(-C.MU_MOON / (2 * energy)) / 3600:.1f} h), so a make-up at a "
-                     f"later perilune or a longer --max-period-h could recover it")
-        return (f"the spacecraft is {e['r_km']:,.0f} km from the Moon when the make-up burn "
-                f"can ignite: every orbit through there with a {rp:,.0f}"
-                f" km perilune radius lasts at least {e['min_period_s'] / 3600:.1f} h, more "
-                f"than the {max_period_s / 3600:g} h allowed (--max-period-h){still}")
+    if all(need > max_period_s for *_, need, _ in ends):
+        xw, e, turn, need, _ = min(ends, key=lambda end: end[3])
+        moving = "" if turn == e["r_km"] else (
+            f", moving away; full thrust stops it no closer than {turn:,.0f} km")
+        imp = aimed_impulse(xw, rp, need * 1.0001)
+        cost = "" if imp is None else \
+            f"; an impulsive make-up onto such an orbit: {imp['delta_v_mps']:.0f} m/s"
+        return (f"decided by --max-period-h ({max_period_s / 3600:g} h): the spacecraft is "
+                f"{e['r_km']:,.0f} km from the Moon when the make-up burn can ignite{moving}; "
+                f"every orbit through there with a {rp:,.0f} km perilune radius lasts at least "
+                f"{need / 3600:.1f} h (--max-period-h {math.ceil(need / 360.0) / 10:g} or more "
+                f"would let a make-up start there{cost})")
     return ""
 
 
@@ -184,3 +220,86 @@ def after_free_orbit(prob, plan: CapturePlan, i: int, max_period_s: float):
     if not hi > prob.burn_bounds_s[1]:
         return prob
     return replace(prob, t1_max_s=hi)
+
+
+def aimed_impulse(x, rp_km: float, max_period_s: float, min_period_s: float | None = None,
+                  mu: float = C.MU_MOON, n_grid: int = 400) -> dict | None:
+    """The cheapest impulse at state ``x`` onto an orbit of perilune radius ``rp_km``.
+
+    Among the orbits in the plane of ``x`` through its position with that perilune radius
+    and a period between ``min_period_s`` and ``max_period_s`` (semi-major axis a: the
+    speed there from the vis-viva equation, the transverse speed from the angular momentum
+    sqrt(mu rp (2 - rp / a)), the radial speed of either sign), the one the smallest
+    impulse reaches (a on a grid of ``n_grid``). Unlike :func:`make_up_estimate`'s
+    tangential impulse, it keeps the angular momentum a low perilune needs: far from the
+    Moon on an outbound leg, an impulse opposite the velocity removes mostly the
+    transverse speed and would drop the perilune into the Moon. Returns ``dv_kmps`` (the
+    impulse, M-MME2000, km/s), ``delta_v_mps``, ``period_s`` and ``coast_s`` (from the
+    impulse to that orbit's next perilune, s); None if no such orbit passes the position
+    (it lies below ``rp_km``, or every such orbit is longer than ``max_period_s``).
+    """
+    r, v = (np.array(a, float) for a in rv_from_mee(*np.asarray(x, float)[:6], mu))
+    rn = float(np.linalg.norm(r))
+    a_lo = max((rn + rp_km) / 2.0, float(semi_major_axis_from_period(min_period_s, mu))
+               if min_period_s else 0.0)
+    a_hi = float(semi_major_axis_from_period(max_period_s, mu))
+    if rn < rp_km or a_lo > a_hi:
+        return None
+    r_hat = r / rn
+    h_hat = np.cross(r, v) / np.linalg.norm(np.cross(r, v))
+    t_hat = np.cross(h_hat, r_hat)
+    a = np.linspace(a_lo, a_hi, n_grid)
+    vt = np.sqrt(mu * rp_km * (2.0 - rp_km / a)) / rn
+    vr = np.sqrt(np.maximum(mu * (2.0 / rn - 1.0 / a) - vt ** 2, 0.0))
+    best = None
+    for sign in (1.0, -1.0):
+        new = sign * vr[:, None] * r_hat + vt[:, None] * t_hat
+        dv = np.linalg.norm(new - v, axis=1)
+        j = int(np.argmin(dv))
+        if best is None or dv[j] < best[0]:
+            best = (float(dv[j]), new[j], float(a[j]))
+    dv, v_new, a_new = best
+    n, M = mean_motion_and_anomaly(mee_from_rv(r, v_new, mu), mu)
+    return {"dv_kmps": v_new - v, "delta_v_mps": dv * 1e3, "period_s": period_s(a_new, mu),
+            "coast_s": float((2 * math.pi - M) / n if M > 0 else -M / n)}
+
+
+#: The finite burn of :func:`aimed_burn` is tuned until the impulse still missing after it
+#: is below this, m/s (a guess: IPOPT corrects the rest), or for at most ``AIM_ITERATIONS``.
+AIM_TOL_MPS = 1.0
+AIM_ITERATIONS = 8
+
+
+def aimed_burn(coast: Model, t_s: float, x, rp_km: float, periods_s: tuple, thrust_N: float,
+               mu: float = C.MU_MOON) -> dict | None:
+    """A finite burn along a fixed direction from ``x`` onto an orbit of :func:`aimed_impulse`.
+
+    The impulse of :func:`aimed_impulse` (periods between ``periods_s`` = (shortest or
+    None, longest), s) is flown as a burn of its Eq. (19) duration along its direction
+    (fixed in M-MME2000) in ``coast``'s dynamics at ``thrust_N``; the impulse still
+    missing at the burn's end (the spacecraft has moved meanwhile) is added to it and the
+    burn flown again, until less than :data:`AIM_TOL_MPS` is missing. Returns
+    ``dv_kmps`` (the burn's direction times its delta-V, km/s), ``delta_v_mps``,
+    ``burn_s`` and ``coast_s`` (from the burn's end to the two-body perilune of the orbit
+    it leaves); None if no such orbit passes the start, or the burn's end.
+    """
+    from lunarcap.physics.steering import law
+
+    x = np.asarray(x, float)
+    imp = aimed_impulse(x, rp_km, periods_s[1], periods_s[0], mu)
+    if imp is None:
+        return None
+    dv = np.asarray(imp["dv_kmps"], float)
+    for _ in range(AIM_ITERATIONS):
+        dv_mps = float(np.linalg.norm(dv)) * 1e3
+        burn_s = burn_duration_estimate_s(x[6], dv_mps, thrust_N, coast.isp_s)
+        end = propagate(coast, t_s, x, None, duration_s=burn_s, thrust_N=thrust_N,
+                        u=law("inertial", dv / np.linalg.norm(dv))).final
+        miss = aimed_impulse(end, rp_km, periods_s[1], periods_s[0], mu)
+        if miss is None:
+            return None
+        if miss["delta_v_mps"] < AIM_TOL_MPS:
+            break
+        dv = dv + miss["dv_kmps"]
+    return {"dv_kmps": dv, "delta_v_mps": dv_mps, "burn_s": burn_s,
+            "coast_s": time_to_perilune_after_impulse_s(end, 0.0, 0.0, mu)}

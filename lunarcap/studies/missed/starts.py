@@ -10,16 +10,23 @@ with; :func:`walk` tries them in order and keeps the cheapest verified recovery:
   where IPOPT fails from there, the nominal's (a make-up of the delta-V the nominal burn
   had left, its orbit reaching the nominal's next perilune, the later burns flying the
   nominal's steering); where both fail and the nominal's perilune after burn n is still
-  ahead, the plan's guesses again with the make-up orbit's coast ending there.
+  ahead, the plan's guesses again with the make-up orbit's coast ending there; where
+  those fail too, the aimed make-up (:func:`_aimed`): a burn along the fixed direction of
+  the cheapest impulse onto an orbit within the bounds, tuned so that the finite burn
+  lands on it. Far from the Moon on an outbound leg (a long fault after a cut-off that
+  left a hyperbola) the others thrust against the velocity, which is mostly radial
+  there, and remove the transverse speed a low perilune needs; the aimed one keeps it.
+  It starts on the second mesh: on the first, where the make-up burn is long and far
+  out, a converged solution may fail verification by thousands of km.
 * any other dynamics (:data:`STARTS`): first the same recovery solved in two-body
   dynamics and flown in the plan's as the guess (a continuation in the forces), kept at
   once if it costs at most :data:`CONTINUATION_MARGIN` more than that two-body recovery
   (the same optimum, the Earth, the Sun and J2 aside); otherwise the plan's and the
-  nominal's starts are solved too (the third as in two-body dynamics), and the cheapest
-  verified kept. One still more than the margin above the two-body recovery is labelled
-  a possible local optimum (its penalty an upper bound). The meshes begin at the second:
-  with the Earth, the Sun and J2 the coarsest mesh's recoveries mostly fail verification,
-  and each failure costs that mesh's NLP build.
+  nominal's starts are solved too (the third and the aimed one as in two-body dynamics),
+  and the cheapest verified kept. One still more than the margin above the two-body
+  recovery is labelled a possible local optimum (its penalty an upper bound). The meshes
+  begin at the second: with the Earth, the Sun and J2 the coarsest mesh's recoveries
+  mostly fail verification, and each failure costs that mesh's NLP build.
 """
 
 from __future__ import annotations
@@ -27,9 +34,12 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Callable
 
+import numpy as np
+
 from lunarcap.errors import SolveError
 from lunarcap.mission.plan import CapturePlan, PlanError
 from lunarcap.mission.targets import PERILUNE
+from lunarcap.physics.propagate import propagate
 from lunarcap.studies.missed.makeup import (
     MIN_FIRST_COAST_S,
     RECOVERY_MESHES,
@@ -37,6 +47,7 @@ from lunarcap.studies.missed.makeup import (
     RecoveryGuess,
     recover,
 )
+from lunarcap.studies.missed.orbits import aimed_burn, shortest_free_period_s
 
 #: A full-dynamics recovery started from the two-body one is taken as found if it costs at
 #: most this fraction more than the two-body recovery; otherwise the other starts are
@@ -159,6 +170,31 @@ def _plans_on_the_nominals_coast(a: Attempt) -> RecoveryGuess | None:
     return RecoveryGuess(late=a.late, first_coast_s=a.nominal_coast_s)
 
 
+def _aimed(a: Attempt) -> RecoveryGuess | None:
+    """The make-up aimed by the cheapest impulse onto an orbit within the bounds.
+
+    At the window's opening, the finite burn along a fixed direction that
+    :func:`~lunarcap.studies.missed.orbits.aimed_burn` tunes onto an orbit with the
+    target's perilune radius and a period between the shortest free one and
+    ``max_period_s``; the make-up orbit's coast ends at its next perilune. None where the
+    make-up's orbit is not free (the final orbit's burn) or no such orbit passes there.
+    """
+    if a.nplan.targets[a.i].kind != PERILUNE:
+        return None
+    p = a.place
+    t_open = p.t_s + 60.0 * p.window_min[0]
+    x = np.asarray(p.x, float)
+    x_open = propagate(p.coast, p.t_s, x, t_open).final if t_open > p.t_s else x
+    aim = aimed_burn(p.coast, t_open, x_open, a.nplan.targets[a.i].radius_km,
+                     (shortest_free_period_s(a.nplan, a.i), a.max_period_s),
+                     a.nplan.engine.thrust_N)
+    if aim is None:
+        return None
+    coast = t_open - p.t_s + aim["burn_s"] + aim["coast_s"]
+    return RecoveryGuess(late=a.late, dv_mps=aim["delta_v_mps"], aim_kmps=tuple(aim["dv_kmps"]),
+                         first_coast_s=max(coast, 60.0 * p.window_min[1] + MIN_FIRST_COAST_S))
+
+
 def _two_body_recovery(a: Attempt) -> RecoveryGuess:
     """The same recovery solved in two-body dynamics (:data:`TWO_BODY_STARTS`), as a guess.
 
@@ -182,6 +218,8 @@ TWO_BODY_STARTS = (
     Start("the nominal's", _nominals, RECOVERY_MESHES, enough=_at_once),
     Start("the plan's guesses on the nominal's coast", _plans_on_the_nominals_coast,
           RECOVERY_MESHES, when=_nothing_found, enough=_at_once),
+    Start("the aimed make-up", _aimed, RECOVERY_MESHES[1:], when=_nothing_found,
+          enough=_at_once),
 )
 
 #: The starts in any other dynamics, in order: the continuation from the two-body
@@ -193,6 +231,7 @@ STARTS = (
     Start("the nominal's", _nominals, RECOVERY_MESHES[1:]),
     Start("the plan's guesses on the nominal's coast", _plans_on_the_nominals_coast,
           RECOVERY_MESHES[1:], when=_nothing_found),
+    Start("the aimed make-up", _aimed, RECOVERY_MESHES[1:], when=_nothing_found),
 )
 
 
