@@ -1,7 +1,7 @@
 """The studies in a lunar gravity field: a small generated member, and what is refused first.
 
 The member (:func:`lunarcap.studies.families.plan_of`, not the paper's: v_inf 0.8 km/s,
-100 km, 60 deg; 450 N / 220 s at 500 kg) is captured in two burns, into an 8 h ellipse and
+100 km, polar; 450 N / 220 s at 500 kg) is captured in two burns, into an 8 h ellipse and
 the 100 km circle, in LP165P 4x4 with the Earth and the Sun. Both studies need the
 all-burns NLP in the field (:func:`lunarcap.optim.joint.solve_joint`), which refused any
 field above 2x0 before:
@@ -11,8 +11,9 @@ field above 2x0 before:
   freedoms (its penalty >= -0.05 m/s, the family tests' bound);
 * how many burns: the capture in 2 burns with the intermediate period optimised is
   verified in the field, and no worse than the plan's own two burns (its 8 h orbit is a
-  feasible point of that NLP); a burn with no impulsive limit in the field (a circle no
-  impulse reaches) leaves the total without a loss, and the row says which burn and why.
+  feasible point of that NLP). Its circle is one no impulse reaches in the field (flown
+  back to the burn it lies 154 m below the orbit before it, measured; at 60 deg it would
+  be reachable): the total has no loss, and the row says which burn and why.
 
 tools/field_family.py runs a family of such plans (degree 4-8, two and three burns, both
 final orbits, 300-1,500 kg) through both studies, outside the tests.
@@ -34,7 +35,7 @@ BURNS = [{"target_period_h": 8.0, "start_min": "free"},
 
 @pytest.fixture(scope="module")
 def plan():
-    return plan_of(BURNS, dynamics=field_dynamics(4), inclination=60.0, thrust=450.0,
+    return plan_of(BURNS, dynamics=field_dynamics(4), inclination=90.0, thrust=450.0,
                    mass=500.0, name="field-member")
 
 
@@ -57,12 +58,12 @@ def test_burns_in_the_field(plan):
     own_total = sum(s.delta_v_mps for s in own)
     assert r["total_delta_v_mps"] <= own_total + 1e-3, (r["total_delta_v_mps"], own_total)
     limits = [b["impulsive_limit_mps"] for b in r["burns"]]
-    if None in limits:   # a burn no impulse reaches in the field: no total loss, and why
-        assert r["total_impulsive_limit_mps"] is None and r["total_delta_v_loss_mps"] is None
-        k = limits.index(None) + 1
-        assert f"burn {k}: no impulsive limit in LP165P 4x4" in r["reason"], r["reason"]
-    else:
-        assert r["total_impulsive_limit_mps"] == pytest.approx(sum(limits))
+    # the ellipse has its limit (a finite burn loses against it); the circle has none
+    assert limits[0] is not None and r["burns"][0]["delta_v_loss_mps"] > 0
+    assert limits[1] is None
+    assert r["total_impulsive_limit_mps"] is None and r["total_delta_v_loss_mps"] is None
+    assert "burn 2: no impulsive limit in LP165P 4x4" in r["reason"], r["reason"]
+    assert "below the orbit before the burn" in r["reason"], r["reason"]
 
 
 def test_a_count_outlasting_the_ephemeris_fit_is_refused_before_any_solve(plan, monkeypatch):
