@@ -89,8 +89,9 @@ def build_joint_nlp(mesh: Mesh, target_kinds: tuple, mode: str = "full",
     Built once per machine and loaded by later processes where the optimiser has a store
     (:func:`lunarcap.optim.nlp.stored`), once per process otherwise; see :func:`_build`.
     """
-    key = (mesh, tuple(target_kinds), force_model(mode).key, tuple(free_coasts),
-           bool(period_rows), bool(expand))
+    in_nlp, correction = nlp_shape(mode)  # what the NLP carries keys it, not the whole field
+    key = (mesh, tuple(target_kinds), force_model(in_nlp).key, bool(correction),
+           tuple(free_coasts), bool(period_rows), bool(expand))
     compiled = stored("joint", key, lambda compile_fn: _build(
         mesh, target_kinds, mode, free_coasts, period_rows, expand, compile_fn))
     return JointNLP(compiled, [compiled.outputs.get(f"leg{k}")

@@ -138,7 +138,7 @@ def test_the_degree_2_sentence_says_what_the_shares_show():
     page, text = _shares(4.0, 30.0)          # 10 % from C20, 75 % with C22
     assert page.values["share_2x0_percent"] == pytest.approx(10.0)
     assert page.values["share_2x2_percent"] == pytest.approx(75.0)
-    assert "comes with C22" in text and "10 %" in text and "75 %" in text
+    assert "comes with C22" in text and "10.0 %" in text and "75 %" in text
     _, text = _shares(24.0, 30.0)            # 60 % from C20 alone
     assert "is C20's alone" in text
     from lunarcap.report.page import Page
