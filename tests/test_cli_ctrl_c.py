@@ -80,10 +80,13 @@ def _wait_for(proc, ready, timeout_s=60.0):
 
 
 def _group(pgid):
+    """The live processes of group ``pgid``: a zombie has exited (a compiler the command
+    started, orphaned when it left by ``os._exit``: its reaping is the init process's,
+    which takes 1-2 s in some containers), so it is not one."""
     out = []
     for p in psutil.process_iter():
         try:
-            if os.getpgid(p.pid) == pgid:
+            if os.getpgid(p.pid) == pgid and p.status() != psutil.STATUS_ZOMBIE:
                 out.append(p)
         except (ProcessLookupError, psutil.Error):
             pass

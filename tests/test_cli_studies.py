@@ -105,7 +105,7 @@ def test_ctrl_c_in_a_study_exits_130_with_one_line(argv, module, func, unit, mon
     (["dispersions", "song2011-150N", "--samples", "2", "--thrust-sigma-pct", "1"],
      ["99 % budget: not estimated (2 samples; its distribution-free 95 % interval needs "
       "368)", "99% | not estimated: its interval needs 368 samples, this run has 2",
-      "mean above nominal (captured samples):", "correction failed: 0", "table: "]),
+      "mean above nominal (captured samples, burns and trim):", "correction failed: 0", "table: "]),
 ])
 def test_study_text_output_names_each_burn(argv, expect, tmp_path, capsys, monkeypatch):
     """The studies' plain-text report (not --json), two-body: exit 0, every line written.
