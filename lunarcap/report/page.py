@@ -297,7 +297,11 @@ class Page:
         return text
 
     def show(self, key: str, display: bool = True) -> str:
-        """Write one table or figure and display it (returns the MyST text)."""
+        """Write one table or figure and display it (returns the MyST text).
+
+        The notebook and parameters that made it are not repeated under it: the page names
+        them once, in its provenance block (:meth:`header`, at the page's end).
+        """
         item = self.items[key]
         if isinstance(item, Table):
             df = item.df
@@ -305,10 +309,11 @@ class Page:
             heads = _labels(shown, **(item.columns or {}))
             return _display.show_table(df, self.name_of(key), item.caption, self.notebook,
                                        self.parameters, floatfmt=item.floatfmt, labels=heads,
-                                       columns=shown, display=display, paper=item.paper)
+                                       columns=shown, display=display, paper=item.paper,
+                                       source=False)
         return _display.show_figure(item.fig, self.name_of(key), item.caption, self.notebook,
                                     self.parameters, alt=item.alt, width=item.width,
-                                    display=display, paper=item.paper)
+                                    display=display, paper=item.paper, source=False)
 
     def glue(self) -> None:
         """Glue every value and note (for ``{glue:text}`` and ``{glue:md}`` in the prose)."""
