@@ -54,3 +54,23 @@ def test_words_are_counted_in_the_pages_content_only(tmp_path):
     assert words.book_words(tmp_path) == {"generated/a": 6}
     assert words.main(["--html", str(tmp_path), "--limit", "6"]) == 0
     assert words.main(["--html", str(tmp_path), "--limit", "5"]) == 1
+
+
+def test_the_exchange_captions_burn_colours_are_the_ones_drawn():
+    import numpy as np
+    from matplotlib.colors import to_hex
+
+    from lunarcap.report.figstyle import colour_name
+    from lunarcap.report.figures import exchange as draw
+
+    t = np.linspace(0.0, 1.0, 5)
+    arc = np.vstack([2000 * np.cos(t), 2000 * np.sin(t), 0 * t])
+    arcs = [("approach", arc, False)]
+    for n in (1, 2, 3):
+        arcs += [(f"burn {n}", arc, True), (f"coast {n}", arc, False)]
+    fig = draw.plot_exported_trajectory(arcs, 1738.2)
+    drawn = [colour_name(to_hex(line.get_color())) for line in fig.axes[0].lines
+             if line.get_linewidth() == 3.0]
+    plt.close(fig)
+    assert len(drawn) == 3
+    assert draw.burn_colour_words(3).endswith(f"in {drawn[0]}, {drawn[1]} and {drawn[2]}")
