@@ -119,6 +119,25 @@ def listing(values: dict, names_labels, spec: str = "", unit: str = "") -> str:
     return f"{nums}{unit} ({labs}" + (f"; {rest}" if rest else "") + ")"
 
 
+def counted(k, n, what: str, verb: tuple[str, str] = ("has", "have")) -> str:
+    """"k of n <what> <verb>", the verb agreeing with k (the subject), for computed prose.
+
+    ``verb``: its singular and plural forms. Prose that pastes two glued counts before a
+    verb cannot agree with them; it pastes this sentence instead.
+
+    >>> counted(1, 8, "plan-and-count cases", ("has", "have"))
+    '1 of 8 plan-and-count cases has'
+    >>> counted(3, 8, "cases", ("is recovered", "are recovered"))
+    '3 of 8 cases are recovered'
+    >>> counted(0, 8, "cases")
+    'none of the 8 cases has'
+    """
+    k, n = int(k), int(n)
+    if k == 0:
+        return f"none of the {n} {what} {verb[0]}"
+    return f"{k} of {n} {what} {verb[0] if k == 1 else verb[1]}"
+
+
 @dataclass
 class Table:
     """A table of a page: the CSV content and how it is shown."""

@@ -19,8 +19,9 @@ from lunarcap.report.figstyle import (
 
 
 def burn_colour_words(n_burns: int) -> str:
-    """The burns' colours as the caption names them, e.g. "burns 1, 2 and 3 in red, orange
-    and brown", from the palette the figure draws them with (so caption and figure agree).
+    """The burns' colours in the words of the caption, from the palette the figure uses.
+
+    Caption and figure agree by construction: burn n is drawn in ``burn_colour(n)``.
 
     >>> burn_colour_words(3)
     'burns 1, 2 and 3 in red, orange and brown'
