@@ -12,12 +12,14 @@ and the previous/next links), which a reader skips. Only the pages of the table 
 count (``index``, ``model``, ``rerun``, ``references`` and ``generated/*``); Sphinx's
 ``search`` and ``genindex`` pages are left out. It prints one line per page, largest first,
 and the total; it exits with 1 when the total is above ``--limit`` (issue 36 item 5: the
-book under 45,000 words, from about 73,000).
+book under 45,000 words, from about 73,000). ``--captions`` lists instead every table or
+figure caption longer than :data:`CAPTION_CHARS` characters (about 3 lines at 1280 px).
 """
 
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 from pathlib import Path
 
@@ -32,6 +34,23 @@ MAIN_CLOSE = "</main>"
 #: previous/next links, not part of what the page says.
 NAV_MARKERS = ('<div class="bd-sidebar-secondary', '<footer class="prev-next-footer',
                '<div class="prev-next-area', '<nav class="bd-toc-nav')
+
+
+#: A caption longer than this many characters of text takes more than about 3 lines of the
+#: book's text column at 1280 px (measured: about 100 characters a line).
+CAPTION_CHARS = 300
+#: A table's or figure's caption as Sphinx writes it.
+CAPTION = re.compile(r"<(figcaption|caption)\b.*?</\1>", re.S)
+
+
+def long_captions(html: str, limit: int = CAPTION_CHARS) -> list[str]:
+    """The captions of a built page whose text is longer than ``limit`` characters.
+
+    >>> long_captions('<caption>' + 'x' * 301 + '</caption><figcaption>ok</figcaption>')[0][:5]
+    'xxxxx'
+    """
+    return [text for m in CAPTION.finditer(html)
+            if len(text := page_words(m.group(0))) > limit]
 
 
 def main_html(html: str) -> str:
@@ -77,7 +96,16 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--html", type=Path, default=Path("book/_build/html"))
     ap.add_argument("--limit", type=int, default=45000)
+    ap.add_argument("--captions", action="store_true",
+                    help=f"list the captions longer than {CAPTION_CHARS} characters")
     args = ap.parse_args(argv)
+    if args.captions:
+        found = [(path, c) for path in sorted(Path(args.html).rglob("*.html"))
+                 for c in long_captions(path.read_text(encoding="utf-8"))]
+        for path, c in found:
+            print(f"{len(c):5d}  {path.relative_to(args.html)}: {c[:90]}")
+        print(f"{len(found)} captions over {CAPTION_CHARS} characters")
+        return 0 if not found else 1
     words = book_words(args.html)
     if not words:
         print(f"no built pages under {args.html}", file=sys.stderr)

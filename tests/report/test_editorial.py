@@ -74,3 +74,15 @@ def test_the_exchange_captions_burn_colours_are_the_ones_drawn():
     plt.close(fig)
     assert len(drawn) == 3
     assert draw.burn_colour_words(3).endswith(f"in {drawn[0]}, {drawn[1]} and {drawn[2]}")
+
+
+def test_captions_over_three_lines_are_listed(tmp_path):
+    words = _tool("book_words")
+    long, short = "Delta-V (m/s) " * 25, "Delta-V (m/s)."
+    page = (f'<main id="main-content"><figure><figcaption><p>{long}</p></figcaption></figure>'
+            f'<table><caption>{short}</caption></table></main>')
+    assert [len(c) for c in words.long_captions(page)] == [len(long.strip())]
+    (tmp_path / "a.html").write_text(page, encoding="utf-8")
+    assert words.main(["--html", str(tmp_path), "--captions"]) == 1
+    (tmp_path / "a.html").write_text(page.replace(long, short), encoding="utf-8")
+    assert words.main(["--html", str(tmp_path), "--captions"]) == 0
