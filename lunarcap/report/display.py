@@ -92,7 +92,7 @@ def _display_markdown(text: str) -> None:
 def show_table(df, name: str, caption: str, notebook: str, parameters: dict | None = None,
                floatfmt: str | dict = ".3f", labels: dict | None = None, label: str | None = None,
                display: bool = True, columns: list | None = None,
-               paper: str | None = None) -> str:
+               paper: str | None = None, source: bool = True) -> str:
     """Write ``df`` to ``tables/<name>.csv`` and show it as a captioned MyST table.
 
     Parameters
@@ -122,6 +122,10 @@ def show_table(df, name: str, caption: str, notebook: str, parameters: dict | No
         The paper's number of the table this one regenerates (``"Table 1"``, ``"Table
         B1"``): the caption starts with "Song et al. (2011) Table 1" and the table has no
         label and no book number (see the module docstring).
+    source : bool
+        Name the notebook and parameters under the table (default). A book page names
+        them once, in its provenance block (:meth:`lunarcap.report.page.Page.header`),
+        and passes False: the same line under every table only repeats it.
 
     Returns
     -------
@@ -139,7 +143,8 @@ def show_table(df, name: str, caption: str, notebook: str, parameters: dict | No
     name = f":class: {PAPER_CLASS}\n" if paper else f":name: {label}\n"
     text = (f":::{{table}} {paper_caption(caption, paper)}\n{name}:align: center\n\n"
             f"{markdown_table(shown, floatfmt)}\n:::\n\n"
-            f"{source_note(notebook, parameters)} Data: {{download}}`{csv.name} <{rel}>`.\n")
+            + (f"{source_note(notebook, parameters)} " if source else "")
+            + f"Data: {{download}}`{csv.name} <{rel}>`.\n")
     if display:
         _display_markdown(text)
     return text
@@ -147,7 +152,7 @@ def show_table(df, name: str, caption: str, notebook: str, parameters: dict | No
 
 def show_figure(fig, name: str, caption: str, notebook: str, parameters: dict | None = None,
                 alt: str | None = None, label: str | None = None, width: str = "100%",
-                display: bool = True, paper: str | None = None) -> str:
+                display: bool = True, paper: str | None = None, source: bool = True) -> str:
     """Save ``fig`` (PNG + SVG) and show the PNG as a MyST figure with a caption.
 
     Parameters
@@ -170,6 +175,9 @@ def show_figure(fig, name: str, caption: str, notebook: str, parameters: dict | 
         The paper's number of the figure this one regenerates (``"Fig. 2"``): the caption
         starts with "Song et al. (2011) Fig. 2" and the figure has no label and no book
         number (see the module docstring).
+    source : bool
+        Name the notebook and parameters in the caption (default); False on a book page,
+        which names them once in its provenance block (as for :func:`show_table`).
 
     Returns
     -------
@@ -184,8 +192,9 @@ def show_figure(fig, name: str, caption: str, notebook: str, parameters: dict | 
     svg = paths.relative_to_page(files["svg"])
     name = f":figclass: {PAPER_CLASS}\n" if paper else f":name: {label}\n"
     text = (f":::{{figure}} {png}\n{name}:alt: {alt}\n:width: {width}\n\n"
-            f"{paper_caption(caption, paper)} {source_note(notebook, parameters)} "
-            f"Files: {{download}}`PNG <{png}>`, {{download}}`SVG <{svg}>`.\n:::\n")
+            f"{paper_caption(caption, paper)} "
+            + (f"{source_note(notebook, parameters)} " if source else "")
+            + f"Files: {{download}}`PNG <{png}>`, {{download}}`SVG <{svg}>`.\n:::\n")
     if display:
         _display_markdown(text)
     return text

@@ -119,6 +119,25 @@ def listing(values: dict, names_labels, spec: str = "", unit: str = "") -> str:
     return f"{nums}{unit} ({labs}" + (f"; {rest}" if rest else "") + ")"
 
 
+def counted(k, n, what: str, verb: tuple[str, str] = ("has", "have")) -> str:
+    """"k of n <what> <verb>", the verb agreeing with k (the subject), for computed prose.
+
+    ``verb``: its singular and plural forms. Prose that pastes two glued counts before a
+    verb cannot agree with them; it pastes this sentence instead.
+
+    >>> counted(1, 8, "plan-and-count cases", ("has", "have"))
+    '1 of 8 plan-and-count cases has'
+    >>> counted(3, 8, "cases", ("is recovered", "are recovered"))
+    '3 of 8 cases are recovered'
+    >>> counted(0, 8, "cases")
+    'none of the 8 cases has'
+    """
+    k, n = int(k), int(n)
+    if k == 0:
+        return f"none of the {n} {what} {verb[0]}"
+    return f"{k} of {n} {what} {verb[0] if k == 1 else verb[1]}"
+
+
 @dataclass
 class Table:
     """A table of a page: the CSV content and how it is shown."""
@@ -297,7 +316,11 @@ class Page:
         return text
 
     def show(self, key: str, display: bool = True) -> str:
-        """Write one table or figure and display it (returns the MyST text)."""
+        """Write one table or figure and display it (returns the MyST text).
+
+        The notebook and parameters that made it are not repeated under it: the page names
+        them once, in its provenance block (:meth:`header`, at the page's end).
+        """
         item = self.items[key]
         if isinstance(item, Table):
             df = item.df
@@ -305,10 +328,11 @@ class Page:
             heads = _labels(shown, **(item.columns or {}))
             return _display.show_table(df, self.name_of(key), item.caption, self.notebook,
                                        self.parameters, floatfmt=item.floatfmt, labels=heads,
-                                       columns=shown, display=display, paper=item.paper)
+                                       columns=shown, display=display, paper=item.paper,
+                                       source=False)
         return _display.show_figure(item.fig, self.name_of(key), item.caption, self.notebook,
                                     self.parameters, alt=item.alt, width=item.width,
-                                    display=display, paper=item.paper)
+                                    display=display, paper=item.paper, source=False)
 
     def glue(self) -> None:
         """Glue every value and note (for ``{glue:text}`` and ``{glue:md}`` in the prose)."""

@@ -13,8 +13,29 @@ from lunarcap.report.figstyle import (
     HYPERBOLA_COLOUR,
     burn_colour,
     coast_colour,
+    colour_name,
     draw_moon,
 )
+
+
+def burn_colour_words(n_burns: int) -> str:
+    """The burns' colours in the words of the caption, from the palette the figure uses.
+
+    Caption and figure agree by construction: burn n is drawn in ``burn_colour(n)``.
+
+    >>> burn_colour_words(3)
+    'burns 1, 2 and 3 in red, orange and brown'
+    >>> burn_colour_words(1)
+    'the burn in red'
+    """
+    words = [colour_name(burn_colour(n)) for n in range(1, n_burns + 1)]
+    if n_burns == 1:
+        return f"the burn in {words[0]}"
+
+    def both(xs):
+        return ", ".join(xs[:-1]) + " and " + xs[-1]
+
+    return f"burns {both([str(n) for n in range(1, n_burns + 1)])} in {both(words)}"
 
 
 def plot_exported_trajectory(arcs, r_moon_km: float):

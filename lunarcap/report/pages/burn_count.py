@@ -24,7 +24,7 @@ from lunarcap.report.contents import (
     table_files,
 )
 from lunarcap.report.figures import burn_count as draw
-from lunarcap.report.page import Page, solver_description
+from lunarcap.report.page import Page, counted, solver_description
 from lunarcap.repro import paths
 from lunarcap.studies.burn_count import counts as burns
 from lunarcap.studies.study import plan_id
@@ -185,6 +185,9 @@ def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5b
     page.value("wall_s", float(res.run["wall_s"]))
     page.value("n_cases", int(len(table)))
     page.value("n_infeasible", int((table.status == "infeasible").sum()))
+    page.value("infeasible_counted", counted(page.values["n_infeasible"], len(table),
+                                             "plan-and-count cases",
+                                             ("lacks a plan", "lack a plan")))
     page.value("n_failed", int((~table.status.isin(["ok", "infeasible"])).sum()))
     for n in sorted(set(range(1, 6)) | set(counts)):  # the prose quotes N = 1 to 3
         row = ok[ok.n_burns == n]

@@ -401,15 +401,10 @@ def _add_plan(page: Page, p: CapturePlan, own: str, yaml_text, case: str) -> Non
     page.note("plan_yaml", f"```yaml\n{text.rstrip()}\n```{over}")
     page.table(
         "plan", plan_table(p),
-        caption=(f"The burns of {case}; first perilune {a.epoch}, altitude "
-                 f"{a.perilune_altitude_km:g} km (every perilune and the final circle), "
-                 f"inclination {a.inclination_deg:g} deg, v_inf {a.v_inf_kmps:.5f} km/s. "
-                 "Period (h, or min below 3 h) and apolune altitude (km): the orbit each "
-                 "burn must reach "
-                 "(two-body; the apolune follows from the period and the perilune). "
-                 "Ignition: free (optimised) or min from the nominal perilune. Impulsive ΔV "
-                 "(m/s): the plan's two-body chain of tangential perilune impulses; Eq. (19) "
-                 "duration (min): the burn duration it implies (Song 2011 Eq. 19)."),
+        caption=(f"The burns of {case}; first perilune {a.epoch}, "
+                 f"{a.perilune_altitude_km:g} km, {a.inclination_deg:g} deg, v_inf "
+                 f"{a.v_inf_kmps:.5f} km/s. Period and apolune: the orbit each burn must reach "
+                 "(two-body). Impulsive ΔV: the two-body chain; Eq. (19): its duration."),
         columns={"ignition": "ignition",
                  "impulsive_delta_v_two_body_mps": "impulsive ΔV, two-body (m/s)",
                  "eq19_duration_min": "Eq. (19) duration (min)"},
@@ -424,11 +419,9 @@ def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str) -> None:
     # ---- each burn
     page.table(
         "burns", burns,
-        caption=(f"Each burn of {case}, solved and verified. Start: ignition, min from the "
-                 "nominal perilune (negative: before). Duration in min, ΔV in m/s. "
-                 "Impulsive ΔV: one impulse in the same dynamics from the same pre-burn orbit "
-                 "(the limit of 4 s and 2 s burns). Loss: ΔV − impulsive ΔV, in m/s and in % "
-                 "of the impulsive ΔV. The CSV has every column of each burn's row."),
+        caption=(f"Each burn of {case}, solved and verified. Start: min from the nominal "
+                 "perilune. Impulsive ΔV: the limit of 4 s and 2 s burns in the same dynamics "
+                 "from the same orbit. Loss: ΔV − impulsive ΔV."),
         show_columns=["burn", "start_min", "burn_duration_min", "delta_v_mps",
                       "impulsive_limit_mps", "delta_v_loss_mps", "delta_v_loss_percent"],
         floatfmt={"start_min": "+.3f", "burn_duration_min": ".2f", "delta_v_mps": ".3f",
@@ -441,15 +434,10 @@ def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str) -> None:
         floatfmt={"m_start_kg": ",.3f", "m_end_kg": ",.3f", "fuel_kg": ".3f"})
     page.table(
         "verification", plan_verification_table(burns),
-        caption=("The re-propagation gate of each burn (see the {doc}`verification` page): "
-                 "the optimal steering flown again from the initial state by CVODES (rtol "
-                 "1e-13). End position (m): distance between the flown and the optimiser's "
-                 "states at the next nominal perilune. r_p error (mm): perilune radius at that "
-                 "perilune − the target's. r_a error (mm): apolune radius − the "
-                 "circle's (circular target only). i error (deg): inclination − the plan's. "
-                 "γ error (deg): flight-path angle at that epoch (ellipse targets only). "
-                 "Gate: 50 m, 10 m, 1e-4 deg (and the end speed and objective, in the CSV); "
-                 "0.000000 deg: below 5e-7 deg. '—': not a condition of that target."),
+        caption=("The {doc}`re-propagation gate <verification>` of each burn: flown minus "
+                 "optimised end position at the next nominal perilune; r_p, r_a, i and γ "
+                 "minus their targets. Gate: 50 m, 10 m, 1e-4 deg (end speed and objective in "
+                 "the CSV). '—': not a condition of that target."),
         columns={"verification_final_position_diff_m": "end position (m)", "verified": "gate"},
         floatfmt={"verification_final_position_diff_m": ".3f", "rp_error_mm": "+.3f",
                   "ra_error_mm": "+.3f", "inc_error_deg": "+.6f", "gamma_error_deg": "+.6f"})
@@ -459,12 +447,9 @@ def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str) -> None:
 def _add_totals(page: Page, p: CapturePlan, res, tot: dict, case: str) -> None:
     page.table(
         "totals", totals_table(tot),
-        caption=(f"Totals of {case}. The impulsive total is the sum of each burn's impulsive "
-                 "limit in the same dynamics; the time to the final orbit runs from the "
-                 "arrival perilune to the end of the last burn "
-                 f"({tot['final_orbit_epoch']}, TDB; the glossary's time_to_final_orbit_h); the "
-                 "final orbit's elements are osculating at the perilune after it "
-                 f"({tot['final_perilune_epoch']})."),
+        caption=(f"Totals of {case}. Impulsive total: the burns' impulsive limits summed. "
+                 f"Time to the final orbit: to the last cut-off ({tot['final_orbit_epoch']} "
+                 f"TDB); final elements osculating at {tot['final_perilune_epoch']}."),
         show_columns=["quantity", "value", "unit"], floatfmt={"value": ",.3f"})
     arrival = arrival_for(p.arrival, p.ephemeris, p.lunar_pole)
     geo = figdata.capture_geometry(solutions(res), arrival)
@@ -472,11 +457,9 @@ def _add_totals(page: Page, p: CapturePlan, res, tot: dict, case: str) -> None:
     plt.close(fig)  # saved and shown by page.show, not by the notebook's build cell
     page.figure(
         "capture", fig,
-        caption=(f"The capture of {case}, in the plane of the arrival orbit (1 LU = 1 lunar "
-                 "radius, 1,738.2 km): the arrival hyperbola (from 3 h before the first "
-                 "perilune; dotted: flown on without the first burn), the finite burn arcs "
-                 "(thick), the orbit each burn reaches, and one more revolution of the final "
-                 "orbit."),
+        caption=(f"The capture of {case}, in the arrival orbit's plane (1 LU = 1,738.2 km): "
+                 "the hyperbola from 3 h before the perilune (dotted: without burn 1), the "
+                 "burn arcs (thick), each orbit reached, one revolution of the final orbit."),
         alt=f"The capture of plan {p.name} in the orbit plane", name="capture")
 
 
@@ -489,11 +472,10 @@ def _add_comparison(page: Page, p: CapturePlan, burns: pd.DataFrame, tot: dict,
         table, vals, reading = lro_comparison(p, burns, tot)
         page.table(
             "comparison", table, name="published",
-            caption=("Our LRO-like capture beside the published LRO figures (sources of "
-                     "the {doc}`real-missions page <real_missions>`: S7, LROC news, 23 June "
-                     "2009; S8, NASA's mission profile citing the launch press kit). Ours: "
-                     f"{case}; the first orbit osculating at its next perilune. Durations in "
-                     "min, altitudes in km, masses in kg."),
+            caption=("Our LRO-like capture beside the published LRO figures (S7: LROC news, "
+                     "23 June 2009; S8: NASA's mission profile; {doc}`sources "
+                     f"<real_missions>`). Ours: {case}; the first orbit osculating at its "
+                     "next perilune."),
             columns={"quantity": "quantity", "published": "LRO, published", "ours": "ours",
                      "unit": "unit", "source": "source"},
             floatfmt={"published": ",.1f", "ours": ",.1f"})
@@ -503,13 +485,10 @@ def _add_comparison(page: Page, p: CapturePlan, burns: pd.DataFrame, tot: dict,
         table, vals, reading = paper_comparison(p, tot)
         page.table(
             "comparison", table, name="vs_paper",
-            caption=("This plan beside the paper's three-burn capture (12.235 h → 3.525 h → "
-                     "100 km circle) from the same arrival, with the same engine and "
-                     f"dynamics ({p.dynamics}), with *{capture_name('free')}* (every ignition "
-                     "optimised). Total ΔV, impulsive total and loss in m/s (loss: total ΔV − "
-                     "the impulsive total in the same dynamics, also in %), propellant in kg, "
-                     "time to the final orbit in h (from the arrival perilune to the end of "
-                     "the last burn)."),
+            caption=("This plan beside the paper's three burns (12.235 h → 3.525 h → circle) "
+                     f"from the same arrival, engine and dynamics ({p.dynamics}), both with "
+                     f"*{capture_name('free')}*. Loss: total ΔV − the impulsive total in the "
+                     "same dynamics."),
             columns={"capture": "capture", "total_impulsive_limit_mps": "impulsive (m/s)",
                      "total_delta_v_loss_mps": "loss (m/s)",
                      "total_delta_v_loss_percent": "loss (%)",

@@ -280,15 +280,11 @@ def _add_fig2(page: Page, plan, geo, table: pd.DataFrame, ctx: dict) -> None:
     burn_list, starts_txt = ctx["burn_list"], ctx["starts_txt"]
     page.figure(
         "fig2", figures.plot_fig2_capture(geo),
-        caption=(f"The whole capture sequence with finite burns (Song et al. 2011, Fig. 2: "
-                 f"\"the example of a lunar capture trajectory using finite thrust with 150 N "
-                 f"and Isp of 200 seconds\"), here {ctx['engine']}, ignition {starts_txt} min "
-                 f"from each perilune. Grey: the arrival hyperbola, from {geo.hyperbola_hours:g} "
-                 "h before the arrival perilune to burn 1 ignition (dotted: its continuation had "
-                 f"burn 1 not been performed); {_orbits_text(plan, geo)}; red: the finite-burn "
-                 f"arcs of burns {burn_list} (LOI {burn_list}; {durations} min). Coasts and burns "
-                 f"are the verified re-propagations of the solutions. {projection} Axes in "
-                 f"lunar units, 1 LU = R_Moon = {C.LU_KM:g} km; the grey disc is the Moon."),
+        caption=(f"The whole capture, {ctx['engine']}, ignition {starts_txt} min from each "
+                 f"perilune, re-propagated. Grey: the hyperbola from {geo.hyperbola_hours:g} h "
+                 f"before the perilune (dotted: without burn 1); {_orbits_text(plan, geo)}; "
+                 f"red: burns {burn_list} ({durations} min). {projection} 1 LU = "
+                 f"{C.LU_KM:g} km."),
         alt=("The arrival hyperbola, the capture orbits and the final circular orbit around "
              "the Moon, with the burn arcs near perilune in red"),
         paper="Fig. 2" if ctx["paper_case"] else None)
@@ -299,14 +295,10 @@ def _add_fig3(page: Page, geo, table: pd.DataFrame, ctx: dict) -> None:
                       f"{r.cutoff_from_perilune_deg:+.1f}°" for r in table.itertuples())
     page.figure(
         "fig3", draw.plot_fig3_burn_arcs(geo),
-        caption=("The burn arcs (Song et al. 2011, Fig. 3: \"the zoomed view of Fig. 2, "
-                 "showing details of every finite burn arc\"). (a) The figure above zoomed on "
-                 f"burns {ctx['burn_list']} (thick: burning; ● ignition, ■ cutoff; dashed: the "
-                 "direction of the first pass's perilune), same projection, axes in LU "
-                 f"(1 LU = {C.LU_KM:g} km). (b) The altitude of each perilune pass (km) "
-                 "against the angle in the orbit plane from that pass's perilune (deg; "
-                 "negative before perilune), which separates the arcs that overlap in (a); "
-                 f"dashed: coasting before and after. Spans: {spans}."),
+        caption=(f"The burn arcs. (a) Burns {ctx['burn_list']} zoomed (thick: burning; ● "
+                 "ignition, ■ cutoff; dashed: the perilune direction), LU. (b) Altitude (km) "
+                 "of each perilune pass against the angle from its perilune (deg), separating "
+                 f"the arcs (a) overlaps. Spans: {spans}."),
         alt="Zoom on the burn arcs near perilune, and their altitudes against the angle "
             "from perilune", paper="Fig. 3" if ctx["paper_case"] else None)
 
@@ -335,9 +327,7 @@ def _add_fig4(page: Page, d4, ctx: dict) -> None:
         "fig4", draw.plot_fig4_steering(d4, p["alpha_deg"] if paper_case else None,
                                            p["mass1_kg"] if paper_case else None,
                                            p["burn1_min"] if paper_case else None),
-        caption=("Thrust steering angles and mass during burn 1, LOI 1 (Song et al. 2011, "
-                 "Fig. 4: \"in-plane angle (top), out-of-plane angle (middle) and mass "
-                 "(bottom)\", expressed in the spacecraft-centred RTN frame), "
+        caption=("Steering angles (RTN) and mass during burn 1, "
                  f"{ctx['engine']}, against the time from ignition (min); dashed: the nominal "
                  f"perilune, {d4.perilune_min:g} min after ignition. α (deg, Eq. (14a)) "
                  f"{'increases' if alpha_up else 'goes'} from {d4.alpha_deg[0]:.1f}° to "
@@ -358,15 +348,9 @@ def _add_fig5(page: Page, d5, geo, ctx: dict) -> None:
     page.data["figure_csv"]["fig5"] = d5.table()
     page.figure(
         "fig5", draw.plot_fig5_vectors(d5, geo),
-        caption=("Thrust-acceleration and velocity vectors along the burn 1 (LOI 1) arc "
-                 "(Song et al. 2011, Fig. 5: \"direction relations between the thrust "
-                 "acceleration vectors and the spacecraft's velocity vectors for the 1st LOI "
-                 f"maneuver\", reference frame M-MME2000), {ctx['engine']}. (a) The vectors "
-                 f"every {step:.2f} min from ignition to cutoff, projected on the orbit plane: "
-                 "velocity (blue, km/s) and thrust acceleration T/m (red, m/s²), each drawn to "
-                 "its own scale given in the legend; position axes in km (M-MME2000, projected "
-                 "as in the figures above); grey disc: the Moon; grey: the arrival hyperbola; "
-                 "blue line: the 1st capture orbit. (b) The angle between the thrust "
+        caption=(f"Thrust acceleration and velocity along burn 1, {ctx['engine']}. (a) "
+                 f"Every {step:.2f} min, on the orbit plane: velocity (blue, km/s), T/m (red, "
+                 "m/s²), each to its legend's scale; km. (b) The angle between the thrust "
                  f"acceleration and the velocity (deg, 3-D): between {d5.angle_deg.min():.1f}° "
                  f"and {d5.angle_deg.max():.1f}°"
                  + (", always above 90°, so the thrust slows the spacecraft throughout"

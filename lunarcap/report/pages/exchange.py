@@ -125,7 +125,8 @@ def build(plan: str = "song2011-150N", dynamics: str | None = None,
     page.figure("trajectory", draw.plot_exported_trajectory(trajectory_arcs(ex.files["oem"]),
                                                        C.R_MOON),
                 caption=(f"The capture of {p.name} as read back from the exported OEM: "
-                         "Moon-centred ICRF, x-y and x-z projections (km); burns in red."),
+                         "Moon-centred ICRF, x-y and x-z projections (km); "
+                         f"{draw.burn_colour_words(p.n_burns)}."),
                 alt="Two projections of the exported capture trajectory around the Moon")
     man = read_maneuvers(ex.files["maneuvers"])
     leap = leap_second_table()

@@ -23,7 +23,7 @@ from lunarcap.report.contents import (
     table_files,
 )
 from lunarcap.report.figures import missed_thrust as draw
-from lunarcap.report.page import Page, solver_description
+from lunarcap.report.page import Page, counted, solver_description
 from lunarcap.repro import paths
 from lunarcap.studies.missed import cases as missed
 
@@ -281,6 +281,10 @@ def _values(page: Page, p, burn: int, t: pd.DataFrame, late: pd.DataFrame, run: 
     page.value("n_cases", int(len(t)))
     page.value("n_recovered", int(len(ok)))
     page.value("n_no_recovery", int((t.status == "no recovery").sum()))
+    page.value("recovered_counted", counted(len(ok), len(t), "cases",
+                                            ("is recovered", "are recovered")))
+    page.value("no_recovery_counted", counted(page.values["n_no_recovery"], len(t),
+                                              "cases", ("has", "have")))
     page.value("n_escape", int((t.cutoff_orbit == "escape").sum()))
     esc = escape_fractions(t)
     page.value("n_escape_fractions", len(esc))
@@ -295,11 +299,13 @@ def _values(page: Page, p, burn: int, t: pd.DataFrame, late: pd.DataFrame, run: 
     page.value("n_failed", int((~t.status.isin(["recovered", "no recovery"])).sum()))
     page.note("reading", reading(t, max_period_h))
     tx = page.text
+    n_esc = len(esc)
     page.headline(f"When burn {burn} of `{p.name}` ({p.dynamics} dynamics) is cut short, the "
-                  f"cut-offs at {tx('n_escape_fractions', '.0f')} of the "
-                  f"{tx('n_fractions', '.0f')} fractions tried leave the spacecraft on a "
-                  f"hyperbola; {tx('n_recovered', '.0f')} of the {tx('n_cases', '.0f')} "
-                  f"cut-off cases are recovered (penalty at most "
+                  f"cut-off{'' if n_esc == 1 else 's'} at {n_esc} of the "
+                  f"{tx('n_fractions', '.0f')} fractions tried leave{'s' if n_esc == 1 else ''} "
+                  f"the spacecraft on a hyperbola; "
+                  f"{counted(len(ok), len(t), 'cut-off cases', ('is', 'are'))} recovered "
+                  f"(penalty at most "
                   f"{tx('max_penalty_mps', '.1f', ' m/s')} against the nominal "
                   f"*{capture_name('free_periods')}*).")
     page.note("late_reading", late_reading(late))

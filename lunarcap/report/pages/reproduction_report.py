@@ -218,18 +218,10 @@ def _add_part_a_tables(page: Page, long: pd.DataFrame, dynamics: str,
     gate = gate_text(long)
     page.table(
         "tables", tables_wide(long),
-        caption=("Every number of Song et al. (2011), Tables 1–5 and B1, beside ours, one row "
-                 "per row of the paper's tables (Tables 1–3: 150 N / Isp 200 s; Table 4: "
-                 f"300 N / 250 s; Table 5: 450 N / 300 s; this run: {rng}). Start: ignition, "
-                 "min from the nominal perilune (negative: before). For each of the burn "
-                 "duration (min), the finite-burn ΔV (m/s) and its excess over the paper's "
-                 "impulsive ΔV (% of the latter): the paper's number, ours, and ours − paper. "
-                 "Last, the impulsive ΔV the paper prints in every table (from "
-                 "{cite:t}`song2009c`) against our two-body impulsive sequence, in the ΔV "
-                 "columns. Best, after the start: the row the paper marks best, our smallest "
-                 f"ΔV among the paper's offsets, or both. {dynamics} dynamics. {gate} Every "
-                 f"number in long form, with engine, LOI and flags: "
-                 f"{_link(f'{output_name}_tables_data')}."),
+        caption=(f"Tables 1–5 and B1 beside ours, row by row ({rng}; {dynamics} dynamics). "
+                 "Start: min from the nominal perilune; best: the paper's, ours or both. Last "
+                 "rows: the printed impulsive ΔV against our two-body chain. "
+                 f"{gate} Long form: {_link(f'{output_name}_tables_data')}."),
         columns=WIDE_LABELS,
         floatfmt={c: ("+.3f" if "difference" in c else ".3f") for c in WIDE_LABELS
                   if c not in ("source", "thrust_N", "isp_s", "start", "best", "row")},
@@ -239,10 +231,8 @@ def _add_part_a_tables(page: Page, long: pd.DataFrame, dynamics: str,
                caption="Every number of Tables 1–5 and B1 beside ours, all columns.")
     page.table(
         "tables_summary", tables_summary(main),
-        caption=(f"The differences of the table above ({rng} only, not Table B1, which "
-                 "repeats their best rows), by quantity: how many numbers, their mean (ours − "
-                 "paper), and the median and largest absolute difference, each in the unit "
-                 "given (min, m/s or percentage points)."),
+        caption=(f"The differences of the table above by quantity ({rng}; not Table B1, "
+                 "which repeats their best rows), in the unit given."),
         columns={"unit": "unit", "numbers": "numbers", "mean_difference": "mean difference",
                  "median_abs_difference": "median |diff.|",
                  "max_abs_difference": "largest |diff.|"},
@@ -294,17 +284,10 @@ def _part_b(page: Page, sweeps: dict, dynamics: str, output_name: str, findings)
     quotes = rep.quotes_comparison(ours)
     page.table(
         "quotes", rep.quotes_display(quotes),
-        caption=("Every number of the paper's prose beside ours. Printed with: the section "
-                 "(§) and paragraph (¶, counted in reading order), then the words the number "
-                 "is printed with (cut short; in full in the data file); paper: the number as "
-                 "printed, with its unit (h, min, m/s, %, kg, km, km³/s², N, s, deg; t: "
-                 "metric tons); ours: our equivalent in the same unit, from the verified best "
-                 "chains of the three engines (ignition at the paper's best offsets; losses "
-                 "against the paper's impulsive delta-Vs, as the paper's) unless the note "
-                 "says it is an input, shown to one more decimal than printed (at least "
-                 "three); ours − paper in the same unit. \"About\" numbers are compared as "
-                 "printed. Numbers, full words and the keys of "
-                 f"`lunarcap.paper.printed.QUOTES`: {_link(f'{output_name}_quotes_data')}."),
+        caption=("Every number of the paper's prose beside ours (section §, paragraph ¶, "
+                 "words cut short; t: metric tons). Ours: from the verified best chains at "
+                 "the paper's offsets, losses against its impulsive ΔVs, unless the note says "
+                 f"input. In full: {_link(f'{output_name}_quotes_data')}."),
         columns={"words": "printed with", "printed": "paper", "ours": "ours",
                  "difference": "ours − paper", "note": "note"})
     page.table("quotes_data", quotes,
@@ -313,10 +296,9 @@ def _part_b(page: Page, sweeps: dict, dynamics: str, output_name: str, findings)
     epochs = rep.epochs_comparison(plan.nominal_perilunes_s)
     page.table(
         "epochs", epochs,
-        caption=("The three perilune epochs printed in Sec. 3.2.1 (TDB) beside the nominal "
-                 "perilune epochs of our chain: the arrival epoch, then the capture periods "
-                 "12.235 h and 3.525 h later (each LOI's coast ends there); difference = ours "
-                 "− paper, s. The periods are printed to 0.001 h (3.6 s), the epochs to 1 s."),
+        caption=("The perilune epochs of Sec. 3.2.1 (TDB) beside our chain's: the arrival, "
+                 "then 12.235 h and 3.525 h later. The periods are printed to 0.001 h "
+                 "(3.6 s), the epochs to 1 s."),
         columns={"perilune": "perilune", "where": "where", "paper": "paper (TDB)",
                  "ours": "ours (TDB)", "difference_s": "ours − paper (s)"},
         floatfmt={"difference_s": "+.0f"})

@@ -286,13 +286,9 @@ def _add_items(page: Page, sweep: pd.DataFrame, impulsive: dict, printed, case: 
     imp = sweep.attrs["impulsive_delta_v_mps"]
     page.table(
         "dv", dv_table(sweep, impulsive),
-        caption=(f"Delta-V of {case}. Start: ignition, min from the nominal perilune "
-                 "(negative: before). Delta-V in m/s; Δ: ours − paper, in m/s and in % of the "
-                 f"paper's value; loss: delta-V above the paper's impulsive {imp:.3f} m/s, in "
-                 "% of it. Impulsive row, ours: one impulse in the same dynamics from the same "
-                 "pre-burn orbit (limit of 4 s and 2 s burns). Best: smallest delta-V of the "
-                 "offsets tested (the paper's footnote a, ours or both). Gate: passed the "
-                 "re-propagation gate (the verification page)."),
+        caption=(f"Delta-V of {case}. Start: min from the nominal perilune. Δ: ours − paper. "
+                 f"Loss: above the paper's impulsive {imp:.3f} m/s. Impulse, ours: the limit "
+                 "of 4 s and 2 s burns. Best: the smallest of the offsets tested."),
         columns={"delta_v_mps": "ΔV, ours (m/s)", "delta_v_diff_mps": "Δ (m/s)",
                  "delta_v_diff_percent": "Δ (%)", "paper_delta_v_loss_percent": "loss, paper (%)",
                  "loss_vs_paper_impulse_percent": "loss, ours (%)", "verified": "gate"},
@@ -304,9 +300,9 @@ def _add_items(page: Page, sweep: pd.DataFrame, impulsive: dict, printed, case: 
     page.table(
         "duration", sweep[["start_min", "paper_burn_duration_min", "burn_duration_min",
                            "burn_duration_diff_min"]],
-        caption=(f"Burn durations (min) of {case}, and ours − paper (min). Start: ignition, "
-                 f"min from the nominal perilune. The Eq. (19) estimate from the plan's "
-                 f"two-body impulsive delta-V and our mass at ignition is {eq19_min:.2f} min."),
+        caption=(f"Burn durations (min) of {case}. Start: min from the nominal perilune. "
+                 f"Eq. (19) from the two-body impulse and our mass at ignition: "
+                 f"{eq19_min:.2f} min."),
         columns={"burn_duration_min": "duration, ours (min)",
                  "burn_duration_diff_min": "ours − paper (min)"},
         floatfmt={"start_min": "g", "paper_burn_duration_min": ".2f",
@@ -315,11 +311,10 @@ def _add_items(page: Page, sweep: pd.DataFrame, impulsive: dict, printed, case: 
     page.figure(
         "dv_figure", draw.plot_sweep_dv(sweep, printed, f"Song et al. (2011), {source}"),
         caption=(f"Delta-V (m/s) of LOI {loi} ({thrust_N:g} N / Isp {isp_s:g} s) against the "
-                 "ignition offset (min from the nominal perilune, negative before): ours "
-                 "(filled circles, the star is the smallest), the paper's printed rows (open "
-                 "squares), the paper's impulsive delta-V (dotted) and minus half the Eq. (19) "
-                 f"burn-duration estimate, {eq19_min:.2f} min / 2 from our mass at ignition "
-                 "(dashed), the paper's rule of thumb for the best ignition."),
+                 "ignition offset (min from the nominal perilune): ours (filled, star: "
+                 "smallest), the paper's rows (open squares), its impulsive delta-V (dotted) "
+                 f"and its rule of thumb, half the Eq. (19) duration ({eq19_min:.2f} min) "
+                 "before the perilune (dashed)."),
         alt=f"Delta-V of LOI {loi} against ignition offset, ours and the paper's", name="dv")
 
 
@@ -354,7 +349,6 @@ def build(thrust_N: float = paper_engine_pairs()[0][0], isp_s: float = paper_eng
     printed, best_p, source = _printed(thrust_N, loi)
     prev_txt = ", ".join(s if isinstance(s, str) else f"{s:g}" for s in prev)
     case = (f"LOI {loi}, {thrust_N:g} N / Isp {isp_s:g} s, {dynamics} dynamics"
-            + (f", beside Song et al. (2011), {source}" if source else "")
             + (f"; the earlier LOIs ignite at {prev_txt} min" if prev else ""))
     _add_items(page, sweep, impulsive, printed, case, source, loi, thrust_N, isp_s)
     values = prose_values(sweep, impulsive, best_p)

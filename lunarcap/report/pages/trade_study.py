@@ -258,17 +258,12 @@ def _add_loss(page: Page, ok, valid, paper, spec, newton_per_ratio: float,
     page.figure(
         "loss", draw.plot_trade_study_loss(ok, valid, paper, spec.isp_s, PART_TITLES,
                                               newton_per_ratio, LOSS_AXIS_PERCENT),
-        caption=("Finite-burn loss (% of the impulsive ΔV, logarithmic) of the optimal burns "
-                 "(free ignition, verified) against the initial thrust-to-weight ratio "
-                 "T/(m₀ g₀), m₀ = 524.895 kg, for each LOI and for the whole sequence, one "
-                 f"curve per Isp (thrust in N on the top axis); {dynamics} dynamics. "
-                 f"{loss_def} Dashed: the estimate of {{cite:t}}`robbins1966` (quoted in "
-                 "{cite:t}`confraria2020`), "
-                 "(1/24)(ω_s t_b)² ΔV with t_b "
-                 "from Eq. (19) and ω_s the Schuler rate at the perilune, drawn where "
-                 f"ω_s t_b ≤ {ROBBINS_VALID_OMEGA_T:g} rad (for the sequence: every burn). "
-                 "Stars: the paper's three engines with their Table B1 losses (against the "
-                 "paper's own impulsive ΔVs), each in its Isp's colour."),
+        caption=("Finite-burn loss (% of the impulsive ΔV, log scale) against the initial "
+                 "thrust-to-weight ratio T/(m₀ g₀), m₀ = 524.895 kg, per LOI and for the "
+                 f"sequence, one curve per Isp; {dynamics} dynamics. Dashed: "
+                 r"{cite:t}`robbins1966`, $\tfrac{1}{24}(\omega_s t_b)^2\,\Delta V$, where "
+                 rf"$\omega_s t_b \le {ROBBINS_VALID_OMEGA_T:g}$ rad. Stars: the paper's "
+                 "engines (Table B1)."),
         alt="Finite-burn loss against thrust-to-weight ratio, per LOI and for the sequence")
     at_paper = paper_engines_table(ok, paper, direct)
     page.table(
