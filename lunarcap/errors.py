@@ -45,6 +45,15 @@ class SolveError(LunarcapError, RuntimeError):
     The command line's exit status for it is 3. ``lunarcap.solve(plan).check()`` raises
     it for a burn that failed verification, e.g. ``plan two-burn-8h: burn 1 failed
     verification (IPOPT ...; perilune radius off by ... m, inclination by ... deg)``.
+    Caught like any of lunarcap's errors, its status and residuals (m, deg) are at hand:
+
+    >>> import lunarcap
+    >>> try:
+    ...     raise lunarcap.SolveError("burn 1 failed verification", "Solve_Succeeded",
+    ...                               {"verification_rp_error_m": 12.5})
+    ... except lunarcap.LunarcapError as exc:
+    ...     print(exc, "|", exc.status, exc.details)
+    burn 1 failed verification | Solve_Succeeded {'verification_rp_error_m': 12.5}
 
     Attributes
     ----------
