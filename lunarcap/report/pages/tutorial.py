@@ -14,6 +14,7 @@ answered from the same nominal.
 from __future__ import annotations
 
 import shutil
+import tempfile
 from pathlib import Path
 
 from lunarcap.capture.gmat_flight import TOL_FINAL_RADII_M
@@ -69,8 +70,9 @@ def finish(page: Page, res, missed, disp, files, flight) -> Page:
     disp : lunarcap.StudyResult
         The dispersion run (:func:`lunarcap.dispersions`).
     files : dict of str to Path
-        The exported files (``res.export(...).files``), in a directory of their own that
-        is removed once read (the book's export page keeps its files for download).
+        The exported files (``res.export(...).files``); their directory is removed once
+        read if it lies below the system's temporary directory (the notebook's
+        ``tempfile.mkdtemp``; the book's export page keeps its files for download).
     flight : lunarcap.GmatFlight
         The capture flown in GMAT (:meth:`lunarcap.CaptureResult.fly_in_gmat`).
 
@@ -90,10 +92,20 @@ def finish(page: Page, res, missed, disp, files, flight) -> Page:
         f"(loss {page.text('total_delta_v_loss_mps', '.1f', ' m/s')}), then flown again "
         f"in GMAT to within {page.text('gmat_final_radii_m', '.2g', ' m')} of lunarcap's "
         f"final orbit.")
-    dirs = {Path(p).parent for p in files.values()}
-    for d in dirs:
-        shutil.rmtree(d, ignore_errors=True)
+    _remove_temporary({Path(p).parent for p in files.values()})
     return page
+
+
+def _remove_temporary(dirs) -> None:
+    """Remove the directories below the system's temporary directory (the notebook's).
+
+    Any other directory is left alone: a reader who exported into their own keeps it.
+    """
+    tmp = Path(tempfile.gettempdir()).resolve()
+    for d in dirs:
+        d = Path(d).resolve()
+        if d != tmp and d.is_relative_to(tmp):
+            shutil.rmtree(d, ignore_errors=True)
 
 
 def _capture(page: Page, res) -> None:
@@ -129,7 +141,8 @@ def _missed(page: Page, res, missed) -> None:
     """The missed-thrust case: answered, recovered to the same final orbit."""
     row = missed.to_frame().iloc[0]
     for k in ("fraction", "delay_min", "penalty_mps", "recovery_delta_v_mps",
-              "time_to_final_orbit_h", "nominal_remaining_delta_v_mps"):
+              "time_to_final_orbit_h", "nominal_remaining_delta_v_mps",
+              "nominal_time_to_final_orbit_h"):
         page.value(f"missed_{k}", row[k])
     page.value("missed_status", row["status"])
     page.expect("the missed-thrust case is answered and recovered",
