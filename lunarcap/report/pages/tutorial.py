@@ -86,7 +86,7 @@ def finish(page: Page, res, missed, disp, files, flight) -> Page:
     _dispersions(page, res, disp)
     _gmat(page, files, flight)
     page.headline(
-        f"A plan of your own in a dozen lines of Python: {page.text('thrust_N', '.0f')} N "
+        f"A plan of your own through the Python API: {page.text('thrust_N', '.0f')} N "
         f"on {page.text('mass_kg', '.0f')} kg captured in {page.text('n_burns', '.0f')} "
         f"burns for {page.text('total_delta_v_mps', '.1f', ' m/s')} "
         f"(loss {page.text('total_delta_v_loss_mps', '.1f', ' m/s')}), then flown again "
