@@ -13,11 +13,26 @@ import math
 
 
 class LunarcapError(Exception):
-    """Base class of lunarcap's own errors."""
+    """Base class of lunarcap's own errors (catch it to catch any of them).
+
+    >>> import lunarcap
+    >>> issubclass(lunarcap.InputError, lunarcap.LunarcapError)
+    True
+    """
 
 
 class InputError(LunarcapError, ValueError):
-    """A parameter is out of its physical or valid range (bad input)."""
+    """A parameter is out of its physical or valid range (bad input).
+
+    The message names the field and its unit as the command line does, whose exit status
+    for it is 2.
+
+    >>> import lunarcap
+    >>> lunarcap.solve_burn("two-burn-8h", 0)
+    Traceback (most recent call last):
+    ...
+    lunarcap.errors.InputError: --burn: must be an integer >= 1, got 0
+    """
 
 
 class EphemerisRangeError(InputError):
@@ -26,6 +41,19 @@ class EphemerisRangeError(InputError):
 
 class SolveError(LunarcapError, RuntimeError):
     """An optimisation failed to converge or its solution failed verification.
+
+    The command line's exit status for it is 3. ``lunarcap.solve(plan).check()`` raises
+    it for a burn that failed verification, e.g. ``plan two-burn-8h: burn 1 failed
+    verification (IPOPT ...; perilune radius off by ... m, inclination by ... deg)``.
+    Caught like any of lunarcap's errors, its status and residuals (m, deg) are at hand:
+
+    >>> import lunarcap
+    >>> try:
+    ...     raise lunarcap.SolveError("burn 1 failed verification", "Solve_Succeeded",
+    ...                               {"verification_rp_error_m": 12.5})
+    ... except lunarcap.LunarcapError as exc:
+    ...     print(exc, "|", exc.status, exc.details)
+    burn 1 failed verification | Solve_Succeeded {'verification_rp_error_m': 12.5}
 
     Attributes
     ----------

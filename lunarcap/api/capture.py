@@ -278,6 +278,21 @@ class BurnSolution(Result):
         The burn's number, from 1.
     result : lunarcap.capture.chain.BurnResult
         Its solution (``result.solution``) and impulsive limit.
+
+    Examples
+    --------
+    The second burn of :func:`solve_burn`'s example (read from the cache): its record
+    (units in the keys), its ``lunarcap solve --json`` document and its figure:
+
+    >>> import lunarcap
+    >>> b = lunarcap.solve_burn(lunarcap.load_plan("two-burn-8h", dynamics="two-body"), 2,
+    ...                         impulsive=False)
+    >>> b.verified, round(b.row()["delta_v_mps"], 1), round(b.row()["m_end_kg"])
+    (True, 454.8, 333)
+    >>> b.to_dict()["previous_starts_min"], b.to_frame().shape[0]
+    (['free'], 1)
+    >>> len(b.plot().axes) >= 1
+    True
     """
 
     def __init__(self, plan, burn: int, result):
@@ -418,7 +433,21 @@ class GmatFlight(Result):
 
     ``comparison``: :class:`lunarcap.capture.gmat_flight.GmatComparison`: per burn its
     cut-off, per coast its end, the whole capture flown open loop at each event (position
-    m, velocity mm/s, mass kg, epoch s differences), and the final orbit's radii.
+    m, velocity mm/s, mass kg, epoch s differences), and the final orbit's radii. The
+    gates: each burn's cut-off within 0.5 m and 0.5 mm/s, each coast within 1 m and
+    1 mm/s, the final orbit's perilune and apolune within 50 m.
+
+    Examples
+    --------
+    Not run as a doctest (skipped: GMAT runs in a child process, seconds;
+    tests/api/test_api_results.py flies a plan so):
+
+    >>> import tempfile, lunarcap
+    >>> res = lunarcap.solve(lunarcap.load_plan("two-burn-8h", dynamics="two-body"))
+    >>> flight = res.fly_in_gmat(tempfile.mkdtemp())  # doctest: +SKIP
+    >>> flight.passed, flight.failures()  # doctest: +SKIP
+    (True, [])
+    >>> flight.to_frame()[["flown", "burn", "position_diff_m"]]  # doctest: +SKIP
     """
 
     def __init__(self, comparison):

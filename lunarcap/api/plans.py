@@ -62,9 +62,9 @@ def load_plan(source, *, thrust_N=None, isp_s=None, mass_kg=None, hemisphere=Non
 
     Raises
     ------
-    lunarcap.errors.PlanError
+    lunarcap.PlanError
         A file that cannot be read, or a value the plan refuses: the message names the
-        file and the field (an InputError: exit status 2 on the command line).
+        file and the field (an InputError, whose exit status is 2 on the command line).
 
     Examples
     --------
@@ -125,7 +125,7 @@ def _source(source) -> CapturePlan:
 
 def paper_plan(thrust_N: float = 150.0, isp_s: float = 200.0, starts=None,
                dynamics: str = "full") -> CapturePlan:
-    """Song et al. (2011)'s capture (Sec. 3.2.1) with any engine.
+    """Song et al. (2011)'s capture (their Section 3.2.1) with any engine.
 
     For the paper's engines (150 N / 200 s, 300 N / 250 s, 450 N / 300 s) the packaged plan
     with the ignitions of its Table B1; for another engine the 150 N plan with that engine

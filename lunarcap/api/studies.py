@@ -43,6 +43,23 @@ class StudyResult(Result):
     raw : object
         What the study's run returned: a :class:`lunarcap.studies.campaign.CampaignResult`
         (``table``, ``path``, ``run``), or (models, CampaignResult) for a sensitivity.
+
+    The table's columns are glossary names with their units (``penalty_mps``,
+    ``delay_min``, ``time_to_final_orbit_h``); :meth:`to_dict` is the command's ``--json``
+    document, :meth:`text` its printed report.
+
+    Examples
+    --------
+    Not run as a doctest (skipped: a local Dask cluster starts, 10 to 40 s;
+    tests/api/test_api_cli.py runs it):
+
+    >>> import lunarcap
+    >>> plan = lunarcap.load_plan("two-burn-8h", dynamics="two-body")
+    >>> r = lunarcap.missed(plan, fractions=[0.5], delays_min=[0], workers=1)  # doctest: +SKIP
+    >>> r.answered, r.to_frame().status.tolist()  # doctest: +SKIP
+    (True, ['recovered'])
+    >>> print(r.text())  # doctest: +SKIP
+    >>> r.plot(); r.export("out/")  # doctest: +SKIP
     """
 
     def __init__(self, study_run, raw, name: str | None = None, plan=None):

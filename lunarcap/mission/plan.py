@@ -250,8 +250,36 @@ class Start:
 class CapturePlan:
     """A capture: arrival, engine, dynamics and burns (validated on construction).
 
-    Build one with :func:`load_plan` (a file or a packaged name) or :meth:`from_dict`;
-    derive variants with :meth:`with_engine`, :meth:`with_starts`, :meth:`with_dynamics`.
+    Build one with :func:`lunarcap.load_plan` (a file, a packaged name or a mapping, with
+    changes) or :meth:`from_dict`; derive variants with the ``with_*`` methods. A plan is
+    immutable: each change returns a new plan, checked as a plan file is, every error a
+    :class:`~lunarcap.mission.plan_checks.PlanError` naming the field.
+
+    Attributes
+    ----------
+    name : str
+        Names the plan's results and files.
+    arrival : ArrivalSpec
+        Epoch of the first perilune (TDB or UTC text), ``perilune_altitude_km`` (km),
+        ``inclination_deg`` (deg), ``v_inf_kmps`` (km/s), ``mass_kg`` (kg), hemisphere.
+    engine : Engine
+        ``thrust_N`` (N) and ``isp_s`` (s), constant.
+    burns : tuple of Burn
+        In order; each its target orbit and its ignition, ``start_min`` (min from the
+        nominal perilune, negative before it; or ``"free"``).
+    dynamics : str or ForceModel
+        ``"full"`` (lunar J2, Earth, Sun; DE405), ``"j2"``, ``"two-body"`` or named forces.
+    formulation : {"orbit", "song2011"}
+        How a period or apolune is met (the module's docstring).
+
+    Examples
+    --------
+    >>> import lunarcap
+    >>> plan = lunarcap.load_plan("two-burn-8h")
+    >>> plan.n_burns, plan.engine.thrust_N, plan.arrival.mass_kg, plan.dynamics
+    (2, 150.0, 524.895, 'full')
+    >>> [b.describe() for b in plan.with_engine(440, 320).with_mass(900).burns]
+    ['ellipse, 8 h', 'circle']
     """
 
     name: str
@@ -302,12 +330,22 @@ class CapturePlan:
     # ------------------------------------------------------------------ derived numbers
     @property
     def perilune_radius_km(self) -> float:
-        """Radius of every perilune and of the final circle, km."""
+        """Radius of every perilune and of the final circle, km.
+
+        >>> import lunarcap
+        >>> lunarcap.load_plan("two-burn-8h").perilune_radius_km   # 1738.2 + 100 km
+        1838.2
+        """
         return self.arrival.perilune_radius_km
 
     @property
     def n_burns(self) -> int:
-        """Number of burns."""
+        """Number of burns.
+
+        >>> import lunarcap
+        >>> lunarcap.load_plan("lro-like-5burn").n_burns
+        5
+        """
         return len(self.burns)
 
     @property
@@ -380,7 +418,15 @@ class CapturePlan:
     # ------------------------------------------------------------------ variants
     def with_engine(self, thrust_N: float, isp_s: float, name: str | None = None
                     ) -> "CapturePlan":
-        """The same plan with another engine."""
+        """The same plan with another engine: ``thrust_N`` (N), ``isp_s`` (s).
+
+        ``name``: the new plan's name (default: the plan's, with the engine appended).
+
+        >>> import lunarcap
+        >>> p = lunarcap.load_plan("two-burn-8h").with_engine(440, 320)
+        >>> p.name, p.engine.thrust_N, p.engine.isp_s
+        ('two-burn-8h (440 N / 320 s)', 440.0, 320.0)
+        """
         return replace(self, engine=Engine(float(thrust_N), float(isp_s)),
                        name=name or f"{self.name} ({thrust_N:g} N / {isp_s:g} s)")
 
@@ -389,6 +435,13 @@ class CapturePlan:
 
         The plan's frame (``lunar_pole``) is kept: a J2 design and its field design measure
         inclinations about the same axis.
+
+        >>> import lunarcap
+        >>> p = lunarcap.load_plan("two-burn-8h")
+        >>> p.with_dynamics("two-body").dynamics
+        'two-body'
+        >>> p.with_dynamics({"gravity": "LP165P", "degree": 8}).dynamics.label
+        'LP165P 8x8 (de405), Earth, Sun'
         """
         return replace(self, dynamics=dynamics)
 
@@ -396,6 +449,14 @@ class CapturePlan:
         """The same plan with another mass at the arrival, kg (checked like the file's).
 
         A plan that starts from a known state (:class:`Start`) keeps that state's mass.
+
+        >>> import lunarcap
+        >>> lunarcap.load_plan("two-burn-8h").with_mass(900).arrival.mass_kg
+        900.0
+        >>> lunarcap.load_plan("two-burn-8h").with_mass(0)
+        Traceback (most recent call last):
+        ...
+        lunarcap.mission.plan_checks.PlanError: arrival.mass_kg: must be positive (kg), got 0
         """
         return replace(self, arrival=replace(self.arrival, mass_kg=mass_kg))
 
@@ -408,6 +469,12 @@ class CapturePlan:
         {"perilune_altitude_km": 100, "apolune_altitude_km": 300}}``; None keeps the burn's.
         Read by the plan file's reader, so an error names the field as a file would
         (``burns[2].target_period_h: ...``); ignitions and steering are kept.
+
+        >>> import lunarcap
+        >>> p = lunarcap.load_plan("two-burn-8h")
+        >>> q = p.with_targets([{"target_apolune_altitude_km": 3000}, None])
+        >>> [b.describe() for b in q.burns]
+        ['ellipse, apolune altitude 3000 km', 'circle']
         """
         from lunarcap.mission.plan_io import burn_with_target
 
@@ -420,14 +487,34 @@ class CapturePlan:
         return replace(self, burns=burns)
 
     def with_start(self, i: int, start_min) -> "CapturePlan":
-        """The same plan with burn ``i`` (0-based) igniting at ``start_min`` (or 'free')."""
+        """The same plan with burn ``i`` (0-based) igniting at ``start_min`` (or 'free').
+
+        ``start_min``: minutes from the burn's nominal perilune, negative before it.
+
+        >>> import lunarcap
+        >>> lunarcap.load_plan("two-burn-8h").with_start(1, -5).burns[1].start_min
+        -5.0
+        """
         self._index(i)
         burns = list(self.burns)
         burns[i] = replace(burns[i], start_min=start_value(burn_field(i, "start_min"), start_min))
         return replace(self, burns=tuple(burns))
 
     def with_starts(self, starts) -> "CapturePlan":
-        """The same plan with every burn's ignition offset replaced (one per burn)."""
+        """The same plan with every burn's ignition offset replaced (one per burn).
+
+        Each offset in minutes from the burn's nominal perilune (negative before it), or
+        ``"free"`` (optimised); PlanError if the count differs from the burns'.
+
+        >>> import lunarcap
+        >>> p = lunarcap.load_plan("two-burn-8h").with_starts([-4, "free"])
+        >>> [b.start_min for b in p.burns]
+        [-4.0, 'free']
+        >>> lunarcap.load_plan("two-burn-8h").with_starts([-4])  # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+        ...
+        lunarcap.mission.plan_checks.PlanError: burns: 2 ignition offsets expected ..., got 1
+        """
         starts = list(starts)
         if len(starts) != self.n_burns:
             raise err("burns", f"{self.n_burns} ignition offsets expected (one per burn), "
@@ -438,7 +525,15 @@ class CapturePlan:
         return plan
 
     def with_steering(self, i: int, steering: str) -> "CapturePlan":
-        """The same plan with burn ``i`` (0-based) flown with another steering law."""
+        """The same plan with burn ``i`` (0-based) flown with another steering law.
+
+        ``steering``: ``"optimal"``, ``"inertial"`` (a fixed direction) or
+        ``"antivelocity"``.
+
+        >>> import lunarcap
+        >>> lunarcap.load_plan("two-burn-8h").with_steering(0, "inertial").burns[0].steering
+        'inertial'
+        """
         self._index(i)
         burns = list(self.burns)
         burns[i] = replace(burns[i], steering=steering)
@@ -512,7 +607,13 @@ class CapturePlan:
     def with_lunar_pole(self, lunar_pole: str) -> "CapturePlan":
         """The plan with another lunar pole fixing M-MME2000 (see physics.frames).
 
-        ``"of-date"``: the IAU pole at the arrival epoch (:func:`plan_io.frame_epoch`).
+        ``"of-date"``: the IAU pole at the arrival epoch (:func:`plan_io.frame_epoch`);
+        ``"iau2009-j2000"``: the IAU 2009 pole at J2000; ``"iau-constant"``.
+
+        >>> import lunarcap
+        >>> p = lunarcap.load_plan("two-burn-8h")
+        >>> p.lunar_pole, p.with_lunar_pole("of-date").lunar_pole   # resolved at arrival
+        ('iau2009-j2000', 'iau2009@2017-02-20 03:41:26 TDB')
         """
         return replace(self, lunar_pole=lunar_pole)   # "of-date" resolved by the checks
 
@@ -542,16 +643,39 @@ class CapturePlan:
 
         ``base_dir`` resolves a relative ``ephemeris`` path (the plan file's directory).
         The mapping's structure is read by :func:`plan_io.plan_fields`; its values are
-        checked once, by the plan itself.
+        checked once, by the plan itself. The keys and units are a plan file's (the
+        module's docstring): ``arrival.mass_kg`` in kg, ``engine.thrust_N`` in N, ...
+
+        >>> import lunarcap
+        >>> d = lunarcap.load_plan("two-burn-8h").to_dict()
+        >>> d["engine"]["thrust_N"] = 440
+        >>> lunarcap.CapturePlan.from_dict(d).engine.thrust_N
+        440.0
         """
         return cls(**plan_fields(d, base_dir, default_name))
 
     def to_dict(self) -> dict:
-        """The plan as a mapping with the YAML file's keys (round-trips :meth:`from_dict`)."""
+        """The plan as a mapping with the YAML file's keys (round-trips :meth:`from_dict`).
+
+        Units in the keys, as in a plan file (``mass_kg``, ``thrust_N``, ``v_inf_kmps``).
+
+        >>> import lunarcap
+        >>> p = lunarcap.load_plan("two-burn-8h")
+        >>> d = p.to_dict()
+        >>> d["engine"], d["arrival"]["mass_kg"]
+        ({'thrust_N': 150.0, 'isp_s': 200.0}, 524.895)
+        >>> lunarcap.CapturePlan.from_dict(d) == p
+        True
+        """
         return plan_dict(self)
 
     def to_yaml(self) -> str:
-        """YAML text of :meth:`to_dict`."""
+        """YAML text of :meth:`to_dict`: a plan file (``lunarcap plan FILE`` solves it).
+
+        >>> import lunarcap
+        >>> print(lunarcap.load_plan("two-burn-8h").to_yaml().splitlines()[0])
+        name: two-burn-8h
+        """
         import yaml
 
         return yaml.safe_dump(self.to_dict(), sort_keys=False, default_flow_style=None)

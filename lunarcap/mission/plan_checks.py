@@ -72,7 +72,14 @@ _SOI = f"Laplace's radius, {MOON_SOI_RADIUS_KM:,.0f} km from the Moon's centre"
 
 
 class PlanError(InputError):
-    """A capture plan is malformed or physically impossible (the message names the field)."""
+    """A capture plan is malformed or physically impossible (the message names the field).
+
+    >>> import lunarcap
+    >>> lunarcap.load_plan("two-burn-8h", targets=[{"target_period_h": -6}, None])
+    Traceback (most recent call last):
+    ...
+    lunarcap.mission.plan_checks.PlanError: burns[1].target_period_h: must be positive (h), got -6
+    """
 
 
 def err(where: str, what: str) -> PlanError:

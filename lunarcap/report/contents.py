@@ -27,7 +27,7 @@ PARTS = ("The problem", "Results", "The paper's tables", "The paper's figures",
 ROOT_FILE = "index"
 #: The Markdown pages of ``book/`` in the table of contents: (file, part, order).
 MARKDOWN = (("model", "The problem", 10), ("rerun", "Reproduce", 20),
-            ("references", "Reproduce", 30))
+            ("api", "Reproduce", 25), ("references", "Reproduce", 30))
 #: ``depends_on`` naming every other execution of the book (a page that reads them all).
 EVERY_PAGE = "*"
 

@@ -91,7 +91,7 @@ def test_the_registered_pages_make_the_book_in_its_order():
     parts = dict(contents.toc_parts(pages_))
     assert list(parts) == list(contents.PARTS)
     assert parts["The problem"] == ["model", "generated/lunar_pole"]
-    assert parts["Reproduce"] == ["generated/glossary", "rerun", "references"]
+    assert parts["Reproduce"] == ["generated/glossary", "rerun", "api", "references"]
     assert parts["The paper's tables"][-1] == "generated/summary"
 
 

@@ -37,5 +37,6 @@ PAGES = (
     "real_moon",
     "gmat_flight",
     "findings",
+    "tutorial",
     "glossary",
 )
