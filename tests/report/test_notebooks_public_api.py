@@ -32,10 +32,12 @@ PUBLIC = frozenset(lunarcap.__all__)
 #: names it may use from it. Each takes what the public API computed and formats the page
 #: (``build``: the page's tables, figures, glued values, captions, provenance and checks
 #: from the study's result) or names where the book keeps a study's table (``table_file``:
-#: the study's ``out``, so the book resumes its own table).
+#: the study's ``out``, so the book resumes its own table; ``export_dir``: where the book
+#: keeps the files it links to).
 DISPLAY_HELPERS = {
     "lunarcap.report.pages.missed_thrust": frozenset({"build", "table_file"}),
     "lunarcap.report.pages.burn_count": frozenset({"build", "table_file"}),
+    "lunarcap.report.pages.exchange": frozenset({"build", "export_dir"}),
 }
 
 #: Notebooks whose computation still goes through an internal module, and why. Shrink it.
@@ -50,7 +52,6 @@ NOT_CONVERTED = {
     "free_ignition": "the grid of ignitions beside the free optimum has no public call; "
                      "parameters cell reads the paper's engines internally",
     "gmat_flight": "not converted yet (lunarcap.solve then CaptureResult.fly_in_gmat)",
-    "exchange": "not converted yet (lunarcap.solve then CaptureResult.export)",
     "real_moon": "the field-gravity comparisons have no public call",
     "kplo_capture": "not converted yet (a plan built in code, lunarcap.missed and "
                     "lunarcap.burns on it)",
