@@ -34,7 +34,8 @@ PUBLIC = frozenset(lunarcap.__all__)
 #: from the study's result) or names where the book keeps a study's table (``table_file``:
 #: the study's ``out``, so the book resumes its own table; ``export_dir``: where the book
 #: keeps the files it links to), or what the page sets beside what (``beside_paper``: the
-#: plans it compares with the paper's capture).
+#: plans it compares with the paper's capture; ``engine_rows``: its engines and their
+#: labels, cited first).
 DISPLAY_HELPERS = {
     "lunarcap.report.pages.missed_thrust": frozenset({"build", "table_file"}),
     "lunarcap.report.pages.burn_count": frozenset({"build", "table_file"}),
@@ -42,6 +43,7 @@ DISPLAY_HELPERS = {
     "lunarcap.report.pages.gmat_flight": frozenset({"build", "export_dir"}),
     "lunarcap.report.pages.capture_plan": frozenset({"build", "beside_paper"}),
     "lunarcap.report.pages.kplo_capture": frozenset({"build", "table_file", "export_dir"}),
+    "lunarcap.report.pages.other_engines": frozenset({"build", "engine_rows"}),
 }
 
 #: Notebooks whose computation still goes through an internal module, and why. Shrink it.
@@ -61,8 +63,6 @@ NOT_CONVERTED = {
     "impulsive_baseline": "a paper page: the impulsive capture of Table 1 to 3 has no "
                           "public call",
     "steering_laws": "a paper page: the steering laws compared have no public call",
-    "other_engines": "a paper page: not converted yet (lunarcap.paper_plan with other "
-                     "engines)",
     "verification": "a paper page: the re-propagation audit has no public call",
     "reproduction_report": "a paper page: the audit of the paper's printed numbers has no "
                            "public call",
