@@ -13,8 +13,8 @@ and re-flies it in GMAT (``CaptureResult.fly_in_gmat``); :func:`build` formats t
   ``BdotT``/``BdotR``) and about the lunar equator (:func:`bplane_table`);
 * justifies the field's degree: the capture designed again in lower and higher degrees
   (its total delta-V) and its final orbit flown for days in each (:func:`degree_table`);
-* tabulates the design (:func:`design_table`: each burn beside KARI's impulse and the impulsive limit
-  in the field, or why there is none);
+* tabulates the design (:func:`design_table`: each burn beside KARI's impulse and the
+  impulsive limit in the field, or why there is none);
 * tabulates the studies and the GMAT flight the notebook ran and follows its orbit for days.
 """
 
