@@ -44,12 +44,11 @@ DISPLAY_HELPERS = {
     "lunarcap.report.pages.capture_plan": frozenset({"build", "beside_paper"}),
     "lunarcap.report.pages.kplo_capture": frozenset({"build", "table_file", "export_dir"}),
     "lunarcap.report.pages.other_engines": frozenset({"build", "engine_rows"}),
+    "lunarcap.report.pages.dispersions": frozenset({"build", "table_file"}),
 }
 
 #: Notebooks whose computation still goes through an internal module, and why. Shrink it.
 NOT_CONVERTED = {
-    "dispersions": "the sensitivity run (chosen factors, antithetic pairs, the plans' samples "
-                   "and sensitivities in one table) has no public equivalent",
     "trade_study": "the page's run waits for another run writing its table (lock_wait_s) and "
                    "its tests pass a stand-in task; lunarcap.engine_trade takes neither",
     "joint_capture": "the joint NLP of every burn (lunarcap.capture.joint_plan) has no "
