@@ -45,6 +45,8 @@ DISPLAY_HELPERS = {
     "lunarcap.report.pages.kplo_capture": frozenset({"build", "table_file", "export_dir"}),
     "lunarcap.report.pages.other_engines": frozenset({"build", "engine_rows"}),
     "lunarcap.report.pages.dispersions": frozenset({"build", "table_file"}),
+    "lunarcap.report.pages.free_ignition": frozenset({"build", "grid_starts",
+                                                      "best_grid_starts"}),
 }
 
 #: Notebooks whose computation still goes through an internal module, and why. Shrink it.
@@ -53,8 +55,6 @@ NOT_CONVERTED = {
                    "its tests pass a stand-in task; lunarcap.engine_trade takes neither",
     "joint_capture": "the joint NLP of every burn (lunarcap.capture.joint_plan) has no "
                      "public call; parameters cell reads the paper's engines internally",
-    "free_ignition": "the grid of ignitions beside the free optimum has no public call; "
-                     "parameters cell reads the paper's engines internally",
     "real_moon": "the field-gravity comparisons have no public call",
     "capture_sequence": "a paper page: the chain of Table 4 and 5 (impulsive and finite "
                         "reference solves) has no public call",
