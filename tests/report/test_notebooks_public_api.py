@@ -54,7 +54,9 @@ NOT_CONVERTED = {
     "trade_study": "the page's run waits for another run writing its table (lock_wait_s) and "
                    "its tests pass a stand-in task; lunarcap.engine_trade takes neither",
     "joint_capture": "the joint NLP of every burn (lunarcap.capture.joint_plan) has no "
-                     "public call; parameters cell reads the paper's engines internally",
+                     "public call, and no command to keep one in step with (the API and "
+                     "the command line agree; lunarcap has no joint solve on the command "
+                     "line)",
     "real_moon": "the field-gravity comparisons have no public call",
     "capture_sequence": "a paper page: the chain of Table 4 and 5 (impulsive and finite "
                         "reference solves) has no public call",
