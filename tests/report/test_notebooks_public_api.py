@@ -52,7 +52,9 @@ DISPLAY_HELPERS = {
 #: Notebooks whose computation still goes through an internal module, and why. Shrink it.
 NOT_CONVERTED = {
     "trade_study": "the page's run waits for another run writing its table (lock_wait_s) and "
-                   "its tests pass a stand-in task; lunarcap.engine_trade takes neither",
+                   "its tests pass a stand-in task; lunarcap.engine_trade takes neither; "
+                   "the paper's engines solved directly are recorded as failed rows "
+                   "(solve_engine), where lunarcap.solve raises SolveError",
     "joint_capture": "the joint NLP of every burn (lunarcap.capture.joint_plan) has no "
                      "public call, and no command to keep one in step with (the API and "
                      "the command line agree; lunarcap has no joint solve on the command "
