@@ -143,3 +143,25 @@ def test_dispersions_on_a_running_cluster(generated, tmp_path, capsys, dask_clus
     assert cli["run"]["scheduler"] == api.campaign.run["scheduler"] != "LocalCluster"
     assert [s["status"] for s in cli["samples"]] == ["ok", "ok"]
     assert differences(cli, valid("dispersions", api)) == []
+
+
+def test_a_dispersions_sensitivity_with_its_factors_in_antithetic_pairs(generated, tmp_path,
+                                                                        capsys):
+    """``--sensitivity --factors --antithetic`` and ``sensitivity=, factors=, antithetic=``.
+
+    One source at two multiples of its sigma, one antithetic pair each: the same rows and
+    laws on both sides, the pair's second sample the negated draws of its first.
+    """
+    plan, path = generated
+    cli = cli_json(["dispersions", str(path), "--samples", "2", "--seed", "3",
+                    "--thrust-sigma-pct", "1", "--sensitivity", "--factors", "1,2",
+                    "--antithetic", "--workers", "1", "--no-progress", "--no-cache", "--out",
+                    str(tmp_path / "cli.csv")], capsys)
+    api = lunarcap.dispersions(plan, samples=2, seed=3, thrust_sigma_pct=1, sensitivity=True,
+                               factors=[1, 2], antithetic=True, workers=1, use_cache=False,
+                               out=tmp_path / "api.csv")
+    assert [(r["source"], r["sigma"]) for r in cli["sensitivity"]] == [
+        ("thrust_sigma_pct", 1.0), ("thrust_sigma_pct", 2.0)]
+    table = api.campaign.table
+    assert len(table) == 4 and table.antithetic.all()
+    assert differences(cli, api.to_dict()) == []

@@ -64,6 +64,17 @@ CASES = {
     "dispersions negative sigma": (
         lambda p, b: lunarcap.dispersions(p, thrust_sigma_pct="-1"),
         lambda f, b: ["dispersions", f, "--thrust-sigma-pct", "-1"]),
+    "dispersions odd antithetic": (
+        lambda p, b: lunarcap.dispersions(p, samples=3, antithetic=True),
+        lambda f, b: ["dispersions", f, "--samples", "3", "--antithetic"]),
+    "dispersions factors without sensitivity": (
+        lambda p, b: lunarcap.dispersions(p, factors=[1, 2]),
+        lambda f, b: ["dispersions", f, "--factors", "1,2"]),
+    "dispersions negative factor": (
+        lambda p, b: lunarcap.dispersions(p, sensitivity=True, thrust_sigma_pct=1,
+                                          factors="1,-2"),
+        lambda f, b: ["dispersions", f, "--sensitivity", "--thrust-sigma-pct", "1",
+                      "--factors", "1,-2"]),
     "solve a burn the plan lacks": (lambda p, b: lunarcap.solve_burn(p, 3),
                                     lambda f, b: ["solve", "--plan", f, "--burn", "3"]),
     "solve with too many earlier starts": (

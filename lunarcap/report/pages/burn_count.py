@@ -9,11 +9,12 @@ N, one line per plan.
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pandas as pd
 
 from lunarcap.mission.impulsive import capture_total_mps
-from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
 from lunarcap.report.contents import (
     BookPage,
@@ -136,23 +137,54 @@ def negative_losses(rows: pd.DataFrame) -> str:
                "suspect."))
 
 
-def build(plans=("song2011-150N", "song2011-300N", "song2011-450N", "lro-like-5burn"),
-          counts=(1, 2, 3, 4, 5), max_period_h: float = burns.DEFAULT_MAX_PERIOD_H,
-          max_days: float = burns.DEFAULT_MAX_DAYS, dynamics: str | None = None,
-          workers: int = 2, output_name: str = "burn_count", quick: bool = False) -> Page:
-    """The page (see the module docstring); ``dynamics`` None keeps each plan's own."""
-    ps = []
-    for name in plans:
-        p = load_plan(name)
-        ps.append(p if dynamics is None or dynamics == p.dynamics else p.with_dynamics(dynamics))
-    params = dict(plans=list(plans), counts=list(counts), max_period_h=max_period_h,
-                  max_days=max_days, dynamics=dynamics, workers=workers)
+def table_file(output_name: str = "burn_count"):
+    """Where the book keeps this page's study table, resumed on rerun (a Path).
+
+    ``<cache>/study/<output_name>.csv``: the notebook passes it as each study's ``out``, so
+    that every plan's counts go to the book's one table (not the command line's default).
+    """
+    return paths.CACHE / "study" / f"{output_name}.csv"
+
+
+def one_run(studies) -> dict:
+    """The run record of the plans' studies together: the first's, its ``wall_s`` the sum (s).
+
+    The notebook runs one study per plan (:func:`lunarcap.burns`); the page quotes the time
+    they took together.
+    """
+    runs = [s.campaign.run for s in studies]
+    return dict(runs[0], wall_s=round(sum(float(r["wall_s"]) for r in runs), 2),
+                cases=sum(int(r["cases"]) for r in runs))
+
+
+def build(studies, table: pd.DataFrame, output_name: str = "burn_count", quick: bool = False,
+          parameters: dict | None = None) -> Page:
+    """The page of the plans' burns studies computed in the notebook (see the module).
+
+    Parameters
+    ----------
+    studies : list of lunarcap.StudyResult
+        :func:`lunarcap.burns`'s result for each plan (the first is the page's reference),
+        all written to one table (:func:`table_file`).
+    table : pandas.DataFrame
+        Their tables one after the other (``pd.concat([s.to_frame() for s in studies])``).
+    output_name, quick : the page's output name and whether it is a quick build.
+    parameters : dict, optional
+        The notebook's parameters, shown in the page's provenance (``dynamics`` None:
+        each plan's own, as the page's capture note says).
+    """
+    params = {k: list(v) if isinstance(v, (list, tuple)) else v
+              for k, v in (parameters or {}).items()}
+    ps = [s.plan for s in studies]
+    doc = studies[0].document()
+    counts = sorted(set(table.n_burns.astype(int)))
+    max_period_h, max_days = float(doc["max_period_h"]), float(doc["max_days"])
+    dynamics = params.get("dynamics")   # None: each plan's own
     page = Page(NOTEBOOK, params, output_name, quick, solver_description(**{
         "all-burns NLP": "8×16 LGR-5 per leg, free ignitions and intermediate periods",
         "impulsive limit": "4 s and 2 s burns, Richardson-extrapolated"}))
-    res = burns.run_burns(ps, counts, max_period_h, max_days,
-                          out=paths.CACHE / "study" / f"{output_name}.csv", workers=workers,
-                          progress=False)
+    res = SimpleNamespace(table=table.reset_index(drop=True), run=one_run(studies),
+                          path=studies[0].campaign.path)
     labels = {plan_id(p): label_of(p) for p in ps}
     table = count_table(res.table, labels)
     page.data.update(table=table, run=res.run)

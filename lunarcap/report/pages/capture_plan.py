@@ -1,11 +1,12 @@
 """The capture-plan page (notebooks/capture_plan.ipynb): any plan, solved, verified, drawn.
 
 A capture plan (:mod:`lunarcap.mission.plan`: arrival, engine, dynamics, burns) is solved
-burn by burn with :func:`lunarcap.capture.chain.plan_result`, each burn beside its impulsive
-limit in the same dynamics from the same pre-burn orbit (the loss is the difference).
-:func:`build` shows the plan (its YAML and a table of its burns and targets), one row per
-burn (three tables shown; the first CSV has every column of each burn's row), the totals,
-and the whole capture in the orbit plane. Two kinds of plan get a comparison:
+burn by burn in the notebook with :func:`lunarcap.solve`, each burn beside its impulsive
+limit in the same dynamics from the same pre-burn orbit (the loss is the difference), and
+drawn with ``CaptureResult.plot``. :func:`build` formats what the notebook computed: the
+plan (its YAML and a table of its burns and targets), one row per burn (three tables shown;
+the first CSV has every column of each burn's row), the totals, and the whole capture in
+the orbit plane. Two kinds of plan get a comparison:
 
 * ``lro-like-5burn``, beside the published LRO figures (:data:`LRO`, sources S7 and S8 of
   the real-missions page);
@@ -21,13 +22,11 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from lunarcap.capture.chain import arrival_for, plan_result
-from lunarcap.mission.plan import PLAN_DIR, CapturePlan, load_plan, paper_plan
+from lunarcap.mission.plan import PLAN_DIR, CapturePlan, load_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import period_from_semi_major_axis, semi_major_axis_from_period
 from lunarcap.physics.rocket import exhaust_speed_mps, rocket_delta_v_mps
 from lunarcap.quantities import capture_name
-from lunarcap.report import figdata, figures
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import verdict
 from lunarcap.report.labels import period_text
@@ -115,10 +114,14 @@ def plan_table(plan: CapturePlan) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def burn_table(result) -> pd.DataFrame:
-    """Every column of each burn's row (:meth:`BurnResult.row`), the target described."""
-    df = result.table()
-    df.insert(1, "target_orbit", [b.describe() for b in result.plan.burns])
+def burn_table(burns: pd.DataFrame) -> pd.DataFrame:
+    """Every column of each burn's row (``CaptureResult.to_frame()``), the target second.
+
+    The verdict in words (``verified``) and the released conditions as text are added for
+    the page's tables.
+    """
+    df = burns.copy()
+    df.insert(1, "target_orbit", df.pop("target_orbit"))
     df["verified"] = df.verification_passed.map(verdict)
     df["verification_released"] = df.verification_released.map(
         lambda r: ", ".join(map(str, r)) if r else "")
@@ -164,7 +167,7 @@ TOTALS = [
 
 
 def totals_of(result) -> dict:
-    """:meth:`PlanResult.totals` with the final orbit's altitudes added (km)."""
+    """:meth:`lunarcap.CaptureResult.totals` with the final orbit's altitudes added (km)."""
     tot = dict(result.totals())
     tot["final_rp_altitude_km"] = tot["final_rp_km"] - C.R_MOON
     tot["final_ra_altitude_km"] = tot["final_ra_km"] - C.R_MOON
@@ -289,16 +292,14 @@ def lro_comparison(plan: CapturePlan, burns: pd.DataFrame, tot: dict) -> tuple:
     return table, values, reading
 
 
-def paper_comparison(plan: CapturePlan, tot: dict) -> tuple:
+def paper_comparison(plan: CapturePlan, tot: dict, reference) -> tuple:
     """A plan beside the paper's three-burn capture (same arrival, engine, dynamics).
 
-    The paper's plan (:func:`lunarcap.mission.plan.paper_plan`) with free ignition for
-    every burn, solved with its impulsive limits like this one. Returns (table, values,
-    reading).
+    ``reference``: the paper's plan (``lunarcap.paper_plan``) with this plan's engine and
+    dynamics and free ignition for every burn, solved with its impulsive limits like this
+    one (``lunarcap.solve``). Returns (table, values, reading).
     """
-    ref = paper_plan(plan.engine.thrust_N, plan.engine.isp_s, dynamics=plan.dynamics)
-    ref = ref.with_starts(["free"] * ref.n_burns)
-    rt = totals_of(plan_result(ref))
+    rt = totals_of(reference)
     keys = ["total_delta_v_mps", "total_impulsive_limit_mps", "total_delta_v_loss_mps",
             "total_delta_v_loss_percent", "total_fuel_kg", "time_to_final_orbit_h"]
     ours = {k: float(tot[k]) for k in keys}
@@ -347,11 +348,6 @@ def _paper_reference(plan: CapturePlan) -> bool:
     same_burns = ([(b.target, b.period_s) for b in plan.burns]
                   == [(b.target, b.period_s) for b in paper.burns])
     return same_arrival and not same_burns
-
-
-def solutions(result) -> list:
-    """The Solutions of a PlanResult, in order."""
-    return [b.solution for b in result.burns]
 
 
 def prose_values(n_burns: int, burns: pd.DataFrame, tot: dict) -> dict:
@@ -444,16 +440,13 @@ def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str) -> None:
 
 
 
-def _add_totals(page: Page, p: CapturePlan, res, tot: dict, case: str) -> None:
+def _add_totals(page: Page, p: CapturePlan, fig, tot: dict, case: str) -> None:
     page.table(
         "totals", totals_table(tot),
         caption=(f"Totals of {case}. Impulsive total: the burns' impulsive limits summed. "
                  f"Time to the final orbit: to the last cut-off ({tot['final_orbit_epoch']} "
                  f"TDB); final elements osculating at {tot['final_perilune_epoch']}."),
         show_columns=["quantity", "value", "unit"], floatfmt={"value": ",.3f"})
-    arrival = arrival_for(p.arrival, p.ephemeris, p.lunar_pole)
-    geo = figdata.capture_geometry(solutions(res), arrival)
-    fig = figures.plot_fig2_capture(geo)
     plt.close(fig)  # saved and shown by page.show, not by the notebook's build cell
     page.figure(
         "capture", fig,
@@ -465,8 +458,12 @@ def _add_totals(page: Page, p: CapturePlan, res, tot: dict, case: str) -> None:
 
 
 def _add_comparison(page: Page, p: CapturePlan, burns: pd.DataFrame, tot: dict,
-                    case: str) -> dict:
-    """The LRO or paper comparison table, if any; its values, its reading as a note."""
+                    case: str, reference=None) -> dict:
+    """The LRO or paper comparison table, if any; its values, its reading as a note.
+
+    ``reference``: the paper's capture solved for :func:`paper_comparison` (needed if
+    :func:`beside_paper`).
+    """
     vals = {}
     if p.name == LRO["plan"]:
         table, vals, reading = lro_comparison(p, burns, tot)
@@ -481,8 +478,11 @@ def _add_comparison(page: Page, p: CapturePlan, burns: pd.DataFrame, tot: dict,
             floatfmt={"published": ",.1f", "ours": ",.1f"})
         page.expect("the capture needs less propellant than LRO carried (S8)",
                     vals["lro_fuel_left_kg"] > 0, f"{vals['lro_ours_fuel_kg']:.1f} kg")
-    elif _paper_reference(p):
-        table, vals, reading = paper_comparison(p, tot)
+    elif beside_paper(p):
+        if reference is None:
+            raise ValueError(f"plan {p.name} is set beside the paper's capture: pass it "
+                             "solved as reference (see beside_paper)")
+        table, vals, reading = paper_comparison(p, tot, reference)
         page.table(
             "comparison", table, name="vs_paper",
             caption=("This plan beside the paper's three burns (12.235 h → 3.525 h → circle) "
@@ -519,44 +519,74 @@ def _add_checks(page: Page, p: CapturePlan, burns: pd.DataFrame, tot: dict) -> N
 
 
 # ---------------------------------------------------------------------- the page
-def build(plan="lro-like-5burn", dynamics: str | None = None,
-          output_name: str = "capture_plan", quick: bool = False) -> Page:
-    """The page of one capture plan (see the module docstring).
+def beside_paper(plan: CapturePlan) -> bool:
+    """True if the book sets this plan beside the paper's three-burn capture.
+
+    A plan from the paper's arrival that is not the paper's burn sequence (``two-burn-8h``):
+    the notebook then solves ``lunarcap.paper_plan`` with the plan's engine and dynamics and
+    every ignition free, and passes it to :func:`build` as ``reference``.
+    """
+    return plan.name != LRO["plan"] and _paper_reference(plan)
+
+
+def _source(plan, solved: CapturePlan) -> tuple:
+    """The plan's own dynamics and the text shown as its file (YAML), before any override.
+
+    ``plan``: the notebook's ``plan`` parameter (a packaged name or a YAML file; anything
+    else: the plan solved, written as YAML).
+    """
+    if isinstance(plan, (str, Path)):
+        p, text = _load(plan)
+        return p.dynamics, text
+    return solved.dynamics, solved.to_yaml()
+
+
+def build(result, burns: pd.DataFrame, capture_figure, output_name: str = "capture_plan",
+          quick: bool = False, parameters: dict | None = None, reference=None) -> Page:
+    """The page of a capture plan solved in the notebook (see the module docstring).
 
     Parameters
     ----------
-    plan : str or CapturePlan
-        A packaged plan's name, a YAML file, or a plan.
-    dynamics : str, optional
-        None for the plan's own dynamics, else an override ("two-body" for quick runs).
+    result : lunarcap.CaptureResult
+        :func:`lunarcap.solve`'s capture, each burn with its impulsive limit.
+    burns : pandas.DataFrame
+        ``result.to_frame()``: one row per burn.
+    capture_figure : matplotlib.figure.Figure
+        ``result.plot()``: the capture in the plane of the arrival orbit.
     output_name : str
         Prefix of the CSV and figure files.
     quick : bool
         Set by quick (CI) runs; named in the provenance block.
+    parameters : dict, optional
+        The notebook's ``plan`` (a packaged name or YAML file: its text is shown) and
+        ``dynamics`` (None: the plan's own), shown in the provenance.
+    reference : lunarcap.CaptureResult, optional
+        The paper's capture solved with this plan's engine and dynamics, every ignition
+        free, if :func:`beside_paper` (the comparison table).
     """
-    p, yaml_text = _load(plan)
-    name, own = p.name, p.dynamics
-    if dynamics is not None and dynamics != p.dynamics:
-        p = p.with_dynamics(dynamics)
-    params = dict(plan=plan if isinstance(plan, str) else name, dynamics=dynamics)
+    p = result.plan
+    params = dict(parameters or {})
+    params["plan"] = params.get("plan") if isinstance(params.get("plan"), str) else p.name
+    params.setdefault("dynamics", None)
+    name = p.name
+    own, yaml_text = _source(parameters.get("plan") if parameters else None, p)
     page = Page(NOTEBOOK, params, output_name, quick, solver_description(**{
         "impulsive limit": "4 s and 2 s burns, Richardson-extrapolated"}))
-    res = plan_result(p)
-    burns = burn_table(res)
-    tot = totals_of(res)
+    burns = burn_table(burns)
+    tot = totals_of(result)
     a, e = p.arrival, p.engine
     case = (f"plan {name}: {e.thrust_N:g} N / Isp {e.isp_s:g} s, {a.mass_kg:,g} kg at "
             f"arrival, {p.dynamics} dynamics")
     _add_plan(page, p, own, yaml_text, case)
     _add_burn_tables(page, burns, case)
-    _add_totals(page, p, res, tot, case)
+    _add_totals(page, p, capture_figure, tot, case)
     values = prose_values(p.n_burns, burns, tot)
     page.note("burn_notes", negative_loss_note(burns))
-    values.update(_add_comparison(page, p, burns, tot, case))
+    values.update(_add_comparison(page, p, burns, tot, case, reference))
     for k, v in values.items():
         page.value(k, float(v))
     _add_checks(page, p, burns, tot)
-    page.data.update(result=res, plan=p, totals=tot)
+    page.data.update(result=result, plan=p, totals=tot)
     t = page.text
     page.headline(f"The {t('n_burns', '.0f')} burns of `{p.name}` ({p.dynamics} dynamics) lose "
                   f"{t('total_delta_v_loss_mps', '.2f', ' m/s')} against impulses in the same "

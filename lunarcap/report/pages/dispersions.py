@@ -1,9 +1,8 @@
 """The dispersions page (notebooks/dispersions.ipynb): the delta-V budget under errors.
 
-For each plan (the paper's three engines),
-:func:`lunarcap.studies.dispersions.samples.run_dispersions` flies ``samples`` captures with
-execution, arrival and knowledge errors, re-planned after every burn and trimmed to the
-plan's final orbit after the last (run on Dask, resumed from
+For each plan (the paper's three engines), the notebook's :func:`lunarcap.dispersions`
+flies ``samples`` captures with execution, arrival and knowledge errors, re-planned after
+every burn and trimmed to the plan's final orbit after the last (run on Dask, resumed from
 ``<cache>/study/<output_name>.csv``), under an *example* error model whose values are
 assumptions (:data:`DEFAULT_SIGMAS`, the page's assumptions table). :func:`build` shows
 the example budget with the trim and for the burns alone (the mean above the nominal with
@@ -11,7 +10,8 @@ its standard error, the costliest sample, a percentile only where the samples bo
 interval, else how many samples it needs), the final orbit before the trim and the trim's
 distribution, a CDF per engine, and the **sensitivities**: each error source alone at
 ``sensitivity_factors`` times its example sigma, the others 0, on the same antithetic
-draws (:mod:`lunarcap.studies.dispersions.sensitivity`), one figure per engine and a table
+draws (the notebook's ``lunarcap.dispersions(..., sensitivity=True, factors=...,
+antithetic=True)``), one figure per engine and a table
 of the laws with their standard errors (or "unresolved"), so a reader scales the budget
 to their own sigmas. Every function is correct at any sample count: a number the samples
 do not support is replaced by what it needs.
@@ -24,7 +24,6 @@ import math
 import numpy as np
 import pandas as pd
 
-from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
 from lunarcap.report.contents import (
     BookPage,
@@ -270,39 +269,40 @@ def failure_rows(tables: dict) -> pd.DataFrame:
     return pd.DataFrame(rows, columns=["engine", "sample", "status", "reason"])
 
 
-def _load(plans, dynamics: str | None, formulation: str | None) -> list:
-    """The plans, in ``dynamics`` and ``formulation`` where given (None: each plan's own)."""
-    from dataclasses import replace
+def table_file(output_name: str = "dispersions"):
+    """Where the book keeps the samples of this page's runs, resumed on rerun (a Path).
 
-    loaded = []
-    for name in plans:
-        p = load_plan(name)
-        if dynamics is not None and dynamics != p.dynamics:
-            p = p.with_dynamics(dynamics)
-        if formulation is not None and formulation != p.formulation:
-            p = replace(p, formulation=formulation)
-        loaded.append(p)
-    return loaded
+    ``<cache>/study/<output_name>.csv``: the notebook passes it as every run's ``out``
+    (the budgets and the sensitivities: one table, each row keyed by its plan, sample and
+    sigmas), so the book resumes its own table.
+    """
+    return paths.CACHE / "study" / f"{output_name}.csv"
 
 
-def _per_engine(loaded: list, res, sres, models, sig: dict) -> tuple:
+def _per_engine(budgets: list, sensitivities: list, sig: dict) -> tuple:
     """Each engine's samples, budget row, sensitivity rows and laws (labelled by engine).
 
-    Returns ``(tables, rows, srows, laws)``: engine label -> its samples (with its
-    two-body impulsive delta-V), the budget rows, the sensitivity rows with each source's
-    example sigma and the factor of the sigma run over it, and each source's law.
+    ``budgets``, ``sensitivities``: the notebook's :func:`lunarcap.dispersions` runs, one
+    per plan (a sensitivity's ``raw`` is ``(models, campaign)``). Returns ``(tables, rows,
+    srows, laws)``: engine label -> its samples (with its two-body impulsive delta-V), the
+    budget rows, the sensitivity rows with each source's example sigma and the factor of
+    the sigma run over it, and each source's law.
     """
     from lunarcap.studies.dispersions import sensitivity as sens
 
+    by_plan = {plan_id(s.plan): s.raw for s in sensitivities}
     tables, rows, srows, laws = {}, [], [], []
-    for p in loaded:
-        t = res.table[res.table.plan_id == plan_id(p)].copy()
+    for b in budgets:
+        p, t = b.plan, b.campaign.table.copy()   # a run's table: its own samples only
         t["impulsive_delta_v_two_body_mps"] = \
             disp.nominal_totals(p)["impulsive_delta_v_two_body_mps"]
         label = f"{p.engine.thrust_N:g} N / {p.engine.isp_s:g} s"
         tables[label] = t
         rows.append(budget_row(p, t))
-        st = sres.table[sres.table.plan_id == plan_id(p)]
+        if plan_id(p) not in by_plan:
+            continue
+        models, sres = by_plan[plan_id(p)]
+        st = sres.table
         for r in sens.sensitivity_rows(st, models):
             srows.append(dict(r, engine=label, example=sig[r["source"]],
                               factor=r["sigma"] / sig[r["source"]]))
@@ -310,59 +310,70 @@ def _per_engine(loaded: list, res, sres, models, sig: dict) -> tuple:
     return tables, rows, srows, laws
 
 
-def build(plans=("song2011-150N", "song2011-300N", "song2011-450N"), samples: int = 10,
-          seed: int = 2011, sigmas: dict | None = None, dynamics: str | None = None,
-          workers: int = 2, output_name: str = "dispersions", quick: bool = False,
-          formulation: str | None = None, sensitivity_samples: int = 4,
-          sensitivity_factors=(0.5, 1.0, 2.0), sensitivity_plans=None) -> Page:
-    """The page (see the module docstring); ``dynamics``, ``formulation`` None: the plans'.
+def build(budgets: list, sensitivities: list, output_name: str = "dispersions",
+          quick: bool = False, parameters: dict | None = None) -> Page:
+    """The page of the dispersion runs made in the notebook (see the module docstring).
 
-    ``sensitivity_samples`` (antithetic pairs: even) per source, sigma and engine, in the
-    same dynamics, seed and table as the example budget; ``sensitivity_plans``: the plans
-    (names, a subset of ``plans``) whose sensitivities are run (None: every plan).
+    Parameters
+    ----------
+    budgets : list of lunarcap.StudyResult
+        :func:`lunarcap.dispersions` of each plan, in the page's order, under the example
+        sigmas (``samples`` per plan, one seed, the table :func:`table_file`).
+    sensitivities : list of lunarcap.StudyResult
+        :func:`lunarcap.dispersions` with ``sensitivity=True``, ``factors`` and
+        ``antithetic=True`` of the plans in ``sensitivity_plans`` (the same seed, sigmas
+        and table).
+    output_name, quick : the tables' prefix; recorded in the provenance
+    parameters : dict
+        The notebook's ``plans``, ``samples``, ``seed``, ``sigmas``, ``dynamics``,
+        ``workers``, ``sensitivity_samples``, ``sensitivity_factors`` and
+        ``sensitivity_plans`` (None: every plan): the captions and the provenance.
+        ValueError if ``sensitivity_plans`` names a plan outside ``plans``.
     """
-    from lunarcap.studies.dispersions import sensitivity as sens
-
-    sig = dict(DEFAULT_SIGMAS, **(sigmas or {}))
+    prm = dict(parameters or {})
+    plans, samples, seed = list(prm["plans"]), int(prm["samples"]), int(prm["seed"])
+    sensitivity_samples = int(prm["sensitivity_samples"])
+    sensitivity_factors = list(prm["sensitivity_factors"])
+    sensitivity_plans = prm.get("sensitivity_plans")
+    chosen = plans if sensitivity_plans is None else sensitivity_plans
+    unknown = sorted(set(chosen) - set(plans))
+    if unknown:
+        raise ValueError(f"sensitivity_plans: {unknown} not among the page's plans {plans}")
+    sig = dict(DEFAULT_SIGMAS, **(prm.get("sigmas") or {}))
     model = disp.ErrorModel(**sig)
-    params = dict(plans=list(plans), samples=samples, seed=seed, sigmas=sig,
-                  dynamics=dynamics, workers=workers, sensitivity_samples=sensitivity_samples,
-                  sensitivity_factors=list(sensitivity_factors),
+    params = dict(plans=plans, samples=samples, seed=seed, sigmas=sig,
+                  dynamics=prm.get("dynamics"), workers=prm.get("workers"),
+                  sensitivity_samples=sensitivity_samples,
+                  sensitivity_factors=sensitivity_factors,
                   sensitivity_plans=None if sensitivity_plans is None else list(sensitivity_plans))
     page = Page(NOTEBOOK, params, output_name, quick, solver_description(**{
         "re-plans": "each burn after the first re-solved from the estimate of the perilune "
                     "reached, warm-started from the nominal steering, verified",
         "trim": "two impulses after the last burn, corrected in the plan's dynamics until "
                 "the orbit passes the verification gate"}))
-    chosen = plans if sensitivity_plans is None else sensitivity_plans
-    unknown = sorted(set(chosen) - set(plans))
-    if unknown:  # before any sample is flown
-        raise ValueError(f"sensitivity_plans: {unknown} not among the page's plans {list(plans)}")
-    loaded = _load(plans, dynamics, formulation)
-    out = paths.CACHE / "study" / f"{output_name}.csv"
-    res = disp.run_dispersions(loaded, samples, seed, model, out=out, workers=workers,
-                               progress=False)
-    sens_loaded = [p for name, p in zip(plans, loaded) if name in chosen]
-    models, sres = sens.run_sensitivity(sens_loaded, sensitivity_samples, seed, model,
-                                        factors=tuple(sensitivity_factors), out=out,
-                                        workers=workers, progress=False, antithetic=True)
-    runs = [res.run, sres.run]
-    tables, rows, srows, laws = _per_engine(loaded, res, sres, models, sig)
+    runs = [b.campaign.run for b in budgets] + [s.campaign.run for s in sensitivities]
+    sres_tables = [s.campaign.table for s in sensitivities]
+    sres_table = (pd.concat(sres_tables, ignore_index=True) if sres_tables
+                  else pd.DataFrame(columns=["status", "error"]))
+    tables, rows, srows, laws = _per_engine(budgets, sensitivities, sig)
     budget = pd.DataFrame(rows)
-    dyn = loaded[-1].dynamics
+    dyn = budgets[-1].plan.dynamics
     page.data.update(tables=tables, budget=budget, runs=runs, sensitivity=srows, laws=laws)
-    _show_budget(page, budget, tables, samples, seed, dyn, res.path)
+    _show_budget(page, budget, tables, samples, seed, dyn, budgets[0].campaign.path)
     _show_sensitivity(page, srows, laws, sensitivity_factors, sensitivity_samples)
     _values(page, model, sig, rows, budget, tables, runs, samples, seed, dyn)
     page.value("sensitivity_samples", int(sensitivity_samples))
     page.value("sensitivity_pairs", int(sensitivity_samples) // 2)
-    page.value("n_sensitivity", int(len(sres.table)))
-    page.value("sensitivity_cpu_s", float(sample_cpu_s(sres.table).sum()))
+    page.value("n_sensitivity", int(len(sres_table)))
+    page.value("sensitivity_cpu_s", float(sample_cpu_s(sres_table).sum())
+               if len(sres_table) else 0.0)
+    from lunarcap.studies.dispersions import sensitivity as sens
+
     page.value("target_exponent_se", float(sens.TARGET_EXPONENT_SE))
     needed = [law["draws_needed"] for law in laws if law["draws_needed"]]
     page.value("pairs_needed_max", max(needed) if needed else None,
                "no law was fitted with two or more pairs")
-    _checks(page, tables, sres.table, rows)
+    _checks(page, tables, sres_table, rows)
     page.capture("fixed", dyn)
     return page
 

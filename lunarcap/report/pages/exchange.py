@@ -12,11 +12,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from lunarcap.capture.chain import plan_result
-from lunarcap.capture.export import export_plan
 from lunarcap.exchange import ccsds, spk
 from lunarcap.exchange.burn_files import read_maneuvers
-from lunarcap.mission.plan import load_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.epochs import calendar_from_seconds, leap_second_table
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
@@ -88,25 +85,35 @@ def trajectory_arcs(oem_path) -> list:
     return [(s.name, s.r_km, s.name.startswith("burn")) for s in ccsds.read_oem(oem_path)]
 
 
-def build(plan: str = "song2011-150N", dynamics: str | None = None,
-          output_name: str = "exchange", quick: bool = False) -> Page:
-    """The page (see the module docstring).
+def export_dir(output_name: str = "exchange"):
+    """Where the book keeps this page's exported files (a Path): the links of its tables.
+
+    ``book/generated/export/<output_name>/``: the notebook exports the capture there.
+    """
+    return paths.export_dir(output_name)
+
+
+def build(result, ex, ex_utc, output_name: str = "exchange", quick: bool = False,
+          parameters: dict | None = None) -> Page:
+    """The page of a capture exported in the notebook (see the module docstring).
 
     Parameters
     ----------
-    plan : a packaged plan's name or a plan file
-    dynamics : overrides the plan's (None: the plan's)
+    result : lunarcap.CaptureResult
+        :func:`lunarcap.solve`'s verified capture (its plan names the page's files).
+    ex, ex_utc : lunarcap.capture.export.Export
+        ``result.export(export_dir(output_name))`` and the same in UTC
+        (``export_dir(output_name) / "utc"``, ``time_system="UTC"``).
     output_name : prefix of the tables and figures, and the export directory's name
     quick : recorded in the provenance only
+    parameters : dict, optional
+        The notebook's parameters (``plan``: the name shown; ``dynamics``: the plan's),
+        shown in the page's provenance.
     """
-    p = load_plan(plan)
-    if dynamics is not None and dynamics != p.dynamics:
-        p = p.with_dynamics(dynamics)
-    page = Page(NOTEBOOK, dict(plan=plan, dynamics=p.dynamics), output_name, quick)
-    res = plan_result(p, impulsive=False)
-    out = paths.export_dir(output_name)
-    ex = export_plan(res, out)
-    ex_utc = export_plan(res, out / "utc", time_system="UTC")
+    p = result.plan
+    params = dict(parameters or {})
+    plan = params.get("plan", p.name)
+    page = Page(NOTEBOOK, params, output_name, quick)
     page.table("files", files_table(ex),
                caption=(f"The files `lunarcap plan {plan} --export DIR` writes "
                         f"({p.dynamics} dynamics), their sizes (kB) and contents; each "

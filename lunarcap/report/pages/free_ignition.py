@@ -1,12 +1,12 @@
 """The free-ignition page (notebooks/free_ignition.ipynb): what the paper's grid left.
 
-For each engine, each burn of the paper's plan is solved with its ignition time free (an
-NLP variable), starting from the free-ignition chain's previous orbit, and set beside
-the best of the paper's grid of offsets replayed on that same orbit
-(:func:`lunarcap.studies.sweeps.free_vs_grid_table`); the whole chains are compared
-(:func:`lunarcap.studies.sweeps.sequence_table`); and the paper's rule of thumb, ignition
-half the Eq. (19) duration before the perilune, is solved on the same orbits and priced
-against the optimum. The notes the prose needs (which grid point cost most, where the
+For each engine, the notebook solves each burn of the paper's plan with its ignition time
+free (an NLP variable), starting from the free-ignition chain's previous orbit, and at
+each of the paper's grid of offsets on that same orbit (:func:`lunarcap.solve_burn`); the
+whole chains (:func:`lunarcap.solve`); and the paper's rule of thumb, ignition half the
+Eq. (19) duration before the perilune, on the same orbits. :func:`build` sets the free
+optimum beside the best grid point, compares the chains and prices the rule against the
+optimum. The notes the prose needs (which grid point cost most, where the
 free optimum spends more delta-V, what the chain gains) are written from the data.
 """
 
@@ -15,15 +15,15 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from lunarcap.capture.chain import paper_case
 from lunarcap.mission.plan import paper_plan
-from lunarcap.mission.scenario import paper_engine_pairs, paper_engines
+from lunarcap.mission.scenario import paper_engines
 from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_IMPULSIVE_DV_MPS, PAPER_STARTS_MIN
 from lunarcap.quantities import capture_name
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.figures import free_ignition as draw
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
+from lunarcap.report.pages.other_engines import sequence_of
 from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/free_ignition.ipynb"
@@ -47,9 +47,54 @@ RULE_GOOD_PERCENT = 10.0
 
 
 
-def gain_table(engines, dynamics: str) -> pd.DataFrame:
+def grid_starts(thrust_N: float, burn: int) -> tuple:
+    """The paper's grid of ignition offsets for this burn of its engine, min (Tables 1-5).
+
+    Empty for an engine the paper did not solve: the notebook then solves no grid point.
+    """
+    if float(thrust_N) not in PAPER_BEST_STARTS_MIN:
+        return ()
+    return PAPER_STARTS_MIN[(float(thrust_N), int(burn))]
+
+
+def best_grid_starts(thrust_N: float, isp_s: float):
+    """The paper's best offsets of its three burns (Table B1) for its engine, else None."""
+    t = float(thrust_N)
+    return PAPER_BEST_STARTS_MIN.get(t) if paper_engines().get(t) == float(isp_s) else None
+
+
+def _gain_rows(t: float, i: float, free: list, grid: list) -> pd.DataFrame:
+    """One engine's rows of :func:`gain_table` (free optimum beside the best grid point).
+
+    ``free``: the three free burns (``lunarcap.solve_burn`` with its impulsive limit, each
+    on the free chain's pre-burn orbit); ``grid``: per burn the grid points solved on that
+    same orbit (empty lists for an engine the paper did not solve).
+    """
+    rows = []
+    for loi, (f, points) in enumerate(zip(free, grid), 1):
+        fs = f.row()
+        row = {"loi": loi, "free_start_min": fs["start_min"],
+               "free_burn_duration_min": fs["burn_duration_min"],
+               "free_delta_v_mps": fs["delta_v_mps"], "free_objective_mps": fs["objective_j_mps"],
+               "free_impulsive_limit_mps": fs["impulsive_limit_mps"],
+               "free_objective_loss_mps": fs["objective_loss_mps"],
+               "free_objective_loss_percent": fs["objective_loss_percent"],
+               "eq19_half_duration_min": 0.5 * fs["eq19_duration_min"],
+               "free_verified": fs["verification_passed"]}
+        if points:
+            gs = min(points, key=lambda b: b.solution.raw.objective_kmps).row()
+            row.update({"grid_start_min": gs["start_min"], "grid_delta_v_mps": gs["delta_v_mps"],
+                        "grid_objective_mps": gs["objective_j_mps"],
+                        "objective_gain_mps": gs["objective_j_mps"] - fs["objective_j_mps"],
+                        "delta_v_gain_mps": gs["delta_v_mps"] - fs["delta_v_mps"]})
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def gain_table(engines, free: dict, grid: dict) -> pd.DataFrame:
     """Free optimum beside the best grid point, per engine and burn (one row each).
 
+    ``free``, ``grid``: ``{thrust_N: [...]}`` the notebook's solves (see :func:`_gain_rows`).
     Columns: engine, thrust_N, isp_s, burn, grid_start_min, free_start_min,
     free_burn_duration_min, grid_delta_v_mps, free_delta_v_mps, delta_v_gain_mps and
     objective_gain_mps (grid - free; NaN for an engine the paper did not solve),
@@ -60,7 +105,7 @@ def gain_table(engines, dynamics: str) -> pd.DataFrame:
     """
     frames = []
     for t, i in engines:
-        df = sweeps.free_vs_grid_table(t, i, dynamics)
+        df = _gain_rows(t, i, free[t], grid[t])
         for c in ("grid_start_min", "grid_delta_v_mps", "objective_gain_mps",
                   "delta_v_gain_mps"):
             if c not in df:
@@ -77,21 +122,23 @@ def gain_table(engines, dynamics: str) -> pd.DataFrame:
         "verified"]]
 
 
-def free_chain_table(engines, dynamics: str) -> tuple[pd.DataFrame, dict]:
+def free_chain_table(engines, chains: dict) -> tuple[pd.DataFrame, dict]:
     """The paper's best grid chain (Table B1 offsets) against the free chain, per engine.
 
-    Returns the table (engine, grid_starts, free_starts, total delta-Vs, gain, final
-    masses, propellant saved, verified) and ``{thrust_N: per-burn delta-V gain, m/s}``.
+    ``chains``: ``{thrust_N: [free chain, best grid chain or None]}``, each the paper's plan
+    solved by ``lunarcap.solve`` with those ignitions. Returns the table (engine,
+    grid_starts, free_starts, total delta-Vs, gain, final masses, propellant saved,
+    verified) and ``{thrust_N: per-burn delta-V gain, m/s}``.
     """
     rows, legs = [], {}
     for t, i in engines:
         t = float(t)
-        free_seq = sweeps.sequence_table(t, i, ("free",) * 3, dynamics,
-                                         with_impulsive_model=False)
+        free_res, grid_res = chains[t]
+        free_seq = sequence_of(free_res)
         ft = sweeps.sequence_totals(free_seq)
-        grid = PAPER_BEST_STARTS_MIN.get(t) if paper_engines().get(t) == float(i) else None
-        if grid is not None:
-            grid_seq = sweeps.sequence_table(t, i, grid, dynamics, with_impulsive_model=False)
+        grid = best_grid_starts(t, i)
+        if grid_res is not None:
+            grid_seq = sequence_of(grid_res)
             gt = sweeps.sequence_totals(grid_seq)
             legs[t] = grid_seq.delta_v_mps.to_numpy() - free_seq.delta_v_mps.to_numpy()
             ok = bool(grid_seq.verified.all() and free_seq.verified.all())
@@ -112,20 +159,20 @@ def free_chain_table(engines, dynamics: str) -> tuple[pd.DataFrame, dict]:
     return pd.DataFrame(rows), legs
 
 
-def rule_table(gain: pd.DataFrame, dynamics: str) -> pd.DataFrame:
+def rule_table(gain: pd.DataFrame, rule: dict) -> pd.DataFrame:
     """The Eq. (19)/2 rule against the free optimum, one row per engine and burn.
 
-    Each rule start (minus half the Eq. (19) duration) is solved with a fixed ignition
-    on the free chain's pre-burn orbit. Columns: engine, thrust_N, burn,
-    eq19_duration_min, rule_start_min, free_start_min, start_minus_rule_min,
-    burn_midpoint_min (free start + half the free duration), grid_start_min,
-    rule_delta_v_cost_mps and rule_objective_cost_mps (rule - free), verified.
+    ``rule``: ``{(thrust_N, burn): lunarcap.BurnSolution}``, each burn solved by the
+    notebook with a fixed ignition at minus half its Eq. (19) duration, on the free chain's
+    pre-burn orbit. Columns: engine, thrust_N, burn, eq19_duration_min, rule_start_min,
+    free_start_min, start_minus_rule_min, burn_midpoint_min (free start + half the free
+    duration), grid_start_min, rule_delta_v_cost_mps and rule_objective_cost_mps
+    (rule - free), verified.
     """
     rows = []
     for r in gain.itertuples():
         rule_start = -r.eq19_duration_min / 2
-        s = paper_case(r.thrust_N, r.isp_s, int(r.burn), rule_start,
-                       ("free",) * (int(r.burn) - 1), dynamics).summary()
+        s = rule[(float(r.thrust_N), int(r.burn))].row()
         rows.append({
             "engine": r.engine, "thrust_N": r.thrust_N, "burn": r.burn,
             "eq19_duration_min": r.eq19_duration_min, "rule_start_min": rule_start,
@@ -135,7 +182,7 @@ def rule_table(gain: pd.DataFrame, dynamics: str) -> pd.DataFrame:
             "grid_start_min": r.grid_start_min,
             "rule_delta_v_cost_mps": s["delta_v_mps"] - r.free_delta_v_mps,
             "rule_objective_cost_mps": s["objective_j_mps"] - r.free_objective_j_mps,
-            "verified": "passed" if s["verification"]["passed"] else "failed"})
+            "verified": "passed" if s["verification_passed"] else "failed"})
     return pd.DataFrame(rows)
 
 
@@ -375,18 +422,41 @@ def _add_checks(page: Page, gain, chain, rule, engines, dynamics: str) -> None:
         page.expect("300 N burn 1 is the largest J gain", j == jg.max())
 
 
-def build(engines=paper_engine_pairs(), dynamics: str = "full",
-          output_name: str = "free_ignition", quick: bool = False) -> Page:
-    """The free-ignition page (see the module docstring)."""
-    engines = [(float(t), float(i)) for t, i in engines]
+def build(free: dict, grid: dict, rule: dict, chains: dict,
+          output_name: str = "free_ignition", quick: bool = False,
+          parameters: dict | None = None) -> Page:
+    """The free-ignition page of the solves made in the notebook (see the module docstring).
+
+    Parameters
+    ----------
+    free : dict
+        ``{thrust_N: [BurnSolution] * 3}``: each burn of the paper's plan with that engine,
+        its ignition free, on the free chain's pre-burn orbit, with its impulsive limit
+        (``lunarcap.solve_burn(plan, burn, start="free", previous_starts=["free"] * ...)``).
+    grid : dict
+        ``{thrust_N: [[BurnSolution, ...]] * 3}``: per burn, each offset of
+        :func:`grid_starts` solved on that same orbit (``impulsive=False``).
+    rule : dict
+        ``{(thrust_N, burn): BurnSolution}``: each burn ignited at minus half its Eq. (19)
+        duration (the free optimum's ``eq19_duration_min``) on that same orbit.
+    chains : dict
+        ``{thrust_N: [free chain, best grid chain or None]}``: ``lunarcap.solve`` of the
+        plan with every ignition free, and with :func:`best_grid_starts`.
+    output_name, quick : the tables' prefix; recorded in the provenance
+    parameters : dict
+        The notebook's ``engines`` ([thrust N, Isp s] each) and ``dynamics``.
+    """
+    prm = dict(parameters or {})
+    engines = [(float(t), float(i)) for t, i in prm["engines"]]
+    dynamics = prm.get("dynamics", "full")
     params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
     solver = dict(solver_description())
     solver["ignition"] = "free (an NLP variable), or fixed for the grid points"
     solver["gate"] = solver.pop("gate")
     page = Page(NOTEBOOK, params, output_name, quick, solver)
-    gain = gain_table(engines, dynamics)
-    chain, legs = free_chain_table(engines, dynamics)
-    rule = rule_table(gain, dynamics)
+    gain = gain_table(engines, free, grid)
+    chain, legs = free_chain_table(engines, chains)
+    rule = rule_table(gain, rule)
     _add_tables(page, gain, chain, dynamics)
     _add_rule(page, rule, engines)
     for name, v in prose_values(gain, rule).items():

@@ -26,11 +26,9 @@ from lunarcap.capture.gmat_flight import (
     TOL_BURN_SPEED_MPS,
     TOL_FINAL_RADII_M,
     default_costs,
-    fly_in_gmat,
     lunarcap_events,
 )
 from lunarcap.exchange import gmat
-from lunarcap.mission.plan import load_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.epochs import calendar_from_seconds, leap_second_table, seconds_from_calendar
 from lunarcap.physics.forces import force_model
@@ -212,33 +210,36 @@ def files_table(files: dict) -> pd.DataFrame:
                          for k, p in files.items() if k in what])
 
 
-def _case(spec) -> object:
-    """The plan of a case ``[plan, dynamics or None]``."""
-    name, dynamics = spec
-    p = load_plan(name)
-    return p if dynamics is None else p.with_dynamics(dynamics)
+def export_dir(output_name: str = "gmat_flight", k: int = 1):
+    """Where the book keeps case ``k``'s exported and GMAT files (a Path), which it links to.
+
+    ``book/generated/export/<output_name>_<k>/``: the notebook flies case k there.
+    """
+    return paths.export_dir(f"{output_name}_{k}")
 
 
-def build(cases=(("song2011-150N", None),), output_name: str = "gmat_flight",
-          quick: bool = False) -> Page:
-    """The page (see the module docstring).
+def build(results, flights, output_name: str = "gmat_flight", quick: bool = False,
+          parameters: dict | None = None) -> Page:
+    """The page of the captures flown in GMAT in the notebook (see the module docstring).
 
     Parameters
     ----------
-    cases : sequence of [plan, dynamics or None]
-        Each plan (a packaged name or a file) in its own dynamics or in these (a preset
-        word or a ``dynamics`` mapping); the first's capture is the one whose settings'
-        costs are flown.
+    results : list of lunarcap.CaptureResult
+        :func:`lunarcap.solve`'s capture of each case (``impulsive=False``); the first's is
+        the one whose GMAT settings' costs are flown here.
+    flights : list of lunarcap.GmatFlight
+        ``results[k - 1].fly_in_gmat(export_dir(output_name, k))`` for each case k.
     output_name, quick : prefix of the tables and export folders; recorded in provenance
+    parameters : dict, optional
+        The notebook's parameters (``cases``), shown in the page's provenance.
     """
-    plans = [_case(c) for c in cases]
-    page = Page(NOTEBOOK, dict(cases=[list(c) for c in cases]), output_name, quick,
+    plans = [r.plan for r in results]
+    page = Page(NOTEBOOK, dict(parameters or {}), output_name, quick,
                 ephemeris=plans[0].ephemeris_model())
     flown, tables, files = {}, [], []
-    for k, plan in enumerate(plans, 1):
-        res = plan_result(plan, impulsive=False)
-        c = fly_in_gmat(res, paths.export_dir(f"{output_name}_{k}"))
-        label = case_label(plan)
+    for k, (res, flight) in enumerate(zip(results, flights), 1):
+        c = flight.comparison
+        label = case_label(res.plan)
         flown[label] = c
         tables.append(comparison_table(c, label))
         files.append(files_table(c.files).assign(case=label))

@@ -4,18 +4,18 @@ The packaged plan ``kplo-like-3burn`` is the lunar orbit insertion of the Korea 
 Lunar Orbiter as KARI designed it (:data:`lunarcap.report.pages.real_missions.SOURCES`
 S13: perilune speeds, impulsive delta-Vs, about 550 kg; four 30 N thrusters from
 {cite:t}`song2016`), its engine's specific impulse, epoch and approach assumed, designed
-with finite burns in LP165P. :func:`build`
+with finite burns in LP165P. The notebook designs it (:func:`lunarcap.solve`), runs the
+missed-thrust and the burns studies on it (:func:`lunarcap.missed`, :func:`lunarcap.burns`)
+and re-flies it in GMAT (``CaptureResult.fly_in_gmat``); :func:`build` formats them and
 
 * sets the plan beside its sources and says which numbers are assumed (:func:`sources_table`)
   and gives its arrival as the B-plane target it amounts to, in EME2000 axes (GMAT's
   ``BdotT``/``BdotR``) and about the lunar equator (:func:`bplane_table`);
 * justifies the field's degree: the capture designed again in lower and higher degrees
   (its total delta-V) and its final orbit flown for days in each (:func:`degree_table`);
-* designs it (:func:`design_table`: each burn beside KARI's impulse and the impulsive limit
-  in the field, or why there is none);
-* runs the missed-thrust and the burns studies on it (:mod:`lunarcap.studies.missed`,
-  :mod:`lunarcap.studies.burn_count`), re-flies it in GMAT
-  (:func:`lunarcap.capture.gmat_flight.fly_in_gmat`) and follows its orbit for days.
+* tabulates the design (:func:`design_table`: each burn beside KARI's impulse and the
+  impulsive limit in the field, or why there is none);
+* tabulates the studies and the GMAT flight the notebook ran and follows its orbit for days.
 """
 
 from __future__ import annotations
@@ -27,8 +27,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.capture.chain import after_capture, arrival_for, plan_result
-from lunarcap.capture.gmat_flight import fly_in_gmat
-from lunarcap.mission.plan import PLAN_DIR, load_plan
+from lunarcap.mission.plan import PLAN_DIR
 from lunarcap.physics import constants as C
 from lunarcap.physics.bplane import bplane_from_rv
 from lunarcap.physics.elements import rv_from_mee, semi_major_axis_from_period
@@ -200,41 +199,56 @@ COUNTS_SHOWN = ["n_burns", "status", "periods_h", "total_delta_v_mps",
 EVOLUTION_RTOL = 1e-10
 
 
-def build(plan: str = "kplo-like-3burn", dynamics=None, check_degrees=(10, 30),
-          evolve_degrees=(8, 20, 30, 40), after_days: float = 7.0, fractions=(0.5, 0.9),
-          delays_min=(0.0, 30.0), late_min=(2.0,), counts=(2, 3), gmat: bool = True,
-          workers: int = 2, output_name: str = "kplo_capture", quick: bool = False) -> Page:
-    """The page (see the module docstring).
+def table_file(output_name: str = "kplo_capture", study: str = "missed") -> Path:
+    """Where the book keeps one study's table of this page, resumed on rerun.
+
+    ``<cache>/study/<output_name>_<study>.csv`` (``study``: ``"missed"`` or ``"burns"``):
+    the notebook passes it as the study's ``out``, so the book resumes its own table.
+    """
+    return paths.CACHE / "study" / f"{output_name}_{study}.csv"
+
+
+def export_dir(output_name: str = "kplo_capture") -> Path:
+    """Where the book keeps the capture exported for GMAT (a Path): its flight's files."""
+    return paths.export_dir(output_name)
+
+
+def build(result, missed_study=None, counts_study=None, flight=None,
+          output_name: str = "kplo_capture", quick: bool = False,
+          parameters: dict | None = None, check_degrees=(), evolve_degrees=(),
+          after_days: float = 7.0) -> Page:
+    """The page of the KPLO-class capture computed in the notebook (see the module docstring).
 
     Parameters
     ----------
-    plan : the packaged plan (or a plan file); ``dynamics``: None keeps its own
+    result : lunarcap.CaptureResult
+        :func:`lunarcap.solve`'s design, each burn with its impulsive limit.
+    missed_study : lunarcap.StudyResult, optional
+        :func:`lunarcap.missed` on burn 1 (None: not run in this build).
+    counts_study : lunarcap.StudyResult, optional
+        :func:`lunarcap.burns` on the plan (None: not run in this build).
+    flight : lunarcap.GmatFlight, optional
+        ``result.fly_in_gmat(export_dir(output_name))`` (None: not flown in this build).
+    output_name, quick : the tables' prefix; recorded in the provenance
+    parameters : dict, optional
+        The notebook's parameters, shown in the provenance (``plan``: the plan file shown).
     check_degrees : LP165P degrees the capture is designed again in (its field's degree)
     evolve_degrees : LP165P degrees its final orbit is flown in for ``after_days`` days
-    fractions, delays_min, late_min : burn 1's cut-offs and late ignitions (``missed``)
-    counts : the numbers of burns tried (``burns``)
-    gmat : re-fly the capture in GMAT
-    workers : Dask workers of the two studies
-    output_name, quick : the tables' prefix; recorded in the provenance
+        These two have no public call: the page computes them (:func:`_degree_section`).
     """
-    p = load_plan(plan)
-    if dynamics is not None:
-        p = p.with_dynamics(dynamics)
-    params = dict(plan=plan, dynamics=dynamics, check_degrees=list(check_degrees),
-                  evolve_degrees=list(evolve_degrees), after_days=after_days,
-                  fractions=list(fractions), delays_min=list(delays_min),
-                  late_min=list(late_min), counts=list(counts), gmat=gmat, workers=workers)
+    p = result.plan
+    params = {k: list(v) if isinstance(v, (list, tuple)) else v
+              for k, v in (parameters or {}).items()}
     page = Page(NOTEBOOK, params, output_name, quick, solver_description(),
                 ephemeris=p.ephemeris_model())
-    res = plan_result(p)
-    page.data.update(plan=p, result=res)
-    _plan_section(page, p, plan)
-    _design_section(page, res)
-    _degree_section(page, p, res, [int(d) for d in check_degrees],
+    page.data.update(plan=p, result=result)
+    _plan_section(page, p, params.get("plan", p.name))
+    _design_section(page, result)
+    _degree_section(page, p, result, [int(d) for d in check_degrees],
                     [int(d) for d in evolve_degrees], float(after_days))
-    _missed_section(page, p, list(fractions), list(delays_min), list(late_min), workers)
-    _counts_section(page, p, [int(n) for n in counts], workers)
-    _gmat_section(page, res, gmat)
+    _missed_section(page, p, missed_study)
+    _counts_section(page, p, counts_study)
+    _gmat_section(page, result, flight)
     _headline(page)
     return page
 
@@ -391,20 +405,16 @@ def _not_run(columns: list, why: str) -> pd.DataFrame:
     return pd.DataFrame([row])
 
 
-def _missed_section(page: Page, p, fractions: list, delays: list, late: list,
-                    workers: int) -> None:
-    """Burn 1 cut off or ignited late: ``lunarcap missed`` on the plan."""
-    if not fractions and not late:
+def _missed_section(page: Page, p, study) -> None:
+    """Burn 1 cut off or ignited late: ``lunarcap missed`` on the plan (None: not run)."""
+    if study is None:
         page.table("missed", _not_run(MISSED_SHOWN, f"not run ({page.missing_reason})"),
                    caption="Missed thrust: not run in this build.")
         for k in ("n_cases", "n_recovered", "max_penalty_mps"):
             page.value(k, None)
         page.note("missed_reading", f"(Not run: {page.missing_reason}.)")
         return
-    r = missed.run_missed(p, 1, fractions or None, delays, missed.DEFAULT_MAX_PERIOD_H,
-                          out=paths.CACHE / "study" / f"{page.output_name}_missed.csv",
-                          workers=workers, progress=False, late_min=late or None)
-    t = r.table
+    t, path = study.to_frame(), study.campaign.path
     page.data["missed"] = t
     page.table("missed", t, caption=(
         f"Burn 1 cut off after a fraction of its duration (the fault cleared after the delay) "
@@ -413,7 +423,7 @@ def _missed_section(page: Page, p, fractions: list, delays: list, late: list,
         f"nominal (m/s; the orbit after burn 1 free up to {missed.DEFAULT_MAX_PERIOD_H:g} h "
         f"on both sides), the make-up burn's ΔV, and why a case has no recovery. "
         f"`lunarcap missed {p.name}` with the same options runs it; the table: "
-        f"{page.data_link(r.path, 'missed.csv')}."),
+        f"{page.data_link(path, 'missed.csv')}."),
         show_columns=MISSED_SHOWN, floatfmt={"fraction": ".2f", "delay_min": ".0f",
                                              "late_min": ".0f"},
         columns={"cutoff_orbit": "orbit left"})
@@ -431,17 +441,15 @@ def _missed_section(page: Page, p, fractions: list, delays: list, late: list,
                 ok.empty or ok.penalty_mps.min() >= -0.05)
 
 
-def _counts_section(page: Page, p, counts: list, workers: int) -> None:
-    """The capture in N burns, the intermediate periods optimised: ``lunarcap burns``."""
-    if not counts:
+def _counts_section(page: Page, p, study) -> None:
+    """The capture in N burns, the periods between optimised: ``lunarcap burns`` (or None)."""
+    if study is None:
         page.table("counts", _not_run(COUNTS_SHOWN, f"not run ({page.missing_reason})"),
                    caption="How many burns: not run in this build.")
         page.value("best_count", None)
         page.value("best_count_mps", None)
         return
-    r = burns.run_burns([p], counts, out=paths.CACHE / "study" / f"{page.output_name}_burns.csv",
-                        workers=workers, progress=False)
-    t = r.table.copy()
+    t, path = study.to_frame(), study.campaign.path
     t["periods_h"] = [", ".join(f"{float(x):.3f}" for x in s.split(";")) if
                       isinstance(s, str) and s else "—" for s in t.periods_h]
     page.table("counts", t, caption=(
@@ -450,7 +458,7 @@ def _counts_section(page: Page, p, counts: list, workers: int) -> None:
         f"{burns.DEFAULT_MAX_DAYS:g} days) by the all-burns NLP in the field: total ΔV, the "
         "sum of the impulsive limits (none where a burn has no limit: the reason says "
         f"which), propellant and time to the final orbit. `lunarcap burns {p.name}` runs "
-        f"it; the table: {page.data_link(r.path, 'burns.csv')}."),
+        f"it; the table: {page.data_link(path, 'burns.csv')}."),
         show_columns=COUNTS_SHOWN, floatfmt={"total_delta_v_mps": ".3f",
                                              "total_impulsive_limit_mps": ".3f",
                                              "total_fuel_kg": ".2f",
@@ -465,9 +473,9 @@ def _counts_section(page: Page, p, counts: list, workers: int) -> None:
                 "; ".join(t.reason[~t.status.isin(burns.STUDY.ok_statuses)].astype(str)))
 
 
-def _gmat_section(page: Page, res, fly: bool) -> None:
-    """The verified capture exported and flown again in GMAT."""
-    if not fly:
+def _gmat_section(page: Page, res, flight) -> None:
+    """The verified capture exported and flown again in GMAT (``flight``; None: not flown)."""
+    if flight is None:
         why = f"not flown ({page.missing_reason})"
         page.table("gmat", _not_run(["flight", "position_diff_m", "velocity_diff_mmps", "note"],
                                     why), caption="GMAT: not flown in this build.")
@@ -476,7 +484,7 @@ def _gmat_section(page: Page, res, fly: bool) -> None:
         for k in ("gmat_burn_max_m", "gmat_burn_max_mmps", "gmat_final_max_m"):
             page.value(k, None, why=why)
         return
-    c = fly_in_gmat(res, paths.export_dir(page.output_name))
+    c = flight.comparison
     label = f"{res.plan.name} ({model_label(res.plan.dynamics)})"
     page.table("gmat", comparison_table(c, label), caption=(
         "GMAT's states minus lunarcap's: each burn flown by GMAT from lunarcap's state at "

@@ -12,7 +12,6 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from lunarcap.mission.plan import load_plan
 from lunarcap.quantities import capture_name
 from lunarcap.report.contents import (
     BookPage,
@@ -22,7 +21,6 @@ from lunarcap.report.contents import (
     one_of,
     table_files,
 )
-from lunarcap.report.figures import missed_thrust as draw
 from lunarcap.report.page import Page, counted, solver_description
 from lunarcap.repro import paths
 from lunarcap.studies.missed import cases as missed
@@ -209,28 +207,44 @@ def reading(t: pd.DataFrame, max_period_h: float | None = None) -> str:
     return " ".join(out)
 
 
-def build(plan: str = "song2011-150N", burn: int = 1, fractions=(0.25, 0.5, 0.75, 0.9),
-          delays_min=(0.0, 30.0, 120.0, 720.0), dynamics: str | None = None, workers: int = 2,
-          output_name: str = "missed_thrust", quick: bool = False, late_min=(1.0, 5.0, 10.0),
-          max_period_h: float = missed.DEFAULT_MAX_PERIOD_H) -> Page:
-    """The page (see the module docstring); ``dynamics`` None keeps the plan's own."""
-    p = load_plan(plan)
-    if dynamics is not None and dynamics != p.dynamics:
-        p = p.with_dynamics(dynamics)
-    params = dict(plan=plan, burn=burn, fractions=list(fractions),
-                  delays_min=list(delays_min), dynamics=dynamics, workers=workers,
-                  late_min=list(late_min), max_period_h=max_period_h)
+def table_file(output_name: str = "missed_thrust"):
+    """Where the book keeps this page's study table, resumed on rerun (a Path).
+
+    ``<cache>/study/<output_name>.csv``: the notebook passes it as the study's ``out`` so
+    that the book's run resumes the book's own table (not the command line's default).
+    """
+    return paths.CACHE / "study" / f"{output_name}.csv"
+
+
+def build(study, table: pd.DataFrame, penalty_figure, output_name: str = "missed_thrust",
+          quick: bool = False, parameters: dict | None = None) -> Page:
+    """The page of a missed-thrust study computed in the notebook (see the module docstring).
+
+    Parameters
+    ----------
+    study : lunarcap.StudyResult
+        :func:`lunarcap.missed`'s result (its plan, burn, bound, campaign's path and run).
+    table : pandas.DataFrame
+        ``study.to_frame()``: every case, cut-offs and late ignitions.
+    penalty_figure : matplotlib.figure.Figure
+        ``study.plot()``: the penalty map of the cut-offs.
+    output_name, quick : the page's output name and whether it is a quick build.
+    parameters : dict, optional
+        The notebook's parameters, shown in the page's provenance.
+    """
+    p, doc = study.plan, study.document()
+    burn, max_period_h = int(doc["burn"]), float(doc["max_period_h"])
+    params = {k: list(v) if isinstance(v, (list, tuple)) else v
+              for k, v in (parameters or {}).items()}
     page = Page(NOTEBOOK, params, output_name, quick, solver_description(**{
         "recovery NLP": "8×16 LGR-5 per leg (12×24 if verification asks), free ignitions, "
                         f"the make-up orbit free up to {max_period_h:g} h"}))
-    res = missed.run_missed(p, burn, list(fractions), list(delays_min), float(max_period_h),
-                            out=paths.CACHE / "study" / f"{output_name}.csv", workers=workers,
-                            progress=False, late_min=list(late_min))
-    everything = res.table
+    res = study.campaign
+    everything = table
     t, late = cut_offs(everything), late_ignitions(everything)
     page.data.update(table=everything, run=res.run)
     r0 = t.iloc[0]
-    page.figure("penalty", draw.plot_missed_penalty(t), caption=(
+    page.figure("penalty", penalty_figure, caption=(
         f"Penalty (m/s) of a cut-off in burn {burn} of {p.name} ({p.engine.thrust_N:g} N / "
         f"{p.engine.isp_s:g} s, {p.dynamics} dynamics): ΔV of the partial burn plus the "
         f"recovery's, minus the nominal burns {burn}–{p.n_burns} "

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from lunarcap.errors import integer, number
+from lunarcap.errors import InputError, integer, number, number_list
 from lunarcap.studies.registry import PLAN_DEFAULT, StudyCommand, StudyRun
 
 #: The 1-sigma options: (option, unit, the error it draws).
@@ -64,6 +64,12 @@ def options(p) -> None:
                    help="instead of one budget: each non-zero sigma alone at 0.5, 1 and 2 "
                         "times its value (the others 0, the same draws), the mean and the "
                         "99 %% budget of each")
+    p.add_argument("--factors", default=None, metavar="F1,F2,...",
+                   help="with --sensitivity: the multiples of each sigma run (default "
+                        "0.5,1,2)")
+    p.add_argument("--antithetic", action="store_true",
+                   help="fly the samples in antithetic pairs: sample 2j+1 draws the negated "
+                        "numbers of sample 2j, a pair one independent draw (--samples even)")
     p.add_argument("--formulation", choices=["orbit", "song2011"], default=None,
                    help=f"how the re-planned burns meet a period: orbit (the orbit asked, its "
                         f"perilune epoch free) or song2011 (the paper's: at the plan's nominal "
@@ -84,11 +90,17 @@ def prepare(args, plan) -> StudyRun:
     model = disp.ErrorModel(**{name: number("--" + name.replace("_", "-"), getattr(args, name),
                                               "", minimum=0.0) for name in disp.SIGMAS},
                             **covs)
+    if args.antithetic and samples % 2:
+        raise InputError(f"antithetic samples come in pairs: --samples must be even, got "
+                         f"{samples}")
     if args.sensitivity:
         return _sensitivity(args, plan, samples, seed, model)
+    if args.factors is not None:
+        raise InputError("--factors: the multiples of a sensitivity, needs --sensitivity")
     return StudyRun.of(disp.STUDY, lambda: disp.run_dispersions(
         plan, samples, seed, model, out=args.out, workers=args.workers,
-        scheduler=args.scheduler, progress=not args.no_progress),
+        scheduler=args.scheduler, progress=not args.no_progress,
+        antithetic=args.antithetic),
         {"plan": plan.to_dict(),
          "error_model": model.key() | {"description": model.describe()}, "seed": seed},
         lambda res: {"summary": disp.summarise(res.table.to_dict("records"))},
@@ -105,6 +117,9 @@ def _sensitivity(args, plan, samples: int, seed: int, model) -> StudyRun:
     from lunarcap.studies.dispersions import samples as disp
     from lunarcap.studies.dispersions import sensitivity as sens
 
+    factors = sens.FACTORS if args.factors is None else number_list(
+        "--factors", args.factors, "", positive=True, distinct=True)
+
     def rows(out) -> list:
         models, res = out
         return sens.sensitivity_rows(res.table, models)
@@ -115,9 +130,10 @@ def _sensitivity(args, plan, samples: int, seed: int, model) -> StudyRun:
                 "laws": sens.laws(out[1].table, out[0])}
 
     return StudyRun(
-        lambda: sens.run_sensitivity(plan, samples, seed, model, out=args.out,
-                                     workers=args.workers, scheduler=args.scheduler,
-                                     progress=not args.no_progress),
+        lambda: sens.run_sensitivity(plan, samples, seed, model, factors=factors,
+                                     out=args.out, workers=args.workers,
+                                     scheduler=args.scheduler, progress=not args.no_progress,
+                                     antithetic=args.antithetic),
         "samples", document,
         lambda out: sens.format_sensitivity(plan, rows(out), out[1],
                                             sens.laws(out[1].table, out[0])),

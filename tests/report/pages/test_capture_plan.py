@@ -12,14 +12,41 @@ from lunarcap.report.pages import capture_plan
 pytestmark = pytest.mark.slow
 
 
+def _page(name: str, output_name: str):
+    """The page as the notebook builds it: the plan solved and drawn with the public API."""
+    import lunarcap
+
+    plan = lunarcap.load_plan(name, dynamics="two-body")
+    res = lunarcap.solve(plan)
+    reference = None
+    if capture_plan.beside_paper(plan):
+        reference = lunarcap.solve(lunarcap.paper_plan(
+            plan.engine.thrust_N, plan.engine.isp_s, starts=["free"] * 3, dynamics="two-body"))
+    return capture_plan.build(res, res.to_frame(), res.plot(), output_name, True,
+                              dict(plan=name, dynamics="two-body"), reference)
+
+
 @pytest.fixture(scope="module")
 def lro():
-    return capture_plan.build("lro-like-5burn", "two-body", "t_plan_lro", True)
+    return _page("lro-like-5burn", "t_plan_lro")
 
 
 @pytest.fixture(scope="module")
 def two():
-    return capture_plan.build("two-burn-8h", "two-body", "t_plan_two", True)
+    return _page("two-burn-8h", "t_plan_two")
+
+
+def test_a_paper_variant_needs_its_reference():
+    """The two-burn plan is set beside the paper: build refuses to draw it without one."""
+    import lunarcap
+
+    plan = lunarcap.load_plan("two-burn-8h", dynamics="two-body")
+    assert capture_plan.beside_paper(plan)
+    assert not capture_plan.beside_paper(lunarcap.load_plan("lro-like-5burn"))
+    assert not capture_plan.beside_paper(lunarcap.load_plan("song2011-150N"))
+    res = lunarcap.solve(plan)
+    with pytest.raises(ValueError, match="reference"):
+        capture_plan.build(res, res.to_frame(), res.plot(), "t_plan_noref", True)
 
 
 def _totals(page):

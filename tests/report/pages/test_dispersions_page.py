@@ -92,15 +92,31 @@ def test_sensitivities_of_a_subset_of_plans_are_those_of_the_whole(tmp_path):
     from lunarcap.repro import paths
 
     plans = ["song2011-150N", "song2011-300N"]
-    kw = dict(samples=2, seed=7, dynamics="two-body", workers=1, quick=True,
-              sensitivity_samples=2, sensitivity_factors=(1.0, 2.0))
+    kw = dict(plans=plans, samples=2, seed=7, sigmas=dispersions.DEFAULT_SIGMAS,
+              dynamics="two-body", workers=1, sensitivity_samples=2,
+              sensitivity_factors=[1.0, 2.0])
+
+    def page(output_name, sensitivity_plans=None):
+        """The page as the notebook builds it, with the public API's runs."""
+        import lunarcap
+
+        caps = [lunarcap.load_plan(n, dynamics="two-body") for n in plans]
+        opts = dict(seed=7, workers=1, **dispersions.DEFAULT_SIGMAS,
+                    out=dispersions.table_file(output_name))
+        chosen = plans if sensitivity_plans is None else sensitivity_plans
+        budgets = [lunarcap.dispersions(c, samples=2, **opts) for c in caps]
+        sens = [lunarcap.dispersions(c, samples=2, sensitivity=True, factors=[1.0, 2.0],
+                                     antithetic=True, **opts)
+                for n, c in zip(plans, caps) if n in chosen]
+        return dispersions.build(budgets, sens, output_name, True,
+                                 dict(kw, sensitivity_plans=sensitivity_plans))
+
     with paths.using_book(tmp_path / "book"):
-        some = dispersions.build(plans, output_name="t_disp_some", **kw,
-                                 sensitivity_plans=["song2011-300N"])
-        every = dispersions.build(plans, output_name="t_disp_every", **kw)
+        some = page("t_disp_some", ["song2011-300N"])
+        every = page("t_disp_every")
         with pytest.raises(ValueError, match="sensitivity_plans"):
-            dispersions.build(plans, output_name="t_disp_bad", **kw,
-                              sensitivity_plans=["song2011-450N"])
+            dispersions.build([], [], "t_disp_bad", True,
+                              dict(kw, sensitivity_plans=["song2011-450N"]))
     figs = sorted(k for k in some.items if k.startswith("sensitivity_") and k[-1] == "N")
     assert figs == ["sensitivity_300N"]
     assert sorted(k for k in every.items if k.startswith("sensitivity_") and k[-1] == "N") \

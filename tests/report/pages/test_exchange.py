@@ -11,8 +11,14 @@ pytestmark = pytest.mark.slow
 
 @pytest.fixture(scope="module")
 def page(tmp_path_factory):
+    import lunarcap
+
     with paths.using_book(tmp_path_factory.mktemp("book")):
-        yield exchange.build("song2011-150N", "two-body", "exchange_test")
+        res = lunarcap.solve(lunarcap.load_plan("song2011-150N", dynamics="two-body"),
+                             impulsive=False)
+        out = exchange.export_dir("exchange_test")
+        yield exchange.build(res, res.export(out), res.export(out / "utc", time_system="UTC"),
+                             "exchange_test")
 
 
 def test_page_tables_values_and_checks(page):

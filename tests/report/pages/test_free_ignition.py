@@ -16,7 +16,50 @@ T_N, ISP_S = 450.0, 300.0
 
 @pytest.fixture(scope="module")
 def page():
-    return free_ignition.build([[T_N, ISP_S]], "two-body", "t_free", True)
+    """The page as the notebook builds it: every burn solved with the public API."""
+    import lunarcap
+
+    capture = lunarcap.paper_plan(T_N, ISP_S, dynamics="two-body")
+    free, grid, rule = [], [], {}
+    for burn in (1, 2, 3):
+        on = dict(previous_starts=["free"] * (burn - 1))
+        f = lunarcap.solve_burn(capture, burn, start="free", **on)
+        free.append(f)
+        grid.append([lunarcap.solve_burn(capture, burn, start=s, impulsive=False, **on)
+                     for s in free_ignition.grid_starts(T_N, burn)])
+        rule[T_N, burn] = lunarcap.solve_burn(
+            capture, burn, start=-f.row()["eq19_duration_min"] / 2, impulsive=False, **on)
+    chains = [lunarcap.solve(capture.with_starts(s), impulsive=False)
+              for s in (["free"] * 3, free_ignition.best_grid_starts(T_N, ISP_S))]
+    return free_ignition.build({T_N: free}, {T_N: grid}, rule, {T_N: chains}, "t_free", True,
+                               dict(engines=[[T_N, ISP_S]], dynamics="two-body"))
+
+
+def test_the_public_solves_are_the_sweeps_free_vs_grid_table(page):
+    """The gain table, from lunarcap.solve_burn, is the sweeps' table of paper cases.
+
+    The page computed it with :func:`lunarcap.studies.sweeps.free_vs_grid_table` before the
+    notebook solved each burn through the public API: the same numbers, column by column.
+    """
+    from lunarcap.studies.sweeps import free_vs_grid_table
+
+    g = page.items["gain"].df
+    ref = free_vs_grid_table(T_N, ISP_S, "two-body")
+    for ours, theirs in (("free_start_min", "free_start_min"),
+                         ("free_delta_v_mps", "free_delta_v_mps"),
+                         ("free_objective_j_mps", "free_objective_mps"),
+                         ("free_objective_loss_mps", "free_objective_loss_mps"),
+                         ("grid_start_min", "grid_start_min"),
+                         ("objective_gain_mps", "objective_gain_mps"),
+                         ("delta_v_gain_mps", "delta_v_gain_mps")):
+        np.testing.assert_allclose(g[ours], ref[theirs], rtol=0, atol=1e-9, err_msg=ours)
+
+
+def test_no_grid_for_an_engine_the_paper_did_not_solve():
+    assert free_ignition.grid_starts(200.0, 1) == ()
+    assert free_ignition.best_grid_starts(300.0, 300.0) is None
+    assert free_ignition.grid_starts(T_N, 2) == PAPER_STARTS_MIN[(T_N, 2)]
+    assert free_ignition.best_grid_starts(T_N, ISP_S) == (-3.0, -2.0, -2.0)
 
 
 def test_free_optimum_never_worse_than_the_grid_in_j(page):

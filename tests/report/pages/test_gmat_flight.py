@@ -26,7 +26,11 @@ from lunarcap.repro import paths
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):
     with paths.using_book(tmp_path_factory.mktemp("book")):
-        page = gmat_flight.build([["two-burn-8h", "j2"]], "gmat_test", quick=True)
+        import lunarcap
+
+        res = lunarcap.solve(lunarcap.load_plan("two-burn-8h", dynamics="j2"), impulsive=False)
+        page = gmat_flight.build([res], [res.fly_in_gmat(gmat_flight.export_dir("gmat_test"))],
+                                 "gmat_test", quick=True)
         yield page
 
 

@@ -78,3 +78,26 @@ def test_two_body_limits_are_the_closed_form_impulses(plan):
     assert d.verified.all()
     # a finite burn costs more than its impulse
     assert (d.delta_v_loss_mps > 0).all()
+
+
+@pytest.mark.slow
+def test_the_page_of_a_design_without_studies_or_flight_says_so(tmp_path):
+    """The notebook passes None for a study or flight not run: each table says why.
+
+    The design (two-body, cached) is the public API's ``lunarcap.solve``; its values are
+    glued, and nothing of the missed-thrust, burns or GMAT sections is computed.
+    """
+    import lunarcap
+    from lunarcap.repro import paths
+
+    res = lunarcap.solve(lunarcap.load_plan("kplo-like-3burn", dynamics="two-body"))
+    with paths.using_book(tmp_path):
+        page = K.build(res, None, None, None, "t_kplo_none", True,
+                       dict(plan="kplo-like-3burn", dynamics="two-body"), after_days=0.5)
+    for key in ("missed", "counts", "gmat", "gmat_final"):
+        assert page.items[key].df.iloc[0].isna().sum() >= 1, key
+        assert "not" in str(page.items[key].df.iloc[0, -1]), key
+    for key in ("n_cases", "best_count", "gmat_final_max_m"):
+        assert isinstance(page.values[key], str), (key, page.values[key])   # the reason
+    assert page.values["total_delta_v_mps"] == pytest.approx(
+        res.totals()["total_delta_v_mps"], abs=1e-12)
