@@ -284,7 +284,9 @@ def dispersions(plan, *, samples: int | None = None, seed: int | None = None, **
     ``knowledge_sigma_km``, ``knowledge_sigma_mps``, the Gates model's ``gates_*``; default
     0) or covariance files (``arrival_cov``, ``knowledge_cov``, ``bplane_cov``); each burn
     re-planned from the state reached (``lunarcap dispersions``). ``sensitivity=True``:
-    each non-zero sigma alone at 0.5, 1 and 2 times its value instead. ``formulation``:
+    each non-zero sigma alone at 0.5, 1 and 2 times its value instead (``factors``: other
+    multiples). ``antithetic=True``: samples in pairs of negated draws, a pair one
+    independent draw (``samples`` even). ``formulation``:
     how the re-plans meet a period (``"orbit"`` or ``"song2011"``). Other keywords:
     :func:`run_study`'s. The document's ``summary`` has the 99 % budget above the nominal
     with its confidence interval (not estimated with too few samples, saying how many).
