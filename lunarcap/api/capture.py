@@ -491,10 +491,15 @@ class GmatFlight(Result):
         from lunarcap.report.figstyle import FIG_WIDTH_IN, OTHER_COLOURS
 
         t = self.to_frame()
+        # the events in the order they happen: (burn, event) sorts arrival, each burn's
+        # ignition and cut-off, the end
+        order = sorted({(int(b), int(e)) for b, e in zip(t.burn, t.event)})
+        x = {be: i for i, be in enumerate(order)}
         fig, ax = plt.subplots(figsize=(FIG_WIDTH_IN, 3.6), layout="constrained")
         for k, (kind, g) in enumerate(t.groupby("flown", sort=False)):
-            ax.plot([_event_name(b, e) for b, e in zip(g.burn, g.event)],
+            ax.plot([x[int(b), int(e)] for b, e in zip(g.burn, g.event)],
                     g.position_diff_m.clip(lower=1e-6), "o", color=OTHER_COLOURS[k], label=kind)
+        ax.set_xticks(range(len(order)), [_event_name(b, e) for b, e in order])
         ax.set_yscale("log")
         ax.set_ylabel("GMAT − lunarcap position (m)")
         ax.set_xlabel("event (arrival, each burn's ignition and cut-off, the end)")

@@ -77,7 +77,13 @@ def test_export_writes_the_formats_asked_and_gmat_flies_it(plan, tmp_path):
     assert (t[t.flown == "burn"].position_diff_m < 0.5).all()
     from lunarcap.report.figstyle import legibility_problems
 
-    assert legibility_problems(flight.plot()) == []
+    fig = flight.plot()
+    assert legibility_problems(fig) == []
+    # the events read in the order they happen (they once came as GMAT's report grouped
+    # them: the burns' cut-offs first, the arrival mid-axis)
+    ticks = [t.get_text() for t in fig.axes[0].get_xticklabels()]
+    assert ticks == ["arrival"] + [f"{k} {e}" for k in range(1, n + 1)
+                                   for e in ("ignition", "cut-off")] + ["end"]
 
 
 def test_a_study_added_to_the_registry_runs_through_the_api_unchanged(plan, monkeypatch,
