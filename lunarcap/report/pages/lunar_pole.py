@@ -107,11 +107,10 @@ def build(dynamics: str = "full", thrusts_N: list | None = None,
                floatfmt={"ra_deg": ".4f", "dec_deg": ".4f", "from_ecliptic_pole_deg": ".3f"})
     eff = effect_table(engines, dynamics)
     page.table("effect", eff,
-               caption=(f"Effect of the pole on the paper's best chains (Table B1's ignition "
-                        f"offsets, {dynamics} dynamics): ΔV with the default pole "
-                        f"(iau2009-j2000) and with the constant-term pole (m/s), their "
-                        "difference (m/s), the difference of the impulsive limits in the "
-                        "same dynamics (m/s) and of the losses (finite − impulsive, m/s)."),
+               caption=(f"Effect of the pole on the paper's best chains (Table B1 offsets, "
+                        f"{dynamics} dynamics): ΔV with the default pole (iau2009-j2000) and "
+                        "the constant-term pole, and the differences of ΔV, impulsive limit "
+                        "and loss."),
                columns={"start_min": "start (min)", "dv_new_mps": "ΔV, J2000 pole (m/s)",
                         "dv_old_mps": "ΔV, constant pole (m/s)",
                         "dv_effect_mps": "ΔV effect (m/s)",
