@@ -67,24 +67,18 @@ def build(output_name: str = "glossary", quick: bool = False) -> Page:
     """The glossary page (see the module docstring)."""
     page = Page(NOTEBOOK, {}, output_name, quick, ephemeris=False)
     page.table("losses", losses_table(),
-               caption=("The quantities most easily confused: two impulsive references "
-                        "(two-body closed form, and the limit in the same dynamics), the "
-                        "paper's printed impulse, and four losses measured against them. "
-                        "Names are the CSV columns and JSON keys."),
+               caption=("The quantities most easily confused: the impulsive references and "
+                        "the losses measured against them."),
                show_columns=["name", "unit", "definition"])
     page.table("quantities", glossary_table(),
-               caption=("Every quantity lunarcap reports: its name (CSV column and JSON key), "
-                        "unit, the label of tables and axes, its JSON type and its "
-                        "definition."),
+               caption=("Every quantity lunarcap reports: name (CSV column, JSON key), unit, "
+                        "label (tables and axes), definition."),
                show_columns=["name", "unit", "label", "definition"])
     page.table("composition", composition_table(),
                caption="Names composed from a glossary name by a prefix or a suffix.",
                show_columns=["part", "definition", "example"])
     page.table("captures", captures_table(),
-               caption=("The captures of the paper's arrival the book compares. A page that "
-                        "quotes a capture's delta-V names it by one of these names and says "
-                        "in which dynamics it was flown: the same engine gives a different "
-                        "total for each."),
+               caption="The captures of the paper's arrival the book compares.",
                show_columns=["capture", "definition"])
     page.value("n_quantities", len(Q.GLOSSARY))
     page.headline(f"{len(Q.GLOSSARY)} quantities, each with one name (its CSV column and "
