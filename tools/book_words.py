@@ -14,10 +14,11 @@ count (``index``, ``model``, ``rerun``, ``references`` and ``generated/*``); Sph
 and the total; it exits with 1 when the total is above ``--limit`` (issue 36 item 5: the
 book under 45,000 words, from about 73,000). ``--captions`` lists instead every table or
 figure caption longer than :data:`CAPTION_CHARS` characters (about 3 lines at 1280 px).
-``--split`` prints each page's words in tables (their cells and captions) apart from the
-rest, its prose: a table's cells are read by looking up a row, not read through, and the
-full book's tables have more rows than the quick book's, so the two counts answer
-different questions.
+``--split`` prints each page's words in three parts: tables (their cells and captions),
+equations (the TeX source MathJax renders, one "word" per token) and the rest, its prose.
+A table's cells are looked up, not read through, and the full book's tables have more rows
+than the quick book's; an equation is not words at all; so the three answer different
+questions.
 """
 
 from __future__ import annotations
@@ -47,6 +48,8 @@ CAPTION_CHARS = 300
 CAPTION = re.compile(r"<(figcaption|caption)\b.*?</\1>", re.S)
 #: A table as Sphinx and pandas write it (the book's tables are not nested).
 TABLE = re.compile(r"<table\b.*?</table>", re.S)
+#: An equation as Sphinx writes it for MathJax (inline or display), outside tables.
+MATH = re.compile(r'<(span|div) class="math\b[^"]*"[^>]*>.*?</\1>', re.S)
 
 
 def long_captions(html: str, limit: int = CAPTION_CHARS) -> list[str]:
@@ -86,18 +89,26 @@ def count_words(html: str) -> int:
     return len(page_words(main_html(html)).split())
 
 
-def split_words(html: str) -> tuple[int, int]:
-    """``(prose, tables)``: the words of one built page outside and inside its tables.
+def _words(html: str) -> int:
+    return len(page_words(html).split())
 
-    The two add up to :func:`count_words`.
 
-    >>> split_words('<main id="main-content"><p>We lose 13.39 m/s.</p>'
+def split_words(html: str) -> tuple[int, int, int]:
+    """``(prose, tables, math)``: the words of one built page outside tables and equations,
+    inside its tables, and in its equations outside tables.
+
+    The three add up to :func:`count_words`.
+
+    >>> split_words('<main id="main-content"><p>We lose 13.39 m/s, '
+    ...             '<span class="math notranslate">\\(J_2\\)</span>.</p>'
     ...             '<table><caption>LOI 1</caption><tr><td>13.39</td></tr></table></main>')
-    (4, 3)
+    (5, 3, 1)
     """
     main = main_html(html)
-    tables = sum(len(page_words(m.group(0)).split()) for m in TABLE.finditer(main))
-    return len(page_words(TABLE.sub(" ", main)).split()), tables
+    tables = sum(_words(m.group(0)) for m in TABLE.finditer(main))
+    rest = TABLE.sub(" ", main)
+    math = sum(_words(m.group(0)) for m in MATH.finditer(rest))
+    return _words(MATH.sub(" ", rest)), tables, math
 
 
 def _pages(html_dir: Path):
@@ -115,19 +126,21 @@ def book_words(html_dir: Path) -> dict[str, int]:
             for page, path in _pages(html_dir)}
 
 
-def book_split(html_dir: Path) -> dict[str, tuple[int, int]]:
-    """``{page: (prose, tables)}`` for every page of the built book (:func:`split_words`)."""
+def book_split(html_dir: Path) -> dict[str, tuple[int, int, int]]:
+    """``{page: (prose, tables, math)}`` for every page of the built book
+    (:func:`split_words`)."""
     return {page: split_words(path.read_text(encoding="utf-8"))
             for page, path in _pages(html_dir)}
 
 
 def _print_split(html_dir: Path) -> int:
     split = book_split(html_dir)
-    print(f"{'prose':>7} {'tables':>7} {'total':>7}  page")
-    for page, (prose, tables) in sorted(split.items(), key=lambda kv: -sum(kv[1])):
-        print(f"{prose:7d} {tables:7d} {prose + tables:7d}  {page}")
-    prose, tables = (sum(v[i] for v in split.values()) for i in (0, 1))
-    print(f"{prose:7d} {tables:7d} {prose + tables:7d}  total ({len(split)} pages)")
+    print(f"{'prose':>7} {'tables':>7} {'math':>7} {'total':>7}  page")
+    rows = sorted(split.items(), key=lambda kv: -sum(kv[1]))
+    rows.append((f"total ({len(split)} pages)",
+                 tuple(sum(v[i] for v in split.values()) for i in range(3))))
+    for page, parts in rows:
+        print("".join(f"{n:7d} " for n in parts) + f"{sum(parts):7d}  {page}")
     return 0
 
 

@@ -72,8 +72,8 @@ def build(output_name: str = "glossary", quick: bool = False) -> Page:
                show_columns=["name", "unit", "definition"])
     page.table("quantities", glossary_table(),
                caption=("Every quantity lunarcap reports: name (CSV column, JSON key), unit, "
-                        "label (tables and axes), definition."),
-               show_columns=["name", "unit", "label", "definition"])
+                        "definition; the CSV adds the label of tables and axes."),
+               show_columns=["name", "unit", "definition"])
     page.table("composition", composition_table(),
                caption="Names composed from a glossary name by a prefix or a suffix.",
                show_columns=["part", "definition", "example"])

@@ -20,7 +20,6 @@ from lunarcap.paper import printed as paper
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.figures import sweep as draw
 from lunarcap.report.page import Page, solver_description
-from lunarcap.report.reproduction import first_sentence
 from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/loi_sweep.ipynb"
@@ -219,10 +218,11 @@ def _findings_note(findings: pd.DataFrame) -> list:
     if not len(findings):
         return []
     items = "\n".join(f"* **{r.where.split(' (also')[0]}**, {r.quantity}: printed "
-                      f"{r.printed:g} {r.unit}, recomputed {r.computed:.4g} {r.unit}. "
-                      f"{first_sentence(r.explanation)}" for r in findings.itertuples())
+                      f"{r.printed:g} {r.unit}, recomputed {r.computed:.4g} {r.unit}."
+                      for r in findings.itertuples())
     return [":::{admonition} Where the paper contradicts itself in this table "
-            "(`lunarcap.paper.audit`)\n:class: dropdown\n\n" + items + "\n:::"]
+            "(`lunarcap.paper.audit`; how each is recomputed: the reproduction report)"
+            "\n:class: dropdown\n\n" + items + "\n:::"]
 
 
 def notes(sweep: pd.DataFrame, impulsive: dict, printed, best_p, thrust_N, loi,
