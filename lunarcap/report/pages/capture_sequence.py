@@ -183,8 +183,7 @@ def _orbits_text(plan, geo) -> str:
     for a in geo.select("coast"):
         c = colour_name(figures.coast_colour(a.burn))
         if plan.burns[a.burn - 1].target == "circular":
-            parts.append(f"{c}: the final {plan.arrival.perilune_altitude_km:g} km circle "
-                         f"({plan.coast_s(a.burn - 1) / 60:.6g} min)")
+            parts.append(f"{c}: the {plan.arrival.perilune_altitude_km:g} km circle")
         else:
             parts.append(f"{c}: the {a.label}")
     return "; ".join(parts)
@@ -267,17 +266,15 @@ def _add_burns(page: Page, table: pd.DataFrame, ctx: dict) -> None:
 
 def _add_fig2(page: Page, plan, geo, table: pd.DataFrame, ctx: dict) -> None:
     polar = " (polar)" if plan.arrival.inclination_deg == 90.0 else ""
-    projection = (f"On the arrival orbit's plane{polar}, z along the M-MME2000 pole "
-                  f"(out of plane: at most {geo.max_out_of_plane_km:.1f} km).")
-    durations = ", ".join(f"{d:.2f}" for d in table.burn_duration_min[:-1]) + \
-        f" and {table.burn_duration_min.iloc[-1]:.2f}"
+    projection = (f"Projected on the arrival orbit's plane{polar} (out of it: at most "
+                  f"{geo.max_out_of_plane_km:.1f} km).")
     burn_list, starts_txt = ctx["burn_list"], ctx["starts_txt"]
     page.figure(
         "fig2", figures.plot_fig2_capture(geo),
-        caption=(f"The whole capture, {ctx['engine']}, ignition {starts_txt} min, "
-                 f"re-propagated. Grey: the hyperbola (dotted: without burn 1); "
-                 f"{_orbits_text(plan, geo)}; red: burns {burn_list} ({durations} min). "
-                 f"{projection} 1 LU = {C.LU_KM:g} km."),
+        caption=(f"The whole capture, {ctx['engine']}, ignition {starts_txt} min. Grey: the "
+                 "hyperbola "
+                 f"(dotted: without burn 1); {_orbits_text(plan, geo)}; red: burns "
+                 f"{burn_list}. {projection} 1 LU = {C.LU_KM:g} km."),
         alt=("The arrival hyperbola, the capture orbits and the final circular orbit around "
              "the Moon, with the burn arcs near perilune in red"),
         paper="Fig. 2" if ctx["paper_case"] else None)

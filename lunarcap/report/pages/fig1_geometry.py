@@ -174,11 +174,9 @@ def build(alpha_deg: float = 55.0, beta_deg: float = 30.0, true_anomaly_deg: flo
     page.figure(
         "rtn", fig,
         caption=(
-            f"(a) The {period_h:g} h capture ellipse in its plane (LU, x towards perilune), "
-            f"the spacecraft at true anomaly {true_anomaly_deg:g}°: $\\hat\\imath_r$, "
-            "$\\hat\\imath_t$, the velocity $\\mathbf{v}$ (flight-path angle "
-            f"γ = {geo.flight_path_angle_deg:.1f}°) and the thrust direction $\\hat u$ in "
-            f"plane. (b) The RTN frame: α = {geo.alpha_deg:.1f}° (Eq. 14a), "
+            f"(a) The ellipse of period {period_h:g} h (LU), the spacecraft at true anomaly "
+            f"{true_anomaly_deg:g}°: RTN axes, velocity (γ = {geo.flight_path_angle_deg:.1f}°) "
+            f"and thrust in plane. (b) The RTN frame: α = {geo.alpha_deg:.1f}° (Eq. 14a), "
             f"β = {geo.beta_deg:.1f}° (Eq. 14b)."),
         alt=("Orbit plane with the RTN unit vectors at the spacecraft, and a 3-D view of the "
              "RTN frame with the thrust vector and the angles alpha and beta"),

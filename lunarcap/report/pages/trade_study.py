@@ -264,9 +264,9 @@ def _add_loss(page: Page, ok, valid, paper, spec, newton_per_ratio: float,
     at_paper = paper_engines_table(ok, paper, direct)
     page.table(
         "paper_engines", at_paper,
-        caption=("Loss at the paper's engines: Table B1, ours solved directly "
-                 f"(*{capture_name('free')}*, {dynamics} dynamics), read off the grid's curve "
-                 "(linear in log T/W) and its error, and Robbins'. " + loss_def),
+        caption=(f"Loss at the paper's engines: Table B1, ours solved directly "
+                 f"(*{capture_name('free')}*), read off the grid (linear in log T/W) and its "
+                 "error, Robbins'. " + loss_def),
         columns={"part": "burn", "paper_delta_v_loss_percent": "paper, Table B1 (%)",
                  "optimal_loss_percent": "ours, solved (%)",
                  "interpolated_loss_percent": "ours, interpolated (%)",
