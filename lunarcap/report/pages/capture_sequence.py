@@ -178,14 +178,14 @@ def burns_table(geo, sols, paper_case: bool) -> pd.DataFrame:
 
 
 def _orbits_text(plan, geo) -> str:
-    """'blue: the 1st capture orbit (12.235 h); ...' for the caption of Fig. 2."""
+    """'blue: the 12.235 h orbit; ...' for the caption of Fig. 2."""
     parts = []
     for a in geo.select("coast"):
         c = colour_name(figures.coast_colour(a.burn))
         if plan.burns[a.burn - 1].target == "circular":
             parts.append(f"{c}: the {plan.arrival.perilune_altitude_km:g} km circle")
         else:
-            parts.append(f"{c}: the {a.label}")
+            parts.append(f"{c}: the {a.label.split('(')[-1].rstrip(')')} orbit")
     return "; ".join(parts)
 
 
@@ -266,8 +266,8 @@ def _add_burns(page: Page, table: pd.DataFrame, ctx: dict) -> None:
 
 def _add_fig2(page: Page, plan, geo, table: pd.DataFrame, ctx: dict) -> None:
     polar = " (polar)" if plan.arrival.inclination_deg == 90.0 else ""
-    projection = (f"Projected on the arrival orbit's plane{polar} (out of it: at most "
-                  f"{geo.max_out_of_plane_km:.1f} km).")
+    projection = (f"On the arrival orbit's plane{polar}, left by at most "
+                  f"{geo.max_out_of_plane_km:.1f} km.")
     burn_list, starts_txt = ctx["burn_list"], ctx["starts_txt"]
     page.figure(
         "fig2", figures.plot_fig2_capture(geo),

@@ -498,10 +498,10 @@ def _headline(page: Page) -> None:
     t = page.text
     page.headline(
         f"A KPLO-class capture ({t('mass_kg', '.0f')} kg, {t('thrust_N', '.0f')} N) designed "
-        f"with finite burns in {t('model')} needs {t('total_delta_v_mps', '.1f', ' m/s')}, "
+        f"in {t('model')} needs {t('total_delta_v_mps', '.1f', ' m/s')}, "
         f"{t('total_vs_kplo_mps', '.1f', ' m/s')} more than KARI's impulsive "
         f"{t('kplo_total_mps', '.1f', ' m/s')}; {t('n_recovered', '.0f')} of its "
-        f"{t('n_cases', '.0f')} missed-thrust cases are recovered in that model, GMAT flies "
+        f"{t('n_cases', '.0f')} missed-thrust cases are recovered, GMAT flies "
         f"its final orbit within {t('gmat_final_max_m', '.2g', ' m')}, and its perilune is "
         f"at {t('after_last_perilune_km', '.1f', ' km')} {t('after_days', 'g')} days after "
         f"the capture.")

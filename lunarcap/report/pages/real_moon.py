@@ -648,7 +648,7 @@ def after_text(page: Page, table: pd.DataFrame, j2: str, compare: str, evs: dict
 def _headline(page: Page, compare: int, days: float) -> None:
     t = page.text
     page.headline(
-        f"Flown open loop through the lunar field LP165P to degree {compare}, the paper's J2 "
+        f"Flown open loop through LP165P to degree {compare}, the paper's J2 "
         f"capture ends on a {t('rp_arrival_inertial_km', '.1f')} × "
         f"{t('ra_arrival_inertial_km', '.1f', ' km')} orbit, "
         f"{t('miss_arrival_inertial_km', '.1f', ' km')} from its design; re-designed in the "

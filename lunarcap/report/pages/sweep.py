@@ -351,10 +351,10 @@ def build(thrust_N: float = paper_engine_pairs()[0][0], isp_s: float = paper_eng
     _add_checks(page, sweep, impulsive, best_p, values, dynamics)
     page.data["sweep"] = sweep  # the raw table, for readers who want it in the notebook
     t = page.text
-    page.headline(f"Of the offsets tried, the smallest ΔV is at {t('best_start_min', '.0f')} min: "
+    page.headline(f"Smallest ΔV at {t('best_start_min', '.0f')} min: "
                   f"{t('best_delta_v_mps', '.3f', ' m/s')}, {t('best_diff_mps', '+.3f', ' m/s')} "
                   f"from the paper's best ({t('paper_best_delta_v_mps', '.3f', ' m/s')} at "
                   f"{t('paper_best_start_min', '.0f')} min); {t('n_verified', '.0f')} of "
-                  f"{t('n_cases', '.0f')} solutions pass verification ({dynamics} dynamics).")
+                  f"{t('n_cases', '.0f')} verified ({dynamics} dynamics).")
     page.capture("fixed", dynamics)
     return page

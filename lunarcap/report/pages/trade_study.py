@@ -80,8 +80,8 @@ GRID_SHOWN = GRID_COLUMNS[:7] + ["analytic_loss_percent_sequence"]
 RUNS_SHOWN = ["source", "started_utc", "workers", "computed", "reused", "wall_s",
               "load_avg_1min"]
 
-LOSS_DEFINITION = ("Loss: against the impulsive limit (one impulse, same orbit and dynamics) "
-                   "by J of Eq. (9), in % of the impulsive ΔV; sequence: the three summed.")
+LOSS_DEFINITION = ("Loss: against the impulsive limit (same orbit and dynamics) by J of "
+                   "Eq. (9), % of the impulsive ΔV; sequence: the three summed.")
 
 #: Robbins' estimate is the leading term of an expansion in omega_s t_b (Schuler rate at
 #: the perilune times the burn duration); it is drawn and compared where omega_s t_b is
@@ -410,10 +410,10 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
     t = page.text
     page.headline(f"From {t('thrust_min', 'g')} to {t('thrust_max', 'g', ' N')} "
                   f"(*{capture_name('free')}*, {spec.dynamics} dynamics) the loss falls with "
-                  f"the thrust-to-weight ratio; at the highest thrust the whole sequence loses "
-                  f"at most {t('seq_loss_high_max_mps', '.3f', ' m/s')}, no loss of the grid "
-                  f"is negative, and at the paper's engines, solved directly, ours differs "
-                  f"from Table B1 by at most {t('paper_diff_max', '.2f')} percentage points.")
+                  f"thrust-to-weight, to at most {t('seq_loss_high_max_mps', '.3f', ' m/s')} "
+                  f"for the whole sequence, never negative; at the paper's engines, solved "
+                  f"directly, within {t('paper_diff_max', '.2f')} percentage points of "
+                  f"Table B1.")
     page.data.update(direct=direct, result=result, wide=wide, ok=ok, theory=theory, paper=paper)
     page.capture("free", spec.dynamics)
     return page
