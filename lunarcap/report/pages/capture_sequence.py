@@ -266,15 +266,14 @@ def _add_burns(page: Page, table: pd.DataFrame, ctx: dict) -> None:
 
 def _add_fig2(page: Page, plan, geo, table: pd.DataFrame, ctx: dict) -> None:
     polar = " (polar)" if plan.arrival.inclination_deg == 90.0 else ""
-    projection = (f"On the arrival orbit's plane{polar}, left by at most "
-                  f"{geo.max_out_of_plane_km:.1f} km.")
+    projection = (f"In the arrival orbit's plane{polar} (±{geo.max_out_of_plane_km:.1f} km), "
+                  f"LU ({C.LU_KM:g} km).")
     burn_list, starts_txt = ctx["burn_list"], ctx["starts_txt"]
     page.figure(
         "fig2", figures.plot_fig2_capture(geo),
-        caption=(f"The whole capture, {ctx['engine']}, ignition {starts_txt} min. Grey: the "
-                 "hyperbola "
-                 f"(dotted: without burn 1); {_orbits_text(plan, geo)}; red: burns "
-                 f"{burn_list}. {projection} 1 LU = {C.LU_KM:g} km."),
+        caption=(f"The whole capture, {ctx['engine']}, ignition {starts_txt} min. Grey: "
+                 f"hyperbola (dotted: no burn 1); {_orbits_text(plan, geo)}; red: burns "
+                 f"{burn_list}. {projection}"),
         alt=("The arrival hyperbola, the capture orbits and the final circular orbit around "
              "the Moon, with the burn arcs near perilune in red"),
         paper="Fig. 2" if ctx["paper_case"] else None)
