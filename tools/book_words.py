@@ -94,7 +94,7 @@ def _words(html: str) -> int:
 
 
 def split_words(html: str) -> tuple[int, int, int]:
-    """``(prose, tables, math)``: the words of one built page outside tables and equations,
+    r"""``(prose, tables, math)``: the words of one built page outside tables and equations,
     inside its tables, and in its equations outside tables.
 
     The three add up to :func:`count_words`.
