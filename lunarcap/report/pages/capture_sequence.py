@@ -271,7 +271,7 @@ def _add_fig2(page: Page, plan, geo, table: pd.DataFrame, ctx: dict) -> None:
     burn_list, starts_txt = ctx["burn_list"], ctx["starts_txt"]
     page.figure(
         "fig2", figures.plot_fig2_capture(geo),
-        caption=(f"The whole capture, {ctx['engine']}, ignition {starts_txt} min. Grey: "
+        caption=(f"The capture, {ctx['engine']}, ignition {starts_txt} min. Grey: "
                  f"hyperbola (dotted: no burn 1); {_orbits_text(plan, geo)}; red: burns "
                  f"{burn_list}. {projection}"),
         alt=("The arrival hyperbola, the capture orbits and the final circular orbit around "
