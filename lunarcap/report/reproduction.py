@@ -390,7 +390,7 @@ def _fmt_decimals(v: float, decimals: int, sign: bool = False) -> str:
     return text
 
 
-def quotes_display(quotes, max_words: int = 28, extra_decimals: int = 1,
+def quotes_display(quotes, max_words: int = 24, extra_decimals: int = 1,
                    min_decimals: int = 3):
     """A compact, readable version of :func:`quotes_comparison` for the page.
 
