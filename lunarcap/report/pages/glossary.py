@@ -81,9 +81,8 @@ def build(output_name: str = "glossary", quick: bool = False) -> Page:
                caption="The captures of the paper's arrival the book compares.",
                show_columns=["capture", "definition"])
     page.value("n_quantities", len(Q.GLOSSARY))
-    page.headline(f"{len(Q.GLOSSARY)} quantities, each with one name (its CSV column and "
-                  f"JSON key), one unit and one definition; "
-                  f"{len(Q.CAPTURES)} captures of the paper's arrival named apart.")
+    page.headline(f"{len(Q.GLOSSARY)} quantities, each with one name (CSV column and JSON "
+                  f"key), unit and definition; {len(Q.CAPTURES)} captures named apart.")
     page.value("n_schemas", len(schemas.COMMANDS))
     page.value("schema_commands", ", ".join(schemas.COMMANDS))
     page.expect("every confusable name resolves", all(Q.is_known(n) for n in CONFUSABLE))

@@ -252,8 +252,8 @@ def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
     _add_checks(page, burns, printed_min, altitude_km, paper_case and eq19_masses == "paper")
     page.data["burns"] = burns
     t = page.text
-    page.headline(f"The two-body chain of tangential impulses gives the paper's impulsive LOI 2 "
-                  f"and LOI 3 with differences (ours − paper) of "
-                  f"{t('dv_diff_loi2_mps', '+.3f')} and {t('dv_diff_loi3_mps', '+.3f', ' m/s')} "
-                  f"(LOI 1 matches by construction: the arrival speed is taken from it).")
+    page.headline(f"Two-body tangential impulses differ from the paper's impulsive LOI 2 and "
+                  f"LOI 3 by {t('dv_diff_loi2_mps', '+.3f')} and "
+                  f"{t('dv_diff_loi3_mps', '+.3f', ' m/s')} (ours − paper; LOI 1 agrees by "
+                  f"construction: the arrival speed is taken from it).")
     return page

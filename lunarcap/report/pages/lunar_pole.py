@@ -143,7 +143,7 @@ def build(dynamics: str = "full", thrusts_N: list | None = None,
     else:
         page.expect("the pole changes delta-V by less than 0.1 m/s",
                     float(eff.dv_effect_mps.abs().max()) < 0.1)
-    page.headline(f"The choice of the IAU pole of M-MME2000 moves a burn's finite-burn loss by at "
+    page.headline(f"The choice of IAU pole moves a burn's finite-burn loss by at "
                   f"most {page.text('max_abs_delta_v_loss_effect_mps', '.3f', ' m/s')} "
                   f"({dynamics} dynamics).")
     page.capture("fixed", dynamics)
