@@ -14,6 +14,11 @@ count (``index``, ``model``, ``rerun``, ``references`` and ``generated/*``); Sph
 and the total; it exits with 1 when the total is above ``--limit`` (issue 36 item 5: the
 book under 45,000 words, from about 73,000). ``--captions`` lists instead every table or
 figure caption longer than :data:`CAPTION_CHARS` characters (about 3 lines at 1280 px).
+``--split`` prints each page's words in three parts: tables (their cells and captions),
+equations (the TeX source MathJax renders, one "word" per token) and the rest, its prose.
+A table's cells are looked up, not read through, and the full book's tables have more rows
+than the quick book's; an equation is not words at all; so the three answer different
+questions.
 """
 
 from __future__ import annotations
@@ -41,6 +46,10 @@ NAV_MARKERS = ('<div class="bd-sidebar-secondary', '<footer class="prev-next-foo
 CAPTION_CHARS = 300
 #: A table's or figure's caption as Sphinx writes it.
 CAPTION = re.compile(r"<(figcaption|caption)\b.*?</\1>", re.S)
+#: A table as Sphinx and pandas write it (the book's tables are not nested).
+TABLE = re.compile(r"<table\b.*?</table>", re.S)
+#: An equation as Sphinx writes it for MathJax (inline or display), outside tables.
+MATH = re.compile(r'<(span|div) class="math\b[^"]*"[^>]*>.*?</\1>', re.S)
 
 
 def long_captions(html: str, limit: int = CAPTION_CHARS) -> list[str]:
@@ -80,15 +89,59 @@ def count_words(html: str) -> int:
     return len(page_words(main_html(html)).split())
 
 
-def book_words(html_dir: Path) -> dict[str, int]:
-    """``{page: words}`` for every page of the built book below ``html_dir``."""
-    out = {}
+def _words(html: str) -> int:
+    return len(page_words(html).split())
+
+
+def split_words(html: str) -> tuple[int, int, int]:
+    r"""``(prose, tables, math)``: the words of one built page outside tables and equations,
+    inside its tables, and in its equations outside tables.
+
+    The three add up to :func:`count_words`.
+
+    >>> split_words('<main id="main-content"><p>We lose 13.39 m/s, '
+    ...             '<span class="math notranslate">\\(J_2\\)</span>.</p>'
+    ...             '<table><caption>LOI 1</caption><tr><td>13.39</td></tr></table></main>')
+    (5, 3, 1)
+    """
+    main = main_html(html)
+    tables = sum(_words(m.group(0)) for m in TABLE.finditer(main))
+    rest = TABLE.sub(" ", main)
+    math = sum(_words(m.group(0)) for m in MATH.finditer(rest))
+    return _words(MATH.sub(" ", rest)), tables, math
+
+
+def _pages(html_dir: Path):
+    """``(page, path)`` of every page of the table of contents built below ``html_dir``."""
     for path in sorted(Path(html_dir).rglob("*.html")):
         page = path.relative_to(html_dir).with_suffix("").as_posix()
         if page in NOT_PAGES or page.startswith(("_", "jupyter_execute")):
             continue
-        out[page] = count_words(path.read_text(encoding="utf-8"))
-    return out
+        yield page, path
+
+
+def book_words(html_dir: Path) -> dict[str, int]:
+    """``{page: words}`` for every page of the built book below ``html_dir``."""
+    return {page: count_words(path.read_text(encoding="utf-8"))
+            for page, path in _pages(html_dir)}
+
+
+def book_split(html_dir: Path) -> dict[str, tuple[int, int, int]]:
+    """``{page: (prose, tables, math)}`` for every page of the built book
+    (:func:`split_words`)."""
+    return {page: split_words(path.read_text(encoding="utf-8"))
+            for page, path in _pages(html_dir)}
+
+
+def _print_split(html_dir: Path) -> int:
+    split = book_split(html_dir)
+    print(f"{'prose':>7} {'tables':>7} {'math':>7} {'total':>7}  page")
+    rows = sorted(split.items(), key=lambda kv: -sum(kv[1]))
+    rows.append((f"total ({len(split)} pages)",
+                 tuple(sum(v[i] for v in split.values()) for i in range(3))))
+    for page, parts in rows:
+        print("".join(f"{n:7d} " for n in parts) + f"{sum(parts):7d}  {page}")
+    return 0
 
 
 def main(argv=None) -> int:
@@ -98,7 +151,11 @@ def main(argv=None) -> int:
     ap.add_argument("--limit", type=int, default=45000)
     ap.add_argument("--captions", action="store_true",
                     help=f"list the captions longer than {CAPTION_CHARS} characters")
+    ap.add_argument("--split", action="store_true",
+                    help="print each page's words in prose and in tables apart")
     args = ap.parse_args(argv)
+    if args.split:
+        return _print_split(args.html)
     if args.captions:
         found = [(path, c) for path in sorted(Path(args.html).rglob("*.html"))
                  for c in long_captions(path.read_text(encoding="utf-8"))]

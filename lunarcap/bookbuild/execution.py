@@ -147,8 +147,7 @@ def move_setup_to_end(nb) -> None:
         return
     setup = cells[start:end + 1]
     intro = nbformat.v4.new_markdown_cell(
-        f"{SETUP_HEADING}\n\nThe provenance of this page (code, environment, ephemeris, "
-        "notebook and parameters), then the parameters and the code that computed it.")
+        f"{SETUP_HEADING}\n\nIts provenance, parameters and code.")
     nb.cells = cells[:start] + cells[end + 1:] + [intro] + setup
 
 

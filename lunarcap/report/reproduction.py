@@ -7,6 +7,8 @@ solves or integrates.
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from lunarcap.mission.scenario import paper_engines, paper_scenario
@@ -388,7 +390,7 @@ def _fmt_decimals(v: float, decimals: int, sign: bool = False) -> str:
     return text
 
 
-def quotes_display(quotes, max_words: int = 70, extra_decimals: int = 1,
+def quotes_display(quotes, max_words: int = 24, extra_decimals: int = 1,
                    min_decimals: int = 3):
     """A compact, readable version of :func:`quotes_comparison` for the page.
 
@@ -396,7 +398,8 @@ def quotes_display(quotes, max_words: int = 70, extra_decimals: int = 1,
     ----------
     quotes : DataFrame from :func:`quotes_comparison`
     max_words : int
-        The printed words are cut to this many characters (with "…").
+        The printed words are cut to this many characters (with "…"): enough to find
+        the sentence in the paper, whose full words are in the long-form table.
     extra_decimals, min_decimals : int
         Ours and the difference are shown with this many more decimals than printed, and
         at least ``min_decimals``.
@@ -438,7 +441,9 @@ def findings_display(findings):
         String columns ``finding`` (group letter and id, e.g. ``"a: sun-gm"``),
         ``printed`` and ``computed`` (6 significant digits, or grouped digits with one
         decimal from 10^6 up, with the unit) and
-        ``explanation`` (where the number is printed, then how it was checked).
+        ``explanation`` (where the number is printed, then the first sentence of how it
+        was checked: the computation; the reasoning that follows it is in the long-form
+        table, which the page links).
     """
     import pandas as pd
 
@@ -451,6 +456,23 @@ def findings_display(findings):
         "finding": [f"{c}: {i}" for c, i in zip(findings.check, findings.id)],
         "printed": [num(v, u) for v, u in zip(findings.printed, findings.unit)],
         "computed": [num(v, u) for v, u in zip(findings.computed, findings.unit)],
-        "explanation": [f"{short_where(w)}. {e}" for w, e in zip(findings["where"],
-                                                                 findings.explanation)],
+        "explanation": [f"{short_where(w)}. {first_sentence(e)}"
+                        for w, e in zip(findings["where"], findings.explanation)],
     })
+
+
+#: The end of a sentence: a full stop after a word, a number or a bracket, then a capital
+#: ("Eq. (19)" and "Sec. 3.1" do not end one).
+_SENTENCE_END = re.compile(r"(?<=[a-z0-9)%²])\. (?=[A-Z])")
+
+
+def first_sentence(text: str) -> str:
+    """The first sentence of ``text``, with its full stop.
+
+    >>> first_sentence("150 N x 19.51 min = 89.5 kg. The printed mass implies more.")
+    '150 N x 19.51 min = 89.5 kg.'
+    >>> first_sentence("Eq. (19) with m0 = 524.895 kg: 18.854 min")
+    'Eq. (19) with m0 = 524.895 kg: 18.854 min.'
+    """
+    first = _SENTENCE_END.split(text.strip(), maxsplit=1)[0].rstrip()
+    return first if first.endswith(".") else first + "."

@@ -86,3 +86,19 @@ def test_captions_over_three_lines_are_listed(tmp_path):
     assert words.main(["--html", str(tmp_path), "--captions"]) == 1
     (tmp_path / "a.html").write_text(page.replace(long, short), encoding="utf-8")
     assert words.main(["--html", str(tmp_path), "--captions"]) == 0
+
+
+def test_words_in_tables_and_equations_are_counted_apart_from_the_prose(tmp_path, capsys):
+    words = _tool("book_words")
+    html = ('<main id="main-content"><h1>LOI 1</h1><p>We lose 13.39 m/s.</p>'
+            '<table><caption>Losses (m/s).</caption><tr><th>LOI</th><th>loss</th></tr>'
+            '<tr><td>1</td><td>13.39</td></tr></table><p>Then LOI 2 under '
+            '<span class="math notranslate nohighlight">\\(J_2 + \\mu\\)</span>.</p>'
+            '<div class="math notranslate nohighlight">\\[ J = \\Delta V \\]</div></main>')
+    # prose: "LOI 1 We lose 13.39 m/s. Then LOI 2 under ."; math: "\\(J_2 + \\mu\\)" and
+    # "\\[ J = \\Delta V \\]", delimiters included
+    assert words.split_words(html) == (11, 6, 9)
+    assert sum(words.split_words(html)) == words.count_words(html)
+    (tmp_path / "a.html").write_text(html, encoding="utf-8")
+    assert words.main(["--html", str(tmp_path), "--split"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1].split()[:4] == ["11", "6", "9", "26"]

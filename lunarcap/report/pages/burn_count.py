@@ -189,13 +189,10 @@ def build(studies, table: pd.DataFrame, output_name: str = "burn_count", quick: 
     table = count_table(res.table, labels)
     page.data.update(table=table, run=res.run)
     page.table("counts", table, caption=(
-        f"Each plan's capture in N burns, the intermediate periods chosen to minimise the "
-        f"total ΔV (each at most {max_period_h:g} h and no longer than the one before; all "
-        f"burns within {max_days:g} days of the arrival perilune). Loss: total ΔV minus the "
-        f"sum of each burn's impulsive limit in the same dynamics from the same pre-burn "
-        f"state. Time: from the arrival perilune to the end of the last burn. A status "
-        f"other than ok says why that count has no capture. The study's whole table, every "
-        f"column and every burn: {page.data_link(res.path, 'study.csv')}."),
+        f"Each plan's capture in N burns, intermediate periods minimising the total ΔV (each "
+        f"at most {max_period_h:g} h and no longer than the one before; all within "
+        f"{max_days:g} days). Loss: against the burns' impulsive limits. Time: to the last "
+        f"cut-off. The whole table: {page.data_link(res.path, 'study.csv')}."),
         show_columns=COUNT_SHOWN, floatfmt=".3f",
         columns={"periods_h": "periods (h)", "n_burns": "N"})
     page.table("burns", burn_rows(res.table), caption=(
@@ -203,10 +200,9 @@ def build(studies, table: pd.DataFrame, output_name: str = "burn_count", quick: 
         "ΔV, its impulsive limit and loss (m/s), verification."),
         show_columns=BURN_SHOWN, floatfmt=".3f", columns={"n_burns": "N"})
     page.figure("loss", draw.plot_burn_count(table), caption=(
-        "Total finite-burn loss against the number of burns, then the time from the "
-        "arrival perilune to the end of the last burn; one line per plan. A count with no "
-        "capture has no value: it is marked in the strip above them, in its plan's colour "
-        "(× infeasible, ! the solver failed; the table says why)."),
+        "Total loss, then the time to the last cut-off, against the number of burns; one "
+        "line per plan. A count with no capture is marked in the strip above (× infeasible, "
+        "! solver failed; the table says why)."),
         alt="Total loss and time to the final orbit against the number of burns")
     # ---- numbers the prose quotes (the first plan is the reference)
     ref = table[table.plan_id == plan_id(ps[0])]

@@ -399,8 +399,8 @@ def _add_plan(page: Page, p: CapturePlan, own: str, yaml_text, case: str) -> Non
         "plan", plan_table(p),
         caption=(f"The burns of {case}; first perilune {a.epoch}, "
                  f"{a.perilune_altitude_km:g} km, {a.inclination_deg:g} deg, v_inf "
-                 f"{a.v_inf_kmps:.5f} km/s. Period and apolune: the orbit each burn must reach "
-                 "(two-body). Impulsive ΔV: the two-body chain; Eq. (19): its duration."),
+                 f"{a.v_inf_kmps:.5f} km/s. Period and apolune: each burn's target; impulsive "
+                 "ΔV and Eq. (19): two-body."),
         columns={"ignition": "ignition",
                  "impulsive_delta_v_two_body_mps": "impulsive ΔV, two-body (m/s)",
                  "eq19_duration_min": "Eq. (19) duration (min)"},
@@ -451,8 +451,7 @@ def _add_totals(page: Page, p: CapturePlan, fig, tot: dict, case: str) -> None:
     page.figure(
         "capture", fig,
         caption=(f"The capture of {case}, in the arrival orbit's plane (1 LU = 1,738.2 km): "
-                 "the hyperbola from 3 h before the perilune (dotted: without burn 1), the "
-                 "burn arcs (thick), each orbit reached, one revolution of the final orbit."),
+                 "hyperbola (dotted: without burn 1), burn arcs (thick), each orbit reached."),
         alt=f"The capture of plan {p.name} in the orbit plane", name="capture")
 
 

@@ -178,16 +178,14 @@ def burns_table(geo, sols, paper_case: bool) -> pd.DataFrame:
 
 
 def _orbits_text(plan, geo) -> str:
-    """'blue: the 1st capture orbit (12.235 h); ...' for the caption of Fig. 2."""
+    """'blue: the 12.235 h orbit; ...' for the caption of Fig. 2."""
     parts = []
     for a in geo.select("coast"):
         c = colour_name(figures.coast_colour(a.burn))
         if plan.burns[a.burn - 1].target == "circular":
-            parts.append(f"{c}: the final {plan.arrival.perilune_altitude_km:g} km circular "
-                         f"orbit ({plan.coast_s(a.burn - 1) / 60:.6g} min; its coast plus one "
-                         "more revolution)")
+            parts.append(f"{c}: the {plan.arrival.perilune_altitude_km:g} km circle")
         else:
-            parts.append(f"{c}: the {a.label}")
+            parts.append(f"{c}: the {a.label.split('(')[-1].rstrip(')')} orbit")
     return "; ".join(parts)
 
 
@@ -247,17 +245,13 @@ def _add_burns(page: Page, table: pd.DataFrame, ctx: dict) -> None:
     n = len(table)
     n_ok = int((table.verified == "passed").sum())
     gate = (f"All {n} passed the re-propagation gate" if n_ok == n else
-            f"{n_ok} of {n} passed the re-propagation gate") + " (column verified of the CSV)."
+            f"{n_ok} of {n} passed the re-propagation gate") + "."
     page.table(
         "burns", table,
-        caption=(f"The {n} finite burns of the capture sequence drawn below ({ctx['engine']}, "
-                 f"{ctx['dynamics']} dynamics, ignition {ctx['starts_txt']} min from the nominal "
-                 "perilunes). "
-                 "Durations in min (the paper's from Table B1); delta-V in m/s; mass after "
-                 "the burn in kg. Perilune: the flown point of least radius within 30 min of "
-                 "the nominal perilune epoch, reached the given minutes after ignition; "
-                 "ignition and cutoff: the angle (deg) in the orbit plane from it to the "
-                 f"ignition and cutoff points (negative: before perilune). {gate}"),
+        caption=(f"The {n} burns drawn below ({ctx['engine']}, {ctx['dynamics']} dynamics, "
+                 f"ignition {ctx['starts_txt']} min). Perilune: the flown least radius, min "
+                 "after ignition; ignition and cutoff: angles from it in the orbit plane "
+                 f"(deg). {gate}"),
         columns={"paper_burn_duration_min": "paper (min)",
                  "perilune_from_ignition_min": "perilune at (min)",
                  "ignition_from_perilune_deg": "ignition (deg)",
@@ -272,19 +266,14 @@ def _add_burns(page: Page, table: pd.DataFrame, ctx: dict) -> None:
 
 def _add_fig2(page: Page, plan, geo, table: pd.DataFrame, ctx: dict) -> None:
     polar = " (polar)" if plan.arrival.inclination_deg == 90.0 else ""
-    projection = (f"Projection: on the plane of the arrival orbit{polar}, x′ along its ascending "
-                  "node on the M-MME2000 equator and z along the M-MME2000 pole; the drawn "
-                  f"trajectory leaves this plane by at most {geo.max_out_of_plane_km:.1f} km.")
-    durations = ", ".join(f"{d:.2f}" for d in table.burn_duration_min[:-1]) + \
-        f" and {table.burn_duration_min.iloc[-1]:.2f}"
+    projection = (f"In the arrival orbit's plane{polar} (±{geo.max_out_of_plane_km:.1f} km), "
+                  f"LU ({C.LU_KM:g} km).")
     burn_list, starts_txt = ctx["burn_list"], ctx["starts_txt"]
     page.figure(
         "fig2", figures.plot_fig2_capture(geo),
-        caption=(f"The whole capture, {ctx['engine']}, ignition {starts_txt} min from each "
-                 f"perilune, re-propagated. Grey: the hyperbola from {geo.hyperbola_hours:g} h "
-                 f"before the perilune (dotted: without burn 1); {_orbits_text(plan, geo)}; "
-                 f"red: burns {burn_list} ({durations} min). {projection} 1 LU = "
-                 f"{C.LU_KM:g} km."),
+        caption=(f"The capture, {ctx['engine']}, ignition {starts_txt} min. Grey: "
+                 f"hyperbola (dotted: no burn 1); {_orbits_text(plan, geo)}; red: burns "
+                 f"{burn_list}. {projection}"),
         alt=("The arrival hyperbola, the capture orbits and the final circular orbit around "
              "the Moon, with the burn arcs near perilune in red"),
         paper="Fig. 2" if ctx["paper_case"] else None)
@@ -296,9 +285,8 @@ def _add_fig3(page: Page, geo, table: pd.DataFrame, ctx: dict) -> None:
     page.figure(
         "fig3", draw.plot_fig3_burn_arcs(geo),
         caption=(f"The burn arcs. (a) Burns {ctx['burn_list']} zoomed (thick: burning; ● "
-                 "ignition, ■ cutoff; dashed: the perilune direction), LU. (b) Altitude (km) "
-                 "of each perilune pass against the angle from its perilune (deg), separating "
-                 f"the arcs (a) overlaps. Spans: {spans}."),
+                 "ignition, ■ cutoff; dashed: perilune direction), LU. (b) Altitude (km) "
+                 f"against the angle from perilune (deg). Spans: {spans}."),
         alt="Zoom on the burn arcs near perilune, and their altitudes against the angle "
             "from perilune", paper="Fig. 3" if ctx["paper_case"] else None)
 
@@ -314,27 +302,16 @@ def _paper_fig4() -> dict:
 def _add_fig4(page: Page, d4, ctx: dict) -> None:
     p = _paper_fig4()
     paper_case = ctx["paper_case"]
-    alpha_up = bool(np.all(np.diff(d4.alpha_deg) > 0))
-    t180 = alpha_crossing_min(d4.alpha_deg, d4.t_min)
-    paper_txt = (f" (the paper: about {p['alpha_deg'][0]:g}° to {p['alpha_deg'][1]:g}° over "
-                 f"{p['burn1_min']:g} min, diamonds)" if paper_case else "")
-    mass_txt = (f" (diamond: the paper's {p['mass1_kg']:g} kg after LOI 1, Sec. 3.2.1)"
-                if paper_case else "")
-    cross = (f", crossing 180° (thrust against the tangential direction) {t180:.2f} min "
-             "after ignition" if np.isfinite(t180) else "")
+    paper_txt = "; diamonds: the paper's α" if paper_case else ""
+    mass_txt = " and mass after LOI 1 (Sec. 3.2.1)" if paper_case else ""
     page.data["figure_csv"] = {"fig4": d4.table()}
     page.figure(
         "fig4", draw.plot_fig4_steering(d4, p["alpha_deg"] if paper_case else None,
                                            p["mass1_kg"] if paper_case else None,
                                            p["burn1_min"] if paper_case else None),
-        caption=("Steering angles (RTN) and mass during burn 1, "
-                 f"{ctx['engine']}, against the time from ignition (min); dashed: the nominal "
-                 f"perilune, {d4.perilune_min:g} min after ignition. α (deg, Eq. (14a)) "
-                 f"{'increases' if alpha_up else 'goes'} from {d4.alpha_deg[0]:.1f}° to "
-                 f"{d4.alpha_deg[-1]:.1f}° over {d4.burn_duration_min:.2f} min{paper_txt}"
-                 f"{cross}; |β| (deg, Eq. (14b)) stays below "
-                 f"{np.abs(d4.beta_deg).max():.3f}°; the mass (kg) falls linearly from "
-                 f"{d4.m_kg[0]:.3f} to {d4.m_kg[-1]:.3f} kg{mass_txt}. "
+        caption=(f"Steering angles α (Eq. 14a) and β (Eq. 14b), deg, and mass (kg) during "
+                 f"burn 1, {ctx['engine']}, against the time from ignition (min); dashed: "
+                 f"the nominal perilune{paper_txt}{mass_txt}. "
                  f"Data: {data_link(page.output_name + '_fig4')}."),
         alt="Three stacked panels against time from burn 1 ignition: alpha rising from 137 to "
             "215 degrees, beta near zero, and the mass falling",
@@ -342,21 +319,16 @@ def _add_fig4(page: Page, d4, ctx: dict) -> None:
 
 
 def _add_fig5(page: Page, d5, geo, ctx: dict) -> None:
-    k = int(np.argmax(d5.angle_deg))
     step = float(np.diff(d5.t_min[d5.arrows]).mean())
     slows = bool((d5.angle_deg > 90.0).all())
     page.data["figure_csv"]["fig5"] = d5.table()
     page.figure(
         "fig5", draw.plot_fig5_vectors(d5, geo),
         caption=(f"Thrust acceleration and velocity along burn 1, {ctx['engine']}. (a) "
-                 f"Every {step:.2f} min, on the orbit plane: velocity (blue, km/s), T/m (red, "
-                 "m/s²), each to its legend's scale; km. (b) The angle between the thrust "
-                 f"acceleration and the velocity (deg, 3-D): between {d5.angle_deg.min():.1f}° "
-                 f"and {d5.angle_deg.max():.1f}°"
-                 + (", always above 90°, so the thrust slows the spacecraft throughout"
-                    if slows else "")
-                 + f"; it is closest to anti-parallel {d5.t_min[k]:.2f} min after ignition. "
-                 f"Data of the arrows: {data_link(page.output_name + '_fig5')}."),
+                 f"Every {step:.2f} min on the orbit plane: velocity (blue, km/s), T/m (red, "
+                 "m/s²), km. (b) The angle between them (deg, 3-D)"
+                 + (", always above 90°: the thrust slows the spacecraft" if slows else "")
+                 + f". Data: {data_link(page.output_name + '_fig5')}."),
         alt="Velocity and thrust-acceleration arrows along the burn 1 arc, and the angle "
             "between them against time", paper="Fig. 5" if ctx["paper_case"] else None)
 

@@ -434,8 +434,7 @@ def _headline(page: Page, rows: list) -> str:
     t = page.text
     engines = [(n, f"{n} N") for n in (150, 300, 450)]
     trim = page.listing([(f"trim_top_{n}N", lab) for n, lab in engines], ".2f", " m/s")
-    flown = (f"*{capture_name('fixed')}*, re-planned after each burn from an estimate of "
-             f"the state and trimmed to the plan's final orbit after the last")
+    flown = f"*{capture_name('fixed')}*, re-planned from estimates, trimmed"
     if all(r["samples"] >= r["samples_needed_p99"] for r in rows):
         budget = page.listing([(f"p99_above_{n}N", lab) for n, lab in engines], ".1f",
                               " m/s")
@@ -446,9 +445,8 @@ def _headline(page: Page, rows: list) -> str:
         what = (f"the costliest of {t('n_samples', '.0f')} samples per engine lies {worst} "
                 f"above the nominal ({flown}); a 99 % budget needs "
                 f"{t('samples_needed_p99', '.0f')} samples")
-    return (f"With the page's example error model (assumed sigmas), {what}; the trim "
-            f"alone costs up to {trim} at {t('trim_top_what')}; "
-            f"{t('n_failed', '.0f')} samples not captured or not corrected.")
+    return (f"Under the example (assumed) error model, {what}; the trim alone costs up to "
+            f"{trim} at {t('trim_top_what')}; {t('n_failed', '.0f')} samples failed.")
 
 
 def _show_budget(page: Page, budget, tables: dict, samples: int, seed: int,

@@ -159,8 +159,8 @@ def build(result, ex, ex_utc, output_name: str = "exchange", quick: bool = False
     page.expect("UTC and TDB files hold the same instants (their microsecond roundings)",
                 page.values["utc_vs_tdb_s"] < 1.2e-6)
     t = page.text
-    page.headline(f"The verified capture of `{plan}` leaves lunarcap as a CCSDS OEM, a SPICE "
-                  f"SPK, attitude and maneuver files; the OEM's interpolation stays within "
+    page.headline(f"`{plan}` exported as a CCSDS OEM, a SPICE SPK, attitude and maneuver "
+                  f"files: the OEM's interpolation stays within "
                   f"{t('max_interpolation_error_m', '.1g', ' m')} of the propagated states, and "
                   f"the SPK within {t('spk_vs_oem_m', '.1g', ' m')} of the OEM.")
     return page

@@ -174,20 +174,10 @@ def build(alpha_deg: float = 55.0, beta_deg: float = 30.0, true_anomaly_deg: flo
     page.figure(
         "rtn", fig,
         caption=(
-            "Thrust geometry of Song et al. (2011), Fig. 1, redrawn. "
-            f"(a) The capture ellipse of period {period_h:g} h with a "
-            f"{paper_scenario().perilune_altitude_km:g} km perilune altitude, in its orbit "
-            "plane, in lunar "
-            f"units (1 LU = R<sub>Moon</sub> = {C.LU_KM:g} km), x towards perilune. The "
-            f"spacecraft is at true anomaly {true_anomaly_deg:g}°; shown are the radial and "
-            "tangential unit vectors $\\hat\\imath_r$, $\\hat\\imath_t$, the velocity "
-            f"direction $\\mathbf{{v}}$ (flight-path angle γ = {geo.flight_path_angle_deg:.1f}°: "
-            "$\\mathbf{v}$ and $\\hat\\imath_t$ coincide only at perilune and apolune) and the "
-            "in-plane projection of the thrust direction $\\hat u$. "
-            "(b) The RTN frame at the spacecraft (dimensionless unit vectors, not to scale "
-            f"with (a)): α = {geo.alpha_deg:.1f}° from $\\hat\\imath_t$ towards "
-            f"$\\hat\\imath_r$ (Eq. (14a)), β = {geo.beta_deg:.1f}° from the orbit plane "
-            "towards $\\hat\\imath_n$ (Eq. (14b)). Angles in degrees."),
+            f"(a) The ellipse of period {period_h:g} h (LU), the spacecraft at true anomaly "
+            f"{true_anomaly_deg:g}°: RTN axes, velocity (γ = {geo.flight_path_angle_deg:.1f}°) "
+            f"and thrust in plane. (b) The RTN frame: α = {geo.alpha_deg:.1f}° (Eq. 14a), "
+            f"β = {geo.beta_deg:.1f}° (Eq. 14b)."),
         alt=("Orbit plane with the RTN unit vectors at the spacecraft, and a 3-D view of the "
              "RTN frame with the thrust vector and the angles alpha and beta"),
         paper="Fig. 1")

@@ -318,16 +318,9 @@ def _add_tables(page: Page, gain: pd.DataFrame, chain: pd.DataFrame, dynamics: s
     gate = gate_text
     page.table(
         "gain", gain,
-        caption=("Free ignition against the paper's grid of ignition offsets, per engine and "
-                 f"burn (burns 1-3: LOI 1-3; {dynamics} dynamics). Every burn starts from the "
-                 "free-ignition chain's previous orbit; the grid point is the best of the "
-                 "paper's offsets (Tables 1–5) replayed on that orbit, ranked like the paper "
-                 "by J = ΔV + perilune speed at the end (Eq. 9). Starts in min from the "
-                 "nominal perilune (negative: before), ΔV in m/s; gains are grid minus free "
-                 "in m/s (positive: the free optimum is better). The CSV adds the free burn's "
-                 "duration (min), the best grid point's ΔV, and the free optimum's loss "
-                 "against one impulse from the same orbit in the same dynamics, by J (m/s "
-                 "and % of the impulsive ΔV). "
+        caption=(f"Free ignition against the best of the paper's offsets on the same orbit, "
+                 f"ranked by J of Eq. (9) ({dynamics} dynamics). Gain: grid − free (m/s; "
+                 "positive: free is better). "
                  + gate(n_free_ok, len(gain), "free optima", "free optimum")),
         columns={"grid_start_min": "start, best grid (min)",
                  "free_start_min": "start, free (min)", "free_delta_v_mps": "ΔV, free (m/s)",
@@ -338,12 +331,9 @@ def _add_tables(page: Page, gain: pd.DataFrame, chain: pd.DataFrame, dynamics: s
                       "delta_v_gain_mps", "objective_gain_mps"])
     page.table(
         "chain", chain,
-        caption=("The whole capture sequence: the paper's best grid chain (its Table B1 "
-                 "offsets, each burn from the grid chain's previous orbit) against the "
-                 "free-ignition chain. Starts of burns 1, 2, 3 in min from each nominal "
-                 "perilune; total ΔV of the three burns in m/s; gain = grid − free; propellant "
-                 "saved = free − grid mass after burn 3, kg, from the same arrival mass (the "
-                 "CSV has both masses). "
+        caption=("The whole sequence: the paper's grid chain (Table B1 offsets) against the "
+                 "free-ignition chain. Gain: grid − free; propellant saved: free − grid final "
+                 "mass. "
                  + gate(int((chain.verified == "passed").sum()), len(chain), "chains", "chain")),
         columns={"grid_starts": "starts, grid (min)",
                  "free_starts": "starts, free (min)",
@@ -364,14 +354,10 @@ def _add_rule(page: Page, rule: pd.DataFrame, engines) -> None:
     imp_diff = max(abs(a - b) for a, b in zip(imp, PAPER_IMPULSIVE_DV_MPS))
     page.table(
         "rule", rule, name="eq19_rule",
-        caption=("The paper's rule of thumb, ignition half the Eq. (19) duration before the "
-                 "perilune, against the free optimum. Eq. (19) from the plan's two-body "
-                 f"impulsive ΔV (within {imp_diff:.2f} m/s of the paper's impulsive values) "
-                 "and our mass at ignition; starts in min from the nominal perilune; burn "
-                 "midpoint = free start + half the free duration (min; negative: before the "
-                 "perilune); cost of igniting at the rule's start instead of the optimum, on "
-                 "the same pre-burn orbit, in J (m/s). The CSV adds the Eq. (19) duration, "
-                 "the best grid point and the cost in ΔV. "
+        caption=("The paper's rule of thumb (ignite half the Eq. (19) duration before "
+                 "perilune; impulses within "
+                 f"{imp_diff:.2f} m/s of the paper's) against the free optimum; cost in J "
+                 "(m/s). "
                  + gate(n_rule_ok, len(rule), "solves at the rule's start",
                         "solve at the rule's start")),
         columns={"rule_start_min": "rule start −Eq. (19)/2 (min)",
@@ -387,11 +373,9 @@ def _add_rule(page: Page, rule: pd.DataFrame, engines) -> None:
                       "start_minus_rule_min", "burn_midpoint_min", "rule_objective_cost_mps"])
     page.figure(
         "rule_figure", draw.plot_free_ignition_rule(rule), name="eq19_rule",
-        caption=("Optimal ignition against half the Eq. (19) duration estimate, in min from "
-                 "the nominal perilune (top; filled markers: the free optimum, open: the best "
-                 "of the paper's grid on the same orbit; dashed: the rule exactly), and the "
-                 "optimum minus the rule against the Eq. (19) duration, min (bottom). Colours: "
-                 "engines; markers: burns 1-3 (LOI 1-3)."),
+        caption=("Top: optimal ignition (filled; open: the paper's best grid point) against "
+                 "half the Eq. (19) duration, min (dashed: the rule). Bottom: optimum − rule "
+                 "against the Eq. (19) duration, min. Colours: engines; markers: LOI 1-3."),
         alt="Scatter plots of the optimal ignition time against minus half the Eq. 19 duration")
 
 

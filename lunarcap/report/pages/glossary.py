@@ -67,29 +67,22 @@ def build(output_name: str = "glossary", quick: bool = False) -> Page:
     """The glossary page (see the module docstring)."""
     page = Page(NOTEBOOK, {}, output_name, quick, ephemeris=False)
     page.table("losses", losses_table(),
-               caption=("The quantities most easily confused: two impulsive references "
-                        "(two-body closed form, and the limit in the same dynamics), the "
-                        "paper's printed impulse, and four losses measured against them. "
-                        "Names are the CSV columns and JSON keys."),
+               caption=("The quantities most easily confused: the impulsive references and "
+                        "the losses measured against them."),
                show_columns=["name", "unit", "definition"])
     page.table("quantities", glossary_table(),
-               caption=("Every quantity lunarcap reports: its name (CSV column and JSON key), "
-                        "unit, the label of tables and axes, its JSON type and its "
-                        "definition."),
-               show_columns=["name", "unit", "label", "definition"])
+               caption=("Every quantity lunarcap reports: name (CSV column, JSON key), unit, "
+                        "definition; the CSV adds the label of tables and axes."),
+               show_columns=["name", "unit", "definition"])
     page.table("composition", composition_table(),
                caption="Names composed from a glossary name by a prefix or a suffix.",
                show_columns=["part", "definition", "example"])
     page.table("captures", captures_table(),
-               caption=("The captures of the paper's arrival the book compares. A page that "
-                        "quotes a capture's delta-V names it by one of these names and says "
-                        "in which dynamics it was flown: the same engine gives a different "
-                        "total for each."),
+               caption="The captures of the paper's arrival the book compares.",
                show_columns=["capture", "definition"])
     page.value("n_quantities", len(Q.GLOSSARY))
-    page.headline(f"{len(Q.GLOSSARY)} quantities, each with one name (its CSV column and "
-                  f"JSON key), one unit and one definition; "
-                  f"{len(Q.CAPTURES)} captures of the paper's arrival named apart.")
+    page.headline(f"{len(Q.GLOSSARY)} quantities, each with one name (CSV column and JSON "
+                  f"key), unit and definition; {len(Q.CAPTURES)} captures named apart.")
     page.value("n_schemas", len(schemas.COMMANDS))
     page.value("schema_commands", ", ".join(schemas.COMMANDS))
     page.expect("every confusable name resolves", all(Q.is_known(n) for n in CONFUSABLE))

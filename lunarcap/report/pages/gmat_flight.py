@@ -247,11 +247,9 @@ def build(results, flights, output_name: str = "gmat_flight", quick: bool = Fals
         _case_values(page, k, c, res)
     comp = pd.concat(tables, ignore_index=True)
     page.table("comparison", comp, caption=(
-        "GMAT's states minus lunarcap's: each burn flown by GMAT from lunarcap's state at "
-        "its ignition (at its cut-off), each coast from lunarcap's state at the cut-off "
-        "before it (at its end), and the whole capture flown open loop from the arrival "
-        "(at every ignition, cut-off and the end): position (m), velocity (mm/s) and mass "
-        "(g)."),
+        "GMAT's states minus lunarcap's: each burn (at its cut-off) and coast (at its end) "
+        "flown by GMAT from lunarcap's state at its start, and the whole capture flown open "
+        "loop from the arrival."),
         columns={"case": "case", "flight": "flight", "position_diff_m": "position (m)",
                  "velocity_diff_mmps": "velocity (mm/s)", "mass_diff_g": "mass (g)"},
         floatfmt={"position_diff_m": ".3g", "velocity_diff_mmps": ".3g", "mass_diff_g": "+.2g"})
@@ -327,11 +325,9 @@ def _settings(page: Page, plan, c) -> None:
              "inc_deg": res.burns[0].solution.summary()["inc_end_deg"],
              "propagates": sum(ln.startswith("Propagate ") for ln in script.splitlines())}
     page.table("settings", settings_table(script, defaults, costs, facts), caption=(
-        f"What GMAT must be told to fly lunarcap's dynamics ({plan.name}): the line of the "
-        "exported script that sets it, GMAT's own default (read from GMAT), and what "
-        "leaving it at the default costs the capture, flown from the arrival in lunarcap "
-        "with that one change against the script's settings (lunarcap's flight of the "
-        "script agrees with GMAT's to centimetres, above)."),
+        f"What GMAT must be told to fly lunarcap's dynamics ({plan.name}): the script's "
+        "line, GMAT's default, and what leaving that one setting at the default costs the "
+        "capture (flown in lunarcap)."),
         columns={"setting": "setting", "script": "the exported script",
                  "gmat_default": "GMAT's default", "cost": "left at the default"})
     page.value("g0_default", defaults["g0_mps2"])

@@ -172,23 +172,20 @@ def _add_tables(page: Page, burns, rp_km: float, masses, printed_min) -> None:
     thrust_N, isp_s, mass_kg, altitude_km = (page.parameters[k] for k in _ENGINE_AND_ORBIT)
     page.table(
         "delta_v", delta_v_table(burns, rp_km),
-        caption=(f"Impulsive capture sequence, two-body model, perilune altitude "
-                 f"{altitude_km:g} km, {mass_kg:g} kg at arrival, Isp {isp_s:g} s, beside "
-                 "the paper's values (Tables 1-5). Orbits are given by their periods (h, or min "
-                 "below 3 h as the paper writes the final orbit); "
-                 "delta-V in m/s, ours − paper in m/s, mass after each impulse (rocket "
-                 "equation) in kg."),
+        caption=(f"Impulsive capture sequence, two-body, perilune altitude {altitude_km:g} km, "
+                 f"{mass_kg:g} kg at arrival, Isp {isp_s:g} s, beside the paper's values "
+                 "(Tables 1-5). Orbits by their periods; mass after each impulse (rocket "
+                 "equation)."),
         columns={"delta_v_mps": "ΔV, ours (m/s)", "difference_mps": "ours − paper (m/s)"},
         floatfmt={"delta_v_mps": ".3f", "paper_delta_v_mps": ".3f", "difference_mps": "+.3f",
                   "m_after_kg": ".3f"})
     page.table(
         "eq19", eq19_table(burns, masses, printed_min),
-        caption=(f"Burn-duration estimates of Eq. (19) for a {thrust_N:g} N / {isp_s:g} s "
-                 "engine from the impulsive ΔV above (m/s), with m₀ (kg) the mass at ignition "
-                 + ("as printed in the paper's finite-burn chain (Sec. 3.2.1)"
+        caption=(f"Eq. (19) burn durations, {thrust_N:g} N / {isp_s:g} s, from the impulses "
+                 "above, m₀ the mass at ignition "
+                 + ("of the paper's finite-burn chain (Sec. 3.2.1)"
                     if masses is not None else "of the impulsive chain")
-                 + ", beside the paper's estimates (Sec. 3.2.1; printed for 150 N only); "
-                 "durations and ours − paper in min."),
+                 + ", beside the paper's (Sec. 3.2.1, 150 N only)."),
         columns={"duration_min": "duration, ours (min)",
                  "paper_duration_min": "duration, paper (min)",
                  "difference_min": "ours − paper (min)"},
@@ -255,8 +252,8 @@ def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
     _add_checks(page, burns, printed_min, altitude_km, paper_case and eq19_masses == "paper")
     page.data["burns"] = burns
     t = page.text
-    page.headline(f"The two-body chain of tangential impulses gives the paper's impulsive LOI 2 "
-                  f"and LOI 3 with differences (ours − paper) of "
-                  f"{t('dv_diff_loi2_mps', '+.3f')} and {t('dv_diff_loi3_mps', '+.3f', ' m/s')} "
-                  f"(LOI 1 matches by construction: the arrival speed is taken from it).")
+    page.headline(f"Two-body tangential impulses differ from the paper's impulsive LOI 2 and "
+                  f"LOI 3 by {t('dv_diff_loi2_mps', '+.3f')} and "
+                  f"{t('dv_diff_loi3_mps', '+.3f', ' m/s')} (ours − paper; LOI 1 agrees by "
+                  f"construction: the arrival speed is taken from it).")
     return page

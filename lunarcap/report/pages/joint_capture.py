@@ -110,13 +110,11 @@ def prose_values(by_thrust: dict, totals: pd.DataFrame) -> dict:
 
 def _add_legs(page: Page, per_leg: pd.DataFrame, dynamics: str) -> None:
     case = (f"The three LOIs optimised together (joint) and one at a time with free ignition "
-            f"(sequential, each minimising Eq. 9), per engine (thrust / Isp; {dynamics} "
-            "dynamics).")
+            f"(sequential, Eq. 9; {dynamics} dynamics).")
     page.table(
         "legs", per_leg,
-        caption=(f"{case} ΔV in m/s; difference = sequential − joint ΔV, m/s; verified: each "
-                 "joint leg passed the re-propagation gate from the previous leg's verified "
-                 "end state. Ignition times and durations: next table (and this CSV)."),
+        caption=(f"{case} Difference: sequential − joint; verified: each joint leg re-flown "
+                 "from the previous leg's verified end. Ignitions and durations: next table."),
         columns=LEG_LABELS, floatfmt=LEG_FORMATS, show_columns=DV_SHOWN)
     page.table(
         "timing", per_leg[TIMING_SHOWN],
@@ -136,10 +134,9 @@ def _add_totals(page: Page, totals: pd.DataFrame) -> None:
                     "joint_solve_s": "solve (s)"}
     page.table(
         "totals", totals,
-        caption=("Total ΔV of the capture, one burn at a time against all three burns in one "
-                 "NLP (m/s); total difference = sequential − joint (m/s; the joint optimum "
-                 "cannot be worse); largest change of one leg's ΔV (m/s) and of one ignition "
-                 "time (s) between the two. How the joint NLP converged: next table."),
+        caption=("Total ΔV, one burn at a time against all three in one NLP: difference "
+                 "sequential − joint (the joint optimum cannot be worse), and the largest "
+                 "change of one leg's ΔV and ignition between the two."),
         columns=total_labels,
         floatfmt={"sequential_total_delta_v_mps": ".4f", "joint_total_delta_v_mps": ".4f",
                   "total_difference_mps": "+.4f", "largest_leg_shift_mps": ".4f",

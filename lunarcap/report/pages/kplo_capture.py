@@ -258,20 +258,16 @@ def _plan_section(page: Page, p, name: str) -> None:
     path = Path(name) if Path(name).is_file() else PLAN_DIR / f"{name}.yaml"
     page.note("plan_yaml", "```yaml\n" + path.read_text(encoding="utf-8").rstrip() + "\n```")
     page.table("sources", sources_table(p), caption=(
-        "The plan's numbers beside its sources: KARI's design of KPLO's lunar orbit insertion "
-        "(S13 of the page on published captures, {cite:t}`song2017`, Table 2) and its "
-        "thrusters ({cite:t}`song2016`, Sec. 1); the plan's perilune speeds are the two-body "
-        "speeds of its v_inf and target periods at its perilune, with lunarcap's GM and "
-        "radius. What no source gives is assumed, and said so."),
+        "The plan beside its sources: KARI's KPLO insertion design ({cite:t}`song2017`, "
+        "Table 2; S13) and thrusters ({cite:t}`song2016`, Sec. 1); perilune speeds are "
+        "two-body, lunarcap's GM and radius. What no source gives is marked assumed."),
         columns={"quantity": "quantity", "source_value": "source",
                  "plan_value": "this plan", "source": "from"})
     b = bplane_table(p)
     page.table("bplane", b, caption=(
-        "The arrival as a B-plane target (km): the two-body hyperbola of the arrival "
-        "perilune state, T = S × k / |S × k| and R = S × T, S the incoming asymptote, k the "
-        "reference pole. The plan gives its arrival by its perilune speed (v_inf), so its "
-        "meaning depends on no reference plane; these are what a navigation team's target "
-        "would read in either convention."),
+        "The arrival as a B-plane target (km), two-body: T = S × k / |S × k|, R = S × T, S "
+        "the incoming asymptote, k the reference pole. The plan's v_inf needs no reference "
+        "plane; these are its target in either convention."),
         columns={"reference": "reference plane"},
         floatfmt={"b_t_km": ".1f", "b_r_km": ".1f", "v_inf_kmps": ".5f"})
     page.value("plan_name", p.name)
@@ -291,10 +287,8 @@ def _design_section(page: Page, res) -> None:
     page.data["design"] = d
     page.table("design", d, caption=(
         f"The capture designed burn by burn in {page.values['model']} (free ignitions, each "
-        "burn verified by re-flight in that model, a field whole): ignition "
-        "(min from its perilune), duration, ΔV; KARI's impulsive ΔV of the same LOI (S13) "
-        "and ours minus it; the impulsive limit in the same field from the same orbit and "
-        "the finite-burn loss against it, or why the burn has none."),
+        "burn re-flown in that model) beside KARI's impulses (S13); the impulsive limit and "
+        "the loss against it, or why a burn has none."),
         show_columns=["burn", "target_orbit", "start_min", "burn_duration_min", "delta_v_mps",
                       "kplo_delta_v_mps", "delta_v_difference_mps", "impulsive_limit_mps",
                       "delta_v_loss_mps", "verified"],
@@ -417,13 +411,10 @@ def _missed_section(page: Page, p, study) -> None:
     t, path = study.to_frame(), study.campaign.path
     page.data["missed"] = t
     page.table("missed", t, caption=(
-        f"Burn 1 cut off after a fraction of its duration (the fault cleared after the delay) "
-        f"or ignited late, the rest of the capture re-planned in {page.values['model']} and "
-        "verified there: the orbit left, the recovery's ΔV and its penalty against the "
-        f"nominal (m/s; the orbit after burn 1 free up to {missed.DEFAULT_MAX_PERIOD_H:g} h "
-        f"on both sides), the make-up burn's ΔV, and why a case has no recovery. "
-        f"`lunarcap missed {p.name}` with the same options runs it; the table: "
-        f"{page.data_link(path, 'missed.csv')}."),
+        f"Burn 1 cut off (fault cleared after the delay) or ignited late, the rest "
+        f"re-planned in {page.values['model']}: penalty against the nominal (the orbit "
+        f"after burn 1 free up to {missed.DEFAULT_MAX_PERIOD_H:g} h on both sides). "
+        f"`lunarcap missed {p.name}`; the table: {page.data_link(path, 'missed.csv')}."),
         show_columns=MISSED_SHOWN, floatfmt={"fraction": ".2f", "delay_min": ".0f",
                                              "late_min": ".0f"},
         columns={"cutoff_orbit": "orbit left"})
@@ -453,12 +444,10 @@ def _counts_section(page: Page, p, study) -> None:
     t["periods_h"] = [", ".join(f"{float(x):.3f}" for x in s.split(";")) if
                       isinstance(s, str) and s else "—" for s in t.periods_h]
     page.table("counts", t, caption=(
-        f"The capture in N burns in {page.values['model']}, the intermediate periods "
-        f"optimised (at most {burns.DEFAULT_MAX_PERIOD_H:g} h, all burns within "
-        f"{burns.DEFAULT_MAX_DAYS:g} days) by the all-burns NLP in the field: total ΔV, the "
-        "sum of the impulsive limits (none where a burn has no limit: the reason says "
-        f"which), propellant and time to the final orbit. `lunarcap burns {p.name}` runs "
-        f"it; the table: {page.data_link(path, 'burns.csv')}."),
+        f"The capture in N burns in {page.values['model']}, intermediate periods optimised "
+        f"(at most {burns.DEFAULT_MAX_PERIOD_H:g} h, all within "
+        f"{burns.DEFAULT_MAX_DAYS:g} days) in one NLP. `lunarcap burns {p.name}`; the "
+        f"table: {page.data_link(path, 'burns.csv')}."),
         show_columns=COUNTS_SHOWN, floatfmt={"total_delta_v_mps": ".3f",
                                              "total_impulsive_limit_mps": ".3f",
                                              "total_fuel_kg": ".2f",
@@ -517,10 +506,10 @@ def _headline(page: Page) -> None:
     t = page.text
     page.headline(
         f"A KPLO-class capture ({t('mass_kg', '.0f')} kg, {t('thrust_N', '.0f')} N) designed "
-        f"with finite burns in {t('model')} needs {t('total_delta_v_mps', '.1f', ' m/s')}, "
+        f"in {t('model')} needs {t('total_delta_v_mps', '.1f', ' m/s')}, "
         f"{t('total_vs_kplo_mps', '.1f', ' m/s')} more than KARI's impulsive "
         f"{t('kplo_total_mps', '.1f', ' m/s')}; {t('n_recovered', '.0f')} of its "
-        f"{t('n_cases', '.0f')} missed-thrust cases are recovered in that model, GMAT flies "
+        f"{t('n_cases', '.0f')} missed-thrust cases are recovered, GMAT flies "
         f"its final orbit within {t('gmat_final_max_m', '.2g', ' m')}, and its perilune is "
         f"at {t('after_last_perilune_km', '.1f', ' km')} {t('after_days', 'g')} days after "
         f"the capture.")

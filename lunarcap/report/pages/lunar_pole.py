@@ -107,11 +107,10 @@ def build(dynamics: str = "full", thrusts_N: list | None = None,
                floatfmt={"ra_deg": ".4f", "dec_deg": ".4f", "from_ecliptic_pole_deg": ".3f"})
     eff = effect_table(engines, dynamics)
     page.table("effect", eff,
-               caption=(f"Effect of the pole on the paper's best chains (Table B1's ignition "
-                        f"offsets, {dynamics} dynamics): ΔV with the default pole "
-                        f"(iau2009-j2000) and with the constant-term pole (m/s), their "
-                        "difference (m/s), the difference of the impulsive limits in the "
-                        "same dynamics (m/s) and of the losses (finite − impulsive, m/s)."),
+               caption=(f"Effect of the pole on the paper's best chains (Table B1 offsets, "
+                        f"{dynamics} dynamics): ΔV with the default pole (iau2009-j2000) and "
+                        "the constant-term pole, and the differences of ΔV, impulsive limit "
+                        "and loss."),
                columns={"start_min": "start (min)", "dv_new_mps": "ΔV, J2000 pole (m/s)",
                         "dv_old_mps": "ΔV, constant pole (m/s)",
                         "dv_effect_mps": "ΔV effect (m/s)",
@@ -144,7 +143,7 @@ def build(dynamics: str = "full", thrusts_N: list | None = None,
     else:
         page.expect("the pole changes delta-V by less than 0.1 m/s",
                     float(eff.dv_effect_mps.abs().max()) < 0.1)
-    page.headline(f"The choice of the IAU pole of M-MME2000 moves a burn's finite-burn loss by at "
+    page.headline(f"The choice of IAU pole moves a burn's finite-burn loss by at "
                   f"most {page.text('max_abs_delta_v_loss_effect_mps', '.3f', ' m/s')} "
                   f"({dynamics} dynamics).")
     page.capture("fixed", dynamics)

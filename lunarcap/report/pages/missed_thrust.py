@@ -246,18 +246,14 @@ def build(study, table: pd.DataFrame, penalty_figure, output_name: str = "missed
     r0 = t.iloc[0]
     page.figure("penalty", penalty_figure, caption=(
         f"Penalty (m/s) of a cut-off in burn {burn} of {p.name} ({p.engine.thrust_N:g} N / "
-        f"{p.engine.isp_s:g} s, {p.dynamics} dynamics): ΔV of the partial burn plus the "
-        f"recovery's, minus the nominal burns {burn}–{p.n_burns} "
-        f"({r0.nominal_remaining_delta_v_mps:.1f} m/s), both with the orbit after burn "
-        f"{burn} free up to {max_period_h:g} h. “esc.”: the cut-off left a hyperbola; "
-        f"“none”: no recovery (the reason is in the table)."),
+        f"{p.engine.isp_s:g} s, {p.dynamics} dynamics): partial burn plus recovery minus "
+        f"the nominal burns {burn}–{p.n_burns} ({r0.nominal_remaining_delta_v_mps:.1f} m/s), "
+        f"the orbit after burn {burn} free up to {max_period_h:g} h. “esc.”: hyperbola; "
+        f"“none”: no recovery (table)."),
         alt="Penalty map of a missed capture burn")
     page.table("cases", t, caption=(
-        "Every cut-off: the orbit at cut-off (escape: hyperbola; captured: apolune inside the "
-        "Moon's sphere of influence), ΔV of the recovery, penalty (m/s), the make-up "
-        "burn's ΔV (m/s), and why a case has no recovery (the partial burn's ΔV, the "
-        "make-up orbit's period and the time to the final orbit are in the CSV). The study's "
-        f"whole table, late ignitions and every column included: "
+        "Every cut-off: the orbit left (escape: hyperbola), the recovery and its penalty "
+        "(m/s), and why a case has none. The study's whole table: "
         f"{page.data_link(res.path, 'study.csv')}."),
         show_columns=CASE_SHOWN,
         floatfmt={"fraction": ".2f", "delay_min": ".0f", "cutoff_ra_km": ".0f"},  # else .3f

@@ -75,9 +75,8 @@ LOSS_LABELS = {
 
 REF_PAPER = ("the paper's printed impulsive ΔV of each LOI (Table B1: "
              + ", ".join(f"{x:.3f}" for x in PAPER_IMPULSIVE_DV_MPS) + " m/s)")
-REF_OURS = ("our impulsive limit of each burn (one impulse in the same dynamics from the same "
-            "pre-burn orbit), by the objective of Eq. (9): ΔV plus the speed left at the next "
-            "perilune")
+REF_OURS = ("our impulsive limit of each burn (same dynamics, same pre-burn orbit), by the "
+            "objective J of Eq. (9)")
 
 
 def _start_text(starts) -> str:
@@ -190,11 +189,9 @@ def prose_values(totals: pd.DataFrame, seqs: dict, rows, model_loss: bool) -> di
 def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str, model_loss: bool) -> None:
     page.table(
         "burns", burns,
-        caption=("The capture sequence flown by the engines cited in Sec. 3.1 of the paper "
-                 f"(name, thrust / Isp), on {case}. Start: ignition, min from each nominal "
-                 "perilune; duration in min; ΔV in m/s; propellant and mass after the burn in "
-                 "kg; verified: passed the re-propagation gate. The losses of these burns are "
-                 "in the next table (and in this CSV)."),
+        caption=(f"The capture flown by the engines cited in Sec. 3.1 of the paper, on {case}. "
+                 "Start: min from each nominal perilune; verified: passed the re-propagation "
+                 "gate. Losses: next table."),
         columns=LOSS_LABELS | {"engine": "engine"},
         floatfmt={"start_min": ".2f", "burn_duration_min": ".2f", "delta_v_mps": ".3f",
                   "fuel_kg": ".3f", "m_end_kg": ".3f"},
@@ -208,11 +205,9 @@ def _add_burn_tables(page: Page, burns: pd.DataFrame, case: str, model_loss: boo
                                       "delta_v_loss_percent"] if model_loss else [])],
         caption=("Loss of each burn of the same captures against "
                  + ("two impulsive references. " if model_loss else "an impulsive reference. ")
-                 + f"Vs paper: ΔV above {REF_PAPER}, in m/s and in % of it, as the paper's "
-                 "Tables 1–5"
-                 + (f"; vs ours: against {REF_OURS}, shown beside it, m/s (the CSV also "
-                    "gives it in % and the plain ΔV above our impulse)" if model_loss else
-                    "; the loss against our own impulsive limit is not computed in this build")
+                 + f"Vs paper: ΔV above {REF_PAPER}, as Tables 1–5"
+                 + (f"; vs ours: against {REF_OURS}" if model_loss else
+                    "; vs our own impulsive limit: not computed in this build")
                  + "."),
         columns=LOSS_LABELS | {"engine": "engine"},
         floatfmt={"paper_impulsive_delta_v_mps": ".3f", "loss_vs_paper_impulse_mps": ".3f",
@@ -262,9 +257,9 @@ def _add_figure(page: Page, totals: pd.DataFrame, ignition: str, model_loss: boo
         draw.plot_engine_loss(totals, loss_col, f"total ΔV loss vs {ref_short} (m/s)"),
         caption=("Top: total ΔV loss of the capture (m/s) above "
                  + (REF_OURS if model_loss else REF_PAPER)
-                 + f". Bottom: propellant of LOI 1–3 (kg). Both against thrust (N), ignition "
-                 f"{ignition}; colours: specific impulse; diamonds: the engines cited in Sec. "
-                 "3.1, circles: the paper's."),
+                 + f". Bottom: propellant of LOI 1–3 (kg). Against thrust (N), ignition "
+                 f"{ignition}; colours: Isp; diamonds: Sec. 3.1's engines, circles: the "
+                 "paper's."),
         alt="Total delta-V loss and propellant against thrust for each engine", name="loss")
 
 

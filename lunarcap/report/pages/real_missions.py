@@ -376,24 +376,18 @@ def _add_published(page: Page, chains: dict, m0: float, dynamics: str) -> pd.Dat
     """The published figures and the durations tables; returns the durations."""
     page.table(
         "published", published_table(),
-        caption=("Published figures of four lunar captures, as printed in the sources listed "
-                 f"at the end of the page (keys S1–S{len(SOURCES)}); durations in brackets are "
-                 "the intervals between the reported start of braking and the reported entry "
-                 "into orbit. Units as given in the unit column. 'Not found': searched for and "
-                 "not found in any source consulted."),
+        caption=("Published figures of four lunar captures, as printed in the sources "
+                 f"S1–S{len(SOURCES)} (end of page); in brackets: from the reported start of "
+                 "braking to the reported orbit entry. 'Not found': in no source consulted."),
         columns={"published": "published value", "unit": "unit", "source": "source"})
     compare = durations_table(chains)
     page.table(
         "durations", compare,
-        caption=("Burn durations (min): published (LRO S7; Chang'e-1 S2–S5, the interval from "
-                 "the reported start of braking to the reported entry into orbit), ours on the "
-                 f"paper's spacecraft ({m0:g} kg at arrival, free ignition, {dynamics} "
-                 "dynamics), and our ΔVs flown at the mission's mass and thrust with Eq. (19), "
-                 "the mass carried from burn to burn by the rocket equation: LRO at "
-                 f"{LRO_MASS_KG:,.0f} kg (launch mass), {LRO_CLASS[0]:g} N, Isp "
-                 f"{LRO_CLASS[1]:g} s; Chang'e-1 at {CE1_MASS_KG:,.0f} kg (gross), "
-                 f"{CE1_THRUST_N:g} N, Isp {CE1_ISP_ASSUMED_S:g} s. Chang'e-1's specific "
-                 "impulse was not found; the SELENE-class 300 s is assumed."),
+        caption=("Burn durations (min): published (LRO S7; Chang'e-1 S2–S5), ours on the "
+                 f"paper's spacecraft ({m0:g} kg, free ignition, {dynamics} dynamics), and "
+                 f"at the mission's mass by Eq. (19): LRO {LRO_MASS_KG:,.0f} kg, "
+                 f"{LRO_CLASS[0]:g} N; Chang'e-1 {CE1_MASS_KG:,.0f} kg, {CE1_THRUST_N:g} N, "
+                 f"Isp {CE1_ISP_ASSUMED_S:g} s (assumed: not found)."),
         columns={"published_min": "published (min)", "ours_engine": "our engine",
                  "ours_paper_spacecraft_min": "ours, paper's spacecraft (min)",
                  "ours_at_mission_mass_min": "ours at the mission's mass (min)",
@@ -408,13 +402,10 @@ def _add_published(page: Page, chains: dict, m0: float, dynamics: str) -> pd.Dat
 def _add_kplo(page: Page, kplo: pd.DataFrame, engines, dynamics: str) -> None:
     page.table(
         "kplo", kplo,
-        caption=("KPLO's design capture (S13, Table 2: three LOIs into a 100 km circular polar "
-                 "orbit) beside the paper's: perilune speeds (km/s) on arrival and after each "
-                 "LOI, KPLO's and ours (our verified chain, "
-                 f"{engines[0][0]:g} N / {engines[0][1]:g} s, {dynamics} dynamics; nearly the "
-                 "same for every engine, since the orbits are targets), ours − KPLO in m/s; "
-                 "impulsive ΔV of each LOI (m/s), KPLO's and the paper's ({cite:t}`song2009c`, "
-                 "printed in Tables 1–5), KPLO − paper (m/s)."),
+        caption=("KPLO's design capture (S13, Table 2) beside the paper's: perilune speeds, "
+                 f"KPLO's and ours ({engines[0][0]:g} N / {engines[0][1]:g} s, {dynamics} "
+                 "dynamics), and each LOI's impulsive ΔV, KPLO's and the paper's "
+                 "({cite:t}`song2009c`)."),
         columns={"point": "point", "kplo_speed_kmps": "speed, KPLO (km/s)",
                  "our_speed_kmps": "speed, ours (km/s)",
                  "speed_difference_mps": "ours − KPLO (m/s)",

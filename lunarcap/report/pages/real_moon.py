@@ -332,13 +332,10 @@ def _misses(page: Page, p, degrees, compare: int, approach_s: float) -> None:
              "open_loop_inc_change_deg": "Δi (deg)", "open_loop_miss_km": "miss (km)",
              "open_loop_miss_mps": "miss (m/s)", "start": "from"}
     page.table("miss", miss, caption=(
-        f"The paper's capture as designed in J2 ({p.name}, its verified burns) flown open "
-        f"loop from its arrival ({page.parameters['approach_min']:g} min before the first "
-        "ignition) in the lunar field LP165P cut to each degree and order, with the Earth "
-        "and the Sun: the final orbit's osculating perilune and apolune altitudes and its "
-        "inclination change against the design's, at the epoch where the design's circle "
-        "holds, and the distance (km) and speed difference (m/s) from the design's state "
-        "there. The first rows fly the design in its own model."),
+        f"The paper's J2 capture ({p.name}) flown open loop from "
+        f"{page.parameters['approach_min']:g} min before the first ignition in LP165P of "
+        "each degree, with the Earth and the Sun: the final orbit and its miss from the "
+        "design where the design's circle holds. First rows: the design's own model."),
         columns=heads, floatfmt=fmt,
         show_columns=["model", "hold", "final_rp_altitude_km", "final_ra_altitude_km",
                       "open_loop_inc_change_deg", "open_loop_miss_km", "open_loop_miss_mps"])
@@ -651,7 +648,7 @@ def after_text(page: Page, table: pd.DataFrame, j2: str, compare: str, evs: dict
 def _headline(page: Page, compare: int, days: float) -> None:
     t = page.text
     page.headline(
-        f"Flown open loop through the lunar field LP165P to degree {compare}, the paper's J2 "
+        f"Flown open loop through LP165P to degree {compare}, the paper's J2 "
         f"capture ends on a {t('rp_arrival_inertial_km', '.1f')} × "
         f"{t('ra_arrival_inertial_km', '.1f', ' km')} orbit, "
         f"{t('miss_arrival_inertial_km', '.1f', ' km')} from its design; re-designed in the "

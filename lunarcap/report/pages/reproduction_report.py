@@ -219,8 +219,8 @@ def _add_part_a_tables(page: Page, long: pd.DataFrame, dynamics: str,
     page.table(
         "tables", tables_wide(long),
         caption=(f"Tables 1–5 and B1 beside ours, row by row ({rng}; {dynamics} dynamics). "
-                 "Start: min from the nominal perilune; best: the paper's, ours or both. Last "
-                 "rows: the printed impulsive ΔV against our two-body chain. "
+                 "Best: the paper's, ours or both. Last rows: the printed impulses against "
+                 "our two-body chain. "
                  f"{gate} Long form: {_link(f'{output_name}_tables_data')}."),
         columns=WIDE_LABELS,
         floatfmt={c: ("+.3f" if "difference" in c else ".3f") for c in WIDE_LABELS
@@ -284,10 +284,9 @@ def _part_b(page: Page, sweeps: dict, dynamics: str, output_name: str, findings)
     quotes = rep.quotes_comparison(ours)
     page.table(
         "quotes", rep.quotes_display(quotes),
-        caption=("Every number of the paper's prose beside ours (section §, paragraph ¶, "
-                 "words cut short; t: metric tons). Ours: from the verified best chains at "
-                 "the paper's offsets, losses against its impulsive ΔVs, unless the note says "
-                 f"input. In full: {_link(f'{output_name}_quotes_data')}."),
+        caption=("Every number of the paper's prose beside ours (§ section, ¶ paragraph, "
+                 "words cut short; t: metric tons): computed from the best chains unless the "
+                 f"note says input. In full: {_link(f'{output_name}_quotes_data')}."),
         columns={"words": "printed with", "printed": "paper", "ours": "ours",
                  "difference": "ours − paper", "note": "note"})
     page.table("quotes_data", quotes,
@@ -345,20 +344,16 @@ def _add_findings_tables(page: Page, output_name: str) -> None:
     ft = audit.findings_table()
     page.table(
         "findings_by_group", findings_by_group(ft),
-        caption=("The audit's checks of the paper's printed numbers by group "
-                 "(`lunarcap.paper.audit.audit_findings`): how many checks and how many "
-                 "found the printed number inconsistent with the others or with physics "
-                 "beyond rounding."),
+        caption=("The audit's checks of the paper's printed numbers by group, and how many "
+                 "are inconsistent beyond rounding."),
         columns={"check": "group", "group": "what is checked", "checks": "checks",
                  "inconsistent": "inconsistent"})
     bad = audit.findings_table(only_inconsistent=True)
     page.table(
         "findings", rep.findings_display(bad),
-        caption=("Every inconsistency of Song et al. (2011) found by `lunarcap.paper.audit`: "
-                 "the finding (its group letter, as in the table of groups above, and its "
-                 "id), the printed number, what the paper's other numbers (or physics) give, "
-                 "with units, where the number is printed and how the computed value was "
-                 "obtained. With the quantities checked, the differences and the tolerances: "
+        caption=("Every inconsistency of Song et al. (2011) found by `lunarcap.paper.audit` "
+                 "(group letter as above, and id): printed, what the paper's other numbers "
+                 "or physics give, where, and the computation. In full: "
                  f"{_link(f'{output_name}_findings_data')}."),
         columns={"finding": "finding", "printed": "printed", "computed": "computed",
                  "explanation": "where, and why"})

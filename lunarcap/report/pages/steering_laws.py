@@ -99,13 +99,9 @@ def _add_items(page: Page, steer: pd.DataFrame, engines, dynamics: str) -> None:
         "inc_miss_deg", "verified"]]
     page.table(
         "penalty", table,
-        caption=("Three steering laws per engine (thrust / Isp) and LOI, each with its "
-                 f"ignition time and duration optimised ({dynamics} dynamics). Start: "
-                 "ignition, min from the nominal perilune; duration in min; ΔV in m/s; "
-                 "penalties against the optimal steering of the same burn, m/s: ΔV, and the "
-                 "paper's objective J = ΔV + perilune speed at the end (Eq. 9). The targets "
-                 "each law released, its misses and its verification are in the next table "
-                 "(and in the CSV of this one)."),
+        caption=("Three steering laws per engine and LOI, ignition and duration optimised "
+                 f"({dynamics} dynamics). Penalties against the optimal steering of the same "
+                 "burn, in ΔV and in J of Eq. (9). Targets released and misses: next table."),
         columns={"engine": "engine (thrust / Isp)", "delta_v_penalty_mps": "ΔV penalty (m/s)",
                  "objective_penalty_mps": "J penalty (m/s)"},
         floatfmt={"start_min": ".2f", "burn_duration_min": ".2f", "delta_v_mps": ".3f",
@@ -114,11 +110,9 @@ def _add_items(page: Page, steer: pd.DataFrame, engines, dynamics: str) -> None:
         show_columns=PENALTY_SHOWN)
     page.table(
         "targets", table[TARGETS_SHOWN],
-        caption=("Terminal conditions of the same solutions. Released: the conditions a law "
-                 "cannot meet and leaves free (rp: perilune radius, inc: inclination; none: "
-                 "it meets all of the paper's). Misses of the verified flight: perilune "
-                 "radius in km (negative: low), inclination in deg; 0 where the condition is "
-                 "kept. Verified: passed the re-propagation gate on the conditions it keeps."),
+        caption=("Terminal conditions of the same solutions. Released: what a law cannot "
+                 "meet and leaves free (rp, inc; none: meets all). Misses of the verified "
+                 "flight (negative: low); verified: on the conditions it keeps."),
         columns={"engine": "engine (thrust / Isp)", "released_targets": "released",
                  "rp_miss_km": "perilune miss (km)", "inc_miss_deg": "inclination miss (deg)"},
         floatfmt={"rp_miss_km": "+.2f", "inc_miss_deg": ".4f"})
@@ -126,12 +120,9 @@ def _add_items(page: Page, steer: pd.DataFrame, engines, dynamics: str) -> None:
         "penalty_figure",
         draw.plot_steering_penalty(steer, [engine_label(t, i) for t, i in engines],
                                       SIMPLE_LAWS),
-        caption=("Penalty of a fixed inertial thrust direction and of thrust opposite the "
-                 "velocity against the optimal steering, per LOI, one column per engine "
-                 "(thrust / Isp): ΔV (top, m/s) and the paper's objective J = ΔV + perilune "
-                 "speed at the end (bottom, m/s). The antivelocity law misses the perilune "
-                 "radius (labels, km; negative: low), so its ΔV is not comparable: it ends on "
-                 "another, faster orbit, which J counts."),
+        caption=("Penalty of fixed inertial and antivelocity thrust against optimal "
+                 "steering, per LOI and engine: ΔV (top, m/s), J of Eq. (9) (bottom). "
+                 "Antivelocity misses the perilune radius (labels, km), so only J compares."),
         alt="Bar charts of the delta-V and J penalties of the inertial and antivelocity laws",
         name="penalty")
 

@@ -322,12 +322,9 @@ def _add_b1_tables(page: Page, b1: pd.DataFrame, dynamics: str) -> None:
         "b1", b1[["engine", "loi", *start_cols, "paper_delta_v_mps", "delta_v_mps",
                   "delta_v_diff_mps", "delta_v_diff_percent", "paper_delta_v_loss_percent",
                   "loss_vs_paper_impulse_percent", "verified"]],
-        caption=("Delta-V of Table B1 of Song et al. (2011), the best case of each engine and "
-                 f"LOI, beside ours ({dynamics} dynamics). {start_txt}. Delta-V in m/s; ours − "
-                 "paper in m/s and in % of the paper's value. The loss (delta-V above the "
-                 f"paper's impulsive {imp_txt} m/s of LOI 1, 2, 3, in % of it), the paper's "
-                 "and ours, is in the CSV; in m/s it is in the table of losses below. "
-                 f"{verified_txt} the re-propagation gate."),
+        caption=("Table B1's best case of each engine and LOI beside ours ("
+                 f"{dynamics} dynamics). {start_txt}. Loss: above the paper's impulses "
+                 f"({imp_txt} m/s). {verified_txt} the re-propagation gate."),
         columns={**heads, "delta_v_mps": "ΔV, ours (m/s)", "delta_v_diff_mps": "ours − paper (m/s)",
                  "delta_v_diff_percent": "ours − paper (%)",
                  "paper_delta_v_loss_percent": "loss, paper (%)",
@@ -360,13 +357,10 @@ def _add_b1_tables(page: Page, b1: pd.DataFrame, dynamics: str) -> None:
 def _add_totals(page: Page, engines, chains: dict, totals: dict) -> None:
     page.table(
         "totals", totals_table(engines, totals),
-        caption=("Totals of the capture sequence per engine, in the unit each quantity names: "
-                 "as printed in the prose of Song et al. (2011); the same arithmetic applied "
-                 "to the paper's Table B1 (sums, the loss over the total impulsive delta-V "
-                 f"{sum(paper.PAPER_IMPULSIVE_DV_MPS):.3f} m/s, the mean of the per-burn "
-                 "percentages; Table B1 prints no masses); ours, from our best chains starting "
-                 f"with {paper_scenario().mass_kg:g} kg at the first perilune; ours minus the "
-                 "printed value; where the paper prints it."),
+        caption=("Totals per engine: as printed in the paper's prose; the same arithmetic on "
+                 "Table B1 (sums; loss over the total impulse "
+                 f"{sum(paper.PAPER_IMPULSIVE_DV_MPS):.3f} m/s); ours, from "
+                 f"{paper_scenario().mass_kg:g} kg at the first perilune."),
         columns={"engine": "engine (thrust / Isp)", "paper_printed": "paper, printed",
                  "paper_from_table_b1": "paper, from Table B1", "ours": "ours",
                  "ours_minus_printed": "ours − printed", "printed_in": "printed in"},
@@ -378,16 +372,9 @@ def _add_totals(page: Page, engines, chains: dict, totals: dict) -> None:
 def _add_model_loss(page: Page, engines, chains: dict, totals: dict) -> None:
     page.table(
         "model_loss", model_loss_table(engines, chains, totals),
-        caption=("Delta-V loss (m/s) measured two ways. The paper compares its finite burns "
-                 "with impulsive delta-Vs from another program {cite:p}`song2009c`; we also "
-                 "solve one impulse in our own dynamics from the same pre-burn orbit of each "
-                 "chain (the limit of burns of about 4 s and 2 s, on the {doc}`verification` "
-                 "page), so that the loss compares like with like. Imp.: impulsive. Delta-V "
-                 "and losses in m/s; the CSV adds the model-to-model loss in % of our impulsive "
-                 "delta-V and measured by the objective of Eq. (9), ΔV plus the speed left at "
-                 "the next perilune (which, unlike a per-burn ΔV against an impulse, does not "
-                 "depend on which of two nearly equal optima the impulse takes: see the "
-                 "{doc}`trade_study` page)."),
+        caption=("Delta-V loss (m/s) two ways: against the paper's impulses, from another "
+                 "program {cite:p}`song2009c`, and against one impulse in our dynamics from "
+                 "the same orbit ({doc}`verification`), like with like. Imp.: impulsive."),
         columns={"engine": "engine (thrust / Isp)", "loi": "LOI",
                  "paper_impulsive_delta_v_mps": "paper's imp. ΔV (m/s)",
                  "impulsive_limit_mps": "our imp. ΔV (m/s)",

@@ -147,21 +147,17 @@ def _offset_notes(sweep: pd.DataFrame, impulsive: dict, thrust_f: pd.DataFrame) 
             f"**A systematic offset.** Ours − paper is {med_mps:+.3f} m/s "
             f"({med_pct:+.2f} %) in the median row. An impulse in our dynamics from the "
             f"same orbit differs from the paper's impulsive value by {imp_d:+.3f} m/s, "
-            f"leaving {med_mps - imp_d:+.3f} m/s in the finite burn itself. The arrival "
-            "state is our {ref}`reconstruction <arrival>` (the paper does not print it) "
-            "and LOI 2 and 3 start from our own earlier burns, so some offset is "
-            "expected; being common to every row, it moves neither the best offset nor "
-            "the shape of the curve, which are the checks of the optimiser."
+            f"leaving {med_mps - imp_d:+.3f} m/s in the finite burn itself: the arrival is "
+            "our {ref}`reconstruction <arrival>` and LOI 2 and 3 start from our own burns. "
+            "Common to every row, it moves neither the best offset nor the curve's shape."
             + (" Here the paper's stronger effective engine (below) adds to it."
                if len(thrust_f) else ""))
     for r in sweep[(diff_pct - med_pct).abs() > OUTLIER_PERCENT].itertuples():
         d = r.delta_v_diff_mps
-        why = ("The paper's solution at this offset needs more delta-V than our verified "
-               "optimum of the same problem: it is not the minimum (the paper calls its "
-               "solutions semi-optimal)." if d < 0 else
+        why = ("The paper's solution needs more delta-V than our verified optimum: it is "
+               "not the minimum (the paper calls its solutions semi-optimal)." if d < 0 else
                "Here the paper found less delta-V than our optimum."
-               + (" Its rows for this LOI imply a stronger engine (see the burn durations "
-                  "below), and extra thrust matters most where the loss is largest."
+               + (" Its rows for this LOI imply a stronger engine (burn durations, below)."
                   if len(thrust_f) else " We have no explanation."))
         out.append(f"**The {r.start_min:g} min row** differs by {d:+.3f} m/s "
                    f"({r.delta_v_diff_percent:+.2f} %), "
@@ -182,10 +178,9 @@ def _best_offset_note(sweep: pd.DataFrame, best_p) -> list:
     return [
         f"**A different best offset.** Our smallest delta-V is at {b.start_min:g} min "
         f"({b.delta_v_mps:.3f} m/s); at the paper's best, {best_p['start_min']:g} min, "
-        f"we get {dv_at:.3f} m/s, {dv_at - b.delta_v_mps:.3f} m/s more. Half our Eq. (19) "
-        f"duration is {eq19_min / 2:.2f} min, and the paper's rule of thumb (ignite half "
-        f"the estimated duration before perilune) points at the tested offset nearest to "
-        f"it: {nearest:g} min."]
+        f"we get {dv_at:.3f} m/s, {dv_at - b.delta_v_mps:.3f} m/s more. The paper's rule "
+        f"of thumb (ignite half the Eq. (19) duration, {eq19_min / 2:.2f} min, before "
+        f"perilune) points at {nearest:g} min."]
 
 
 def _duration_notes(sweep: pd.DataFrame, printed, findings: pd.DataFrame, thrust_N: float,
@@ -201,21 +196,18 @@ def _duration_notes(sweep: pd.DataFrame, printed, findings: pd.DataFrame, thrust
         link = ("{doc}`reproduction report <reproduction_report>`"
                 if reproduction_report_linked else "reproduction report")
         out.append(
-            f"**Burn durations.** The paper's durations for this LOI are shorter than ours by "
-            f"{dur_med:.2f} min in the median row. A constant-thrust burn of a given delta-V "
-            f"lasts m0 [1 − exp(−ΔV/(g0 Isp))] g0 Isp / T (the rocket equation); ours obey "
-            f"it, the paper's rows for this LOI imply a thrust of {f.computed:.0f} N rather "
-            f"than {thrust_N:g} N, while its other LOIs imply {thrust_N:g} N "
-            f"(`lunarcap.paper.audit`, finding `{f.id}`; see the {link}). With more thrust, "
-            f"the paper's losses for this LOI are smaller than a {thrust_N:g} N engine gives.")
+            f"**Burn durations.** The paper's are shorter than ours by {dur_med:.2f} min in "
+            f"the median row: by the rocket equation its rows for this LOI imply "
+            f"{f.computed:.0f} N, not {thrust_N:g} N (its other LOIs: {thrust_N:g} N; "
+            f"finding `{f.id}`, {link}), so its losses here are smaller than a "
+            f"{thrust_N:g} N engine gives.")
     elif printed is not None and len(sweep) > 1:
         tail = "."
         if len(big_dur):
             tail = (". Rows off that by more than 0.05 min: "
                     + ", ".join(f"{r.start_min:g} min ({r.burn_duration_diff_min:+.2f} min)"
                                 for r in big_dur.itertuples())
-                    + (" (the audit notes below say where the paper's row contradicts "
-                       "itself)." if len(findings) else "."))
+                    + (" (audit notes below)." if len(findings) else "."))
         out.append(f"**Burn durations.** Ours − paper is {dur_med:+.2f} min in the median row "
                    f"(the paper prints 0.01 min){tail}")
     return out
@@ -226,10 +218,11 @@ def _findings_note(findings: pd.DataFrame) -> list:
     if not len(findings):
         return []
     items = "\n".join(f"* **{r.where.split(' (also')[0]}**, {r.quantity}: printed "
-                      f"{r.printed:g} {r.unit}, recomputed {r.computed:.4g} {r.unit}. "
-                      f"{r.explanation}" for r in findings.itertuples())
+                      f"{r.printed:g} {r.unit}, recomputed {r.computed:.4g} {r.unit}."
+                      for r in findings.itertuples())
     return [":::{admonition} Where the paper contradicts itself in this table "
-            "(`lunarcap.paper.audit`)\n:class: dropdown\n\n" + items + "\n:::"]
+            "(`lunarcap.paper.audit`; how each is recomputed: the reproduction report)"
+            "\n:class: dropdown\n\n" + items + "\n:::"]
 
 
 def notes(sweep: pd.DataFrame, impulsive: dict, printed, best_p, thrust_N, loi,
@@ -287,8 +280,8 @@ def _add_items(page: Page, sweep: pd.DataFrame, impulsive: dict, printed, case: 
     page.table(
         "dv", dv_table(sweep, impulsive),
         caption=(f"Delta-V of {case}. Start: min from the nominal perilune. Δ: ours − paper. "
-                 f"Loss: above the paper's impulsive {imp:.3f} m/s. Impulse, ours: the limit "
-                 "of 4 s and 2 s burns. Best: the smallest of the offsets tested."),
+                 f"Loss: above the paper's impulse, {imp:.3f} m/s. Best: the smallest "
+                 "tested."),
         columns={"delta_v_mps": "ΔV, ours (m/s)", "delta_v_diff_mps": "Δ (m/s)",
                  "delta_v_diff_percent": "Δ (%)", "paper_delta_v_loss_percent": "loss, paper (%)",
                  "loss_vs_paper_impulse_percent": "loss, ours (%)", "verified": "gate"},
@@ -311,10 +304,9 @@ def _add_items(page: Page, sweep: pd.DataFrame, impulsive: dict, printed, case: 
     page.figure(
         "dv_figure", draw.plot_sweep_dv(sweep, printed, f"Song et al. (2011), {source}"),
         caption=(f"Delta-V (m/s) of LOI {loi} ({thrust_N:g} N / Isp {isp_s:g} s) against the "
-                 "ignition offset (min from the nominal perilune): ours (filled, star: "
-                 "smallest), the paper's rows (open squares), its impulsive delta-V (dotted) "
-                 f"and its rule of thumb, half the Eq. (19) duration ({eq19_min:.2f} min) "
-                 "before the perilune (dashed)."),
+                 "ignition offset (min): ours (filled, star: smallest), the paper's (open), "
+                 "its impulse (dotted), half the Eq. (19) duration "
+                 f"({eq19_min:.2f} min) before perilune (dashed)."),
         alt=f"Delta-V of LOI {loi} against ignition offset, ours and the paper's", name="dv")
 
 
@@ -359,10 +351,10 @@ def build(thrust_N: float = paper_engine_pairs()[0][0], isp_s: float = paper_eng
     _add_checks(page, sweep, impulsive, best_p, values, dynamics)
     page.data["sweep"] = sweep  # the raw table, for readers who want it in the notebook
     t = page.text
-    page.headline(f"Of the offsets tried, the smallest ΔV is at {t('best_start_min', '.0f')} min: "
+    page.headline(f"Smallest ΔV at {t('best_start_min', '.0f')} min: "
                   f"{t('best_delta_v_mps', '.3f', ' m/s')}, {t('best_diff_mps', '+.3f', ' m/s')} "
                   f"from the paper's best ({t('paper_best_delta_v_mps', '.3f', ' m/s')} at "
                   f"{t('paper_best_start_min', '.0f')} min); {t('n_verified', '.0f')} of "
-                  f"{t('n_cases', '.0f')} solutions pass verification ({dynamics} dynamics).")
+                  f"{t('n_cases', '.0f')} verified ({dynamics} dynamics).")
     page.capture("fixed", dynamics)
     return page

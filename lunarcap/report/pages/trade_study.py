@@ -80,11 +80,8 @@ GRID_SHOWN = GRID_COLUMNS[:7] + ["analytic_loss_percent_sequence"]
 RUNS_SHOWN = ["source", "started_utc", "workers", "computed", "reused", "wall_s",
               "load_avg_1min"]
 
-LOSS_DEFINITION = ("Loss: the optimal finite burn against one impulse from the same orbit "
-                   "in the same dynamics (the impulsive limit), measured by the objective "
-                   "of Eq. (9) (ΔV plus the speed left at the next perilune, i.e. the extra "
-                   "ΔV plus the extra speed the next burn must remove), in % of the "
-                   "impulsive ΔV; the sequence: the three summed.")
+LOSS_DEFINITION = ("Loss: against the impulsive limit (same orbit and dynamics) by J of "
+                   "Eq. (9), % of the impulsive ΔV; sequence: the three summed.")
 
 #: Robbins' estimate is the leading term of an expansion in omega_s t_b (Schuler rate at
 #: the perilune times the burn duration); it is drawn and compared where omega_s t_b is
@@ -258,24 +255,18 @@ def _add_loss(page: Page, ok, valid, paper, spec, newton_per_ratio: float,
     page.figure(
         "loss", draw.plot_trade_study_loss(ok, valid, paper, spec.isp_s, PART_TITLES,
                                               newton_per_ratio, LOSS_AXIS_PERCENT),
-        caption=("Finite-burn loss (% of the impulsive ΔV, log scale) against the initial "
-                 "thrust-to-weight ratio T/(m₀ g₀), m₀ = 524.895 kg, per LOI and for the "
-                 f"sequence, one curve per Isp; {dynamics} dynamics. Dashed: "
-                 r"{cite:t}`robbins1966`, $\tfrac{1}{24}(\omega_s t_b)^2\,\Delta V$, where "
-                 rf"$\omega_s t_b \le {ROBBINS_VALID_OMEGA_T:g}$ rad. Stars: the paper's "
-                 "engines (Table B1)."),
+        caption=("Loss over the impulsive limit (% of the impulsive ΔV, log) against "
+                 f"T/(m₀ g₀), m₀ = 524.895 kg, per LOI and sequence, a curve per Isp; {dynamics} "
+                 r"dynamics. Dashed: {cite:t}`robbins1966`, "
+                 r"$\tfrac{1}{24}(\omega_s t_b)^2\,\Delta V$, "
+                 rf"$\omega_s t_b \le {ROBBINS_VALID_OMEGA_T:g}$ rad. Stars: Table B1."),
         alt="Finite-burn loss against thrust-to-weight ratio, per LOI and for the sequence")
     at_paper = paper_engines_table(ok, paper, direct)
     page.table(
         "paper_engines", at_paper,
-        caption=("Loss at the paper's three engines (% of the impulsive ΔV): Table B1 as "
-                 "printed (the paper's finite minus its impulsive ΔV, *the paper's fixed "
-                 "timings* in its dynamics), ours solved directly for that engine "
-                 f"(*{capture_name('free')}*, {dynamics} dynamics, the study's loss; — where "
-                 "its Isp is not in this grid, as in the quick book), the grid's curve of "
-                 "the same Isp interpolated linearly in log T/W and its error against the "
-                 "direct solve (percentage points), and Robbins' estimate. Thrust in N, Isp "
-                 "in s. " + loss_def),
+        caption=(f"Loss at the paper's engines: Table B1, ours solved directly "
+                 f"(*{capture_name('free')}*), read off the grid (linear in log T/W) and its "
+                 "error, Robbins'. " + loss_def),
         columns={"part": "burn", "paper_delta_v_loss_percent": "paper, Table B1 (%)",
                  "optimal_loss_percent": "ours, solved (%)",
                  "interpolated_loss_percent": "ours, interpolated (%)",
@@ -294,23 +285,15 @@ def _add_duration_grid_runs(page: Page, loi_ok, wide, spec, newton_per_ratio: fl
         "duration", draw.plot_trade_study_duration(
             loi_ok, spec.isp_s, {p: BURN_TITLES[p] for p in study.PARTS[:3]},
             newton_per_ratio),
-        caption=("One row per burn. Left: optimal burn duration divided by the Eq. (19) "
-                 "estimate (from the "
-                 "two-body impulsive ΔV and the mass at ignition), against the thrust-to-weight "
-                 "ratio T/(m₀ g₀) (thrust in N on the top axis). Right: optimal ignition "
-                 "offset from the nominal perilune (negative: before) divided by the Eq. (19) "
-                 "duration; the paper's rule of thumb is to ignite half the estimated duration "
-                 "before perilune (−½). Both ratios are dimensionless."),
+        caption=("One row per burn, against T/(m₀ g₀) (thrust in N on top). Left: optimal "
+                 "duration over the Eq. (19) estimate. Right: optimal ignition offset over "
+                 "the Eq. (19) duration (the paper's rule of thumb: −½)."),
         alt="Optimal burn duration and ignition offset over the Eq. (19) duration")
     grid = wide.reindex(columns=GRID_COLUMNS)
     page.table(
         "grid", grid,
-        caption=("The grid: loss per LOI and for the sequence, and Robbins' estimate for the "
-                 "sequence, in % of the impulsive ΔV; thrust in N, Isp in s, T/(m₀ g₀) "
-                 f"dimensionless. {loss_def} The CSV adds the sequence's loss in m/s, LOI 1's "
-                 "optimal and Eq. (19) burn durations (min) and the status; the study's whole "
-                 f"table, {page.data_link(result.path, 'study.csv')}, holds every column "
-                 "(ignition offsets, masses, IPOPT status, verification)."),
+        caption=(f"The grid, with Robbins' estimate for the sequence. {loss_def} Every "
+                 f"column: {page.data_link(result.path, 'study.csv')}."),
         columns={"objective_loss_percent_loi1": "LOI 1 (%)",
                  "objective_loss_percent_loi2": "LOI 2 (%)",
                  "objective_loss_percent_loi3": "LOI 3 (%)",
@@ -327,12 +310,9 @@ def _add_duration_grid_runs(page: Page, loi_ok, wide, spec, newton_per_ratio: fl
         show_columns=GRID_SHOWN)
     page.table(
         "runs", runs_table(result, timing_dir),
-        caption=("Runs of the study: the table the run wrote (or the timing run), its start "
-                 "(UTC), Dask workers (0: nothing to compute), engines solved and taken from "
-                 "the table, wall time including the start of the local cluster (s), and the "
-                 "machine's 1-minute load average when the run started (other work on the "
-                 "machine slows the study down). The CSV adds the engines of the grid, the "
-                 "failures, the cluster's start time (s) and the cache used."),
+        caption=("Runs of the study: workers (0: nothing to compute), engines solved and "
+                 "read from the table, wall time with the cluster's start, and the machine's "
+                 "load when the run started (other work slows it down)."),
         columns={"source": "table", "started_utc": "started (UTC)", "workers": "workers",
                  "computed": "solved", "reused": "from the table", "wall_s": "wall time (s)",
                  "load_avg_1min": "load (1 min)"},
@@ -430,10 +410,10 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
     t = page.text
     page.headline(f"From {t('thrust_min', 'g')} to {t('thrust_max', 'g', ' N')} "
                   f"(*{capture_name('free')}*, {spec.dynamics} dynamics) the loss falls with "
-                  f"the thrust-to-weight ratio; at the highest thrust the whole sequence loses "
-                  f"at most {t('seq_loss_high_max_mps', '.3f', ' m/s')}, no loss of the grid "
-                  f"is negative, and at the paper's engines, solved directly, ours differs "
-                  f"from Table B1 by at most {t('paper_diff_max', '.2f')} percentage points.")
+                  f"thrust-to-weight, to at most {t('seq_loss_high_max_mps', '.3f', ' m/s')} "
+                  f"for the whole sequence, never negative; at the paper's engines, solved "
+                  f"directly, within {t('paper_diff_max', '.2f')} percentage points of "
+                  f"Table B1.")
     page.data.update(direct=direct, result=result, wide=wide, ok=ok, theory=theory, paper=paper)
     page.capture("free", spec.dynamics)
     return page

@@ -227,11 +227,6 @@ def mesh_table(mesh_cases, meshes, dynamics: str) -> pd.DataFrame:
     return m[cols + [c for c in m.columns if c not in cols]]
 
 
-def _counts(s: pd.Series) -> str:
-    """Distinct values with their counts, as text."""
-    return "; ".join(f"{k} ({v})" for k, v in s.value_counts().items())
-
-
 def _download(name: str) -> str:
     """A MyST download link to ``tables/<name>.csv`` from a generated page."""
     p = paths.table_path(name)
@@ -298,19 +293,11 @@ def _add_cases(page: Page, ver: pd.DataFrame, case_list, dynamics: str) -> None:
                       *residuals, "passed"]],
         caption=(f"Verification of {len(ver)} solutions ({dynamics} dynamics; engines "
                  f"{engines_txt}{paper_txt}). "
-                 "Case: thrust, LOI and ignition (min from the nominal perilune); LOI 2 and 3 "
-                 + ("follow the paper's best earlier burns" if after_b1 else
-                    "follow the earlier burns ignited at the offsets of the CSV")
-                 + "; B1: a link of a Table B1 chain. Residuals of "
-                 "the re-propagated flight, to a thousandth of each gate: the distance between "
-                 "the propagated and the collocation end positions (m), the end speed minus "
-                 "the collocation's (m/s), perilune and (LOI 3) apolune radius minus the "
-                 "target (m), inclination minus 90° and final flight-path angle (deg); the "
-                 "objective's difference is in the CSV and the table below. "
-                 f"Passed the gate: {n_passed} of {len(ver)}. Meshes accepted: "
-                 f"{_counts(ver.mesh)}. IPOPT status: {_counts(ver.ipopt_status)}. With the "
-                 "earlier ignitions, verdicts, meshes, IPOPT iterations, solve times and the "
-                 "re-flown ΔV minus the collocation's (reported, not gated): "
+                 "Case: thrust, LOI, ignition (min); LOI 2 and 3 "
+                 + ("after the paper's best earlier burns" if after_b1 else
+                    "after the earlier burns of the CSV")
+                 + ". Residuals of the re-propagated flight against the collocation and the "
+                 f"targets. Passed: {n_passed} of {len(ver)}. Every column: "
                  f"{_download(f'{output_name}_cases_full')}."),
         columns={"final_position_diff_m": "end pos. (m)", "end_speed_diff_mps": "end speed (m/s)",
                  "objective_diff_mps": "J diff (m/s)"},
@@ -322,10 +309,9 @@ def _add_cases(page: Page, ver: pd.DataFrame, case_list, dynamics: str) -> None:
     gate = gate_table(ver)
     page.table(
         "gate", gate,
-        caption=(f"The largest residual of each quantity over the {len(ver)} solutions above, "
-                 "in the unit of its row, beside the acceptance gate (the re-flown ΔV is "
-                 "reported, not gated: for the same burn duration it equals the rocket "
-                 "equation whatever the trajectory), and the margin: gate ÷ worst."),
+        caption=(f"The largest residual of each quantity over the {len(ver)} solutions, beside "
+                 "the gate, and the margin gate ÷ worst (the re-flown ΔV is reported, not "
+                 "gated: at the same duration it is the rocket equation's)."),
         columns={"quantity": "quantity", "unit": "unit", "gate": "gate",
                  "worst_shown": "worst", "worst_case": "worst case",
                  "gate_over_worst": "gate ÷ worst"},
@@ -339,14 +325,9 @@ def _add_impulsive(page: Page, imp: pd.DataFrame) -> None:
     n_imp_ok = int((imp.verified == PASSED).sum())
     page.table(
         "impulsive", imp,
-        caption=("The impulsive delta-V in our dynamics (used on the {doc}`summary` page) is "
-                 "the limit of two high-thrust burns from the same pre-burn orbit of the best "
-                 "chain: a free-epoch burn of about 4 s (the thrust sized from the two-body "
-                 "impulse) and a burn half as long centred on the same epoch; Richardson "
-                 "extrapolation removes the loss term proportional to the duration squared. "
-                 "Durations in s, delta-V in m/s; extrapolation: the limit minus the short-burn "
-                 f"value (m/s). Both burns pass the gate in {n_imp_ok} of {len(imp)} rows "
-                 "(the short durations and the verdicts are in the CSV)."),
+        caption=("The impulsive delta-V in our dynamics ({doc}`summary`): a burn of about 4 s "
+                 "and one half as long from the same orbit, Richardson-extrapolated to zero "
+                 f"duration. Both burns pass the gate in {n_imp_ok} of {len(imp)} rows."),
         columns={"burn_long_s": "long burn (s)", "delta_v_long_mps": "ΔV, long (m/s)",
                  "burn_short_s": "short burn (s)", "delta_v_short_mps": "ΔV, short (m/s)",
                  "delta_v_mps": "ΔV, limit (m/s)", "extrapolation_mps": "limit − short (m/s)",
@@ -366,14 +347,10 @@ def _add_mesh(page: Page, mesh: pd.DataFrame, mesh_list, default_points: int) ->
         "mesh", mesh[["case", "mesh", "ipopt_status", "delta_v_mps",
                       "delta_v_change_vs_finest_mps", "outside_gate", "accepted"]],
         caption=("Mesh convergence of one case per LOI"
-                 + (f" ({mesh_list[0][0]:g} N / {mesh_list[0][1]:g} s; the case names the LOI "
-                    "and the ignition, min from the nominal perilune)" if one_engine else "")
-                 + ". Mesh: burn × coast intervals and the Legendre-Gauss-Radau degree. IPOPT: "
-                 "its verdict (succeeded: converged to its tolerances). ΔV (m/s) and its change "
-                 "from the finest mesh (m/s). Outside the gate: the residuals of the flown "
-                 "solution that exceed it (ΔV and objective J in m/s, perilune radius in m, "
-                 "inclination and flight-path angle in deg); accepted: passed the gate. All "
-                 f"residuals: {_download(f'{output_name}_mesh_full')}."),
+                 + (f" ({mesh_list[0][0]:g} N / {mesh_list[0][1]:g} s)" if one_engine else "")
+                 + ". Mesh: burn × coast intervals, LGR degree. Outside the gate: the flown "
+                 "solution's residuals that exceed it. All residuals: "
+                 f"{_download(f'{output_name}_mesh_full')}."),
         columns={"ipopt_status": "IPOPT", "delta_v_change_vs_finest_mps": "ΔV − finest (m/s)",
                  "outside_gate": "outside the gate", "accepted": "accepted"},
         floatfmt={"delta_v_mps": ".4f", "delta_v_change_vs_finest_mps": "+.6f"})
@@ -382,13 +359,10 @@ def _add_mesh(page: Page, mesh: pd.DataFrame, mesh_list, default_points: int) ->
         "mesh_figure",
         draw.plot_mesh_convergence(mesh.assign(accepted=mesh.accepted == PASSED),
                                       verify.TOL_DV_MPS, default_points),
-        caption=("Change of the delta-V (m/s, log scale) from its value on the finest mesh, "
-                 "against the number of collocation points (log scale), for each case of the "
-                 "table above: circles passed the re-propagation gate, crosses are IPOPT "
-                 "solutions the gate rejected; triangles at the foot mark each case's finest "
-                 "mesh, the reference (its change is 0, off the log scale). Dotted: "
-                 f"{verify.TOL_DV_MPS:g} m/s, the gate's tolerance on the objective, for scale "
-                 "(the delta-V itself is reported, not gated); dashed: the default mesh."),
+        caption=("Change of ΔV from the finest mesh (m/s, log) against collocation points: "
+                 "circles passed the gate, crosses IPOPT solutions it rejected, triangles the "
+                 f"finest mesh. Dotted: {verify.TOL_DV_MPS:g} m/s, the objective's gate, for "
+                 "scale; dashed: the default mesh."),
         alt="Delta-V change against collocation points for each mesh-convergence case",
         name="mesh")
 
