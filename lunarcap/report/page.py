@@ -1,11 +1,14 @@
 """A book page as data: its tables, figures, the numbers its prose quotes, notes, checks.
 
-A page module (:mod:`lunarcap.report.pages`) computes a :class:`Page` from parameters;
-the page's notebook only builds it and shows it, so what the book shows is computed (and
-tested) in the library, and a notebook is a parameters cell, a call, a few ``show``
-calls, prose and glue::
+A page module (:mod:`lunarcap.report.pages`) builds a :class:`Page`; the page's notebook
+computes its result with lunarcap's public API, passes it to the page module, which
+formats it, and shows the page, so what the book shows is computed (and tested) in the
+library, and a notebook is a parameters cell, a few public calls, a few ``show`` calls,
+prose and glue::
 
-    page = sweep.build(thrust_N=150.0, isp_s=200.0, loi=1, starts=[-10.0], ...)
+    capture = lunarcap.paper_plan(150.0, 200.0)
+    burns = [lunarcap.solve_burn(capture, 1, start=s) for s in (-8.0, -10.0)]
+    page = sweep.build(burns, "loi_sweep")
     page.header()          # provenance admonition
     page.show("dv")        # a table: CSV written, numbered MyST table displayed
     page.show("dv_plot")   # a figure: PNG + SVG written, MyST figure displayed

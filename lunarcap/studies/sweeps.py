@@ -58,21 +58,39 @@ def sweep_table(thrust_N: float, isp_s: float, loi: int, starts, previous_starts
                 dynamics: str = "full", verbose: bool = False, **kw) -> pd.DataFrame:
     """One LOI for several ignition offsets, shaped like the paper's Tables 1-5.
 
+    Solves (or fetches) burn ``loi`` of the paper's plan at each offset of ``starts``
+    (min, or "free"), the earlier burns at ``previous_starts`` (default
+    :func:`default_previous`), and shapes the solutions with :func:`sweep_frame`.
+    """
+    if previous_starts is None:
+        previous_starts = default_previous(thrust_N, loi, isp_s)
+    solutions = [paper_case(thrust_N, isp_s, loi, s, tuple(previous_starts), dynamics,
+                            verbose=verbose, **kw) for s in starts]
+    return sweep_frame(solutions, thrust_N, isp_s, loi, previous_starts, dynamics)
+
+
+def sweep_frame(solutions, thrust_N: float, isp_s: float, loi: int, previous_starts=(),
+                dynamics: str = "full") -> pd.DataFrame:
+    """Solutions of one LOI at several ignitions beside the paper's rows (Tables 1-5).
+
+    ``solutions``: one :class:`~lunarcap.optim.solution.Solution` per ignition offset, of
+    burn ``loi`` (1-3) of the paper's plan with the ``thrust_N`` (N) / ``isp_s`` (s)
+    engine, the earlier burns igniting at ``previous_starts`` (min, or "free") in
+    ``dynamics`` (as :func:`sweep_table` or ``lunarcap.solve_burn(...).solution`` give
+    them). The one shaping of a sweep, whoever solved it.
+
     Columns: start_min; burn duration (paper, ours, difference, min); delta-V (paper, ours,
     difference m/s and %); loss relative to the paper's impulsive delta-V (paper's
     printed %, ours %); best flags; the verification verdict and residuals.
     """
-    if previous_starts is None:
-        previous_starts = default_previous(thrust_N, loi, isp_s)
     rows = []
-    for s in starts:
-        sol = paper_case(thrust_N, isp_s, loi, s, tuple(previous_starts), dynamics,
-                         verbose=verbose, **kw)
+    for sol in solutions:
         sm = sol.summary()
-        p = _paper_row(thrust_N, loi, sm["start_min"]) if s != "free" else None
+        free = bool(sm["free_start"])
+        p = _paper_row(thrust_N, loi, sm["start_min"]) if not free else None
         ver = sm["verification"]
         rows.append({
-            "start_min": sm["start_min"], "free_start": s == "free",
+            "start_min": sm["start_min"], "free_start": free,
             "paper_burn_duration_min": np.nan if p is None else p.burn_duration_min,
             "burn_duration_min": sm["burn_duration_min"],
             "paper_delta_v_mps": np.nan if p is None else p.delta_v_mps,

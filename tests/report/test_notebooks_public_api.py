@@ -47,6 +47,9 @@ DISPLAY_HELPERS = {
     "lunarcap.report.pages.dispersions": frozenset({"build", "table_file"}),
     "lunarcap.report.pages.free_ignition": frozenset({"build", "grid_starts",
                                                       "best_grid_starts"}),
+    # the ignition sweep's page shapes the burns the notebook solved (lunarcap.solve_burn
+    # per offset) like the paper's Tables 1-5, beside the paper's rows
+    "lunarcap.report.pages.sweep": frozenset({"build"}),
     # the tutorial's page opens (provenance) and closes (glued numbers, checks) around the
     # reader's own calls, which are public
     "lunarcap.report.pages.tutorial": frozenset({"start", "finish"}),
@@ -75,7 +78,6 @@ NOT_CONVERTED = {
     "summary": "a paper page: the summary of every page's numbers has no public call",
     "lunar_pole": "the pole models compared have no public call",
     "real_missions": "the missions' plans and their comparison have no public call",
-    "loi_sweep": "the LOI sweep has no public call",
     "findings": "reads the other pages' glued numbers: a book page, nothing to compute",
     "glossary": "renders the glossary: a book page, nothing to compute",
 }

@@ -2,8 +2,10 @@
 
 One burn of the paper's plan for several ignition offsets.
 
-:func:`build` solves (or fetches) every case through the paper's capture plan
-(:func:`lunarcap.studies.sweeps.sweep_table`), sets our impulsive delta-V in the same
+The notebook solves every case with the public API (:func:`lunarcap.paper_plan`, then
+:func:`lunarcap.solve_burn` per offset: the paper's formulation and model, cached);
+:func:`build` shapes those solutions like the paper's table
+(:func:`lunarcap.studies.sweeps.sweep_frame`), sets our impulsive delta-V in the same
 dynamics beside the paper's, draws delta-V against the ignition offset, and writes the
 notes the prose needs (offsets from the paper, outliers, the burn durations) from the
 comparison itself.
@@ -14,7 +16,6 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
@@ -325,19 +326,46 @@ def _add_checks(page: Page, sweep: pd.DataFrame, impulsive: dict, best_p, values
                     abs(values["best_diff_percent"]) < 0.5, f"{values['best_diff_percent']:.3f} %")
 
 
-def build(thrust_N: float = paper_engine_pairs()[0][0], isp_s: float = paper_engine_pairs()[0][1],
-          loi: int = 1,
-          starts=(-10.0,), previous_starts=None, dynamics: str = "full",
-          output_name: str = "loi_sweep", quick: bool = False,
-          reproduction_report_linked: bool = True) -> Page:
-    """The page of one ignition sweep (see the module docstring)."""
-    prev = tuple(sweeps.default_previous(thrust_N, loi, isp_s) if previous_starts is None
-                 else previous_starts)
-    params = dict(thrust_N=thrust_N, isp_s=isp_s, loi=loi, starts=list(starts),
-                  previous_starts=previous_starts, dynamics=dynamics)
+def sweep_of(burns) -> tuple[pd.DataFrame, dict]:
+    """The sweep table and the impulsive limit of one LOI solved at several ignitions.
+
+    ``burns``: :func:`lunarcap.solve_burn` of one burn of the paper's plan
+    (:func:`lunarcap.paper_plan`), one per ignition offset, the earlier burns the same in
+    each, solved with their impulsive limit (``impulsive=True``, the default). Returns
+    :func:`lunarcap.studies.sweeps.sweep_frame` of their solutions and the burn's
+    impulsive limit in the same dynamics from the same orbit (the same for every offset).
+    """
+    b = burns[0]
+    plan, loi = b.plan, b.burn
+    prev = tuple(x.start_min for x in plan.burns[:loi - 1])
+    sweep = sweeps.sweep_frame([x.solution for x in burns], plan.engine.thrust_N,
+                               plan.engine.isp_s, loi, prev, str(plan.dynamics))
+    return sweep, b.result.impulsive
+
+
+def build(burns, output_name: str = "loi_sweep", quick: bool = False,
+          parameters: dict | None = None, reproduction_report_linked: bool = True) -> Page:
+    """The page of one ignition sweep computed in the notebook (see the module docstring).
+
+    Parameters
+    ----------
+    burns : list of lunarcap.BurnSolution
+        :func:`lunarcap.solve_burn` of one burn of the paper's plan
+        (:func:`lunarcap.paper_plan`) at each ignition offset, in the table's order, each
+        with its impulsive limit (:func:`sweep_of`).
+    output_name, quick : the page's output name and whether it is a quick build.
+    parameters : dict, optional
+        The notebook's parameters, shown in the page's provenance.
+    reproduction_report_linked : bool
+        Whether the notes may link the reproduction report (a page of the same book).
+    """
+    sweep, impulsive = sweep_of(burns)
+    a = sweep.attrs
+    thrust_N, isp_s, loi, dynamics = a["thrust_N"], a["isp_s"], a["loi"], a["dynamics"]
+    prev = a["previous_starts_min"]
+    params = {k: list(v) if isinstance(v, (list, tuple)) else v
+              for k, v in (parameters or {}).items()}
     page = Page(NOTEBOOK, params, output_name, quick, solver_description())
-    sweep = sweeps.sweep_table(thrust_N, isp_s, loi, starts, prev, dynamics)
-    impulsive = sweeps.paper_impulsive_case(thrust_N, isp_s, loi, prev, dynamics)
     printed, best_p, source = _printed(thrust_N, loi)
     prev_txt = ", ".join(s if isinstance(s, str) else f"{s:g}" for s in prev)
     case = (f"LOI {loi}, {thrust_N:g} N / Isp {isp_s:g} s, {dynamics} dynamics"

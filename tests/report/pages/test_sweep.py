@@ -12,7 +12,12 @@ pytestmark = pytest.mark.slow
 
 @pytest.fixture(scope="module")
 def page():
-    return sweep.build(150.0, 200.0, 1, [-8.0, -10.0], None, "two-body", "t_sweep", True)
+    # as the notebook computes it: the paper's plan, burn 1 at each offset (public API)
+    import lunarcap
+
+    capture = lunarcap.paper_plan(150.0, 200.0, dynamics="two-body")
+    burns = [lunarcap.solve_burn(capture, 1, start=s) for s in (-8.0, -10.0)]
+    return sweep.build(burns, "t_sweep", True)
 
 
 def test_delta_v_table_sets_ours_beside_the_paper(page):
@@ -53,3 +58,22 @@ def test_every_shown_column_has_a_label_with_its_unit(page):
             lab = (page.items[key].columns or {}).get(c, label(c))
             unit_suffix = c.endswith(("_mps", "_min", "_percent"))
             assert ("(" in lab) == unit_suffix, (c, lab)
+
+
+def test_the_public_route_is_the_papers_case():
+    """lunarcap.solve_burn on lunarcap.paper_plan solves sweep_table's case: same solution.
+
+    Same plan key (the paper's formulation and model), so the same cached solve: the
+    shaped table and the impulsive limit are identical, bit for bit.
+    """
+    import lunarcap
+    from lunarcap.studies import sweeps
+
+    capture = lunarcap.paper_plan(150.0, 200.0, dynamics="two-body")
+    burns = [lunarcap.solve_burn(capture, 2, start=s) for s in (-6.0, -3.0)]
+    ours, imp = sweep.sweep_of(burns)
+    ref = sweeps.sweep_table(150.0, 200.0, 2, [-6.0, -3.0], dynamics="two-body")
+    cols = [c for c in ref.columns if c != "solve_wall_s"]
+    assert ours[cols].equals(ref[cols])
+    assert ours.attrs == ref.attrs
+    assert imp == sweeps.paper_impulsive_case(150.0, 200.0, 2, (-10.0,), "two-body")
