@@ -50,6 +50,9 @@ DISPLAY_HELPERS = {
     # the ignition sweep's page shapes the burns the notebook solved (lunarcap.solve_burn
     # per offset) like the paper's Tables 1-5, beside the paper's rows
     "lunarcap.report.pages.sweep": frozenset({"build"}),
+    # the capture sequence's page draws the paper's Figs. 2-5 from the capture the notebook
+    # solved (lunarcap.solve) and its Fig. 2 (CaptureResult.plot)
+    "lunarcap.report.pages.capture_sequence": frozenset({"build"}),
     # the tutorial's page opens (provenance) and closes (glued numbers, checks) around the
     # reader's own calls, which are public
     "lunarcap.report.pages.tutorial": frozenset({"start", "finish"}),
@@ -66,8 +69,6 @@ NOT_CONVERTED = {
                      "the command line agree; lunarcap has no joint solve on the command "
                      "line)",
     "real_moon": "the field-gravity comparisons have no public call",
-    "capture_sequence": "a paper page: the chain of Table 4 and 5 (impulsive and finite "
-                        "reference solves) has no public call",
     "fig1_geometry": "a paper page: the geometry figure's arcs have no public call",
     "impulsive_baseline": "a paper page: the impulsive capture of Table 1 to 3 has no "
                           "public call",

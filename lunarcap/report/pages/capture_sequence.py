@@ -1,11 +1,12 @@
 """The capture-sequence page (notebooks/capture_sequence.ipynb): the paper's Figs. 2-5.
 
 One complete capture with finite burns: the paper's plan for one engine, its burns
-igniting at given offsets (:func:`lunarcap.mission.plan.paper_plan`), solved in order
-(:func:`lunarcap.capture.chain.solve_plan`) and drawn from the verified solutions: the whole
-capture (Fig. 2), the burn arcs (Fig. 3), the thrust angles and mass of burn 1 (Fig. 4)
-and its thrust-acceleration and velocity vectors (Fig. 5). The data of Figs. 2-4 come
-from :mod:`lunarcap.report.figdata` (shared with other pages), that of Fig. 5 from here
+igniting at given offsets (:func:`lunarcap.paper_plan`), solved in order and verified by
+the notebook with the public API (:func:`lunarcap.solve`), and drawn here from the
+verified solutions: the whole capture (Fig. 2, :meth:`lunarcap.CaptureResult.plot`), the
+burn arcs (Fig. 3), the thrust angles and mass of burn 1 (Fig. 4) and its
+thrust-acceleration and velocity vectors (Fig. 5). The data of Figs. 2-4 come from
+:mod:`lunarcap.report.figdata` (shared with other pages), that of Fig. 5 from here
 (:func:`fig5_vectors`); Figs. 3-5 are drawn by :mod:`lunarcap.report.figures.capture_sequence`.
 """
 
@@ -17,7 +18,6 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.capture import chain
-from lunarcap.mission.plan import paper_plan
 from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
@@ -264,13 +264,14 @@ def _add_burns(page: Page, table: pd.DataFrame, ctx: dict) -> None:
                       "cutoff_from_perilune_deg"])
 
 
-def _add_fig2(page: Page, plan, geo, table: pd.DataFrame, ctx: dict) -> None:
+def _add_fig2(page: Page, plan, geo, figure, ctx: dict) -> None:
+    """Fig. 2: ``figure`` (the capture drawn by ``CaptureResult.plot``) and its caption."""
     polar = " (polar)" if plan.arrival.inclination_deg == 90.0 else ""
     projection = (f"In the arrival orbit's plane{polar} (±{geo.max_out_of_plane_km:.1f} km), "
                   f"LU ({C.LU_KM:g} km).")
     burn_list, starts_txt = ctx["burn_list"], ctx["starts_txt"]
     page.figure(
-        "fig2", figures.plot_fig2_capture(geo),
+        "fig2", figure,
         caption=(f"The capture, {ctx['engine']}, ignition {starts_txt} min. Grey: "
                  f"hyperbola (dotted: no burn 1); {_orbits_text(plan, geo)}; red: burns "
                  f"{burn_list}. {projection}"),
@@ -411,14 +412,28 @@ def _add_checks(page: Page, table: pd.DataFrame, geo, d4, d5, ctx: dict) -> None
                     f"{d4.burn_duration_min:.3f}")
 
 
-def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
-          starts=PAPER_STARTS_MIN, dynamics: str = "full", output_name: str = "capture_sequence",
-          quick: bool = False) -> Page:
-    """The page of one capture sequence (see the module docstring)."""
-    params = dict(thrust_N=thrust_N, isp_s=isp_s, starts=list(starts), dynamics=dynamics)
+def build(result, capture_figure, output_name: str = "capture_sequence", quick: bool = False,
+          parameters: dict | None = None) -> Page:
+    """The page of one capture sequence computed in the notebook (see the module docstring).
+
+    Parameters
+    ----------
+    result : lunarcap.CaptureResult
+        :func:`lunarcap.solve` of the paper's plan (:func:`lunarcap.paper_plan`) with one
+        engine, its burns igniting at given offsets (min from each perilune).
+    capture_figure : matplotlib.figure.Figure
+        ``result.plot()``: the capture in the arrival orbit's plane (Fig. 2).
+    output_name, quick : the page's output name and whether it is a quick build.
+    parameters : dict, optional
+        The notebook's parameters, shown in the page's provenance.
+    """
+    plan = result.plan
+    thrust_N, isp_s = plan.engine.thrust_N, plan.engine.isp_s
+    starts, dynamics = [b.start_min for b in plan.burns], str(plan.dynamics)
+    params = {k: list(v) if isinstance(v, (list, tuple)) else v
+              for k, v in (parameters or {}).items()}
     page = FigureDataPage(NOTEBOOK, params, output_name, quick, solver_description())
-    plan = paper_plan(thrust_N, isp_s, starts=list(starts), dynamics=dynamics)
-    sols = chain.solve_plan(plan)
+    sols = [b.solution for b in result.burns]
     arrival = chain.arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole)
     geo = figdata.capture_geometry(sols, arrival)
     n = plan.n_burns
@@ -430,7 +445,7 @@ def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
            "burn_list": ", ".join(str(k) for k in range(1, n)) + f" and {n}"}
     table = burns_table(geo, sols, ctx["paper_case"])
     _add_burns(page, table, ctx)
-    _add_fig2(page, plan, geo, table, ctx)
+    _add_fig2(page, plan, geo, capture_figure, ctx)
     _add_fig3(page, geo, table, ctx)
     d4 = figdata.fig4_steering(sols[0])
     _add_fig4(page, d4, ctx)

@@ -18,8 +18,12 @@ T_N, ISP_S = 150.0, 200.0
 
 @pytest.fixture(scope="module")
 def page():
-    return capture_sequence.build(T_N, ISP_S, [-10.0, -6.0, -5.0], "two-body", "t_capture",
-                                  True)
+    # as the notebook computes it: the paper's plan solved with the public API
+    import lunarcap
+
+    result = lunarcap.solve(lunarcap.paper_plan(T_N, ISP_S, starts=[-10.0, -6.0, -5.0],
+                                                dynamics="two-body"), impulsive=False)
+    return capture_sequence.build(result, result.plot(), "t_capture", True)
 
 
 def test_burns_follow_the_rocket_equation_from_the_arrival_mass(page):
