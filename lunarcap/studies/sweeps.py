@@ -259,6 +259,10 @@ def free_vs_grid_table(thrust_N: float, isp_s: float, dynamics: str = "full",
     return df
 
 
+#: The steering laws :func:`steering_table` compares, the paper's optimal one first.
+STEERING_LAWS = ("optimal", "inertial", "antivelocity")
+
+
 def steering_table(thrust_N: float, isp_s: float, dynamics: str = "full",
                    verbose: bool = False) -> pd.DataFrame:
     """Delta-V penalty of simple steering laws against the optimal steering, per LOI.
@@ -266,30 +270,44 @@ def steering_table(thrust_N: float, isp_s: float, dynamics: str = "full",
     Laws (each with its ignition time optimised): "optimal" (the paper's), "inertial"
     (one fixed inertial direction, optimised), "antivelocity" (thrust opposite the
     velocity). Each LOI starts from the free-ignition optimal chain's previous orbit.
-    The antivelocity law cannot meet every target; the released targets and how far it
+    Solves (or fetches) each burn of the paper's plan so and shapes the solutions with
+    :func:`steering_frame`.
+    """
+    solutions = [paper_case(thrust_N, isp_s, loi, "free", ("free",) * (loi - 1), dynamics,
+                            verbose=verbose, steering=law)
+                 for loi in (1, 2, 3) for law in STEERING_LAWS]
+    return steering_frame(solutions, thrust_N, isp_s, dynamics)
+
+
+def steering_frame(solutions, thrust_N: float, isp_s: float,
+                   dynamics: str = "full") -> pd.DataFrame:
+    """Burns flown with several steering laws, each beside the optimal steering's.
+
+    ``solutions``: :class:`~lunarcap.optim.solution.Solution` of burns of one engine's
+    plan (``thrust_N`` N / ``isp_s`` s, in ``dynamics``), each LOI's optimal steering
+    before its other laws (as :func:`steering_table` or ``lunarcap.solve_burn(...,
+    steering=law).solution`` give them). The one shaping of a steering comparison. The
+    antivelocity law cannot meet every target; the released targets and how far it
     misses them are reported (perilune radius error in km, inclination error in deg).
     """
-    rows = []
-    for loi in (1, 2, 3):
-        prev = ("free",) * (loi - 1)
-        ref = None
-        for law in ("optimal", "inertial", "antivelocity"):
-            sol = paper_case(thrust_N, isp_s, loi, "free", prev, dynamics, verbose=verbose,
-                             steering=law)
-            s = sol.summary()
-            v = s["verification"]
-            if law == "optimal":
-                ref = s
-            rows.append({"loi": loi, "steering": law, "start_min": s["start_min"],
-                         "burn_duration_min": s["burn_duration_min"],
-                         "delta_v_mps": s["delta_v_mps"], "objective_j_mps": s["objective_j_mps"],
-                         "delta_v_penalty_mps": s["delta_v_mps"] - ref["delta_v_mps"],
-                         "objective_penalty_mps": s["objective_j_mps"] - ref["objective_j_mps"],
-                         "released_targets": ", ".join(v["released"]) or "none",
-                         "rp_miss_km": v["rp_error_m"] / 1e3 if "rp" in v["released"] or
-                         "p" in v["released"] else 0.0,
-                         "inc_miss_deg": v["inc_error_deg"] if "inc" in v["released"] else 0.0,
-                         "verified": v["passed"]})
+    rows, ref = [], {}
+    for sol in solutions:
+        s = sol.summary()
+        v = s["verification"]
+        loi, law = int(s["burn"]), s["steering"]
+        if law == "optimal":
+            ref[loi] = s
+        r = ref[loi]   # KeyError: no optimal steering of this LOI before it
+        rows.append({"loi": loi, "steering": law, "start_min": s["start_min"],
+                     "burn_duration_min": s["burn_duration_min"],
+                     "delta_v_mps": s["delta_v_mps"], "objective_j_mps": s["objective_j_mps"],
+                     "delta_v_penalty_mps": s["delta_v_mps"] - r["delta_v_mps"],
+                     "objective_penalty_mps": s["objective_j_mps"] - r["objective_j_mps"],
+                     "released_targets": ", ".join(v["released"]) or "none",
+                     "rp_miss_km": v["rp_error_m"] / 1e3 if "rp" in v["released"] or
+                     "p" in v["released"] else 0.0,
+                     "inc_miss_deg": v["inc_error_deg"] if "inc" in v["released"] else 0.0,
+                     "verified": v["passed"]})
     df = pd.DataFrame(rows)
     df.attrs.update({"thrust_N": thrust_N, "isp_s": isp_s, "dynamics": dynamics})
     return df

@@ -53,6 +53,9 @@ DISPLAY_HELPERS = {
     # the capture sequence's page draws the paper's Figs. 2-5 from the capture the notebook
     # solved (lunarcap.solve) and its Fig. 2 (CaptureResult.plot)
     "lunarcap.report.pages.capture_sequence": frozenset({"build"}),
+    # the steering laws' page sets the burns the notebook solved with each law
+    # (lunarcap.solve_burn(..., steering=...)) beside the optimal steering's
+    "lunarcap.report.pages.steering_laws": frozenset({"build"}),
     # the tutorial's page opens (provenance) and closes (glued numbers, checks) around the
     # reader's own calls, which are public
     "lunarcap.report.pages.tutorial": frozenset({"start", "finish"}),
@@ -72,7 +75,6 @@ NOT_CONVERTED = {
     "fig1_geometry": "a paper page: the geometry figure's arcs have no public call",
     "impulsive_baseline": "a paper page: the impulsive capture of Table 1 to 3 has no "
                           "public call",
-    "steering_laws": "a paper page: the steering laws compared have no public call",
     "verification": "a paper page: the re-propagation audit has no public call",
     "reproduction_report": "a paper page: the audit of the paper's printed numbers has no "
                            "public call",

@@ -1,18 +1,18 @@
 """The steering-laws page (notebooks/steering_laws.ipynb): what the optimal steering is worth.
 
-Each burn of the paper's plan, ignition free, is flown with three steering laws
-(:func:`lunarcap.studies.sweeps.steering_table`): the paper's optimal steering, one fixed
-inertial direction (optimised) and thrust opposite the velocity. :func:`build` sets their
-delta-V and J (Eq. 9) penalties against the optimal steering side by side, per engine
-and LOI, with the terminal conditions the antivelocity law cannot meet and how far it
-misses them.
+Each burn of the paper's plan, ignition free, is flown with three steering laws: the
+paper's optimal steering, one fixed inertial direction (optimised) and thrust opposite
+the velocity. The notebook solves them with the public API (:func:`lunarcap.paper_plan`,
+:func:`lunarcap.solve_burn` with ``steering=``); :func:`build` sets their delta-V and J
+(Eq. 9) penalties against the optimal steering side by side, per engine and LOI
+(:func:`lunarcap.studies.sweeps.steering_frame`), with the terminal conditions the
+antivelocity law cannot meet and how far it misses them.
 """
 
 from __future__ import annotations
 
 import pandas as pd
 
-from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.report.contents import BookPage, Execution, figure_files, table_files
 from lunarcap.report.display import verdict
 from lunarcap.report.figures import steering_laws as draw
@@ -47,14 +47,24 @@ PROSE_THRUSTS_N = (150.0, 300.0, 450.0)
 
 
 
-def steering_rows(engines, dynamics: str) -> pd.DataFrame:
-    """:func:`lunarcap.studies.sweeps.steering_table` of every engine, one frame.
+def steering_rows(burns) -> tuple[pd.DataFrame, list]:
+    """The steering comparison of every engine, one frame, and the engines in order.
 
-    Columns of the steering table, plus engine (label), thrust_N and isp_s.
+    ``burns``: :func:`lunarcap.solve_burn` of burns of the paper's plan
+    (:func:`lunarcap.paper_plan`), ignition free, with each steering law of
+    :data:`lunarcap.studies.sweeps.STEERING_LAWS`, engine by engine, each LOI's optimal
+    steering first. Columns of :func:`lunarcap.studies.sweeps.steering_frame`, plus engine
+    (label), thrust_N and isp_s; the engines as (thrust N, Isp s).
     """
-    return pd.concat([sweeps.steering_table(t, i, dynamics).assign(
-        engine=engine_label(t, i), thrust_N=float(t), isp_s=float(i)) for t, i in engines],
-        ignore_index=True)
+    by_engine = {}
+    for b in burns:
+        e = b.plan.engine
+        by_engine.setdefault((float(e.thrust_N), float(e.isp_s)), []).append(b)
+    frames = [sweeps.steering_frame([b.solution for b in group], t, i,
+                                    str(group[0].plan.dynamics)).assign(
+        engine=engine_label(t, i), thrust_N=float(t), isp_s=float(i))
+        for (t, i), group in by_engine.items()]
+    return pd.concat(frames, ignore_index=True), list(by_engine)
 
 
 def _pick(steer: pd.DataFrame, thrust: float, loi: int, law: str, col: str) -> float:
@@ -172,18 +182,29 @@ def _add_checks(page: Page, steer: pd.DataFrame, dynamics: str) -> None:
         page.expect("450 N LOI 1: antivelocity 1.5-4 km low", -4.0 < rp < -1.5, f"{rp}")
 
 
-def build(engines=paper_engine_pairs(), dynamics: str = "full",
-          output_name: str = "steering_laws", quick: bool = False) -> Page:
-    """The page of the steering-law comparison (see the module docstring)."""
-    engines = [(float(t), float(i)) for t, i in engines]
-    params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
+def build(burns, output_name: str = "steering_laws", quick: bool = False,
+          parameters: dict | None = None) -> Page:
+    """The page of the steering-law comparison computed in the notebook (see the module docstring).
+
+    Parameters
+    ----------
+    burns : list of lunarcap.BurnSolution
+        The burns of :func:`steering_rows`, every one in the same dynamics.
+    output_name, quick : the page's output name and whether it is a quick build.
+    parameters : dict, optional
+        The notebook's parameters, shown in the page's provenance.
+    """
+    steer, engines = steering_rows(burns)
+    dynamics = str(burns[0].plan.dynamics)
+    params = dict(parameters or {})
+    if "engines" in params:
+        params["engines"] = [[float(t), float(i)] for t, i in params["engines"]]
     solver = solver_description()
     solver.update({
         "ignition": "free (an NLP variable)",
         "steering": "optimal u(t); fixed inertial u (optimised); u = -v/|v| (state feedback)",
         "gate": solver["gate"] + "; released targets reported, not gated"})
     page = Page(NOTEBOOK, params, output_name, quick, solver)
-    steer = steering_rows(engines, dynamics)
     _add_items(page, steer, engines, dynamics)
     for name, v in prose_values(steer).items():
         page.value(name, v)

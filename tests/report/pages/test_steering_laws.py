@@ -11,9 +11,29 @@ from lunarcap.report.pages import steering_laws
 pytestmark = pytest.mark.slow
 
 
+def _burns(thrust_N=450.0, isp_s=300.0):
+    """As the notebook computes them: each LOI, ignition free, with each law (public API)."""
+    import lunarcap
+
+    capture = lunarcap.paper_plan(thrust_N, isp_s, dynamics="two-body")
+    return [lunarcap.solve_burn(capture, loi, start="free", previous_starts=["free"] * (loi - 1),
+                                steering=law, impulsive=False)
+            for loi in (1, 2, 3) for law in ("optimal", "inertial", "antivelocity")]
+
+
 @pytest.fixture(scope="module")
 def page():
-    return steering_laws.build([[450.0, 300.0]], "two-body", "t_steering", True)
+    return steering_laws.build(_burns(), "t_steering", True,
+                               dict(engines=[[450.0, 300.0]], dynamics="two-body"))
+
+
+def test_the_public_route_is_steering_tables_case(page):
+    """lunarcap.solve_burn(..., steering=law) solves steering_table's cases: same table."""
+    from lunarcap.studies import sweeps
+
+    ref = sweeps.steering_table(450.0, 300.0, "two-body")
+    ours = page.data["steering"][list(ref.columns)]
+    assert ours.equals(ref)
 
 
 def test_penalties_are_differences_from_the_optimal_steering(page):
