@@ -56,6 +56,10 @@ DISPLAY_HELPERS = {
     # the steering laws' page sets the burns the notebook solved with each law
     # (lunarcap.solve_burn(..., steering=...)) beside the optimal steering's
     "lunarcap.report.pages.steering_laws": frozenset({"build"}),
+    # the impulsive baseline's page sets the chain the notebook computed
+    # (CapturePlan.impulsive) beside the paper's printed values (build; eq19_masses: the
+    # masses the paper prints for its finite-burn chain, which its Eq. (19) used)
+    "lunarcap.report.pages.impulsive_baseline": frozenset({"build", "eq19_masses"}),
     # the tutorial's page opens (provenance) and closes (glued numbers, checks) around the
     # reader's own calls, which are public
     "lunarcap.report.pages.tutorial": frozenset({"start", "finish"}),
@@ -73,8 +77,6 @@ NOT_CONVERTED = {
                      "line)",
     "real_moon": "the field-gravity comparisons have no public call",
     "fig1_geometry": "a paper page: the geometry figure's arcs have no public call",
-    "impulsive_baseline": "a paper page: the impulsive capture of Table 1 to 3 has no "
-                          "public call",
     "verification": "a paper page: the re-propagation audit has no public call",
     "reproduction_report": "a paper page: the audit of the paper's printed numbers has no "
                            "public call",

@@ -1,11 +1,12 @@
 """The impulsive-baseline page (notebooks/impulsive_baseline.ipynb): the two-body chain, Eq. (19).
 
-:func:`build` computes the paper's impulsive capture chain in the two-body model
-(:func:`lunarcap.mission.impulsive.impulsive_sequence`: tangential perilune impulses,
-vis-viva speeds, the arrival v_inf reconstructed from the paper's LOI-1 delta-V, the same
-chain as :meth:`lunarcap.mission.plan.CapturePlan.impulsive` of the paper's plans), sets
-it beside the impulsive delta-Vs the paper prints, and evaluates the burn-duration
-estimate of Eq. (19) with the masses named by ``eq19_masses``:
+The notebook computes the paper's impulsive capture chain in the two-body model with the
+public API (:meth:`lunarcap.CapturePlan.impulsive` of :func:`lunarcap.paper_plan`, its
+arrival mass and perilune altitude set: tangential perilune impulses, vis-viva speeds,
+the arrival v_inf reconstructed from the paper's LOI-1 delta-V, the same chain as
+:func:`lunarcap.mission.impulsive.impulsive_sequence`); :func:`build` sets it beside the
+impulsive delta-Vs the paper prints, with the burn-duration estimate of Eq. (19)
+evaluated with the masses :func:`eq19_masses` names:
 
 * ``"paper"``: the masses the paper prints for its *finite-burn* chain (150 N / 200 s
   only: 524.895 kg at arrival, 434.471 kg after LOI 1, 381.005 kg after LOI 2);
@@ -20,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from lunarcap.mission.impulsive import impulsive_sequence, v_inf_from_loi1
+from lunarcap.mission.impulsive import impulsive_sequence
 from lunarcap.mission.scenario import paper_engine_pairs, paper_scenario
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
@@ -163,13 +164,16 @@ def _add_checks(page: Page, burns, printed_min, altitude_km: float, eq19_paper: 
                         f"{t19[n - 1]:.3f} vs {printed_min[n - 1]:.2f} min")
 
 
-#: The page's parameters its tables and note name (engine N, s; mass kg; altitude km).
-_ENGINE_AND_ORBIT = ("thrust_N", "isp_s", "mass_kg", "altitude_km")
+def _engine_and_orbit(capture) -> tuple:
+    """The plan's thrust (N), Isp (s), arrival mass (kg) and perilune altitude (km)."""
+    return (capture.engine.thrust_N, capture.engine.isp_s, capture.arrival.mass_kg,
+            capture.arrival.perilune_altitude_km)
 
 
-def _add_tables(page: Page, burns, rp_km: float, masses, printed_min) -> None:
+def _add_tables(page: Page, capture, burns, masses, printed_min) -> None:
     """The chain's delta-Vs beside the paper's, and its Eq. (19) durations beside the paper's."""
-    thrust_N, isp_s, mass_kg, altitude_km = (page.parameters[k] for k in _ENGINE_AND_ORBIT)
+    thrust_N, isp_s, mass_kg, altitude_km = _engine_and_orbit(capture)
+    rp_km = capture.perilune_radius_km
     page.table(
         "delta_v", delta_v_table(burns, rp_km),
         caption=(f"Impulsive capture sequence, two-body, perilune altitude {altitude_km:g} km, "
@@ -193,10 +197,10 @@ def _add_tables(page: Page, burns, rp_km: float, masses, printed_min) -> None:
                   "paper_duration_min": ".2f", "difference_min": "+.2f"})
 
 
-def _add_masses_note(page: Page, burns, chain, printed_min) -> bool:
+def _add_masses_note(page: Page, capture, burns, chain, printed_min) -> bool:
     """The note on which masses reproduce the paper's Eq. (19); True for the paper's case."""
     paper = paper_scenario()
-    thrust_N, isp_s, mass_kg, altitude_km = (page.parameters[k] for k in _ENGINE_AND_ORBIT)
+    thrust_N, isp_s, mass_kg, altitude_km = _engine_and_orbit(capture)
     paper_case = ((float(thrust_N), float(isp_s)) == PAPER_ENGINE
                   and mass_kg == paper.mass_kg
                   and altitude_km == paper.perilune_altitude_km)
@@ -209,47 +213,59 @@ def _add_masses_note(page: Page, burns, chain, printed_min) -> bool:
     return paper_case
 
 
-def build(thrust_N: float = PAPER_ENGINE[0], isp_s: float = PAPER_ENGINE[1],
-          mass_kg: float = paper_scenario().mass_kg,
-          altitude_km: float = paper_scenario().perilune_altitude_km, eq19_masses: str = "paper",
-          output_name: str = "impulsive_baseline", quick: bool = False) -> Page:
-    """The page of the impulsive baseline (see the module docstring).
+def eq19_masses(eq19_masses: str = "paper", thrust_N: float = PAPER_ENGINE[0],
+                isp_s: float = PAPER_ENGINE[1]) -> list | None:
+    """The masses at ignition (kg) the page's Eq. (19) takes, by name; None: the chain's.
 
-    Parameters
-    ----------
-    thrust_N, isp_s : float
-        Engine (N, s); the thrust enters Eq. (19) only.
-    mass_kg : float
-        Mass at the first perilune, kg.
-    altitude_km : float
-        Perilune altitude of every capture orbit, km.
-    eq19_masses : {"paper", "impulsive"}
-        Masses at ignition in Eq. (19): the paper's finite-burn chain (150 N / 200 s only)
-        or the impulsive chain's.
-    output_name : str
-        Prefix of the CSV files.
-    quick : bool
-        Recorded in the provenance only (nothing here is coarsened).
+    ``"paper"``: those the paper prints for its finite-burn chain (Sec. 3.2.1; 150 N /
+    200 s only: ValueError for another engine); ``"impulsive"``: None, the masses of the
+    impulsive chain itself (:meth:`lunarcap.CapturePlan.impulsive`'s default).
+
+    >>> eq19_masses("paper")
+    [524.895, 434.471, 381.005]
+    >>> eq19_masses("impulsive", 300.0, 250.0) is None
+    True
     """
     if eq19_masses not in ("paper", "impulsive"):
         raise ValueError(f"eq19_masses must be 'paper' or 'impulsive', got {eq19_masses!r}")
-    printed_min, paper_masses = paper_eq19(thrust_N, isp_s)
+    paper_masses = paper_eq19(thrust_N, isp_s)[1]
     if eq19_masses == "paper" and paper_masses is None:
         raise ValueError("eq19_masses='paper': the paper prints its finite-burn masses only "
                          "for 150 N / 200 s; use eq19_masses='impulsive'")
-    params = dict(thrust_N=thrust_N, isp_s=isp_s, mass_kg=mass_kg, altitude_km=altitude_km,
-                  eq19_masses=eq19_masses)
-    page = Page(NOTEBOOK, params, output_name, quick)
-    masses = paper_masses if eq19_masses == "paper" else None
-    rp_km = C.R_MOON + altitude_km
-    v_inf = v_inf_from_loi1(rp_km=rp_km)
-    chain = impulsive_sequence(thrust_N, isp_s, mass_kg, altitude_km)
-    burns = impulsive_sequence(thrust_N, isp_s, mass_kg, altitude_km, eq19_masses_kg=masses)
-    _add_tables(page, burns, rp_km, masses, printed_min)
-    for name, v in prose_values(burns, v_inf, rp_km, printed_min).items():
+    return paper_masses if eq19_masses == "paper" else None
+
+
+def build(capture, chain, burns, masses=None, output_name: str = "impulsive_baseline",
+          quick: bool = False, parameters: dict | None = None) -> Page:
+    """The page of the impulsive baseline computed in the notebook (see the module docstring).
+
+    Parameters
+    ----------
+    capture : lunarcap.CapturePlan
+        The paper's plan (:func:`lunarcap.paper_plan`) with the arrival mass (kg) and
+        perilune altitude (km) asked; the engine's thrust enters Eq. (19) only.
+    chain : list of ImpulsiveBurn
+        ``capture.impulsive()``: the impulsive chain, Eq. (19) with its own masses.
+    burns : list of ImpulsiveBurn
+        ``capture.impulsive(eq19_masses_kg=masses)``: the same chain, Eq. (19) with
+        ``masses``.
+    masses : list of float, optional
+        The masses at ignition (kg) of ``burns``' Eq. (19) (:func:`eq19_masses`); None:
+        the chain's.
+    output_name, quick : the page's output name and whether it is a quick build (recorded
+        in the provenance only: nothing here is coarsened).
+    parameters : dict, optional
+        The notebook's parameters, shown in the page's provenance.
+    """
+    thrust_N, isp_s, _, altitude_km = _engine_and_orbit(capture)
+    printed_min = paper_eq19(thrust_N, isp_s)[0]
+    page = Page(NOTEBOOK, dict(parameters or {}), output_name, quick)
+    _add_tables(page, capture, burns, masses, printed_min)
+    for name, v in prose_values(burns, capture.arrival.v_inf_kmps, capture.perilune_radius_km,
+                                printed_min).items():
         page.value(name, v)
-    paper_case = _add_masses_note(page, burns, chain, printed_min)
-    _add_checks(page, burns, printed_min, altitude_km, paper_case and eq19_masses == "paper")
+    paper_case = _add_masses_note(page, capture, burns, chain, printed_min)
+    _add_checks(page, burns, printed_min, altitude_km, paper_case and masses is not None)
     page.data["burns"] = burns
     t = page.text
     page.headline(f"Two-body tangential impulses differ from the paper's impulsive LOI 2 and "

@@ -12,9 +12,38 @@ PRINTED_EQ19_MIN = [18.82, 11.50, 9.76]         # Sec. 3.2.1
 PRINTED_MASSES_KG = [524.895, 434.471, 381.005]  # arrival, after LOI 1, after LOI 2
 
 
+def _page(thrust_N=150.0, isp_s=200.0, mass_kg=524.895, altitude_km=100.0,
+          eq19_masses="paper", output_name="t_imp"):
+    """The page as the notebook computes it: the plan's impulsive chain (public API)."""
+    import lunarcap
+
+    plan = lunarcap.paper_plan(thrust_N, isp_s).to_dict()
+    plan["arrival"]["perilune_altitude_km"] = altitude_km
+    capture = lunarcap.load_plan(plan, mass_kg=mass_kg)
+    masses = impulsive_baseline.eq19_masses(eq19_masses, thrust_N, isp_s)
+    return impulsive_baseline.build(capture, capture.impulsive(),
+                                    capture.impulsive(eq19_masses_kg=masses), masses,
+                                    output_name, True)
+
+
 @pytest.fixture(scope="module")
 def page():
-    return impulsive_baseline.build(150.0, 200.0, 524.895, 100.0, "paper", "t_imp", True)
+    return _page()
+
+
+def test_the_public_chain_is_the_papers_impulsive_sequence():
+    """The plan's chain (lunarcap's public API) is impulsive_sequence's, bit for bit."""
+    import lunarcap
+    from lunarcap.mission.impulsive import impulsive_sequence
+
+    masses = impulsive_baseline.eq19_masses("paper")
+    for altitude_km, mass_kg in ((100.0, 524.895), (150.0, 600.0)):
+        plan = lunarcap.paper_plan(150.0, 200.0).to_dict()
+        plan["arrival"]["perilune_altitude_km"] = altitude_km
+        capture = lunarcap.load_plan(plan, mass_kg=mass_kg)
+        assert capture.impulsive() == impulsive_sequence(150.0, 200.0, mass_kg, altitude_km)
+        assert capture.impulsive(eq19_masses_kg=masses) == impulsive_sequence(
+            150.0, 200.0, mass_kg, altitude_km, eq19_masses_kg=masses)
 
 
 def _eq19_min(m0, dv, thrust, isp):
@@ -53,7 +82,7 @@ def test_eq19_with_the_papers_finite_chain_masses_reproduces_its_estimates(page)
 
 
 def test_impulsive_chain_masses_miss_loi2_and_loi3_and_the_note_says_why(page):
-    p = impulsive_baseline.build(150.0, 200.0, 524.895, 100.0, "impulsive", "t_imp2", True)
+    p = _page(eq19_masses="impulsive", output_name="t_imp2")
     df = p.items["eq19"].df
     burns = paper_plan(150.0, 200.0).impulsive()
     np.testing.assert_allclose(df.m0_kg, [b.m_before_kg for b in burns])
@@ -67,10 +96,10 @@ def test_impulsive_chain_masses_miss_loi2_and_loi3_and_the_note_says_why(page):
 
 def test_other_engines():
     with pytest.raises(ValueError, match="only for 150 N"):
-        impulsive_baseline.build(300.0, 250.0, eq19_masses="paper")
+        impulsive_baseline.eq19_masses("paper", 300.0, 250.0)
     with pytest.raises(ValueError, match="'paper' or 'impulsive'"):
-        impulsive_baseline.build(eq19_masses="finite")
-    p = impulsive_baseline.build(300.0, 250.0, eq19_masses="impulsive", output_name="t_imp3")
+        impulsive_baseline.eq19_masses("finite")
+    p = _page(300.0, 250.0, eq19_masses="impulsive", output_name="t_imp3")
     assert p.items["eq19"].df.paper_duration_min.isna().all()
     assert "nothing to compare" in p.notes["eq19_masses_note"]
     # Eq. (19) from the arrival mass with this engine's thrust and Isp
