@@ -35,7 +35,7 @@ PUBLIC = frozenset(lunarcap.__all__)
 #: the study's ``out``, so the book resumes its own table; ``export_dir``: where the book
 #: keeps the files it links to), or what the page sets beside what (``beside_paper``: the
 #: plans it compares with the paper's capture; ``engine_rows``: its engines and their
-#: labels, cited first).
+#: labels, cited first; ``paper_engines``: the paper's engines it solves beside a grid).
 DISPLAY_HELPERS = {
     "lunarcap.report.pages.missed_thrust": frozenset({"build", "table_file"}),
     "lunarcap.report.pages.burn_count": frozenset({"build", "table_file"}),
