@@ -103,7 +103,7 @@ def warm_start_gap_mps(chain, joint_solution) -> float:
 
 
 def totals_table(legs: dict) -> pd.DataFrame:
-    """Totals per engine from ``{label: chain_table}``: both totals, shifts, the solve.
+    """Totals per engine from ``{label: legs_table}``: both totals, shifts, the solve.
 
     Columns: engine, sequential_total_delta_v_mps, joint_total_delta_v_mps,
     total_difference_mps (sequential - joint), largest_leg_shift_mps,
@@ -120,7 +120,7 @@ def totals_table(legs: dict) -> pd.DataFrame:
 
 
 def legs_frame(legs: dict) -> pd.DataFrame:
-    """Every leg of every engine (``legs``: engine label -> chain table), verdicts in words."""
+    """Every leg of every engine (``legs``: engine label -> legs_table), verdicts in words."""
     per_leg = pd.concat([df.assign(engine=e) for e, df in legs.items()], ignore_index=True)
     return per_leg.assign(joint_verified=per_leg.joint_verified.map(verdict))[[
         "engine", "loi", "sequential_start_min", "joint_start_min",

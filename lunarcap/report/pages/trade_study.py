@@ -142,7 +142,7 @@ def paper_engines_table(ok: pd.DataFrame, paper: pd.DataFrame,
     Columns: thrust_N, isp_s, part, paper_delta_v_loss_percent (Table B1 as printed; the
     sequence: summed losses over summed impulsive delta-Vs), optimal_loss_percent (our
     verified optimum of that engine, solved directly: ``direct``, see
-    :func:`direct_solves`; NaN where not solved or not verified),
+    :func:`direct_rows`; NaN where not solved or not verified),
     interpolated_loss_percent (the grid's optima of the same Isp interpolated linearly in
     log T/W, NaN outside the grid), interpolation_error_pp (interpolated − direct,
     percentage points: what reading the curve instead of solving would be off by),
