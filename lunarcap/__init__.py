@@ -16,9 +16,9 @@ line, and every Dask worker) pays for none of them.
 """
 
 __all__ = ["__version__", "BurnSolution", "CapturePlan", "CaptureResult", "GmatFlight",
-           "InputError", "LunarcapError", "PlanError", "SolveError", "StudyResult",
-           "available", "burns", "dispersions", "engine_trade", "load_plan", "missed",
-           "paper_plan", "run_study", "solve", "solve_burn"]
+           "InputError", "JointSolution", "LunarcapError", "PlanError", "SolveError",
+           "StudyResult", "available", "burns", "dispersions", "engine_trade", "load_plan",
+           "missed", "paper_plan", "run_study", "solve", "solve_burn", "solve_joint"]
 
 
 def __getattr__(name):

@@ -7,7 +7,8 @@ Everything here is importable from :mod:`lunarcap` itself (``lunarcap.__all__``)
   ``with_*`` methods;
 * solves: :func:`solve` (every burn, verified: a :class:`CaptureResult`, which exports the
   capture (OEM, SPK, GMAT script, ...) and flies it in GMAT: :class:`GmatFlight`) and
-  :func:`solve_burn` (one burn: a :class:`BurnSolution`);
+  :func:`solve_burn` (one burn: a :class:`BurnSolution`) and :func:`solve_joint` (every
+  burn in one NLP minimising the total delta-V: a :class:`JointSolution`);
 * studies: :func:`run_study` (any registered study), :func:`missed`, :func:`burns`,
   :func:`dispersions`, :func:`engine_trade`, each a :class:`StudyResult`, locally or on a
   Dask cluster;
@@ -32,6 +33,7 @@ Examples
 _WHERE = {
     "lunarcap.api.capture": ("BurnSolution", "CaptureResult", "GmatFlight", "solve",
                              "solve_burn"),
+    "lunarcap.api.joint": ("JointSolution", "solve_joint"),
     "lunarcap.api.plans": ("available", "load_plan", "paper_plan"),
     "lunarcap.api.studies": ("StudyResult", "burns", "dispersions", "engine_trade", "missed",
                              "run_study"),

@@ -25,8 +25,9 @@ import contextlib
 from lunarcap.api.results import Result
 from lunarcap.errors import InputError
 
-#: The Dask options every study run takes (the command's ``--workers`` ... by their names).
-RUN_OPTIONS = ("workers", "scheduler", "out", "progress", "use_cache")
+#: The Dask options every study run takes (the command's ``--workers`` ... by their names;
+#: ``lock_wait_s`` has no command-line twin: a command refuses a table in use at once).
+RUN_OPTIONS = ("workers", "scheduler", "out", "progress", "use_cache", "lock_wait_s")
 #: The same options as the command's parsed arguments name them.
 _DASK_DESTS = ("workers", "scheduler", "out", "no_progress", "no_cache")
 
@@ -126,22 +127,26 @@ def _options(command) -> dict:
 
 
 def run_prepared(study_run, name: str | None = None, plan=None,
-                 use_cache: bool | None = None) -> StudyResult:
+                 use_cache: bool | None = None, lock_wait_s: float = 0.0) -> StudyResult:
     """Run a prepared study (:class:`lunarcap.studies.registry.StudyRun`) and wrap its result.
 
     ``use_cache`` False: every case computed again (the cache switch off for the run);
-    None or True: the switch as it is. The command line's runner.
+    None or True: the switch as it is. ``lock_wait_s``: how long the run waits for its
+    table if another run is writing it, s (:func:`lunarcap.studies.study.waiting_for_table`;
+    0: refused at once). The command line's runner.
     """
     from lunarcap.repro.cache import caching
+    from lunarcap.studies.study import waiting_for_table
 
-    with caching(False) if use_cache is False else contextlib.nullcontext():
+    with caching(False) if use_cache is False else contextlib.nullcontext(), \
+            waiting_for_table(lock_wait_s):
         raw = study_run.run()
     return StudyResult(study_run, raw, name, plan)
 
 
 def run_study(name: str, plan=None, *, workers: int = 2, scheduler: str | None = None,
               out=None, progress: bool = False, use_cache: bool = True,
-              **options) -> StudyResult:
+              lock_wait_s: float = 0.0, **options) -> StudyResult:
     """Run a registered study on a plan, as ``lunarcap <name> PLAN --<option> ...`` does.
 
     Parameters
@@ -161,6 +166,10 @@ def run_study(name: str, plan=None, *, workers: int = 2, scheduler: str | None =
         A progress bar on stderr.
     use_cache : bool
         False: every case computed again (the disk cache and the table ignored).
+    lock_wait_s : float
+        How long to wait for another run writing the same table ``out`` (a command line
+        run, another notebook) before refusing, s; default 0: refused at once, as the
+        command line does.
     **options
         The study's own options by the command's names (``fractions``, ``delays_min``),
         as numbers, lists or the command line's text; the command's defaults otherwise.
@@ -184,8 +193,13 @@ def run_study(name: str, plan=None, *, workers: int = 2, scheduler: str | None =
     Traceback (most recent call last):
     ...
     lunarcap.errors.InputError: study 'landing': not a registered study (study, burns, ...)
+    >>> lunarcap.run_study("missed", "two-burn-8h", lock_wait_s=-1)
+    Traceback (most recent call last):
+    ...
+    lunarcap.errors.InputError: lock_wait_s: -1 s is below the smallest allowed, 0 s
     """
     from lunarcap.api.plans import load_plan
+    from lunarcap.errors import number
     from lunarcap.studies.registry import studies
 
     known = studies()
@@ -204,8 +218,9 @@ def run_study(name: str, plan=None, *, workers: int = 2, scheduler: str | None =
         if plan is None:
             raise InputError(f"{name}: needs a plan")
         plan = load_plan(plan)
+    wait_s = number("lock_wait_s", lock_wait_s, "s", minimum=0.0)
     study_run = command.prepare(argparse.Namespace(**args), plan if command.plan else None)
-    return run_prepared(study_run, name, plan if command.plan else None, use_cache)
+    return run_prepared(study_run, name, plan if command.plan else None, use_cache, wait_s)
 
 
 def _given(**kw) -> dict:
@@ -319,7 +334,9 @@ def engine_trade(*, thrust_min_N: float | None = None, thrust_max_N: float | Non
     specific impulse of ``isp_s`` (default 200, 250, 300 s), ignitions optimised, in
     ``dynamics`` (default ``"full"``); four rows per engine (each burn and the sequence).
     ``retry_failed``: solve again the engines that failed in an earlier run of the table.
-    ``run``: :func:`run_study`'s options.
+    ``run``: :func:`run_study`'s options: ``out`` the table (default the one ``lunarcap
+    study`` resumes, ``.cache/study/engine_trade.csv``), ``lock_wait_s`` how long to wait
+    for another run writing it, s.
 
     Examples
     --------

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from lunarcap.capture.chain import solve_plan
-from lunarcap.mission.plan import CapturePlan, paper_plan
+from lunarcap.mission.plan import CapturePlan
 from lunarcap.optim.collocation import Mesh
 from lunarcap.optim.joint import JointResult, solve_joint
 from lunarcap.repro.cache import cached
@@ -58,8 +58,3 @@ def joint_summary(plan: CapturePlan) -> dict:
             "ipopt_status": r.joint.ipopt_status, "iterations": r.joint.iterations,
             "solve_s": r.joint.solve_s, "total_delta_v_mps": r.total_delta_v_mps,
             "sequential_total_delta_v_mps": r.sequential_total_delta_v_mps}
-
-
-def chain_summary(thrust_N: float, isp_s: float, dynamics: str = "full") -> dict:
-    """:func:`joint_summary` of the paper's plan with this engine."""
-    return joint_summary(paper_plan(thrust_N, isp_s, dynamics=dynamics).key())

@@ -16,7 +16,8 @@ quantities) is declared beside it, in its folder's ``command.py``
 (:mod:`lunarcap.studies.registry`).
 
 The helpers the studies share live here too: :func:`plan_id`, :func:`plan_columns` (the
-columns naming a plan in every plan study's table) and :func:`check_workers`.
+columns naming a plan in every plan study's table), :func:`check_workers`, and
+:func:`waiting_for_table` (how long a run waits for its table, written by another run).
 """
 
 from __future__ import annotations
@@ -24,6 +25,9 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
@@ -46,6 +50,39 @@ def plan_columns(plan) -> dict:
 def check_workers(workers) -> int:
     """Number of local Dask workers (an integer >= 1), else InputError."""
     return integer("--workers", workers, 1)
+
+
+#: How long (s) a study's run waits for another run writing its table: the innermost
+#: :func:`waiting_for_table` block of this thread (0 outside any: refused at once).
+_TABLE_WAIT_S: ContextVar[float] = ContextVar("lunarcap_table_wait_s", default=0.0)
+
+
+@contextmanager
+def waiting_for_table(wait_s: float) -> Iterator[None]:
+    """Within the block, a study's run waits up to ``wait_s`` s for its table to be free.
+
+    A table is written by one run at a time (the lock file beside it,
+    :func:`lunarcap.studies.campaign.table_lock`); a run that finds it in use waits this
+    long for the other to finish, then refuses (InputError). The wait belongs to the table
+    shared, not to a study: :func:`lunarcap.run_study`'s ``lock_wait_s`` sets it for any
+    study's run (a book page resuming the table the command line writes waits for it).
+
+    >>> with waiting_for_table(60.0):
+    ...     table_wait_s()
+    60.0
+    >>> table_wait_s()
+    0.0
+    """
+    token = _TABLE_WAIT_S.set(float(wait_s))
+    try:
+        yield
+    finally:
+        _TABLE_WAIT_S.reset(token)
+
+
+def table_wait_s() -> float:
+    """How long a run started here and now waits for its table, s (:func:`waiting_for_table`)."""
+    return _TABLE_WAIT_S.get()
 
 
 def json_list(text) -> list:
@@ -134,14 +171,16 @@ class Study:
 
         ``out``: the table (default :meth:`default_table_path`); ``task`` replaces the
         study's own (tests); ``use_cache``: the cache switch's position in the tasks (False:
-        every case computed again, whatever the table holds); the rest as
+        every case computed again, whatever the table holds); ``lock_wait_s``: at least
+        the wait of the :func:`waiting_for_table` block around the call; the rest as
         :func:`lunarcap.studies.campaign.run_campaign`.
         """
         return run_campaign(self, cases, out if out is not None else self.default_table_path(),
                             task=task, workers=workers, scheduler=scheduler,
                             progress=progress, processes=processes,
                             recompute=use_cache is False, use_cache=use_cache,
-                            retry_failed=retry_failed, lock_wait_s=lock_wait_s,
+                            retry_failed=retry_failed,
+                            lock_wait_s=max(float(lock_wait_s), table_wait_s()),
                             describe=describe)
 
     def decoded(self, row: dict) -> dict:

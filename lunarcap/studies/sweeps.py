@@ -311,24 +311,3 @@ def steering_frame(solutions, thrust_N: float, isp_s: float,
     df = pd.DataFrame(rows)
     df.attrs.update({"thrust_N": thrust_N, "isp_s": isp_s, "dynamics": dynamics})
     return df
-
-
-def chain_table(thrust_N: float, isp_s: float, dynamics: str = "full") -> pd.DataFrame:
-    """The three burns as one NLP beside the one-at-a-time free-ignition chain, per LOI."""
-    from lunarcap.capture.joint_plan import chain_summary
-
-    r = chain_summary(thrust_N, isp_s, dynamics)
-    rows = []
-    for k, (j, s) in enumerate(zip(r["legs"], r["sequential"])):
-        rows.append({"loi": k + 1, "joint_start_min": j["start_min"],
-                     "sequential_start_min": s["start_min"],
-                     "joint_burn_duration_min": j["burn_duration_min"],
-                     "sequential_burn_duration_min": s["burn_duration_min"],
-                     "joint_delta_v_mps": j["delta_v_mps"],
-                     "sequential_delta_v_mps": s["delta_v_mps"],
-                     "difference_mps": s["delta_v_mps"] - j["delta_v_mps"],
-                     "joint_verified": j["verification"]["passed"]})
-    df = pd.DataFrame(rows)
-    df.attrs.update({"thrust_N": thrust_N, "isp_s": isp_s, "ipopt_status": r["ipopt_status"],
-                     "iterations": r["iterations"], "solve_s": r["solve_s"]})
-    return df

@@ -46,6 +46,8 @@ def no_work(monkeypatch):
 CASES = {
     "no such plan": (lambda p, b: lunarcap.load_plan("no-such-plan"),
                      lambda f, b: ["plan", "no-such-plan"]),
+    "joint solve of no such plan": (lambda p, b: lunarcap.solve_joint("no-such-plan"),
+                                    lambda f, b: ["plan", "no-such-plan"]),
     "missed fraction above 1": (lambda p, b: lunarcap.missed(p, fractions="0.5,1.2"),
                                 lambda f, b: ["missed", f, "--fractions", "0.5,1.2"]),
     "missed burn the plan lacks": (lambda p, b: lunarcap.missed(p, burn=4),

@@ -119,3 +119,78 @@ def test_a_study_added_to_the_registry_runs_through_the_api_unchanged(plan, monk
     assert res.answered and res.text() == "text" and res.name == "eq19"
     with pytest.raises(lunarcap.InputError, match="eq19: needs a plan"):
         lunarcap.run_study("eq19")
+
+
+def test_a_study_waits_for_its_table_as_long_as_asked(monkeypatch, tmp_path):
+    """``lock_wait_s``: a run that finds its table being written by another run (a command
+    line run of the same table, another notebook) waits for it as long as asked, as the
+    book's trade-study page waits for ``lunarcap study``; by default it is refused at once,
+    as the command line is. Here a stand-in study with no case, its table held by a thread
+    for a second."""
+    import threading
+    import time
+
+    from lunarcap.studies import campaign, registry
+    from lunarcap.studies.study import Study
+
+    table = tmp_path / "t.csv"
+    standin = Study("standin", campaign.TableFormat(key=("case",), columns=("case", "status")),
+                    lambda: [], ("ok",), ("ok",), "case", "stand-in")
+
+    def prepare(args, p):
+        return registry.StudyRun(lambda: standin.run([], args.out, progress=False), "cases",
+                                 lambda r: {}, lambda r: "", lambda r: True)
+
+    fake = registry.StudyCommand("standin", "a stand-in", lambda p: None, prepare, plan=False)
+    real = registry.studies
+    monkeypatch.setattr(registry, "studies", lambda: real() | {"standin": fake})
+    held, release = threading.Event(), threading.Event()
+
+    def other_run():
+        with campaign.table_lock(table):
+            held.set()
+            release.wait(30)
+
+    other = threading.Thread(target=other_run)
+    other.start()
+    try:
+        assert held.wait(10)
+        with pytest.raises(lunarcap.InputError, match="being written by another run"):
+            lunarcap.run_study("standin", out=table)
+        threading.Timer(1.0, release.set).start()
+        t0 = time.monotonic()
+        res = lunarcap.run_study("standin", out=table, lock_wait_s=30)
+        assert time.monotonic() - t0 >= 0.9 and res.campaign.path == table
+    finally:
+        release.set()
+        other.join()
+
+
+@pytest.mark.slow
+def test_all_burns_in_one_nlp_read_as_every_result(tmp_path):
+    """``lunarcap.solve_joint``: the joint optimum of a packaged plan (two-body), started from
+    the plan solved one burn at a time (``lunarcap.solve``, every ignition free: the same
+    numbers, bit for bit), never worse than it; its document strict JSON, its figure
+    legible, its files written."""
+    import json
+
+    from lunarcap.report.figstyle import legibility_problems
+
+    plan = lunarcap.load_plan("two-burn-8h", dynamics="two-body")
+    joint = lunarcap.solve_joint(plan)
+    chain = lunarcap.solve(plan.with_starts(["free"] * plan.n_burns), impulsive=False)
+    assert joint.verified and joint.ipopt_status == "Solve_Succeeded"
+    assert [r["delta_v_mps"] for r in joint.warm_start] == [
+        r["delta_v_mps"] for r in chain.rows()]
+    assert -1e-3 < joint.warm_start_total_delta_v_mps - joint.total_delta_v_mps < 0.1
+    frame = joint.to_frame()
+    assert frame.burn.tolist() == [1, 2] and frame.verification_passed.all()
+    assert joint.total_delta_v_mps == sum(frame.delta_v_mps)
+    doc = json.loads(joint.to_json())
+    assert doc["totals"]["total_delta_v_mps"] == joint.total_delta_v_mps
+    assert len(doc["legs"]) == len(doc["warm_start"]) == 2 and "u_inertial" not in doc["legs"][0]
+    assert legibility_problems(joint.plot()) == []
+    files = joint.export(tmp_path)
+    assert files["csv"].name == "two-burn-8h_joint.csv" and files["json"].is_file()
+    with pytest.raises(lunarcap.InputError, match="plan: a file, a packaged plan"):
+        lunarcap.solve_joint(42)

@@ -35,7 +35,7 @@ PUBLIC = frozenset(lunarcap.__all__)
 #: the study's ``out``, so the book resumes its own table; ``export_dir``: where the book
 #: keeps the files it links to), or what the page sets beside what (``beside_paper``: the
 #: plans it compares with the paper's capture; ``engine_rows``: its engines and their
-#: labels, cited first).
+#: labels, cited first; ``paper_engines``: the paper's engines it solves beside a grid).
 DISPLAY_HELPERS = {
     "lunarcap.report.pages.missed_thrust": frozenset({"build", "table_file"}),
     "lunarcap.report.pages.burn_count": frozenset({"build", "table_file"}),
@@ -63,18 +63,17 @@ DISPLAY_HELPERS = {
     # the tutorial's page opens (provenance) and closes (glued numbers, checks) around the
     # reader's own calls, which are public
     "lunarcap.report.pages.tutorial": frozenset({"start", "finish"}),
+    # the joint optimum (lunarcap.solve_joint) beside the one-at-a-time chain
+    # (lunarcap.solve), per engine, set side by side by the page
+    "lunarcap.report.pages.joint_capture": frozenset({"build"}),
+    # the study (lunarcap.engine_trade) and the paper's engines it sets beside the grid
+    # (paper_engines: Table B1's engines of the grid's Isps), each solved with
+    # lunarcap.solve, a SolveError kept and shown by build as a failed row
+    "lunarcap.report.pages.trade_study": frozenset({"build", "paper_engines"}),
 }
 
 #: Notebooks whose computation still goes through an internal module, and why. Shrink it.
 NOT_CONVERTED = {
-    "trade_study": "the page's run waits for another run writing its table (lock_wait_s) and "
-                   "its tests pass a stand-in task; lunarcap.engine_trade takes neither; "
-                   "the paper's engines solved directly are recorded as failed rows "
-                   "(solve_engine), where lunarcap.solve raises SolveError",
-    "joint_capture": "the joint NLP of every burn (lunarcap.capture.joint_plan) has no "
-                     "public call, and no command to keep one in step with (the API and "
-                     "the command line agree; lunarcap has no joint solve on the command "
-                     "line)",
     "real_moon": "the field-gravity comparisons have no public call",
     "fig1_geometry": "a paper page: the geometry figure's arcs have no public call",
     "verification": "a paper page: the re-propagation audit has no public call",

@@ -1,10 +1,11 @@
 """The joint-capture page (notebooks/joint_capture.ipynb): all burns in one NLP.
 
-For each engine, the paper's plan with every ignition free is solved burn by burn (each
-burn minimising its own J, Eq. 9) and as one NLP whose objective is the total delta-V
-(:func:`lunarcap.capture.joint_plan.solve_plan_jointly`, through the cached
-:func:`lunarcap.capture.joint_plan.chain_summary` and :func:`lunarcap.studies.sweeps.chain_table`).
-:func:`build` sets the two side by side per burn and in total.
+For each engine the notebook solves, with lunarcap's public API, the paper's plan one burn
+at a time with every ignition free (:func:`lunarcap.solve`: each burn minimising its own
+J, Eq. 9) and as one NLP whose objective is the total delta-V
+(:func:`lunarcap.solve_joint`, which starts from that chain). :func:`build` is the page's
+display helper: it sets the two side by side per burn and in total, with the page's
+glued numbers and checks.
 """
 
 from __future__ import annotations
@@ -14,13 +15,11 @@ import inspect
 import pandas as pd
 
 from lunarcap.capture import joint_plan as joint
-from lunarcap.mission.scenario import paper_engine_pairs
 from lunarcap.quantities import capture_name
 from lunarcap.report.contents import BookPage, Execution, table_files
 from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page
-from lunarcap.studies import sweeps
 
 NOTEBOOK = "notebooks/joint_capture.ipynb"
 BOOK = BookPage(NOTEBOOK, "Beyond the paper", 40, (
@@ -62,8 +61,49 @@ def joint_mesh_label() -> str:
     return f"{m.n_burn}×{m.n_coast} LGR-{m.degree}"
 
 
+def legs_table(chain, joint_solution) -> pd.DataFrame:
+    """One engine's burns, one at a time (``chain``) beside the joint optimum, per LOI.
+
+    ``chain``: :func:`lunarcap.solve`'s CaptureResult of the plan with every ignition
+    free; ``joint_solution``: :func:`lunarcap.solve_joint`'s JointSolution of the plan.
+    Columns: loi, joint and sequential start (min from the nominal perilune), burn
+    duration (min) and delta-V (m/s), difference_mps (sequential - joint), joint_verified;
+    IPOPT's status, iterations and solve time (s) of the joint NLP in ``attrs``.
+    """
+    rows = []
+    for k, (j, s) in enumerate(zip(joint_solution.rows(), chain.rows())):
+        rows.append({"loi": k + 1, "joint_start_min": j["start_min"],
+                     "sequential_start_min": s["start_min"],
+                     "joint_burn_duration_min": j["burn_duration_min"],
+                     "sequential_burn_duration_min": s["burn_duration_min"],
+                     "joint_delta_v_mps": j["delta_v_mps"],
+                     "sequential_delta_v_mps": s["delta_v_mps"],
+                     "difference_mps": s["delta_v_mps"] - j["delta_v_mps"],
+                     "joint_verified": j["verification_passed"]})
+    df = pd.DataFrame(rows)
+    df.attrs.update({"thrust_N": chain.plan.engine.thrust_N,
+                     "isp_s": chain.plan.engine.isp_s,
+                     "ipopt_status": joint_solution.ipopt_status,
+                     "iterations": joint_solution.iterations,
+                     "solve_s": joint_solution.solve_s})
+    return df
+
+
+def warm_start_gap_mps(chain, joint_solution) -> float:
+    """Largest |delta-V| difference (m/s) of a burn between ``chain`` and the joint's warm start.
+
+    Zero when the chain shown is the one the joint NLP started from (same plan, dynamics
+    and free ignitions); NaN if the two differ in their number of burns.
+    """
+    ours = [r["delta_v_mps"] for r in chain.rows()]
+    theirs = [r["delta_v_mps"] for r in joint_solution.warm_start]
+    if len(ours) != len(theirs):
+        return float("nan")
+    return max(abs(a - b) for a, b in zip(ours, theirs))
+
+
 def totals_table(legs: dict) -> pd.DataFrame:
-    """Totals per engine from ``{label: chain_table}``: both totals, shifts, the solve.
+    """Totals per engine from ``{label: legs_table}``: both totals, shifts, the solve.
 
     Columns: engine, sequential_total_delta_v_mps, joint_total_delta_v_mps,
     total_difference_mps (sequential - joint), largest_leg_shift_mps,
@@ -80,7 +120,7 @@ def totals_table(legs: dict) -> pd.DataFrame:
 
 
 def legs_frame(legs: dict) -> pd.DataFrame:
-    """Every leg of every engine (``legs``: engine label -> chain table), verdicts in words."""
+    """Every leg of every engine (``legs``: engine label -> legs_table), verdicts in words."""
     per_leg = pd.concat([df.assign(engine=e) for e, df in legs.items()], ignore_index=True)
     return per_leg.assign(joint_verified=per_leg.joint_verified.map(verdict))[[
         "engine", "loi", "sequential_start_min", "joint_start_min",
@@ -153,8 +193,10 @@ def _add_totals(page: Page, totals: pd.DataFrame) -> None:
 
 
 def _add_checks(page: Page, per_leg: pd.DataFrame, totals: pd.DataFrame,
-                by_thrust: dict) -> None:
+                by_thrust: dict, gaps: list) -> None:
     """Headline checks: the book build fails if these drift."""
+    page.expect("each joint NLP started from the one-at-a-time chain shown (1e-9 m/s)",
+                all(g <= 1e-9 for g in gaps), str(gaps))
     page.expect("every joint leg passes the verification gate",
                 bool((per_leg.joint_verified == PASSED).all()))
     page.expect("every joint NLP converged", bool((totals.ipopt_status == "Solve_Succeeded")
@@ -174,17 +216,29 @@ def _add_checks(page: Page, per_leg: pd.DataFrame, totals: pd.DataFrame,
                     d.iloc[1] < 0 < d.iloc[2] and abs(d.sum()) < 0.1 * d.abs().max())
 
 
-def build(engines=paper_engine_pairs(), dynamics: str = "full",
-          output_name: str = "joint_capture", quick: bool = False) -> Page:
-    """The page of the joint capture (see the module docstring)."""
-    engines = [(float(t), float(i)) for t, i in engines]
+def build(solved: dict, dynamics: str = "full", output_name: str = "joint_capture",
+          quick: bool = False) -> Page:
+    """The page of the joint capture from what the notebook solved (see the module docstring).
+
+    Parameters
+    ----------
+    solved : dict
+        ``{(thrust N, Isp s): (chain, joint)}`` per engine, in the page's order: ``chain``
+        the paper's plan with every ignition free solved one burn at a time
+        (:func:`lunarcap.solve`, a CaptureResult), ``joint`` the same plan as one NLP
+        (:func:`lunarcap.solve_joint`, a JointSolution).
+    dynamics : str
+        The plans' dynamics, as named in the captions.
+    output_name, quick : the page's output name and whether it is a quick build.
+    """
+    engines = [(float(t), float(i)) for t, i in solved]
     params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
     page = Page(NOTEBOOK, params, output_name, quick, {
         "transcription": "Legendre-Gauss-Radau collocation, one NLP for all legs, mesh "
                          + joint_mesh_label(),
         "NLP": "IPOPT (MUMPS), warm start: the one-at-a-time free-ignition chain",
         "gate": "re-propagation of each leg from the previous leg's verified end state"})
-    legs = {engine_label(t, i): sweeps.chain_table(t, i, dynamics) for t, i in engines}
+    legs = {engine_label(t, i): legs_table(*solved[t, i]) for t, i in engines}
     per_leg = legs_frame(legs)
     _add_legs(page, per_leg, dynamics)
     totals = totals_table(legs)
@@ -192,7 +246,8 @@ def build(engines=paper_engine_pairs(), dynamics: str = "full",
     by_thrust = {t: legs[engine_label(t, i)] for t, i in engines}
     for name, v in prose_values(by_thrust, totals).items():
         page.value(name, v)
-    _add_checks(page, per_leg, totals, by_thrust)
+    _add_checks(page, per_leg, totals, by_thrust,
+                [warm_start_gap_mps(*solved[e]) for e in engines])
     page.data["legs"] = legs
     page.headline(f"Solving the capture as one problem (*{capture_name('joint')}*) saves at "
                   f"most {page.text('max_total_difference_mps', '.4f', ' m/s')} over solving it "

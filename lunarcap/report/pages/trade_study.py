@@ -1,9 +1,12 @@
 """The engine trade-study page (notebooks/trade_study.ipynb): loss against thrust-to-weight.
 
-:func:`build` runs (or resumes) the study of :mod:`lunarcap.studies.engine_trade.trade` on Dask,
-one task per engine (the free-ignition chain LOI 1, 2, 3, verified), without a progress bar, and
-sets beside it Robbins' (1966) analytic estimate and Eq. (19), and the paper's three engines
-(Table B1).
+The notebook runs (or resumes) the study with lunarcap's public API
+(:func:`lunarcap.engine_trade`: one Dask task per engine, the free-ignition chain LOI 1, 2,
+3, verified) and solves the paper's engines (:func:`paper_engines`) directly
+(:func:`lunarcap.solve`, a failed solve caught as :class:`lunarcap.SolveError`).
+:func:`build` is the page's display helper: it sets beside the study Robbins' (1966)
+analytic estimate and Eq. (19), and the paper's three engines (Table B1), with the page's
+glued numbers and checks.
 
 The loss is the study's (:mod:`lunarcap.studies.engine_trade.trade`): against the impulsive
 limit of the same burn in the same dynamics from the same orbit, objective-based (Eq. 9: delta-V
@@ -98,21 +101,37 @@ def _interp_log(x, xs, ys) -> float:
     return float(np.interp(np.log(x), np.log(xs[o]), ys[o]))
 
 
-def direct_solves(paper: pd.DataFrame, spec, solve=None) -> dict:
-    """The study's rows of the paper's engines, each solved directly (not interpolated).
+def paper_engines(isp_s) -> list:
+    """The paper's engines the page solves directly: (thrust N, Isp s) of Table B1 in the grid.
 
-    ``solve(thrust_N, isp_s, dynamics)``:
-    :func:`lunarcap.studies.engine_trade.trade.solve_engine` (the same free-ignition chain and
-    loss as every engine of the grid; cached on disk, and solved already when the free-ignition
-    page ran). Only the engines whose Isp is in the grid (a quick build runs one Isp). Returns
-    ``{(thrust N, Isp s): DataFrame}``.
+    Only those whose Isp is among the grid's ``isp_s`` (s): their loss is set beside the
+    grid's curve of that Isp (a quick build, one Isp, solves one engine).
     """
-    solve = solve or study.solve_engine
+    grid = {float(i) for i in isp_s}
+    return [(float(t), float(i)) for (t, i), _ in
+            study.paper_points().groupby(["thrust_N", "isp_s"], sort=True) if float(i) in grid]
+
+
+def direct_rows(solved: dict, dynamics: str) -> dict:
+    """The study's four rows of each paper engine solved directly, failed or not.
+
+    ``solved``: ``{(thrust N, Isp s): (result, error)}``: ``result`` is
+    :func:`lunarcap.solve`'s CaptureResult of the paper's plan with every ignition free
+    (the burns verified before a failure, if any: its ``rows()``), ``error`` the
+    :class:`lunarcap.SolveError` that stopped it, or None. The rows are the study's task's
+    (:func:`lunarcap.studies.engine_trade.trade.engine_rows`: the same free-ignition chain
+    and loss as every engine of the grid), a failed burn with its IPOPT status, the later
+    ones "not run". Returns ``{(thrust N, Isp s): DataFrame}``.
+    """
     out = {}
-    for (t, isp), _ in paper.groupby(["thrust_N", "isp_s"], sort=True):
-        if float(isp) in {float(i) for i in spec.isp_s}:
-            out[(float(t), float(isp))] = pd.DataFrame(solve(float(t), float(isp),
-                                                             spec.dynamics))
+    for (t, isp), (result, error) in solved.items():
+        summaries = [dict(r, verification={"passed": r["verification_passed"]})
+                     for r in result.rows()]
+        failure = None if error is None else {
+            "loi": len(summaries) + 1, "status": "failed",
+            "ipopt_status": getattr(error, "status", "") or "", "error": str(error)}
+        out[(float(t), float(isp))] = pd.DataFrame(
+            study.engine_rows(float(t), float(isp), dynamics, summaries, failure))
     return out
 
 
@@ -123,7 +142,7 @@ def paper_engines_table(ok: pd.DataFrame, paper: pd.DataFrame,
     Columns: thrust_N, isp_s, part, paper_delta_v_loss_percent (Table B1 as printed; the
     sequence: summed losses over summed impulsive delta-Vs), optimal_loss_percent (our
     verified optimum of that engine, solved directly: ``direct``, see
-    :func:`direct_solves`; NaN where not solved or not verified),
+    :func:`direct_rows`; NaN where not solved or not verified),
     interpolated_loss_percent (the grid's optima of the same Isp interpolated linearly in
     log T/W, NaN outside the grid), interpolation_error_pp (interpolated − direct,
     percentage points: what reading the curve instead of solving would be off by),
@@ -360,33 +379,29 @@ def _add_checks(page: Page, spec, table, wide, ok, theory, values: dict) -> None
                 f"{values['start_ratio_min']:.3f}")
 
 
-def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
-          thrust_max_N: float = study.DEFAULT_THRUST_MAX_N, points: int = study.DEFAULT_POINTS,
-          isp_s=study.DEFAULT_ISP_S, workers: int = 2, dynamics: str = "full",
-          output_name: str = "trade_study", quick: bool = False, out=None, task=None,
-          processes: bool = True, timing_dir=None, lock_wait_s: float = 3600.0,
-          solve=None) -> Page:
-    """The trade-study page (see the module docstring).
+def build(trade, solved: dict, output_name: str = "trade_study", quick: bool = False,
+          parameters: dict | None = None, timing_dir=None) -> Page:
+    """The trade-study page from what the notebook computed (see the module docstring).
 
     Parameters
     ----------
-    thrust_min_N, thrust_max_N, points, isp_s, dynamics : the grid (:class:`StudySpec`)
-    workers : local Dask worker processes
+    trade : lunarcap.StudyResult
+        :func:`lunarcap.engine_trade`'s result: its ``campaign`` (the grid's table, the
+        table's path, this run's record, whose ``grid`` is the study's grid).
+    solved : dict
+        The paper's engines solved directly, ``{(thrust N, Isp s): (result, error)}``
+        (:func:`direct_rows`).
     output_name, quick : the page's output name and whether it is a quick build
-    out : the study's CSV table (default ``<cache>/study/engine_trade.csv``)
-    task, processes : passed to :func:`lunarcap.studies.engine_trade.trade.run_study` (tests)
+    parameters : dict, optional
+        The notebook's parameters, shown in the page's provenance.
     timing_dir : directory of the timing runs listed in the runs table
         (default ``<cache>/study/timing``)
-    lock_wait_s : how long to wait for another run writing the same table, s
-    solve : how the paper's engines are solved directly (default
-        :func:`lunarcap.studies.engine_trade.trade.solve_engine`; tests pass a stand-in)
     """
-    params = dict(thrust_min_N=thrust_min_N, thrust_max_N=thrust_max_N, points=points,
-                  isp_s=list(isp_s), workers=workers, dynamics=dynamics)
+    params = {k: list(v) if isinstance(v, (list, tuple)) else v
+              for k, v in (parameters or {}).items()}
     page = Page(NOTEBOOK, params, output_name, quick)
-    spec = study.StudySpec(thrust_min_N, thrust_max_N, points, tuple(isp_s), dynamics)
-    result = study.run_study(spec, out=out, workers=workers, progress=False,
-                             lock_wait_s=lock_wait_s, task=task, processes=processes)
+    result = trade.campaign
+    spec = study.StudySpec(**result.run["grid"])
     table, wide, run = result.table, result.wide(), result.run
     ok = table[table.status == "ok"]
     loi_ok = ok[ok.part != "sequence"]
@@ -396,7 +411,7 @@ def build(thrust_min_N: float = study.DEFAULT_THRUST_MIN_N,
     paper = study.paper_points()
     newton_per_ratio = float(study.thrust_from_weight_ratio(1.0))
     valid = theory[theory.omega_t_rad <= ROBBINS_VALID_OMEGA_T]
-    direct = direct_solves(paper, spec, solve)
+    direct = direct_rows(solved, spec.dynamics)
     at_paper = _add_loss(page, ok, valid, paper, spec, newton_per_ratio, direct)
     _add_duration_grid_runs(page, loi_ok, wide, spec, newton_per_ratio, result, timing_dir)
     page.note("failures", failures_note(result, len(wide)))

@@ -1,13 +1,19 @@
 """The trade-study page (lunarcap.report.pages.trade_study).
 
 A tiny real study (three thrusts, one Isp, two-body, one Dask worker, its table in a
-temporary directory) is marked slow; a stub per-engine task (``run_study``'s ``task``)
-checks the page's report of a failed engine without solving anything.
+temporary directory), run as the notebook runs it with the public API
+(``lunarcap.engine_trade``, the paper's engine solved with ``lunarcap.solve``), is marked
+slow; a stub per-engine task (the study's ``task``) and stand-ins of solved plans check the
+page's report of a failed engine, and of a failed direct solve, without solving anything.
 """
+
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
+import lunarcap
+from lunarcap.errors import SolveError
 from lunarcap.mission.scenario import paper_scenario
 from lunarcap.paper.printed import PAPER_IMPULSIVE_DV_MPS, paper_table_b1
 from lunarcap.physics import constants as C
@@ -19,12 +25,28 @@ from lunarcap.studies.engine_trade import trade as study
 THRUSTS = (100.0, 316.2, 1000.0)  # StudySpec(100, 1000, 3): log-spaced, 4 digits
 
 
+def solve_directly(isp_s, dynamics):
+    """The notebook's direct solves of the paper's engines of ``isp_s`` (public API)."""
+    solved = {}
+    for thrust_N, isp in trade_study.paper_engines(isp_s):
+        plan = lunarcap.paper_plan(thrust_N, isp, starts=["free"] * 3, dynamics=dynamics)
+        verified = []
+        try:
+            solved[thrust_N, isp] = lunarcap.solve(plan, on_burn=verified.append), None
+        except lunarcap.SolveError as error:
+            solved[thrust_N, isp] = lunarcap.CaptureResult(plan, verified), error
+    return solved
+
+
 @pytest.fixture(scope="module")
 def page(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("trade_study")
+    trade = lunarcap.engine_trade(thrust_min_N=100.0, thrust_max_N=1000.0, points=3,
+                                  isp_s=[250.0], dynamics="two-body", workers=1,
+                                  out=tmp / "study.csv")
     with paths.using_book(tmp / "book"):   # the page's data files go there, not in the book
-        return trade_study.build(100.0, 1000.0, 3, [250.0], 1, "two-body", "t_trade", True,
-                                 out=tmp / "study.csv", timing_dir=tmp / "no_timing")
+        return trade_study.build(trade, solve_directly([250.0], "two-body"), "t_trade", True,
+                                 timing_dir=tmp / "no_timing")
 
 
 @pytest.mark.slow
@@ -152,11 +174,33 @@ def stub_engine(thrust_N, isp_s, dynamics):
                              [_summary(thrust_N, n) for n in (1, 2, 3)])
 
 
+def stub_study(tmp_path, thrust_min_N, thrust_max_N, points):
+    """The study run on the stub task (threads, one worker), as the page receives it."""
+    spec = study.StudySpec(thrust_min_N, thrust_max_N, points, (250.0,), "two-body")
+    return SimpleNamespace(campaign=study.run_study(
+        spec, out=tmp_path / "stub.csv", workers=1, progress=False, task=stub_engine,
+        processes=False))
+
+
+class _Solved:
+    """A stand-in of lunarcap.solve's CaptureResult: the burn records of the stub's engine."""
+
+    def __init__(self, thrust_N, burns=(1, 2, 3)):
+        self._rows = []
+        for loi in burns:
+            r = _summary(thrust_N, loi)
+            r["verification_passed"] = r.pop("verification")["passed"]
+            self._rows.append(r)
+
+    def rows(self):
+        return [dict(r) for r in self._rows]
+
+
 def test_a_failed_engine_is_listed_not_hidden(tmp_path):
     with paths.using_book(tmp_path / "book"):
-        p = trade_study.build(100.0, 400.0, 3, [250.0], 1, "two-body", "t_trade_stub", True,
-                              out=tmp_path / "stub.csv", task=stub_engine, processes=False,
-                              timing_dir=tmp_path, solve=stub_engine)
+        p = trade_study.build(stub_study(tmp_path, 100.0, 400.0, 3),
+                              {(300.0, 250.0): (_Solved(300.0), None)}, "t_trade_stub", True,
+                              timing_dir=tmp_path)
     assert p.values["n_failed"] == 1
     note = p.notes["failures"]
     assert "Infeasible_Problem_Detected" in note and "| 200 |" in note
@@ -169,19 +213,15 @@ def test_the_paper_engines_are_solved_directly_and_the_interpolation_error_is_me
         tmp_path):
     # the loss at 300 N / 250 s was read off the grid's curve (linear in log T/W) and the
     # Table B1 comparison partly measured that interpolation; now the engine is solved
-    # itself (here: the stub, whose loss is 0.9 x Robbins' estimate at any thrust)
-    solved = []
-
-    def solve(thrust_N, isp_s, dynamics):
-        solved.append((thrust_N, isp_s))
-        return stub_engine(thrust_N, isp_s, dynamics)
-
+    # itself (here: a stand-in, whose loss is 0.9 x Robbins' estimate at any thrust)
+    assert trade_study.paper_engines([250.0]) == [(300.0, 250.0)]  # this Isp's engine only
+    assert trade_study.paper_engines([200.0, 250.0, 300.0]) == [
+        (150.0, 200.0), (300.0, 250.0), (450.0, 300.0)]
     with paths.using_book(tmp_path / "book"):
-        p = trade_study.build(100.0, 1000.0, 3, [250.0], 1, "two-body", "t_trade_direct",
-                              True, out=tmp_path / "stub.csv", task=stub_engine,
-                              processes=False, timing_dir=tmp_path, solve=solve)
+        p = trade_study.build(stub_study(tmp_path, 100.0, 1000.0, 3),
+                              {(300.0, 250.0): (_Solved(300.0), None)}, "t_trade_direct",
+                              True, timing_dir=tmp_path)
         assert (tmp_path / "book" / "generated" / "data" / "t_trade_direct_study.csv").is_file()
-    assert solved == [(300.0, 250.0)]          # only the paper's engine of this Isp
     df = p.items["paper_engines"].df
     row = df[(df.thrust_N == 300.0) & (df.part == "LOI1")].iloc[0]
     exact = 0.9 * study.capture_chain_estimate(300.0, 250.0)[0]["analytic_loss_percent"]
@@ -195,3 +235,23 @@ def test_the_paper_engines_are_solved_directly_and_the_interpolation_error_is_me
         (df.optimal_loss_percent - df.paper_delta_v_loss_percent).abs().max())
     # the engines of the other Isps are not solved in this grid: missing, with a reason
     assert df[df.thrust_N != 300.0].optimal_loss_percent.isna().all()
+
+
+def test_a_failed_direct_solve_is_a_failed_row_not_an_error_of_the_page(tmp_path):
+    # lunarcap.solve raised SolveError on LOI 2 of 300 N / 250 s: the notebook keeps the
+    # burn verified before it and the error; the page shows LOI 1's loss, none after it
+    error = SolveError("plan song2011-300N: burn 2 of 3 failed on every mesh",
+                       "Maximum_Iterations_Exceeded")
+    rows = trade_study.direct_rows({(300.0, 250.0): (_Solved(300.0, burns=(1,)), error)},
+                                   "two-body")[300.0, 250.0]
+    assert rows.status.tolist() == ["ok", "failed", "not run", "incomplete"]
+    assert rows.ipopt_status.iloc[1] == "Maximum_Iterations_Exceeded"
+    assert "burn 2 of 3" in rows.error.iloc[1]
+    with paths.using_book(tmp_path / "book"):
+        p = trade_study.build(stub_study(tmp_path, 100.0, 1000.0, 3),
+                              {(300.0, 250.0): (_Solved(300.0, burns=(1,)), error)},
+                              "t_trade_failed", True, timing_dir=tmp_path)
+    df = p.items["paper_engines"].df.set_index("part")
+    shown = df[df.thrust_N == 300.0].optimal_loss_percent
+    assert np.isfinite(shown["LOI1"]) and shown[["LOI2", "LOI3", "sequence"]].isna().all()
+    p.check()
