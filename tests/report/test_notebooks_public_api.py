@@ -220,3 +220,34 @@ def test_the_checker_names_what_leaves_the_public_api(src, caught):
         assert bad == []
     else:
         assert bad and caught in bad[0], bad
+
+
+def public_calls(cells: list[str]) -> list[str]:
+    """The public API calls of a notebook's cells (``lunarcap.<name>(...)`` or a name
+    imported from ``lunarcap``), in order: a worked example computes through them."""
+    names, calls = set(), []
+    for src in cells:
+        tree = ast.parse(src)
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import):
+                names |= {a.asname or a.name for a in node.names if a.name == "lunarcap"}
+            elif isinstance(node, ast.ImportFrom) and node.module == "lunarcap":
+                names |= {a.asname or a.name for a in node.names if a.name in PUBLIC}
+        for node in ast.walk(tree):
+            f = node.func if isinstance(node, ast.Call) else None
+            if isinstance(f, ast.Attribute) and isinstance(f.value, ast.Name) \
+                    and f.value.id in names and f.attr in PUBLIC:
+                calls.append(f.attr)
+            elif isinstance(f, ast.Name) and f.id in names and f.id in PUBLIC:
+                calls.append(f.id)
+    return calls
+
+
+@pytest.mark.parametrize("name", [n for n in ALL if n not in NOT_CONVERTED])
+def test_a_converted_notebook_makes_its_own_public_calls(name):
+    """A notebook that hands its parameters to a display helper, which then computes,
+    keeps clear of internal imports yet is no worked example: each converted notebook
+    calls the public API itself (the page then only formats what it was given)."""
+    calls = public_calls(_code_cells(NOTEBOOKS / f"{name}.ipynb"))
+    assert calls, (f"notebooks/{name}.ipynb makes no call of lunarcap's public API: its "
+                   f"result is computed out of the reader's sight")
