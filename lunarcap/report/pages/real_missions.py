@@ -2,11 +2,12 @@
 
 The published figures of four captures (Chang'e-1, LRO, SELENE, KPLO) are data here
 (:data:`PUBLISHED`, each row with the keys of its sources in :data:`SOURCES`), as are the
-numbers taken from them for the comparisons. :func:`build` solves (or fetches) our
-free-ignition capture chains for the LRO- and SELENE-class engines of the paper's Sec. 3.1
-through the paper's plan (:func:`lunarcap.studies.sweeps.sequence_table`), flies our delta-Vs
-at the missions' masses and thrusts with Eq. (19), and sets KPLO's design beside the
-paper's capture.
+numbers taken from them for the comparisons. The notebook solves our free-ignition
+capture chains for the LRO- and SELENE-class engines of the paper's Sec. 3.1 with the
+public API (:func:`lunarcap.paper_plan` with every ignition free, then
+:func:`lunarcap.solve`; cached); :func:`build` sets them beside the published figures,
+flies our delta-Vs at the missions' masses and thrusts with Eq. (19)
+(:func:`scaled_durations_min`), and sets KPLO's design beside the paper's capture.
 """
 
 from __future__ import annotations
@@ -17,7 +18,6 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.capture.chain import arrival_for
-from lunarcap.mission.plan import paper_plan
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import orbit_summary
@@ -25,7 +25,6 @@ from lunarcap.physics.rocket import burn_duration_estimate_s, rocket_mass_after
 from lunarcap.quantities import capture_name
 from lunarcap.report.contents import BookPage, Execution, table_files
 from lunarcap.report.page import Page
-from lunarcap.studies.sweeps import sequence_table
 
 NOTEBOOK = "notebooks/real_missions.ipynb"
 BOOK = BookPage(NOTEBOOK, "Beyond the paper", 60, (
@@ -251,7 +250,7 @@ def scaled_durations_min(delta_v_mps, m0_kg: float, thrust_N: float, isp_s: floa
 def durations_table(chains: dict) -> pd.DataFrame:
     """Published burn durations beside ours (paper's spacecraft) and ours at the missions'.
 
-    ``chains``: {(thrust N, Isp s): :func:`sequence_table`}. LRO is compared with the
+    ``chains``: {(thrust N, Isp s): :func:`chain_of`}. LRO is compared with the
     LRO-class chain, Chang'e-1 with the SELENE-class chain (NaN where that engine is not
     given). Columns: mission, quantity, published_min, ours_engine,
     ours_paper_spacecraft_min, ours_at_mission_mass_min, at_mission_mass.
@@ -439,19 +438,48 @@ def _add_checks(page: Page, chains: dict, compare: pd.DataFrame, kplo: pd.DataFr
                     r > 1.0, f"{r:.3f}")
 
 
-def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
-          output_name: str = "real_missions", quick: bool = False) -> Page:
-    """The page of published lunar captures (see the module docstring).
+def chain_of(capture) -> pd.DataFrame:
+    """One engine's solved chain as the rows the comparisons read, one per LOI.
 
-    ``engines``: [(thrust N, Isp s)]; the LRO comparison needs the LRO-class engine, the
-    Chang'e-1 comparison the SELENE-class one (their rows are empty without it).
+    ``capture``: :func:`lunarcap.solve` of :func:`lunarcap.paper_plan` with that engine
+    and every ignition free. Columns: loi, start_min, burn_duration_min, delta_v_mps,
+    m_start_kg, m_end_kg, v_end_kmps (perilune speed after the burn, km/s), verified (the
+    burn passed the re-propagation gate): the solutions' own numbers, unrounded.
     """
-    engines = [(float(t), float(i)) for t, i in engines]
-    params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
+    cols = ("start_min", "burn_duration_min", "delta_v_mps", "m_start_kg", "m_end_kg",
+            "v_end_kmps")
+    return pd.DataFrame([{"loi": int(r["burn"]), **{c: r[c] for c in cols},
+                          "verified": bool(r["verification_passed"])}
+                         for r in capture.rows()])
+
+
+def build(captures, output_name: str = "real_missions", quick: bool = False,
+          parameters: dict | None = None) -> Page:
+    """The page of published lunar captures beside ours (see the module docstring).
+
+    Parameters
+    ----------
+    captures : list of lunarcap.CaptureResult
+        One per engine, in the notebook's order: :func:`lunarcap.solve` of
+        :func:`lunarcap.paper_plan` with that engine (thrust N, Isp s), every ignition
+        free and the dynamics of the page. The LRO comparison needs the LRO-class engine
+        (:data:`LRO_CLASS`), the Chang'e-1 comparison the SELENE-class one
+        (:data:`SELENE_CLASS`): their rows are empty without it. KPLO is set beside the
+        first (its orbits are every engine's).
+    output_name, quick : the tables' prefix and whether it is a quick build.
+    parameters : dict, optional
+        The notebook's ``engines`` and ``dynamics``, shown in the page's provenance
+        (default: read from the captures' plans).
+    """
+    plans = [c.plan for c in captures]
+    engines = [(float(p.engine.thrust_N), float(p.engine.isp_s)) for p in plans]
+    dynamics = str(plans[0].dynamics)
+    params = ({k: [list(e) for e in v] if k == "engines" else v
+               for k, v in parameters.items()} if parameters is not None
+              else dict(engines=[list(e) for e in engines], dynamics=dynamics))
     page = Page(NOTEBOOK, params, output_name, quick, solver_description())
-    chains = {(t, i): sequence_table(t, i, ("free",) * 3, dynamics, with_impulsive_model=False)
-              for t, i in engines}
-    plan = paper_plan(*engines[0], dynamics=dynamics)
+    chains = {e: chain_of(c) for e, c in zip(engines, captures)}
+    plan = plans[0]   # the paper's arrival: every engine's
     arrival = arrival_for(plan.arrival, plan.ephemeris, plan.lunar_pole)
     arrival_speed = orbit_summary(arrival.state, C.MU_MOON)["v_kmps"]
     m0 = plan.arrival.mass_kg
@@ -469,7 +497,7 @@ def build(engines=(LRO_CLASS, SELENE_CLASS), dynamics: str = "full",
          else np.nan for n in (1, 2, 3)],
         "the SELENE-class engine is not run in the quick book" if quick else ""))
     _add_checks(page, chains, compare, kplo)
-    page.data["chains"] = chains
+    page.data.update({"chains": chains, "captures": list(captures)})
     t = page.text
     page.headline(f"Our LRO-class LOI 1 (*{capture_name('free')}*, {dynamics} dynamics) lasts "
                   f"{t('lro_loi1_ours_min', '.1f', ' min')} on the paper's spacecraft and "

@@ -1,7 +1,8 @@
 """The page of published lunar captures (lunarcap.report.pages.real_missions).
 
 The published figures and their sources are data: checked without solving. The page
-itself is built in two-body dynamics with the LRO-class engine only (slow).
+itself is built in two-body dynamics with the LRO-class engine only, solved as the notebook
+solves it (lunarcap.solve of lunarcap.paper_plan, every ignition free; slow).
 """
 
 import math
@@ -68,7 +69,30 @@ def test_durations_at_the_mission_mass_follow_eq19_and_the_rocket_equation():
 # ------------------------------------------------------------------ the page (solves)
 @pytest.fixture(scope="module")
 def page():
-    return rm.build([rm.LRO_CLASS], "two-body", "t_real_missions", True)
+    """The page as the notebook builds it: the LRO-class chain solved by the public API."""
+    import lunarcap
+
+    capture = lunarcap.solve(lunarcap.paper_plan(*rm.LRO_CLASS, starts=["free"] * 3,
+                                                 dynamics="two-body"), impulsive=False)
+    return rm.build([capture], "t_real_missions", True,
+                    dict(engines=[list(rm.LRO_CLASS)], dynamics="two-body"))
+
+
+@pytest.mark.slow
+def test_the_public_route_reaches_the_cached_chain_the_page_read_before(page):
+    # the notebook's lunarcap.solve(lunarcap.paper_plan(..., starts=["free"] * 3)) and the
+    # study's sequence_table solve the same plan keys: the same solutions, bit for bit
+    from lunarcap.studies.sweeps import sequence_table
+
+    ref = sequence_table(*rm.LRO_CLASS, ("free",) * 3, "two-body", with_impulsive_model=False)
+    ours = page.data["chains"][rm.LRO_CLASS]
+    for c in ("start_min", "burn_duration_min", "delta_v_mps", "m_start_kg", "m_end_kg",
+              "v_end_kmps", "verified"):
+        assert list(ours[c]) == list(ref[c]), c
+    # without the notebook's parameters, the provenance reads them from the plans
+    bare = rm.build(page.data["captures"], "t_real_missions", True)
+    assert bare.parameters == page.parameters == {"engines": [[320.0, 200.0]],
+                                                  "dynamics": "two-body"}
 
 
 @pytest.mark.slow
