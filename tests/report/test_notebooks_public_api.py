@@ -74,6 +74,10 @@ DISPLAY_HELPERS = {
     # (lunarcap.solve of lunarcap.paper_plan, one per engine) beside the missions' figures,
     # our delta-Vs flown at the missions' masses (Eq. 19) and KPLO's design
     "lunarcap.report.pages.real_missions": frozenset({"build"}),
+    # the lunar pole's page tabulates both poles and sets the chains the notebook solved
+    # with each (lunarcap.solve of lunarcap.load_plan(lunarcap.paper_plan(...),
+    # lunar_pole=...)) side by side (paper_engines: the paper's engines it compares)
+    "lunarcap.report.pages.lunar_pole": frozenset({"build", "paper_engines"}),
 }
 
 #: Notebooks whose computation still goes through an internal module, and why. Shrink it.
@@ -84,7 +88,6 @@ NOT_CONVERTED = {
     "reproduction_report": "a paper page: the audit of the paper's printed numbers has no "
                            "public call",
     "summary": "a paper page: the summary of every page's numbers has no public call",
-    "lunar_pole": "the pole models compared have no public call",
     "findings": "reads the other pages' glued numbers: a book page, nothing to compute",
     "glossary": "renders the glossary: a book page, nothing to compute",
 }

@@ -3,10 +3,12 @@
 The paper's frame, M-MME2000 ("Moon centered Moon mean equator and IAU vector of J2000",
 Song 2011, Sec. 1, defined in Song et al. 2010b), has its z axis along the Moon's pole
 at J2000 from the IAU orientation model. The IAU (2009) expression (Archinal et al.
-2011, Table 2) has constant terms and 13 periodic terms. :func:`build` solves the paper's
-best chains (Table B1's offsets) and their impulsive limits with the full expression and
-with its constant terms alone (:data:`lunarcap.physics.frames.LUNAR_POLES`) and tabulates
-the difference: every burn, its impulsive limit in the same dynamics and the loss
+2011, Table 2) has constant terms and 13 periodic terms. The notebook solves the paper's
+best chains (Table B1's offsets, :func:`lunarcap.paper_plan`) and their impulsive limits
+with the full expression and with its constant terms alone
+(:data:`lunarcap.physics.frames.LUNAR_POLES`; :func:`lunarcap.load_plan` with
+``lunar_pole``, then :func:`lunarcap.solve`); :func:`build` tabulates both poles and the
+difference they make: every burn, its impulsive limit in the same dynamics and the loss
 between them, so a reader sees what the periodic terms are worth.
 """
 
@@ -15,9 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from lunarcap.capture.chain import impulsive_limit, solve_plan
-from lunarcap.mission.plan import paper_plan
-from lunarcap.paper.printed import PAPER_BEST_STARTS_MIN, PAPER_ENGINES, paper_table_b1
+from lunarcap.paper.printed import PAPER_ENGINES, paper_table_b1
 from lunarcap.physics import frames
 from lunarcap.report.contents import BookPage, Execution, table_files
 from lunarcap.report.display import PASSED, verdict
@@ -33,6 +33,8 @@ BOOK = BookPage(NOTEBOOK, "The problem", 20, (
         expected_s=19,
         outputs=table_files("lunar_pole", "poles", "effect")),
 ))
+#: The poles compared: the whole IAU (2009) expression at J2000 (lunarcap's), and its
+#: constant terms alone.
 NEW, OLD = frames.LUNAR_POLES
 
 
@@ -48,25 +50,46 @@ def pole_table() -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def effect_table(engines: dict, dynamics: str) -> pd.DataFrame:
-    """Each burn of the best chains with both poles: delta-V, impulsive limit, loss (m/s)."""
+def paper_engines(thrusts_N=None) -> list:
+    """The paper's engines the page compares: [(thrust N, Isp s)] of Table B1.
+
+    ``thrusts_N``: which of 150, 300 and 450 N (None: all three); another thrust is
+    refused, since only the paper's engines have Table B1's ignitions to solve at.
+
+    >>> paper_engines([300])
+    [(300.0, 250.0)]
+    >>> len(paper_engines())
+    3
+    """
+    thrusts = [150.0, 300.0, 450.0] if thrusts_N is None else [float(t) for t in thrusts_N]
+    bad = [t for t in thrusts if int(t) not in PAPER_ENGINES]
+    if bad:
+        raise ValueError(f"thrusts_N must be among the paper's engines 150, 300, 450 N, "
+                         f"got {bad}")
+    return [(t, PAPER_ENGINES[int(t)]) for t in thrusts]
+
+
+def effect_table(captures: dict) -> pd.DataFrame:
+    """Each burn of the best chains with both poles: delta-V, impulsive limit, loss (m/s).
+
+    ``captures``: {pole: [lunarcap.CaptureResult]}, both poles of :data:`NEW`, :data:`OLD`, the
+    same engines in the same order (see :func:`build`).
+    """
     rows = []
-    for thrust, isp in engines.items():
-        starts = list(PAPER_BEST_STARTS_MIN[float(thrust)])
+    for new, old in zip(captures[NEW], captures[OLD]):
         res = {}
-        for pole in (NEW, OLD):
-            plan = paper_plan(thrust, isp, starts=starts, dynamics=dynamics).with_lunar_pole(pole)
-            sols = solve_plan(plan)
-            imps = [impulsive_limit(plan.key(n + 1)) for n in range(plan.n_burns)]
-            res[pole] = ([s.delta_v_mps for s in sols], [i["delta_v_mps"] for i in imps],
-                         [s.verification.passed and i["verification_passed"]
-                          for s, i in zip(sols, imps)])
+        for pole, cap in ((NEW, new), (OLD, old)):
+            res[pole] = ([b.solution.delta_v_mps for b in cap.burns],
+                         [b.impulsive["delta_v_mps"] for b in cap.burns],
+                         [b.solution.verification.passed and b.impulsive["verification_passed"]
+                          for b in cap.burns])
+        thrust, isp = new.plan.engine.thrust_N, new.plan.engine.isp_s
         for n in range(3):
             dv_new, imp_new, ok_new = (r[n] for r in res[NEW])
             dv_old, imp_old, ok_old = (r[n] for r in res[OLD])
             rows.append({"engine": engine_label(thrust, isp), "loi": n + 1,
-                         "start_min": starts[n], "dv_new_mps": dv_new, "dv_old_mps": dv_old,
-                         "dv_effect_mps": dv_new - dv_old,
+                         "start_min": new.plan.burns[n].start_min, "dv_new_mps": dv_new,
+                         "dv_old_mps": dv_old, "dv_effect_mps": dv_new - dv_old,
                          "impulsive_limit_effect_mps": imp_new - imp_old,
                          "delta_v_loss_new_mps": dv_new - imp_new,
                          "delta_v_loss_effect_mps": (dv_new - imp_new) - (dv_old - imp_old),
@@ -74,27 +97,50 @@ def effect_table(engines: dict, dynamics: str) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def build(dynamics: str = "full", thrusts_N: list | None = None,
-          output_name: str = "lunar_pole", quick: bool = False) -> Page:
-    """The page (see the module docstring).
+def _check_captures(captures: dict) -> None:
+    """Both poles, the same plans but for the pole, each burn with its impulsive limit.
+
+    The effect table subtracts one pole's chain from the other's burn by burn: a missing
+    pole, another engine, ignition or dynamics, or a burn without its impulsive limit
+    would make that difference meaningless, so it is refused with what is wrong.
+    """
+    missing = [p for p in frames.LUNAR_POLES if p not in captures]
+    if missing:
+        raise ValueError(f"captures: one list per pole {list(frames.LUNAR_POLES)}, missing "
+                         f"{missing}")
+    plans = {p: [(c.plan.engine, [b.start_min for b in c.plan.burns], str(c.plan.dynamics))
+                 for c in captures[p]] for p in (NEW, OLD)}
+    if plans[NEW] != plans[OLD] or not plans[NEW]:
+        raise ValueError("captures: the same engines, ignitions and dynamics with each pole")
+    for c in (*captures[NEW], *captures[OLD]):
+        if not c.complete or any(b.impulsive is None for b in c.burns):
+            raise ValueError(f"captures: {c.plan.name} needs every burn solved with its "
+                             "impulsive limit (lunarcap.solve(..., impulsive=True))")
+
+
+def build(captures: dict, output_name: str = "lunar_pole", quick: bool = False) -> Page:
+    """The page of the captures solved in the notebook (see the module docstring).
 
     Parameters
     ----------
-    dynamics : {"full", "j2", "two-body"}
-        Dynamics of the solves (two-body: the pole cannot matter, a check).
-    thrusts_N : list of float, optional
-        Which of the paper's engines (150, 300, 450 N); default all three.
+    captures : dict
+        ``{pole: [lunarcap.CaptureResult]}`` for both poles of
+        :data:`lunarcap.physics.frames.LUNAR_POLES`
+        (``"iau2009-j2000"``, ``"iau-constant"``): per engine of :func:`paper_engines`,
+        :func:`lunarcap.solve` (with the impulsive limits) of :func:`lunarcap.paper_plan`
+        (Table B1's ignitions) with that pole (:func:`lunarcap.load_plan`,
+        ``lunar_pole=``), the same engines in the same order for both.
     output_name : str
         Prefix of the CSV files.
     quick : bool
         Recorded in the provenance only.
+
+    The provenance's parameters (``dynamics``, ``thrusts_N``) are read from the plans.
     """
-    thrusts = [150.0, 300.0, 450.0] if thrusts_N is None else [float(t) for t in thrusts_N]
-    bad = [t for t in thrusts if int(t) not in PAPER_ENGINES]
-    if bad:
-        raise ValueError(f"thrusts_N must be among the paper's engines 150, 300, 450 N, "
-                         f"got {bad}")
-    engines = {t: PAPER_ENGINES[int(t)] for t in thrusts}
+    _check_captures(captures)
+    plans = [c.plan for c in captures[NEW]]
+    thrusts = [float(p.engine.thrust_N) for p in plans]
+    dynamics = str(plans[0].dynamics)
     page = Page(NOTEBOOK, dict(dynamics=dynamics, thrusts_N=thrusts), output_name, quick)
     poles = pole_table()
     page.table("poles", poles,
@@ -105,7 +151,7 @@ def build(dynamics: str = "full", thrusts_N: list | None = None,
                columns={"pole": "pole", "ra_deg": "α₀ (deg)", "dec_deg": "δ₀ (deg)",
                         "from_ecliptic_pole_deg": "from ecliptic pole (deg)"},
                floatfmt={"ra_deg": ".4f", "dec_deg": ".4f", "from_ecliptic_pole_deg": ".3f"})
-    eff = effect_table(engines, dynamics)
+    eff = effect_table(captures)
     page.table("effect", eff,
                caption=(f"Effect of the pole on the paper's best chains (Table B1 offsets, "
                         f"{dynamics} dynamics): ΔV with the default pole (iau2009-j2000) and "
