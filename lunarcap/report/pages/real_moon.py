@@ -22,9 +22,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from lunarcap.capture.chain import plan_result
+from lunarcap.capture.chain import PlanResult
 from lunarcap.capture.openloop import evolution, open_loop
-from lunarcap.mission.plan import load_plan
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.physics.ephemeris import default_ephemeris
@@ -268,48 +267,80 @@ def _year(epoch_s: float) -> tuple:
             seconds_from_calendar(f"{y + 1}-01-01 00:00:00 TDB"))
 
 
-def build(plan: str = "song2011-150N", degrees=(2, 8, 20, 50), compare_degree: int = 20,
-          design_degree: int | None = 20, after_days: float = 7.0, evolve_degrees=(2, 8, 20, 50),
-          approach_min: float = 60.0, output_name: str = "real_moon", quick: bool = False,
+def build(design, redesign=None, degrees=(2, 8, 20, 50), compare_degree: int = 20,
+          after_days: float = 7.0, evolve_degrees=(2, 8, 20, 50), approach_min: float = 60.0,
+          output_name: str = "real_moon", quick: bool = False,
           redesign_limits: bool = True) -> Page:
-    """The page (see the module docstring).
+    """The page of the captures solved in the notebook (see the module docstring).
 
     Parameters
     ----------
-    plan : the design (a packaged plan or a plan file), in its own dynamics (J2)
+    design : lunarcap.CaptureResult
+        The design, :func:`lunarcap.solve` of a plan in its own dynamics (J2), with its
+        impulsive limits if ``redesign`` is given (the J2 losses beside the field's).
+    redesign : lunarcap.CaptureResult, optional
+        The same plan designed again in a field of LP165P (:func:`lunarcap.load_plan`
+        with ``dynamics=field(degree)``, then :func:`lunarcap.solve` with
+        ``impulsive=redesign_limits``); None: not done (the page says why).
     degrees : the field's degrees (x the same order) the design is flown open loop in
     compare_degree : the field in which both starts of the open loop are compared (one of
         ``degrees``)
-    design_degree : the field the plan is designed again in (None: not done)
     after_days : days the final orbit is flown after the last cut-off
     evolve_degrees : the fields it is flown in (besides the design's J2)
     approach_min : the open loop from the arrival starts this long before the first
         ignition, min (where the exported capture starts)
-    redesign_limits : whether the re-design's impulsive limits (and so its losses) in the
-        field are computed: two finite-burn solves per burn, the larger part of the page's
-        time
+    redesign_limits : whether ``redesign`` was solved with its impulsive limits (and so
+        its losses) in the field: two finite-burn solves per burn
     output_name, quick : the tables' prefix; recorded in the provenance
+
+    The open-loop flights of the design and its final orbit flown in the other models
+    have no public call: they are flown here, from ``design``'s plan
+    (:func:`lunarcap.capture.openloop.open_loop`, :func:`~lunarcap.capture.openloop.
+    evolution`). The provenance's ``plan`` and ``design_degree`` are read from the
+    captures.
     """
-    p = load_plan(plan)
+    p = design.plan
+    design_degree = _check_captures(design, redesign, redesign_limits)
     degrees = list(degrees)
-    for d in list(degrees) + list(evolve_degrees) + [compare_degree] + (
-            [] if design_degree is None else [design_degree]):
+    for d in list(degrees) + list(evolve_degrees) + [compare_degree]:
         degree_order(d)  # each field named right, before anything is flown
-    page = Page(NOTEBOOK, dict(plan=plan, degrees=degrees, compare_degree=compare_degree,
+    page = Page(NOTEBOOK, dict(plan=p.name, degrees=degrees, compare_degree=compare_degree,
                                design_degree=design_degree, after_days=after_days,
                                evolve_degrees=list(evolve_degrees), approach_min=approach_min,
                                redesign_limits=redesign_limits),
                 output_name, quick, solver=solver_description(), ephemeris=p.ephemeris_model())
-    design = plan_result(p, impulsive=design_degree is not None)
     app = 60.0 * approach_min
     _frames(page, design)
     _misses(page, p, degrees, compare_degree, app)
-    _redesign(page, p, design, design_degree, redesign_limits)
+    _redesign(page, design, redesign, design_degree, redesign_limits)
     _evolution(page, p, after_days, evolve_degrees)
     page.note("scope", scope_text(page, degrees, evolve_degrees, design_degree,
                                   redesign_limits, after_days))
     _headline(page, compare_degree, after_days)
     return page
+
+
+def _check_captures(design, redesign, limits: bool):
+    """The re-design's field (its degree, or "NxM"; None: no re-design), once checked.
+
+    The re-design is set burn by burn beside the design: it must be the design's plan in
+    an LP165P field, both complete, and each burn of the design (and of the re-design if
+    ``limits``) with its impulsive limit, or the losses compared would be meaningless.
+    """
+    if not design.complete:
+        raise ValueError(f"design: every burn of {design.plan.name} solved (lunarcap.solve)")
+    if redesign is None:
+        return None
+    f = force_model(redesign.plan.dynamics)
+    if not f.is_field or redesign.plan != design.plan.with_dynamics(redesign.plan.dynamics):
+        raise ValueError("redesign: the design's plan with an LP165P field as its dynamics "
+                         "(lunarcap.load_plan(plan, dynamics=field(degree)))")
+    if not redesign.complete or any(b.impulsive is None for b in design.burns) or (
+            limits and any(b.impulsive is None for b in redesign.burns)):
+        raise ValueError("redesign: every burn solved, the design's with its impulsive "
+                         "limits (lunarcap.solve(..., impulsive=True)), the re-design's too "
+                         "if redesign_limits")
+    return f.degree if f.order == f.degree else f"{f.degree}x{f.order}"
 
 
 def _frames(page: Page, design) -> None:
@@ -447,17 +478,23 @@ def no_limit_text(page: Page, redesign) -> str:
 NO_LIMITS_REASON = "not computed in this run (`redesign_limits: false`)"
 
 
-def _redesign(page: Page, p, design, degree, limits: bool = True) -> None:
+def _redesign(page: Page, design, redesign, degree, limits: bool = True) -> None:
+    """The re-design's table, totals, losses and notes (``redesign`` None: why it lacks).
+
+    ``design``, ``redesign``: lunarcap.CaptureResult (the notebook's solves); ``degree``:
+    the re-design's field (:func:`_check_captures`).
+    """
     why = page.missing_reason
     if degree is None:
         why = f"not designed again in this run ({why})" if not page.quick else why
     no_limit = why if degree is None else NO_LIMITS_REASON
+    design = PlanResult(design.plan, design.burns)
     if degree is not None:
-        redesign = plan_result(p.with_dynamics(field(degree)), impulsive=limits)
+        redesign = PlanResult(redesign.plan, redesign.burns)
         df = redesign_table(design, redesign)
         page.expect("the re-designed capture is verified in its field",
                     redesign.totals()["all_verified"])
-        page.value("redesign_model", model_name(field(degree)))
+        page.value("redesign_model", model_name(redesign.plan.dynamics))
         page.note("no_limit_text", no_limit_text(page, redesign) if limits else
                   "(Whether each burn has an impulsive limit in the field at all is found "
                   "with the limits.)")
