@@ -135,6 +135,59 @@ class CaptureResult(Result):
                              f"{self.plan.n_burns} burns solved")
         return self
 
+    def fly_final_orbit(self, days: float, dynamics=None, rtol: float | None = None):
+        """The final orbit flown ``days`` after the last cut-off, in any dynamics.
+
+        :attr:`after` is the final orbit in the plan's own dynamics; this flies it in
+        another model too, so a design made in one model (J2) can be followed in another
+        (the lunar field), as the book's real-Moon page does.
+
+        Parameters
+        ----------
+        days : float
+            Days flown from the last burn's cut-off (> 0).
+        dynamics : str, dict or ForceModel, optional
+            The model, as :func:`lunarcap.load_plan` takes it (``"j2"``,
+            ``{"gravity": "LP165P", "degree": 20}``, ...); default the plan's.
+        rtol : float, optional
+            The propagation's relative tolerance (default the propagator's).
+
+        Returns
+        -------
+        lunarcap.physics.evolution.Evolution
+            Per whole revolution the perilune and apolune altitudes (km) and the mean
+            inclination (deg); ``summary()`` their extremes; ``final_state`` the end.
+            Cached on disk by plan, days, dynamics and tolerance; of the sampled states
+            only the first and the last are kept.
+
+        Raises
+        ------
+        InputError
+            A burn not solved or not verified (there is no final orbit to fly), or
+            ``days`` not positive.
+
+        Examples
+        --------
+        The two-body capture of :func:`solve`'s example, its 100 km circle flown a day in
+        J2 (seconds; cached):
+
+        >>> import lunarcap
+        >>> res = lunarcap.solve(lunarcap.load_plan("two-burn-8h", dynamics="two-body"),
+        ...                      impulsive=False)
+        >>> ev = res.fly_final_orbit(1.0, "j2")
+        >>> ev.forces, ev.summary()["after_revolutions"]
+        ('j2', 12)
+        >>> round(ev.summary()["after_min_perilune_altitude_km"], 1)
+        99.6
+        """
+        from lunarcap.capture.openloop import evolution
+
+        if not self.verified:
+            raise InputError(f"plan {self.plan.name}: every burn solved and verified before "
+                             "its final orbit is flown")
+        return evolution(self.plan, number("days", days, "days", positive=True), dynamics,
+                         rtol)
+
     def plot(self, hyperbola_hours: float = 3.0):
         """Fig. 2 of the book for this plan: the capture in the plane of the arrival orbit.
 

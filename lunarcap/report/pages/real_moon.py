@@ -1,20 +1,25 @@
 """The "real Moon" page (notebooks/real_moon.ipynb): the capture in the lunar gravity field.
 
 The paper's dynamics are the Moon as a point mass plus J2 (with the Earth and the Sun);
-the Moon's gravity is lumpier. :func:`build` takes the paper's 150 N capture as designed
-(J2, its verified burns) and
+the Moon's gravity is lumpier. The notebook solves, with the public API, the paper's
+150 N capture as designed (J2, its verified burns: :func:`lunarcap.solve`), the same plan
+designed again in LP165P (Konopliv et al. 2001) cut to a degree (the same targets and
+ignitions: :func:`lunarcap.load_plan` with ``dynamics=field(degree)``), and the design's
+final orbit flown for days in J2 and in the field of each degree
+(:meth:`lunarcap.CaptureResult.fly_final_orbit`). :func:`build` sets them out:
 
-* flies it open loop through LP165P (Konopliv et al. 2001) cut to several degrees, its
-  steering held in RTN or in inertial axes, from its arrival or from its first ignition
-  (:func:`lunarcap.capture.openloop.open_loop`): the final orbit and its miss
-  (:func:`miss_table`);
-* designs it again in the field (the same plan, targets and ignitions; the burns and
-  their impulsive limits, :func:`redesign_table`);
-* flies its final orbit for days in each model (:func:`lunarcap.capture.openloop.evolution`):
-  per revolution the lowest and highest altitude and the inclination
-  (:func:`evolution_table`, :func:`histories`, and the figure);
-* and measures how far the field's frame (DE405's principal axes) is from the IAU (2009)
-  body frame over the capture's year (:func:`frames_distance`).
+* the re-design beside the design, burn by burn: the burns and their impulsive limits
+  (:func:`redesign_table`);
+* the final orbit in each model: per revolution the lowest and highest altitude and the
+  inclination (:func:`evolution_table`, :func:`histories`, and the figure);
+* the design flown open loop through the field of several degrees, its steering held in
+  RTN or in inertial axes, from its arrival or from its first ignition: the final orbit
+  and its miss (:func:`miss_table`). These flights have no public call and are the one
+  thing :func:`build` computes itself (:func:`lunarcap.capture.openloop.open_loop`, from
+  the design's plan, cached on disk);
+* and how far the field's frame (DE405's principal axes) is from the IAU (2009) body
+  frame over the capture's year (:func:`frames_distance`, a fact of the frames the
+  prose quotes).
 """
 
 from __future__ import annotations
@@ -23,7 +28,7 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.capture.chain import PlanResult
-from lunarcap.capture.openloop import evolution, open_loop
+from lunarcap.capture.openloop import open_loop
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.physics.ephemeris import default_ephemeris
@@ -267,9 +272,8 @@ def _year(epoch_s: float) -> tuple:
             seconds_from_calendar(f"{y + 1}-01-01 00:00:00 TDB"))
 
 
-def build(design, redesign=None, degrees=(2, 8, 20, 50), compare_degree: int = 20,
-          after_days: float = 7.0, evolve_degrees=(2, 8, 20, 50), approach_min: float = 60.0,
-          output_name: str = "real_moon", quick: bool = False,
+def build(design, redesign, afters: dict, degrees=(2, 8, 20, 50), compare_degree: int = 20,
+          approach_min: float = 60.0, output_name: str = "real_moon", quick: bool = False,
           redesign_limits: bool = True) -> Page:
     """The page of the captures solved in the notebook (see the module docstring).
 
@@ -282,25 +286,29 @@ def build(design, redesign=None, degrees=(2, 8, 20, 50), compare_degree: int = 2
         The same plan designed again in a field of LP165P (:func:`lunarcap.load_plan`
         with ``dynamics=field(degree)``, then :func:`lunarcap.solve` with
         ``impulsive=redesign_limits``); None: not done (the page says why).
+    afters : dict
+        The design's final orbit flown for days after its last cut-off
+        (:meth:`lunarcap.CaptureResult.fly_final_orbit`, at the tolerance
+        :data:`EVOLUTION_RTOL`), keyed by the field's degree (:func:`degree_order`), None
+        for the design's own dynamics (required), in the order the page lists them; all
+        flown the same days.
     degrees : the field's degrees (x the same order) the design is flown open loop in
     compare_degree : the field in which both starts of the open loop are compared (one of
         ``degrees``)
-    after_days : days the final orbit is flown after the last cut-off
-    evolve_degrees : the fields it is flown in (besides the design's J2)
     approach_min : the open loop from the arrival starts this long before the first
         ignition, min (where the exported capture starts)
     redesign_limits : whether ``redesign`` was solved with its impulsive limits (and so
         its losses) in the field: two finite-burn solves per burn
     output_name, quick : the tables' prefix; recorded in the provenance
 
-    The open-loop flights of the design and its final orbit flown in the other models
-    have no public call: they are flown here, from ``design``'s plan
-    (:func:`lunarcap.capture.openloop.open_loop`, :func:`~lunarcap.capture.openloop.
-    evolution`). The provenance's ``plan`` and ``design_degree`` are read from the
-    captures.
+    The open-loop flights of the design have no public call: they are flown here, from
+    ``design``'s plan (:func:`lunarcap.capture.openloop.open_loop`, cached on disk). The
+    provenance's ``plan``, ``design_degree``, ``after_days`` and ``evolve_degrees`` are
+    read from the captures and ``afters``.
     """
     p = design.plan
     design_degree = _check_captures(design, redesign, redesign_limits)
+    after_days, evolve_degrees = _check_afters(afters)
     degrees = list(degrees)
     for d in list(degrees) + list(evolve_degrees) + [compare_degree]:
         degree_order(d)  # each field named right, before anything is flown
@@ -313,11 +321,26 @@ def build(design, redesign=None, degrees=(2, 8, 20, 50), compare_degree: int = 2
     _frames(page, design)
     _misses(page, p, degrees, compare_degree, app)
     _redesign(page, design, redesign, design_degree, redesign_limits)
-    _evolution(page, p, after_days, evolve_degrees)
+    _evolution(page, p, afters)
     page.note("scope", scope_text(page, degrees, evolve_degrees, design_degree,
                                   redesign_limits, after_days))
     _headline(page, compare_degree, after_days)
     return page
+
+
+def _check_afters(afters: dict) -> tuple:
+    """``(days, fields)`` of the final orbits flown: their common days, the fields' degrees.
+
+    The design's own dynamics (key None) must be among them (the prose sets the fields
+    beside it), and every orbit flown the same days (the table compares them).
+    """
+    if None not in afters:
+        raise ValueError("afters: the final orbit in the design's own dynamics (key None) "
+                         "beside the fields' (keys: their degrees)")
+    days = {ev.days for ev in afters.values()}
+    if len(days) != 1:
+        raise ValueError(f"afters: every final orbit flown the same days, got {sorted(days)}")
+    return days.pop(), [d for d in afters if d is not None]
 
 
 def _check_captures(design, redesign, limits: bool):
@@ -601,10 +624,10 @@ def scope_text(page: Page, degrees, evolve_degrees, design_degree, limits: bool,
             "(as in *Reproduce*): " + "; ".join(left) + ".")
 
 
-def _evolution(page: Page, p, days: float, degrees) -> None:
-    models = [None] + [field(d) for d in degrees]
-    evs = {model_name(p.dynamics if m is None else m): evolution(p, days, m, EVOLUTION_RTOL)
-           for m in models}
+def _evolution(page: Page, p, afters: dict) -> None:
+    """The final orbits flown (``afters``, see :func:`build`): figure, table, prose."""
+    days = next(iter(afters.values())).days
+    evs = {model_name(p.dynamics if d is None else field(d)): ev for d, ev in afters.items()}
     page.figure("evolution", draw.plot_evolution(histories(evs)), caption=(
         f"The final orbit of the J2 design flown {_days(days)} after its last cut-off in "
         "each model: each revolution's lowest and highest altitude (km, solid and dashed) "
