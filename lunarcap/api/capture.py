@@ -188,6 +188,60 @@ class CaptureResult(Result):
         return evolution(self.plan, number("days", days, "days", positive=True), dynamics,
                          rtol)
 
+    def fly_open_loop(self, dynamics=None, hold: str = "rtn", approach_min: float = 0.0):
+        """The capture's burns flown open loop, as planned, in any dynamics: its miss.
+
+        Each burn is flown at its designed epoch and duration, its steering held in the
+        flown orbit's RTN axes or in inertial axes (10 s segments, as a GMAT script flies
+        it), without re-targeting: flown in another model than the design's (the lunar
+        field for a J2 design), the final orbit misses the design's.
+
+        Parameters
+        ----------
+        dynamics : str, dict or ForceModel, optional
+            The model flown, as :func:`lunarcap.load_plan` takes it; default the plan's
+            (then the flight reproduces the design, to metres).
+        hold : {"rtn", "inertial", "one-direction"}
+            How the steering is held.
+        approach_min : float
+            Start this long before the first ignition (min, >= 0: the design's state
+            there, so the approach too is flown in ``dynamics``); 0: from the design's
+            state at the first ignition.
+
+        Returns
+        -------
+        lunarcap.capture.openloop.OpenLoop
+            ``final``: the final orbit flown (``rp_alt_km``, ``ra_alt_km``, ``inc_deg``),
+            the design's (``design_...``) and the distance from the design's end state
+            (``miss_km``, ``miss_mps``); ``events``: the distance at each ignition and
+            cut-off; ``end``: the state flown at the end. Cached on disk.
+
+        Raises
+        ------
+        InputError
+            A burn not solved or not verified, or an unknown ``hold``.
+
+        Examples
+        --------
+        The two-body capture of :func:`solve`'s example flown as planned in its own
+        dynamics, then with J2 (seconds; cached):
+
+        >>> import lunarcap
+        >>> res = lunarcap.solve(lunarcap.load_plan("two-burn-8h", dynamics="two-body"),
+        ...                      impulsive=False)
+        >>> res.fly_open_loop().final["miss_km"] < 1e-3
+        True
+        >>> res.fly_open_loop("j2", approach_min=60.0).final["miss_km"] > 1.0
+        True
+        """
+        from lunarcap.capture.openloop import open_loop
+
+        if not self.verified:
+            raise InputError(f"plan {self.plan.name}: every burn solved and verified before "
+                             "it is flown open loop")
+        approach = number("approach_min", approach_min, "min", minimum=0.0)
+        return open_loop(self.plan, dynamics, hold, 60.0 * approach)
+
     def plot(self, hyperbola_hours: float = 3.0):
         """Fig. 2 of the book for this plan: the capture in the plane of the arrival orbit.
 

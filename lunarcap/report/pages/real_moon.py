@@ -1,25 +1,19 @@
 """The "real Moon" page (notebooks/real_moon.ipynb): the capture in the lunar gravity field.
 
 The paper's dynamics are the Moon as a point mass plus J2 (with the Earth and the Sun);
-the Moon's gravity is lumpier. The notebook solves, with the public API, the paper's
-150 N capture as designed (J2, its verified burns: :func:`lunarcap.solve`), the same plan
-designed again in LP165P (Konopliv et al. 2001) cut to a degree (the same targets and
-ignitions: :func:`lunarcap.load_plan` with ``dynamics=field(degree)``), and the design's
-final orbit flown for days in J2 and in the field of each degree
-(:meth:`lunarcap.CaptureResult.fly_final_orbit`). :func:`build` sets them out:
-
-* the re-design beside the design, burn by burn: the burns and their impulsive limits
-  (:func:`redesign_table`);
-* the final orbit in each model: per revolution the lowest and highest altitude and the
-  inclination (:func:`evolution_table`, :func:`histories`, and the figure);
-* the design flown open loop through the field of several degrees, its steering held in
-  RTN or in inertial axes, from its arrival or from its first ignition: the final orbit
-  and its miss (:func:`miss_table`). These flights have no public call and are the one
-  thing :func:`build` computes itself (:func:`lunarcap.capture.openloop.open_loop`, from
-  the design's plan, cached on disk);
-* and how far the field's frame (DE405's principal axes) is from the IAU (2009) body
-  frame over the capture's year (:func:`frames_distance`, a fact of the frames the
-  prose quotes).
+the Moon's gravity is lumpier. The notebook computes with the public API: the paper's
+150 N capture as designed (J2, its verified burns: :func:`lunarcap.solve`); the same plan
+designed again in LP165P (Konopliv et al. 2001) cut to a degree (:func:`lunarcap.
+load_plan` with ``dynamics=field(degree)``); the design flown open loop through the field
+of several degrees, held in RTN or inertial axes, from its arrival or its first ignition
+(:meth:`lunarcap.CaptureResult.fly_open_loop`); its final orbit flown for days in J2 and
+the fields (:meth:`lunarcap.CaptureResult.fly_final_orbit`). :func:`build` sets them out:
+the final orbits and misses of the open loop (:func:`miss_table`), the re-design beside
+the design, burn by burn (:func:`redesign_table`), per revolution of the final orbit the
+lowest and highest altitude and the inclination (:func:`evolution_table`,
+:func:`histories`, the figure), and how far the field's frame (DE405's principal axes) is
+from the IAU (2009) body frame over the capture's year (:func:`frames_distance`, a fact
+of the frames the prose quotes).
 """
 
 from __future__ import annotations
@@ -28,7 +22,6 @@ import numpy as np
 import pandas as pd
 
 from lunarcap.capture.chain import PlanResult
-from lunarcap.capture.openloop import open_loop
 from lunarcap.physics import constants as C
 from lunarcap.physics.elements import rv_from_mee
 from lunarcap.physics.ephemeris import default_ephemeris
@@ -154,25 +147,14 @@ def miss_row(label: str, ol, start: str) -> dict:
             "open_loop_miss_km": f["miss_km"], "open_loop_miss_mps": f["miss_mps"]}
 
 
-def miss_table(plan, models, holds=("rtn", "inertial"), approach_s: float = 3600.0,
-               start: str = "arrival", flights: dict | None = None) -> pd.DataFrame:
-    """The design flown open loop in each model (rows), each hold: final orbit and miss.
+def miss_table(flights: dict, start: str = "arrival") -> pd.DataFrame:
+    """The design flown open loop, one row per flight: model, hold, final orbit and miss.
 
-    ``models``: plan ``dynamics`` (None: the design's own); ``start``: "arrival" (the
-    design's state ``approach_s`` before its first ignition) or "first ignition";
-    ``flights``: if given, filled with ``{(model label, hold): OpenLoop}`` (the flights'
-    end states, compared without flying them again).
+    ``flights``: ``{(model label, hold): OpenLoop}``
+    (:meth:`lunarcap.CaptureResult.fly_open_loop`), in the order of the rows; ``start``:
+    where the flights began, "arrival" (before the first ignition) or "first ignition".
     """
-    app = approach_s if start == "arrival" else 0.0
-    rows = []
-    for dyn in models:
-        label = model_name(plan.dynamics if dyn is None else dyn)
-        for hold in holds:
-            ol = open_loop(plan, dyn, hold, app)
-            if flights is not None:
-                flights[(label, hold)] = ol
-            rows.append(miss_row(label, ol, start))
-    return pd.DataFrame(rows)
+    return pd.DataFrame([miss_row(label, ol, start) for (label, _), ol in flights.items()])
 
 
 def redesign_table(design, redesign) -> pd.DataFrame:
@@ -272,9 +254,9 @@ def _year(epoch_s: float) -> tuple:
             seconds_from_calendar(f"{y + 1}-01-01 00:00:00 TDB"))
 
 
-def build(design, redesign, afters: dict, degrees=(2, 8, 20, 50), compare_degree: int = 20,
-          approach_min: float = 60.0, output_name: str = "real_moon", quick: bool = False,
-          redesign_limits: bool = True) -> Page:
+def build(design, redesign, afters: dict, arrival: dict, ignition: dict,
+          compare_degree: int = 20, approach_min: float = 60.0, output_name: str = "real_moon",
+          quick: bool = False, redesign_limits: bool = True) -> Page:
     """The page of the captures solved in the notebook (see the module docstring).
 
     Parameters
@@ -292,40 +274,70 @@ def build(design, redesign, afters: dict, degrees=(2, 8, 20, 50), compare_degree
         :data:`EVOLUTION_RTOL`), keyed by the field's degree (:func:`degree_order`), None
         for the design's own dynamics (required), in the order the page lists them; all
         flown the same days.
-    degrees : the field's degrees (x the same order) the design is flown open loop in
+    arrival : dict
+        The design flown open loop from ``approach_min`` before its first ignition
+        (:meth:`lunarcap.CaptureResult.fly_open_loop`), keyed by ``(degree, hold)``: the
+        field's degree (:func:`degree_order`; None: the design's own dynamics, required)
+        and the steering's hold, ``"rtn"`` and ``"inertial"`` for each, in the order of
+        the table's rows.
+    ignition : dict
+        The design flown open loop from its first ignition in the field of
+        ``compare_degree``, keyed by hold (``"rtn"``, ``"inertial"``).
     compare_degree : the field in which both starts of the open loop are compared (one of
-        ``degrees``)
-    approach_min : the open loop from the arrival starts this long before the first
-        ignition, min (where the exported capture starts)
+        the degrees of ``arrival``)
+    approach_min : where the flights of ``arrival`` started, min before the first
+        ignition (where the exported capture starts)
     redesign_limits : whether ``redesign`` was solved with its impulsive limits (and so
         its losses) in the field: two finite-burn solves per burn
     output_name, quick : the tables' prefix; recorded in the provenance
 
-    The open-loop flights of the design have no public call: they are flown here, from
-    ``design``'s plan (:func:`lunarcap.capture.openloop.open_loop`, cached on disk). The
-    provenance's ``plan``, ``design_degree``, ``after_days`` and ``evolve_degrees`` are
-    read from the captures and ``afters``.
+    Nothing is solved or flown here. The provenance's ``plan``, ``design_degree``,
+    ``degrees``, ``after_days`` and ``evolve_degrees`` are read from what was computed.
     """
     p = design.plan
     design_degree = _check_captures(design, redesign, redesign_limits)
     after_days, evolve_degrees = _check_afters(afters)
-    degrees = list(degrees)
-    for d in list(degrees) + list(evolve_degrees) + [compare_degree]:
-        degree_order(d)  # each field named right, before anything is flown
+    degrees = _check_flights(arrival, ignition, compare_degree)
     page = Page(NOTEBOOK, dict(plan=p.name, degrees=degrees, compare_degree=compare_degree,
                                design_degree=design_degree, after_days=after_days,
                                evolve_degrees=list(evolve_degrees), approach_min=approach_min,
                                redesign_limits=redesign_limits),
                 output_name, quick, solver=solver_description(), ephemeris=p.ephemeris_model())
-    app = 60.0 * approach_min
     _frames(page, design)
-    _misses(page, p, degrees, compare_degree, app)
+    _misses(page, p, arrival, ignition, compare_degree)
     _redesign(page, design, redesign, design_degree, redesign_limits)
     _evolution(page, p, afters)
     page.note("scope", scope_text(page, degrees, evolve_degrees, design_degree,
                                   redesign_limits, after_days))
     _headline(page, compare_degree, after_days)
     return page
+
+
+def _check_flights(arrival: dict, ignition: dict, compare) -> list:
+    """The fields' degrees of the open-loop flights from the arrival, once checked.
+
+    Each model (the design's own, key None, and the fields) flown with both holds, and
+    the compared field among them, flown from the first ignition with both holds too:
+    the page's tables and prose set each against the others.
+    """
+    holds = set(HOLD_NAMES)
+    models = list(dict.fromkeys(d for d, _ in arrival))
+    for d in models:
+        if d is not None:
+            degree_order(d)   # each field named right
+        if {h for m, h in arrival if m == d} != holds:
+            raise ValueError(f"arrival: the flights of {d!r} held in each of {sorted(holds)}")
+    if None not in models:
+        raise ValueError("arrival: the design flown in its own dynamics (key None) beside "
+                         "the fields (keys: their degrees)")
+    degrees = [d for d in models if d is not None]
+    degree_order(compare)
+    if compare not in degrees:
+        raise ValueError(f"compare_degree {compare} must be one of the degrees {degrees}")
+    if set(ignition) != holds:
+        raise ValueError(f"ignition: the flights from the first ignition held in each of "
+                         f"{sorted(holds)}")
+    return degrees
 
 
 def _check_afters(afters: dict) -> tuple:
@@ -374,10 +386,12 @@ def _frames(page: Page, design) -> None:
         page.value(f"frames_{k}", v)
 
 
-def _misses(page: Page, p, degrees, compare: int, approach_s: float) -> None:
-    models = [None] + [field(d) for d in degrees]
-    flights: dict = {}
-    miss = miss_table(p, models, approach_s=approach_s, flights=flights)
+def _misses(page: Page, p, arrival: dict, ignition: dict, compare) -> None:
+    """The open-loop flights (see :func:`build`): the miss and opens tables, values, prose."""
+    flights = {(model_name(p.dynamics if d is None else field(d)), hold): ol
+               for (d, hold), ol in arrival.items()}
+    degrees = [d for d in dict.fromkeys(d for d, _ in arrival) if d is not None]
+    miss = miss_table(flights)
     fmt = {"final_rp_altitude_km": ".3f", "final_ra_altitude_km": ".3f",
            "open_loop_inc_change_deg": "+.4f", "open_loop_miss_km": ".3f",
            "open_loop_miss_mps": ".2f"}
@@ -393,11 +407,10 @@ def _misses(page: Page, p, degrees, compare: int, approach_s: float) -> None:
         columns=heads, floatfmt=fmt,
         show_columns=["model", "hold", "final_rp_altitude_km", "final_ra_altitude_km",
                       "open_loop_inc_change_deg", "open_loop_miss_km", "open_loop_miss_mps"])
-    if compare not in degrees:
-        raise ValueError(f"compare_degree {compare} must be one of the degrees {degrees}")
     c = model_name(field(compare))
     opens = pd.concat([miss[miss.model == c],
-                       miss_table(p, [field(compare)], start="first ignition")],
+                       miss_table({(c, h): ol for h, ol in ignition.items()},
+                                  start="first ignition")],
                       ignore_index=True)
     page.table("opens", opens, caption=(
         f"Where the loop opens, {c}: flown from the arrival the approach too is in the "
