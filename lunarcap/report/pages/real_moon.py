@@ -148,12 +148,7 @@ def miss_row(label: str, ol, start: str) -> dict:
 
 
 def miss_table(flights: dict, start: str = "arrival") -> pd.DataFrame:
-    """The design flown open loop, one row per flight: model, hold, final orbit and miss.
-
-    ``flights``: ``{(model label, hold): OpenLoop}``
-    (:meth:`lunarcap.CaptureResult.fly_open_loop`), in the order of the rows; ``start``:
-    where the flights began, "arrival" (before the first ignition) or "first ignition".
-    """
+    """Rows of :func:`miss_row`: ``{(model label, hold): OpenLoop}`` flown from ``start``."""
     return pd.DataFrame([miss_row(label, ol, start) for (label, _), ol in flights.items()])
 
 
@@ -257,42 +252,35 @@ def _year(epoch_s: float) -> tuple:
 def build(design, redesign, afters: dict, arrival: dict, ignition: dict,
           compare_degree: int = 20, approach_min: float = 60.0, output_name: str = "real_moon",
           quick: bool = False, redesign_limits: bool = True) -> Page:
-    """The page of the captures solved in the notebook (see the module docstring).
+    """The page of what the notebook computed (module docstring); nothing is flown here.
 
     Parameters
     ----------
     design : lunarcap.CaptureResult
-        The design, :func:`lunarcap.solve` of a plan in its own dynamics (J2), with its
-        impulsive limits if ``redesign`` is given (the J2 losses beside the field's).
-    redesign : lunarcap.CaptureResult, optional
-        The same plan designed again in a field of LP165P (:func:`lunarcap.load_plan`
-        with ``dynamics=field(degree)``, then :func:`lunarcap.solve` with
-        ``impulsive=redesign_limits``); None: not done (the page says why).
+        The design (:func:`lunarcap.solve` of a plan in its own J2), with its impulsive
+        limits if ``redesign`` is given.
+    redesign : lunarcap.CaptureResult or None
+        The same plan solved in an LP165P field (:func:`lunarcap.load_plan` with
+        ``dynamics=field(degree)``), ``impulsive=redesign_limits``; None: not done.
     afters : dict
-        The design's final orbit flown for days after its last cut-off
-        (:meth:`lunarcap.CaptureResult.fly_final_orbit`, at the tolerance
-        :data:`EVOLUTION_RTOL`), keyed by the field's degree (:func:`degree_order`), None
-        for the design's own dynamics (required), in the order the page lists them; all
-        flown the same days.
+        The design's final orbit flown the same days in each model
+        (:meth:`lunarcap.CaptureResult.fly_final_orbit`, ``rtol`` :data:`EVOLUTION_RTOL`)
+        by the field's degree (:func:`degree_order`; None: the design's own, required).
     arrival : dict
         The design flown open loop from ``approach_min`` before its first ignition
-        (:meth:`lunarcap.CaptureResult.fly_open_loop`), keyed by ``(degree, hold)``: the
-        field's degree (:func:`degree_order`; None: the design's own dynamics, required)
-        and the steering's hold, ``"rtn"`` and ``"inertial"`` for each, in the order of
-        the table's rows.
+        (:meth:`lunarcap.CaptureResult.fly_open_loop`) by ``(degree, hold)``, the degrees
+        as in ``afters`` (None required), each held in ``"rtn"`` and ``"inertial"``, in
+        the order of the table's rows.
     ignition : dict
-        The design flown open loop from its first ignition in the field of
-        ``compare_degree``, keyed by hold (``"rtn"``, ``"inertial"``).
-    compare_degree : the field in which both starts of the open loop are compared (one of
-        the degrees of ``arrival``)
-    approach_min : where the flights of ``arrival`` started, min before the first
-        ignition (where the exported capture starts)
-    redesign_limits : whether ``redesign`` was solved with its impulsive limits (and so
-        its losses) in the field: two finite-burn solves per burn
-    output_name, quick : the tables' prefix; recorded in the provenance
-
-    Nothing is solved or flown here. The provenance's ``plan``, ``design_degree``,
-    ``degrees``, ``after_days`` and ``evolve_degrees`` are read from what was computed.
+        The same from the first ignition in the field of ``compare_degree`` (one of
+        ``arrival``'s), by hold.
+    approach_min : float
+        Where the flights of ``arrival`` started, min before the first ignition.
+    redesign_limits : bool
+        Whether ``redesign`` has its impulsive limits (two finite-burn solves per burn).
+    output_name, quick : the tables' prefix; recorded in the provenance, whose ``plan``,
+        ``design_degree``, ``degrees``, ``after_days`` and ``evolve_degrees`` are read
+        from what was computed.
     """
     p = design.plan
     design_degree = _check_captures(design, redesign, redesign_limits)
@@ -314,53 +302,37 @@ def build(design, redesign, afters: dict, arrival: dict, ignition: dict,
 
 
 def _check_flights(arrival: dict, ignition: dict, compare) -> list:
-    """The fields' degrees of the open-loop flights from the arrival, once checked.
+    """The fields' degrees of ``arrival`` (see :func:`build`), once checked.
 
-    Each model (the design's own, key None, and the fields) flown with both holds, and
-    the compared field among them, flown from the first ignition with both holds too:
-    the page's tables and prose set each against the others.
+    Each model (None: the design's own, and the fields) held both ways, and the compared
+    field among them, from the first ignition too: the tables set each beside the others.
     """
-    holds = set(HOLD_NAMES)
-    models = list(dict.fromkeys(d for d, _ in arrival))
-    for d in models:
-        if d is not None:
-            degree_order(d)   # each field named right
-        if {h for m, h in arrival if m == d} != holds:
-            raise ValueError(f"arrival: the flights of {d!r} held in each of {sorted(holds)}")
-    if None not in models:
-        raise ValueError("arrival: the design flown in its own dynamics (key None) beside "
-                         "the fields (keys: their degrees)")
+    holds, models = set(HOLD_NAMES), list(dict.fromkeys(d for d, _ in arrival))
     degrees = [d for d in models if d is not None]
-    degree_order(compare)
-    if compare not in degrees:
-        raise ValueError(f"compare_degree {compare} must be one of the degrees {degrees}")
-    if set(ignition) != holds:
-        raise ValueError(f"ignition: the flights from the first ignition held in each of "
-                         f"{sorted(holds)}")
+    for d in degrees + [compare]:
+        degree_order(d)   # each field named right
+    if None not in models or compare not in degrees or set(ignition) != holds or any(
+            {h for m, h in arrival if m == d} != holds for d in models):
+        raise ValueError(f"arrival: the design's own dynamics (None) and the fields, each "
+                         f"held in {sorted(holds)}, the compared field ({compare!r}) among "
+                         f"them and in ignition, held both ways; got {list(arrival)}, "
+                         f"{list(ignition)}")
     return degrees
 
 
 def _check_afters(afters: dict) -> tuple:
-    """``(days, fields)`` of the final orbits flown: their common days, the fields' degrees.
-
-    The design's own dynamics (key None) must be among them (the prose sets the fields
-    beside it), and every orbit flown the same days (the table compares them).
-    """
-    if None not in afters:
-        raise ValueError("afters: the final orbit in the design's own dynamics (key None) "
-                         "beside the fields' (keys: their degrees)")
+    """``(days, degrees)`` of the final orbits (see :func:`build`), once checked."""
     days = {ev.days for ev in afters.values()}
-    if len(days) != 1:
-        raise ValueError(f"afters: every final orbit flown the same days, got {sorted(days)}")
+    if None not in afters or len(days) != 1:
+        raise ValueError(f"afters: the design's own dynamics (None) and the fields, flown "
+                         f"the same days; got {list(afters)}, days {sorted(days)}")
     return days.pop(), [d for d in afters if d is not None]
 
 
 def _check_captures(design, redesign, limits: bool):
-    """The re-design's field (its degree, or "NxM"; None: no re-design), once checked.
+    """The re-design's field (degree, or "NxM"; None: none), once checked.
 
-    The re-design is set burn by burn beside the design: it must be the design's plan in
-    an LP165P field, both complete, and each burn of the design (and of the re-design if
-    ``limits``) with its impulsive limit, or the losses compared would be meaningless.
+    The design's plan in an LP165P field, both complete, with the limits the losses need.
     """
     if not design.complete:
         raise ValueError(f"design: every burn of {design.plan.name} solved (lunarcap.solve)")

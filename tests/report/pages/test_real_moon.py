@@ -79,12 +79,29 @@ def test_histories_and_evolution_table():
     assert real_moon.end_distance_km(evs["J2"], evs["field"]) == pytest.approx(1.0)
 
 
+def _computed(degrees, evolve_degrees, compare, days):
+    """What the notebook computes with the public API, for a small case (no re-design)."""
+    import lunarcap
+
+    design = lunarcap.solve("song2011-150N", impulsive=False)
+    holds = ["rtn", "inertial"]
+    model = lambda d: None if d is None else real_moon.field(d)   # noqa: E731
+    arrival = {(d, h): design.fly_open_loop(model(d), h, 60.0)
+               for d in [None, *degrees] for h in holds}
+    ignition = {h: design.fly_open_loop(model(compare), h) for h in holds}
+    afters = {d: design.fly_final_orbit(days, model(d), rtol=real_moon.EVOLUTION_RTOL)
+              for d in [None, *evolve_degrees]}
+    return design, afters, arrival, ignition
+
+
 @pytest.mark.slow
 def test_page_on_a_small_case(tmp_path):
+    design, afters, arrival, ignition = _computed(["2x0", 2], [2], 2, 0.25)
     with paths.using_book(tmp_path):
-        page = real_moon.build(degrees=["2x0", 2], compare_degree=2, design_degree=None,
-                               after_days=0.25, evolve_degrees=[2], quick=True,
-                               output_name="real_moon_test")
+        page = real_moon.build(design, None, afters, arrival, ignition, compare_degree=2,
+                               quick=True, output_name="real_moon_test")
+    assert page.parameters["degrees"] == ["2x0", 2] and page.parameters["after_days"] == 0.25
+    assert page.parameters["design_degree"] is None and page.parameters["evolve_degrees"] == [2]
     miss = page.items["miss"].df
     own = miss[miss.model == "J2 (the design's)"].set_index("hold").open_loop_miss_km
     assert own["RTN"] < 1e-3 and own["inertial"] < 0.01
@@ -110,6 +127,13 @@ def test_page_on_a_small_case(tmp_path):
     assert (shown.limit_shown == "not run in the quick book").all()
     assert "not run in the quick book" in page.notes["headline"]
     page.check()
+    # what build is handed is checked before anything is set out
+    with pytest.raises(ValueError, match="compared field"):
+        real_moon.build(design, None, afters, arrival, ignition, compare_degree=8)
+    with pytest.raises(ValueError, match="afters"):
+        real_moon.build(design, None, {2: afters[2]}, arrival, ignition, compare_degree=2)
+    with pytest.raises(ValueError, match="redesign"):   # the design itself, not in a field
+        real_moon.build(design, design, afters, arrival, ignition, compare_degree=2)
 
 
 def test_fields_are_named_by_degree_or_degree_and_order():
@@ -197,30 +221,26 @@ def test_scope_text_names_what_the_run_left_out_and_how_to_add_it():
     assert "redesign_limits" not in quick   # no re-design: no limits to add
 
 
-def test_redesign_without_limits_solves_no_limit_and_says_why(monkeypatch):
-    """The book's re-design asks the chain for its burns only; the limit columns say why."""
+def test_redesign_without_limits_says_why(monkeypatch):
+    """A re-design solved without its limits (the notebook's impulsive=False): the limit
+    columns are left out and say why."""
     from lunarcap.report.page import Page
 
-    asked = []
     rows = [{"delta_v_mps": 366.0, "delta_v_loss_mps": 13.5, "impulsive_limit_mps": 352.5},
             {"delta_v_mps": 248.0, "delta_v_loss_mps": 2.8, "impulsive_limit_mps": 245.2}]
-    design = _result(rows)
+    design = SimpleNamespace(plan=None, burns=_result(rows))
     field = SimpleNamespace(
         table=lambda: pd.DataFrame([{"delta_v_mps": 365.9, "delta_v_loss_mps": None,
                                      "impulsive_limit_mps": None},
                                     {"delta_v_mps": 247.8, "delta_v_loss_mps": None,
                                      "impulsive_limit_mps": None}]),
-        totals=lambda: {"all_verified": True})
-
-    def fake(plan, impulsive):
-        asked.append(impulsive)
-        return field
-
-    monkeypatch.setattr(real_moon, "plan_result", fake)
-    plan = SimpleNamespace(with_dynamics=lambda d: d)
+        totals=lambda: {"all_verified": True},
+        plan=SimpleNamespace(dynamics=real_moon.field(20)))
+    redesign = SimpleNamespace(plan=field.plan, burns=field)
+    # the captures' burns stand for their chains (PlanResult: table, totals)
+    monkeypatch.setattr(real_moon, "PlanResult", lambda plan, burns: burns)
     page = Page("nb", {}, "x")
-    real_moon._redesign(page, plan, design, 20, limits=False)
-    assert asked == [False]
+    real_moon._redesign(page, design, redesign, 20, limits=False)
     df = page.items["redesign"].df
     assert (df.limit_shown == real_moon.NO_LIMITS_REASON).all()
     assert (df.loss_shown == real_moon.NO_LIMITS_REASON).all()
