@@ -88,14 +88,20 @@ DISPLAY_HELPERS = {
     # lunarcap.paper_plan, one per engine, with the impulsive limits) beside Table B1 and
     # the totals the paper prints
     "lunarcap.report.pages.summary": frozenset({"build"}),
+    # the reproduction report sets the solves the notebook made (lunarcap.solve_burn of
+    # lunarcap.paper_plan at each ignition the paper prints, paper_starts: Tables 1-5's
+    # offsets; lunarcap.solve of lunarcap.paper_plan for paper_engines: the paper's three
+    # engines, whose chains its prose quotes) beside every printed number, and the audit
+    "lunarcap.report.pages.reproduction_report": frozenset({"build", "paper_starts",
+                                                           "paper_engines"}),
 }
 
 #: Notebooks whose computation still goes through an internal module, and why. Shrink it.
 NOT_CONVERTED = {
     "real_moon": "the field-gravity comparisons have no public call",
-    "fig1_geometry": "a paper page: the geometry figure's arcs have no public call",
-    "reproduction_report": "a paper page: the audit of the paper's printed numbers has no "
-                           "public call",
+    "fig1_geometry": "a figure of constants: the RTN frame and Eq. (14)'s angles for an "
+                     "illustrative thrust direction on an ellipse given by its period; no "
+                     "plan is solved, nothing the public API computes",
     "findings": "reads the other pages' glued numbers: a book page, nothing to compute",
     "glossary": "renders the glossary: a book page, nothing to compute",
 }
