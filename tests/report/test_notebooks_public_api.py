@@ -99,9 +99,10 @@ DISPLAY_HELPERS = {
 #: Notebooks whose computation still goes through an internal module, and why. Shrink it.
 NOT_CONVERTED = {
     "real_moon": "the field-gravity comparisons have no public call",
-    "fig1_geometry": "a figure of constants: the RTN frame and Eq. (14)'s angles for an "
-                     "illustrative thrust direction on an ellipse given by its period; no "
-                     "plan is solved, nothing the public API computes",
+    "fig1_geometry": "a figure of constants: the RTN frame and Eq. (14)'s angles of an "
+                     "illustrative thrust direction on the paper's first ellipse (12.235 h, "
+                     "lunarcap.paper_plan's burn 1 target); no plan is solved, and the "
+                     "frame and angles are no public call",
     "findings": "reads the other pages' glued numbers: a book page, nothing to compute",
     "glossary": "renders the glossary: a book page, nothing to compute",
 }
