@@ -84,15 +84,30 @@ DISPLAY_HELPERS = {
     # for days (CaptureResult.fly_final_orbit) in each field (field: the plan dynamics of
     # LP165P cut to a degree, with the Earth and the Sun)
     "lunarcap.report.pages.real_moon": frozenset({"build", "field"}),
+    # the verification page tabulates the residuals each burn the notebook solved carries
+    # (lunarcap.solve_burn of lunarcap.paper_plan per case: paper_case's cached solves) and
+    # the impulsive limits of each engine's chain (lunarcap.solve), beside the gates
+    # (cases_of: the paper's 37 cases of Tables 1-5, or the list given); build also runs
+    # the mesh-convergence study, which no public call offers (meshes other than the solver's)
+    "lunarcap.report.pages.verification": frozenset({"build", "cases_of"}),
+    # the summary page sets the best chains the notebook solved (lunarcap.solve of
+    # lunarcap.paper_plan, one per engine, with the impulsive limits) beside Table B1 and
+    # the totals the paper prints
+    "lunarcap.report.pages.summary": frozenset({"build"}),
+    # the reproduction report sets the solves the notebook made (lunarcap.solve_burn of
+    # lunarcap.paper_plan at each ignition the paper prints, paper_starts: Tables 1-5's
+    # offsets; lunarcap.solve of lunarcap.paper_plan for paper_engines: the paper's three
+    # engines, whose chains its prose quotes) beside every printed number, and the audit
+    "lunarcap.report.pages.reproduction_report": frozenset({"build", "paper_starts",
+                                                           "paper_engines"}),
 }
 
 #: Notebooks whose computation still goes through an internal module, and why. Shrink it.
 NOT_CONVERTED = {
-    "fig1_geometry": "a paper page: the geometry figure's arcs have no public call",
-    "verification": "a paper page: the re-propagation audit has no public call",
-    "reproduction_report": "a paper page: the audit of the paper's printed numbers has no "
-                           "public call",
-    "summary": "a paper page: the summary of every page's numbers has no public call",
+    "fig1_geometry": "a figure of constants: the RTN frame and Eq. (14)'s angles of an "
+                     "illustrative thrust direction on the paper's first ellipse (12.235 h, "
+                     "lunarcap.paper_plan's burn 1 target); no plan is solved, and the "
+                     "frame and angles are no public call",
     "findings": "reads the other pages' glued numbers: a book page, nothing to compute",
     "glossary": "renders the glossary: a book page, nothing to compute",
 }

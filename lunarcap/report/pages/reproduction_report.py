@@ -2,16 +2,21 @@
 
 Three parts, each a few tables and the numbers the prose quotes:
 
-(a) every entry of Tables 1-5 and B1 beside the same case solved with lunarcap
-    (:func:`lunarcap.studies.sweeps.sweep_table` at the paper's ignition offsets), and the
-    impulsive row of every table beside our two-body impulsive chain;
+(a) every entry of Tables 1-5 and B1 beside the same case solved with lunarcap (the
+    paper's ignition offsets, :func:`paper_starts`), and the impulsive row of every table
+    beside our two-body impulsive chain (:meth:`lunarcap.CapturePlan.impulsive`);
 (b) every number of the paper's prose (:data:`lunarcap.paper.printed.QUOTES`) beside our
-    equivalent from the best chains of the three engines (the paper's plans,
-    :func:`lunarcap.capture.chain.solve_plan`), and the printed perilune epochs beside the
-    plan's nominal ones;
+    equivalent from the best chains of the three engines (:func:`paper_engines`, Table
+    B1's offsets), and the printed perilune epochs beside the plan's nominal ones;
 (c) the audit of the paper's consistency (:mod:`lunarcap.paper.audit`).
 
-The tables are assembled by :mod:`lunarcap.report.reproduction`.
+The notebook solves (a) and (b) with the public API: :func:`lunarcap.solve_burn` of
+:func:`lunarcap.paper_plan` per printed ignition, :func:`lunarcap.solve` of
+:func:`lunarcap.paper_plan` per engine (the cached solves of
+:func:`lunarcap.studies.sweeps.sweep_table` and :func:`lunarcap.capture.chain.solve_plan`:
+the same plan keys). :func:`build` shapes them like the paper's tables
+(:func:`lunarcap.report.pages.sweep.sweep_of`); the tables are assembled by
+:mod:`lunarcap.report.reproduction`.
 """
 
 from __future__ import annotations
@@ -20,9 +25,8 @@ import re
 
 import pandas as pd
 
-from lunarcap.capture.chain import solve_plan
 from lunarcap.mission.plan import paper_plan
-from lunarcap.mission.scenario import paper_engine_pairs, paper_engines
+from lunarcap.mission.scenario import paper_engines as paper_engines_of_scenario
 from lunarcap.paper import audit
 from lunarcap.paper import printed as paper
 from lunarcap.physics import constants as C
@@ -30,8 +34,8 @@ from lunarcap.report import figdata
 from lunarcap.report import reproduction as rep
 from lunarcap.report.contents import BookPage, Execution, table_files
 from lunarcap.report.page import Page, solver_description
+from lunarcap.report.pages.sweep import sweep_of
 from lunarcap.repro import paths
-from lunarcap.studies import sweeps as runs_sweeps
 
 NOTEBOOK = "notebooks/reproduction_report.ipynb"
 BOOK = BookPage(NOTEBOOK, "Reproduction report", 10, (
@@ -160,17 +164,35 @@ def findings_by_group(ft: pd.DataFrame) -> pd.DataFrame:
     return groups
 
 
-def solve_sweeps(engines, dynamics: str) -> dict:
-    """The paper's sweeps (its offsets) of every LOI of each engine: (thrust, loi) -> table."""
-    sweeps = {}
-    for thrust, isp in engines:
-        for loi in (1, 2, 3):
-            starts = paper.PAPER_STARTS_MIN.get((thrust, loi))
-            if starts is None:
-                raise ValueError(f"the paper has no table for {thrust:g} N")
-            sweeps[(thrust, loi)] = runs_sweeps.sweep_table(thrust, isp, loi, starts,
-                                                            dynamics=dynamics)
-    return sweeps
+def paper_starts(thrust_N: float, loi: int) -> list:
+    """The ignition offsets (min) of the paper's table of one engine's LOI (Tables 1-5).
+
+    >>> paper_starts(150, 1)
+    [0.0, -6.0, -8.0, -10.0, -12.0, -14.0]
+    """
+    starts = paper.PAPER_STARTS_MIN.get((float(thrust_N), int(loi)))
+    if starts is None:
+        raise ValueError(f"the paper has no table for {float(thrust_N):g} N")
+    return [float(s) for s in starts]
+
+
+def paper_engines() -> list:
+    """The paper's three engines, ``[(thrust_N, isp_s)]``, whose best chains part (b) reads.
+
+    >>> paper_engines()
+    [(150.0, 200.0), (300.0, 250.0), (450.0, 300.0)]
+    """
+    return [(float(t), float(i)) for t, i in tuple(paper_engines_of_scenario().items())]
+
+
+def sweeps_of(burns: dict) -> dict:
+    """The paper's sweeps the notebook solved, shaped like its tables: (thrust, loi) -> table.
+
+    ``burns``: {(thrust_N, loi): [lunarcap.BurnSolution per offset of :func:`paper_starts`]}
+    (:func:`lunarcap.solve_burn` of :func:`lunarcap.paper_plan`, the earlier burns at
+    Table B1's offsets); each table :func:`lunarcap.studies.sweeps.sweep_frame`'s.
+    """
+    return {(float(t), int(loi)): sweep_of(b)[0] for (t, loi), b in burns.items()}
 
 
 def gate_text(long: pd.DataFrame) -> str:
@@ -240,9 +262,8 @@ def _add_part_a_tables(page: Page, long: pd.DataFrame, dynamics: str,
                   "max_abs_difference": ".3f"})
 
 
-def _part_a(page: Page, engines, dynamics: str, output_name: str):
+def _part_a(page: Page, engines, sweeps: dict, dynamics: str, output_name: str):
     """Tables 1-5 and B1 beside ours; returns the sweeps and the burn-duration rows."""
-    sweeps = solve_sweeps(engines, dynamics)
     two_body = paper_plan(150.0, 200.0, dynamics=dynamics).impulsive()
     long = rep.paper_tables_long(sweeps, impulsive_dv_mps=[b.delta_v_mps for b in two_body])
     _add_part_a_tables(page, long, dynamics, output_name)
@@ -269,14 +290,16 @@ def _part_a(page: Page, engines, dynamics: str, output_name: str):
     return sweeps, main[main.quantity == "burn duration"]
 
 
-def _part_b(page: Page, sweeps: dict, dynamics: str, output_name: str, findings):
-    """The numbers of the prose and the perilune epochs; returns (chains, quotes)."""
-    solutions = {float(t): solve_plan(paper_plan(t, isp, dynamics=dynamics))
-                 for t, isp in tuple(paper_engines().items())}
+def _part_b(page: Page, sweeps: dict, solutions: dict, dynamics: str, output_name: str,
+            findings):
+    """The numbers of the prose and the perilune epochs; returns (chains, quotes).
+
+    ``solutions``: {thrust_N: the Solutions of its best chain, in order}.
+    """
     chains = {t: rep.paper_chain_rows([s.summary() for s in sols])
               for t, sols in solutions.items()}
     imp_final = {float(t): paper_plan(t, isp).impulsive()[-1].m_after_kg
-                 for t, isp in tuple(paper_engines().items())}
+                 for t, isp in tuple(paper_engines_of_scenario().items())}
     best_starts = {k: float(df.loc[df.best, "start_min"].iloc[0]) for k, df in sweeps.items()}
     fig4 = figdata.fig4_steering(solutions[150.0][0])
     ours = rep.quote_equivalents(chains, imp_final, best_starts, fig4,
@@ -443,27 +466,38 @@ def _part_c(page: Page, findings, chains: dict, dur: pd.DataFrame, output_name: 
     page.data.update(findings=ft)
 
 
-def build(engines=paper_engine_pairs(), dynamics: str = "full",
-          output_name: str = "reproduction_report", quick: bool = False) -> Page:
-    """The reproduction report (see the module docstring).
+def build(burns: dict, captures, output_name: str = "reproduction_report",
+          quick: bool = False, parameters: dict | None = None) -> Page:
+    """The reproduction report of the solves the notebook made (see the module docstring).
 
     Parameters
     ----------
-    engines : sequence of (thrust_N, isp_s)
-        The paper's engines whose Tables (1-3, 4, 5) part (a) compares; parts (b) and (c)
-        always use the three engines.
-    dynamics : {"full", "j2", "two-body"}
+    burns : dict
+        Part (a): {(thrust_N, loi): [lunarcap.BurnSolution per offset of
+        :func:`paper_starts`]} for LOI 1-3 of each engine compared, in the notebook's order
+        (:func:`lunarcap.solve_burn` of :func:`lunarcap.paper_plan`, one dynamics).
+    captures : list of lunarcap.CaptureResult
+        Part (b): :func:`lunarcap.solve` of :func:`lunarcap.paper_plan` for each of the
+        paper's three engines (:func:`paper_engines`), Table B1's offsets.
     output_name : str
         Prefix of the CSV files.
     quick : bool
         Recorded in the provenance (the quick run compares fewer engines in (a)).
+    parameters : dict, optional
+        The notebook's ``engines`` and ``dynamics``, shown in the provenance (default:
+        read from the solves).
     """
-    engines = [(float(t), float(i)) for t, i in engines]
-    params = dict(engines=[list(e) for e in engines], dynamics=dynamics)
+    dynamics = str(captures[0].plan.dynamics)
+    compared = {(b[0].plan.engine.thrust_N, b[0].plan.engine.isp_s): 1 for b in burns.values()}
+    prm = dict(parameters or dict(engines=list(compared), dynamics=dynamics))
+    engines = [(float(t), float(i)) for t, i in prm["engines"]]
+    params = dict(engines=[list(e) for e in engines], dynamics=prm["dynamics"])
     page = Page(NOTEBOOK, params, output_name, quick, solver_description())
     findings = audit.audit_findings()
-    sweeps, dur = _part_a(page, engines, dynamics, output_name)
-    chains, _ = _part_b(page, sweeps, dynamics, output_name, findings)
+    sweeps, dur = _part_a(page, engines, sweeps_of(burns), dynamics, output_name)
+    solutions = {float(c.plan.engine.thrust_N): [b.solution for b in c.burns]
+                 for c in captures}
+    chains, _ = _part_b(page, sweeps, solutions, dynamics, output_name, findings)
     _part_c(page, findings, chains, dur, output_name)
     t = page.text
     page.headline(f"{t('n_table_numbers')} numbers of the paper's tables beside ours: the "

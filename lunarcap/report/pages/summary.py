@@ -4,11 +4,13 @@ The best chain of each engine (the paper's best offsets, Table B1, each LOI star
 our own verified end state of the burn before, mass carried through), its totals, and
 the same totals computed from the paper's Table B1, beside the numbers the paper prints.
 
-:func:`build` solves (or fetches) the chains through the paper's capture plans
-(:func:`lunarcap.studies.sweeps.sequence_table`, whose impulsive limits give the loss in
-the same dynamics), assembles the four tables and the loss figure, and writes the
-notes the prose needs from the data: which engines were run, which way each difference
-goes.
+The notebook solves the chains with the public API (:func:`lunarcap.solve` of
+:func:`lunarcap.paper_plan` per engine, with the impulsive limits that give the loss in
+the same dynamics: the cached solves :func:`lunarcap.studies.sweeps.sequence_table`
+reaches, the same plan keys); :func:`build` shapes each as Table B1's rows
+(:func:`lunarcap.report.pages.other_engines.sequence_of`), assembles the four tables and
+the loss figure, and writes the notes the prose needs from the data: which engines were
+run, which way each difference goes.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from lunarcap.report.display import PASSED, verdict
 from lunarcap.report.figures import summary as draw
 from lunarcap.report.labels import engine_label
 from lunarcap.report.page import Page, solver_description
+from lunarcap.report.pages.other_engines import sequence_of
 from lunarcap.studies import sweeps
 
 #: The stem of the totals' loss against the paper's printed impulses (glossary name).
@@ -434,22 +437,33 @@ def _add_paper_checks(page: Page, engines, seqs: dict, totals: dict, values: dic
                     abs(total_d - loi1_d) < 0.1, f"{total_d:.2f} vs {loi1_d:.2f} min")
 
 
-def build(engines=PAPER_ENGINES, starts=None, dynamics: str = "full",
-          output_name: str = "summary", quick: bool = False) -> Page:
-    """The Table B1 and totals page (see the module docstring).
+def build(captures, output_name: str = "summary", quick: bool = False,
+          parameters: dict | None = None) -> Page:
+    """The Table B1 and totals page of the chains the notebook solved (module docstring).
 
     Parameters
     ----------
-    engines : [[thrust N, Isp s], ...]
-    starts : per engine, the ignition offsets of LOI 1-3 (min), or None: the paper's best
-    dynamics : "full", "j2" or "two-body"
+    captures : list of lunarcap.CaptureResult
+        One per engine (the paper's: :func:`check_engines`), in the notebook's order:
+        :func:`lunarcap.solve` of :func:`lunarcap.paper_plan` with that engine, its
+        ignitions (default Table B1's) and dynamics, with the impulsive limits.
+    output_name, quick : the page's output name and whether it is a quick build.
+    parameters : dict, optional
+        The notebook's ``engines``, ``starts`` (None: Table B1's offsets, which the
+        paper's checks and the headline name) and ``dynamics``, shown in the provenance
+        (default: read from the captures' plans, ``starts`` None).
     """
-    engines = check_engines(engines)
-    params = dict(engines=[list(e) for e in engines], starts=starts, dynamics=dynamics)
+    plans = [c.plan for c in captures]
+    engines = check_engines([(p.engine.thrust_N, p.engine.isp_s) for p in plans])
+    dynamics = str(plans[0].dynamics)
+    prm = dict(parameters or dict(engines=engines, starts=None, dynamics=dynamics))
+    starts = prm.get("starts")
+    params = dict(engines=[list(e) for e in check_engines(prm["engines"])], starts=starts,
+                  dynamics=prm["dynamics"])
     page = Page(NOTEBOOK, params, output_name, quick, solver_description())
     seqs, totals, chains = {}, {}, {}
-    for k, (thrust, isp) in enumerate(engines):
-        s = sweeps.sequence_table(thrust, isp, None if starts is None else starts[k], dynamics)
+    for (thrust, isp), capture in zip(engines, captures):
+        s = sequence_of(capture)
         seqs[thrust] = s
         chains[engine_label(thrust, isp)] = s
         totals[thrust] = sweeps.sequence_totals(s)

@@ -1,12 +1,17 @@
 """The verification page (notebooks/verification.ipynb): how far to trust each number.
 
 Every solution the book shows passed the re-propagation gate
-(:mod:`lunarcap.optim.verify`). :func:`build` gathers the evidence: the residuals of every
-case of Tables 1-5 (:func:`lunarcap.studies.sweeps.verification_table`), the largest of each
-beside its gate, the impulsive limits behind the model-to-model losses
-(:func:`lunarcap.capture.chain.impulsive_limit`), and a mesh-convergence study of one case
-per LOI (:func:`lunarcap.optim.verify.mesh_convergence`, cached by :func:`mesh_study`) that
-shows coarse meshes IPOPT solves to its tolerances and the gate still rejects.
+(:mod:`lunarcap.optim.verify`). The notebook solves the evidence with the public API: each
+case of Tables 1-5 as :func:`lunarcap.solve_burn` of :func:`lunarcap.paper_plan` (the
+cached solve :func:`lunarcap.capture.chain.paper_case` reaches: the same plan key), which
+carries its verification, and each engine's best chain as :func:`lunarcap.solve` of
+:func:`lunarcap.paper_plan`, which carries the impulsive limits behind the model-to-model
+losses. :func:`build` formats them: the residuals of every case
+(:func:`lunarcap.studies.sweeps.verification_table`), the largest of each beside its gate,
+the impulsive limits. It also runs the one study no public call offers, a mesh-convergence
+study of one case per LOI (:func:`lunarcap.optim.verify.mesh_convergence` on meshes other
+than the solver's, cached by :func:`mesh_study`) that shows coarse meshes IPOPT solves to
+its tolerances and the gate still rejects.
 """
 
 from __future__ import annotations
@@ -14,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from lunarcap.capture.chain import paper_case, perilune_state
+from lunarcap.capture.chain import perilune_state
 from lunarcap.mission.plan import paper_plan
 from lunarcap.optim import verify
 from lunarcap.optim.collocation import DEFAULT_MESHES, Mesh
@@ -72,8 +77,15 @@ GATES = (
 IPOPT_OK = {"Solve_Succeeded": "succeeded", "Solved_To_Acceptable_Level": "acceptable"}
 
 
-def _cases(cases) -> list:
-    """(thrust N, Isp s, LOI, start min, previous starts) of "paper" or a list."""
+def cases_of(cases) -> list:
+    """The cases a notebook solves: (thrust N, Isp s, LOI, start min, earlier starts min).
+
+    ``cases``: "paper" (the 37 cases of the paper's Tables 1-5, each after Table B1's
+    earlier burns) or a list of [thrust_N, isp_s, loi, start_min, [earlier starts]].
+
+    >>> len(cases_of("paper")), cases_of([[150, 200, 2, -6, [-10]]])
+    (37, [(150.0, 200.0, 2, -6.0, (-10.0,))])
+    """
     if isinstance(cases, str):
         if cases != "paper":
             raise ValueError(f'cases must be "paper" or a list, got {cases!r}')
@@ -81,6 +93,17 @@ def _cases(cases) -> list:
                 for t, i, n, s, p in bench.paper_cases()]
     return [(float(t), float(i), int(n), float(s), tuple(float(x) for x in p))
             for t, i, n, s, p in cases]
+
+
+def case_of(burn) -> tuple:
+    """(thrust N, Isp s, LOI, start min, earlier starts min) of a solved burn.
+
+    ``burn``: a :class:`lunarcap.BurnSolution` (its plan as solved: the ignitions applied).
+    """
+    plan, n = burn.plan, burn.burn
+    return (float(plan.engine.thrust_N), float(plan.engine.isp_s), int(n),
+            float(plan.burns[n - 1].start_min),
+            tuple(float(b.start_min) for b in plan.burns[:n - 1]))
 
 
 def fixed_point(v: float, sig: int = 2, sign: bool = False) -> str:
@@ -106,15 +129,16 @@ def _case_text(thrust_N, loi, start_min, with_engine: bool = True) -> str:
     return (f"{thrust_N:g} N, " if with_engine else "") + f"LOI {loi}, {start_min:g} min"
 
 
-def cases_table(case_list, dynamics: str) -> pd.DataFrame:
-    """Verification residuals of every case (cached solves), one row each.
+def cases_table(burns) -> pd.DataFrame:
+    """Verification residuals of every case the notebook solved, one row each.
 
-    The columns of :func:`lunarcap.studies.sweeps.verification_table` plus ``case`` (text),
-    ``table_b1`` (yes: a link of a Table B1 chain); ``passed`` as yes / no, the mesh as
-    'n×m LGR-d'.
+    ``burns``: :class:`lunarcap.BurnSolution` each (their solutions carry the
+    verification). The columns of :func:`lunarcap.studies.sweeps.verification_table` plus
+    ``case`` (text), ``table_b1`` (yes: a link of a Table B1 chain); ``passed`` as yes /
+    no, the mesh as 'n×m LGR-d'.
     """
-    sols = [paper_case(t, i, n, s, p, dynamics) for t, i, n, s, p in case_list]
-    ver = sweeps.verification_table(sols)
+    case_list = [case_of(b) for b in burns]
+    ver = sweeps.verification_table([b.solution for b in burns])
     b1 = ["yes" if tuple(PAPER_BEST_STARTS_MIN.get(t, ())[:n]) == tuple(p) + (s,) else ""
           for t, i, n, s, p in case_list]
     ver.insert(0, "case", [_case_text(t, n, s) + (", B1" if b == "yes" else "")
@@ -147,13 +171,18 @@ def gate_table(ver: pd.DataFrame) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def impulsive_table(case_list, dynamics: str) -> pd.DataFrame:
-    """The impulsive limits along each engine's best chain, for the LOIs of ``case_list``."""
+def impulsive_table(case_list, chains) -> pd.DataFrame:
+    """The impulsive limits along each engine's best chain, for the LOIs of ``case_list``.
+
+    ``chains``: :class:`lunarcap.CaptureResult` of the paper's plan per engine of
+    ``case_list`` (Table B1's ignitions), solved with its impulsive limits.
+    """
+    by_engine = {(float(c.plan.engine.thrust_N), float(c.plan.engine.isp_s)): c
+                 for c in chains}
     rows = []
     for t, i in sorted({(t, i) for t, i, n, s, p in case_list}):
         for n in sorted({n for tt, _, n, _, _ in case_list if tt == t}):
-            prev = tuple(PAPER_BEST_STARTS_MIN[t][:n - 1])
-            imp = sweeps.paper_impulsive_case(t, i, n, prev, dynamics)
+            imp = by_engine[(t, i)].burns[n - 1].impulsive
             rows.append({"thrust_N": t, "loi": n, "burn_long_s": imp["burn_long_s"],
                          "delta_v_long_mps": imp["delta_v_long_mps"],
                          "burn_short_s": imp["burn_short_s"],
@@ -384,31 +413,38 @@ def _add_checks(page: Page, ver, imp, mesh, values: dict, default_points: int) -
                     values["n_fooled"] > 0)
 
 
-def build(cases="paper", mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
-          meshes=((4, 8, 4), (8, 16, 5)), dynamics: str = "full",
-          output_name: str = "verification", quick: bool = False) -> Page:
-    """The verification page (see the module docstring).
+def build(burns, chains, mesh_cases=((150.0, 200.0, 1, -10.0, ()),),
+          meshes=((4, 8, 4), (8, 16, 5)), output_name: str = "verification",
+          quick: bool = False, parameters: dict | None = None) -> Page:
+    """The verification page of the solves the notebook made (see the module docstring).
 
     Parameters
     ----------
-    cases : "paper" (the 37 cases of Tables 1-5) or [[thrust N, Isp s, LOI, start min,
-        [earlier starts min]], ...]
-    mesh_cases : cases (same form) of the mesh-convergence study
+    burns : list of lunarcap.BurnSolution
+        Each case, :func:`lunarcap.solve_burn` of :func:`lunarcap.paper_plan` (one
+        dynamics for all), with its verification.
+    chains : list of lunarcap.CaptureResult
+        :func:`lunarcap.solve` of :func:`lunarcap.paper_plan` for each engine of ``burns``,
+        with its impulsive limits (the model-to-model losses' references).
+    mesh_cases : cases (thrust N, Isp s, LOI, start min, [earlier starts min]) of the
+        mesh-convergence study the page runs (no public call: meshes other than the solver's)
     meshes : [[burn intervals, coast intervals, LGR degree], ...], coarse to fine (the last
         is the reference)
-    dynamics : "full", "j2" or "two-body"
+    output_name, quick : the page's output name and whether it is a quick build.
+    parameters : dict, optional
+        The notebook's parameters, shown in the page's provenance.
     """
-    params = dict(cases=cases if isinstance(cases, str) else [list(c) for c in cases],
-                  mesh_cases=[list(c) for c in mesh_cases], meshes=[list(m) for m in meshes],
-                  dynamics=dynamics)
+    dynamics = burns[0].plan.dynamics
+    params = {k: v if isinstance(v, str) else [list(c) for c in v]
+              for k, v in (parameters or {}).items()}
     page = Page(NOTEBOOK, params, output_name, quick, solver_description())
-    case_list = _cases(cases)
-    mesh_list = _cases(mesh_cases)
+    case_list = [case_of(b) for b in burns]
+    mesh_list = cases_of(mesh_cases)
     default_points = (DEFAULT.n_burn + DEFAULT.n_coast) * DEFAULT.degree
 
-    ver = cases_table(case_list, dynamics)
+    ver = cases_table(burns)
     _add_cases(page, ver, case_list, dynamics)
-    imp = impulsive_table(case_list, dynamics)
+    imp = impulsive_table(case_list, chains)
     _add_impulsive(page, imp)
     mesh = mesh_table(mesh_cases, meshes, dynamics)
     _add_mesh(page, mesh, mesh_list, default_points)

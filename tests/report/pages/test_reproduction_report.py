@@ -6,8 +6,10 @@ paper (which needs the full dynamics, asserted by the page's own checks in the b
 """
 
 import numpy as np
+import pandas as pd
 import pytest
 
+import lunarcap
 from lunarcap.mission.plan import paper_plan
 from lunarcap.mission.scenario import paper_scenario
 from lunarcap.paper import audit
@@ -19,9 +21,45 @@ from lunarcap.report.pages import reproduction_report
 pytestmark = pytest.mark.slow
 
 
+def _burns(engines, dynamics="two-body"):
+    """Part (a)'s solves as the notebook makes them (lunarcap.solve_burn per printed offset)."""
+    rr = reproduction_report
+    return {(t, loi): [lunarcap.solve_burn(lunarcap.paper_plan(t, i, dynamics=dynamics), loi,
+                                           start=s, impulsive=False)
+                       for s in rr.paper_starts(t, loi)]
+            for t, i in engines for loi in (1, 2, 3)}
+
+
 @pytest.fixture(scope="module")
 def page():
-    return reproduction_report.build([[150.0, 200.0]], "two-body", "t_repro", True)
+    captures = [lunarcap.solve(lunarcap.paper_plan(t, i, dynamics="two-body"), impulsive=False)
+                for t, i in reproduction_report.paper_engines()]
+    return reproduction_report.build(_burns([(150.0, 200.0)]), captures, "t_repro", True,
+                                     dict(engines=[[150.0, 200.0]], dynamics="two-body"))
+
+
+def test_the_public_solves_are_the_sweep_tables_and_chains(page):
+    """lunarcap.solve_burn / lunarcap.solve of lunarcap.paper_plan reach the cached solves
+    of sweep_table and solve_plan (the same plan keys): the same tables, to the bit."""
+    from lunarcap.capture.chain import solve_plan
+    from lunarcap.studies import sweeps
+
+    for (t, loi), df in page.data["sweeps"].items():
+        ref = sweeps.sweep_table(t, 200.0, loi, reproduction_report.paper_starts(t, loi),
+                                 dynamics="two-body")
+        pd.testing.assert_frame_equal(df, ref, check_exact=True)
+        assert df.attrs == ref.attrs
+    sols = solve_plan(paper_plan(300.0, 250.0, dynamics="two-body"))
+    pd.testing.assert_frame_equal(
+        pd.DataFrame(page.data["chains"][300.0]),
+        pd.DataFrame(reproduction.paper_chain_rows([s.summary() for s in sols])),
+        check_exact=True)
+    assert page.parameters == {"engines": [[150.0, 200.0]], "dynamics": "two-body"}
+
+
+def test_paper_starts_refuses_an_engine_without_a_table():
+    with pytest.raises(ValueError, match="no table for 320 N"):
+        reproduction_report.paper_starts(320.0, 1)
 
 
 def test_tables_set_every_printed_number_beside_ours(page):

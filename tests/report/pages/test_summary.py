@@ -1,8 +1,11 @@
 """The Table B1 and totals page (lunarcap.report.pages.summary), one engine in two-body."""
 
+import types
+
 import numpy as np
 import pytest
 
+import lunarcap
 from lunarcap.mission.scenario import paper_scenario
 from lunarcap.paper import printed as paper
 from lunarcap.report.page import is_missing
@@ -13,7 +16,24 @@ pytestmark = pytest.mark.slow
 
 @pytest.fixture(scope="module")
 def page():
-    return summary.build([[450.0, 300.0]], None, "two-body", "t_summary", True)
+    # the chain as the notebook solves it: the paper's plan with Table B1's offsets
+    capture = lunarcap.solve(lunarcap.paper_plan(450.0, 300.0, dynamics="two-body"))
+    return summary.build([capture], "t_summary", True,
+                         dict(engines=[[450.0, 300.0]], starts=None, dynamics="two-body"))
+
+
+def test_the_public_chain_is_sequence_tables(page):
+    """lunarcap.solve of lunarcap.paper_plan reaches sequence_table's cached solves and
+    impulsive limits (the same plan keys): the same rows, to the bit."""
+    import pandas as pd
+
+    from lunarcap.studies import sweeps
+
+    ref = sweeps.sequence_table(450.0, 300.0, None, "two-body")
+    pd.testing.assert_frame_equal(page.data["chains"]["450 N / 300 s"], ref,
+                                  check_exact=True)
+    assert page.parameters == {"engines": [[450.0, 300.0]], "starts": None,
+                               "dynamics": "two-body"}
 
 
 def test_b1_table_sets_ours_beside_table_b1(page):
@@ -100,5 +120,6 @@ def test_glued_totals_are_the_sums_of_the_chain(page):
 def test_another_engine_is_refused_with_a_clear_message():
     from lunarcap.report.pages import summary
 
+    other = types.SimpleNamespace(plan=lunarcap.paper_plan(320.0, 200.0, dynamics="two-body"))
     with pytest.raises(ValueError, match="320 N / 200 s is not one of them"):
-        summary.build([[320.0, 200.0]], dynamics="two-body")
+        summary.build([other])

@@ -3,6 +3,8 @@
 import numpy as np
 import pytest
 
+import lunarcap
+from lunarcap.capture.chain import paper_case
 from lunarcap.optim import verify
 from lunarcap.report.pages import verification
 
@@ -11,10 +13,27 @@ pytestmark = pytest.mark.slow
 CASES = [[450.0, 300.0, 1, -3.0, []], [450.0, 300.0, 2, -2.0, [-3.0]]]
 
 
+def _burns(cases, dynamics="two-body"):
+    """Each case solved as the notebook solves it (lunarcap.solve_burn of lunarcap.paper_plan)."""
+    return [lunarcap.solve_burn(lunarcap.paper_plan(t, i, dynamics=dynamics), n, start=s,
+                                previous_starts=p, impulsive=False)
+            for t, i, n, s, p in verification.cases_of(cases)]
+
+
 @pytest.fixture(scope="module")
 def page():
-    return verification.build(CASES, CASES[:1], [[3, 6, 4], [8, 16, 5]], "two-body", "t_ver",
-                              True)
+    chains = [lunarcap.solve(lunarcap.paper_plan(450.0, 300.0, dynamics="two-body"))]
+    return verification.build(_burns(CASES), chains, CASES[:1], [[3, 6, 4], [8, 16, 5]],
+                              "t_ver", True, dict(cases=CASES, dynamics="two-body"))
+
+
+def test_the_public_solves_are_the_paper_cases_cached_solves():
+    """lunarcap.solve_burn of lunarcap.paper_plan reaches the internal paper_case's solve
+    (the same plan key, so the same cached solution and verification)."""
+    for b, (t, i, n, s, p) in zip(_burns(CASES), verification.cases_of(CASES)):
+        assert verification.case_of(b) == (t, i, n, s, p)
+        sol = paper_case(t, i, n, s, p, "two-body")
+        assert b.solution.summary() == sol.summary()
 
 
 def test_every_case_passes_the_gate_with_margin(page):
@@ -52,6 +71,11 @@ def test_impulsive_limit_is_the_richardson_extrapolation(page):
     # and any finite burn of the engine needs more
     fin = page.data["cases"].set_index("loi").delta_v_mps
     assert (imp.set_index("loi").delta_v_mps < fin).all()
+
+
+def test_provenance_and_cases_follow_the_notebooks_solves(page):
+    assert page.parameters == {"cases": CASES, "dynamics": "two-body"}
+    assert list(page.items["impulsive"].df.loi) == [1, 2]   # the LOIs of the cases only
 
 
 def test_mesh_table(page):
