@@ -4,14 +4,16 @@ A result that must hold for any plan the load-time checks accept (the solver mee
 target as asked, a missed-thrust recovery is found or refused with a reason) is checked
 on plans drawn at random from these ranges, not only on the paper's: the tests draw small
 families, ``tools/missed_family.py`` bigger ones. A family is a function of its seed
-alone (:func:`numpy.random.default_rng`), so a plan is named by its seed and index
-("family-5 of seed 24") and drawn again identically anywhere.
+alone (:func:`numpy.random.default_rng`), so a plan is named by its seed and its index
+in the family and drawn again identically anywhere.
 
 Examples
 --------
+Two plans of one seed, named by their index, none refused:
+
 >>> plans, refused = plan_family(24, 2)
->>> [p.name for p in plans], refused
-(['family-0', 'family-1'], [])
+>>> [p.name for p in plans] == [f"family-{k}" for k in range(2)], refused
+(True, [])
 """
 
 from __future__ import annotations
